@@ -1,0 +1,85 @@
+// rotgen — deterministic printers for GiNaC expressions.
+//
+// GiNaC's own output order depends on hash seeds that change from run to run; these printers order
+// the terms of every sum and the factors of every product by their printed text, so the same
+// expression prints the same way in every run. One method per node type; a node type a printer
+// does not know throws (never prints something plausible but wrong).
+//
+//   text  — SymPy-parsable: `**` for powers, `*` everywhere, pi, standard function names.
+//   latex — for documents: \frac, \sin, \dot{\theta}, I_{1}.
+//   c     — C++ for generated kernels: small integer powers as products, exact literals.
+#pragma once
+
+#include <ginac/ginac.h>
+
+#include <functional>
+#include <map>
+#include <string>
+
+namespace rotgen {
+
+class expression_printer {
+  public:
+    virtual ~expression_printer() = default;
+    std::string operator()(const GiNaC::ex& e) const { return print(e, 0); }
+
+  protected:
+    // Binding strength of the surrounding context: 0 top, 1 sum, 2 product, 3 power base/exponent.
+    std::string print(const GiNaC::ex& e, int context) const;
+
+    virtual std::string number(const GiNaC::numeric& n, int context) const;
+    virtual std::string symbol(const GiNaC::symbol& s) const;
+    virtual std::string constant(const GiNaC::constant& c) const;
+    virtual std::string sum(const GiNaC::ex& e, int context) const;
+    virtual std::string product(const GiNaC::ex& e, int context) const;
+    virtual std::string power(const GiNaC::ex& base, const GiNaC::ex& exponent, int context) const;
+    virtual std::string function(const std::string& name, const std::vector<std::string>& args) const;
+
+    // Pieces the styles differ in.
+    virtual std::string times() const { return "*"; }
+    virtual std::string fraction(const std::string& num, const std::string& den) const;
+    virtual std::string function_name(const std::string& ginac_name) const { return ginac_name; }
+
+    static std::string parenthesise(const std::string& s) { return "(" + s + ")"; }
+};
+
+class text_printer : public expression_printer {};
+
+class latex_printer : public expression_printer {
+  protected:
+    std::string number(const GiNaC::numeric& n, int context) const override;
+    std::string symbol(const GiNaC::symbol& s) const override;
+    std::string constant(const GiNaC::constant& c) const override;
+    std::string power(const GiNaC::ex& base, const GiNaC::ex& exponent, int context) const override;
+    std::string function(const std::string& name, const std::vector<std::string>& args) const override;
+    std::string times() const override { return " "; }
+    std::string fraction(const std::string& num, const std::string& den) const override;
+};
+
+// C++ for templated kernels. Symbols print through `names` (e.g. theta -> "y[1]", I1 -> "p.I1");
+// a symbol missing from the table prints as its own name. Non-integer rationals print as
+// `S(p)/S(q)` (folded by the compiler, correctly rounded for every scalar type S).
+class c_printer : public expression_printer {
+  public:
+    explicit c_printer(std::map<std::string, std::string> names = {}, std::string scalar = "T")
+        : m_names(std::move(names)), m_scalar(std::move(scalar)) {}
+
+  protected:
+    std::string number(const GiNaC::numeric& n, int context) const override;
+    std::string symbol(const GiNaC::symbol& s) const override;
+    std::string constant(const GiNaC::constant& c) const override;
+    std::string power(const GiNaC::ex& base, const GiNaC::ex& exponent, int context) const override;
+    std::string fraction(const std::string& num, const std::string& den) const override;
+
+  private:
+    std::map<std::string, std::string> m_names;
+    std::string m_scalar;
+};
+
+std::string to_text(const GiNaC::ex& e);
+std::string to_latex(const GiNaC::ex& e);
+
+// Shortest decimal that reads back as the same double.
+std::string format_double(double x);
+
+} // namespace rotgen

@@ -1,0 +1,62 @@
+// rotgen runtime — outcome of an integration: status, message, final time, step statistics.
+//
+// Expected failures (a step size that underflows, a Newton iteration that does not converge,
+// the step budget running out, a state that stops being finite, bad arguments) are values of
+// `status`, never exceptions and never aborts (house style: Odeint's `success`/`fail`).
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+namespace rotgen {
+
+enum class status {
+    ok,                  // every requested sample was produced, the end time was reached
+    step_size_underflow, // |h| fell below 16·eps·|t| (adaptive methods), e.g. near a blow-up
+    newton_failure,      // the implicit solve (implicit midpoint) did not converge
+    max_steps,           // the step budget (`max_steps`) was used up before the end time
+    non_finite,          // NaN/Inf in the state or its derivative; stopped at the last good state
+    invalid_argument     // bad options or sample times (non-positive tolerance, unsorted times, …)
+};
+
+inline const char* status_name(status s) {
+    switch (s) {
+    case status::ok: return "ok";
+    case status::step_size_underflow: return "step_size_underflow";
+    case status::newton_failure: return "newton_failure";
+    case status::max_steps: return "max_steps";
+    case status::non_finite: return "non_finite";
+    case status::invalid_argument: return "invalid_argument";
+    }
+    return "unknown";
+}
+
+// Work counters, common to every method.
+//   steps          attempted steps (accepted + rejected)
+//   accepted       steps whose result became the new state
+//   rejected       steps thrown away by the error control (or for non-finite stage values)
+//   rhs_evals      calls of system.rhs (including finite-difference Jacobians and ∂f/∂t)
+//   jac_evals      Jacobian evaluations (analytic or by finite differences)
+//   factorisations LU factorisations of an iteration matrix
+struct step_stats {
+    std::size_t steps = 0;
+    std::size_t accepted = 0;
+    std::size_t rejected = 0;
+    std::size_t rhs_evals = 0;
+    std::size_t jac_evals = 0;
+    std::size_t factorisations = 0;
+};
+
+// Result of `integrate`. On return the caller's state vector holds the state at `t`:
+// the end time when `code == status::ok`, otherwise the last good (accepted, finite) state.
+template <class T> struct integration_result {
+    status code = status::ok;
+    std::string message; // one line, empty when ok
+    T t = T(0);          // time of the state left in the caller's vector
+    T last_step = T(0);  // size of the last accepted step (signed)
+    step_stats stats;
+
+    bool ok() const { return code == status::ok; }
+};
+
+} // namespace rotgen
