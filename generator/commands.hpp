@@ -1,0 +1,15 @@
+// rotgen — the sub-commands behind the CLI, each in its own file (cli.cpp dispatches).
+// Each takes the arguments after the command name, writes results, and returns the exit status;
+// user errors are thrown as user_error (cli.cpp prints them and returns 2).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace rotgen {
+
+int cmd_inspect(const std::vector<std::string>& args);  // inspect.cpp
+int cmd_emit(const std::vector<std::string>& args);     // emit_command.cpp
+int cmd_simulate(const std::vector<std::string>& args); // simulate_command.cpp
+
+} // namespace rotgen
