@@ -35,7 +35,8 @@ class parser {
     }
 
   private:
-    [[noreturn]] void fail(std::size_t offset, const std::string& problem) const {
+    [[noreturn]] void fail(std::size_t offset, const std::string& problem,
+                           const std::string& hint = "") const {
         source_location at = m_where;
         // Map the offset to a line and column when the text spans several lines.
         int line_shift = 0;
@@ -51,10 +52,11 @@ class parser {
         } else {
             at = at.shifted(static_cast<int>(offset));
         }
-        throw user_error(at, problem + " in " + m_what);
+        throw user_error(at, problem + " in " + m_what + hint);
     }
-    [[noreturn]] void fail(const token& t, const std::string& problem) const {
-        fail(t.offset, problem);
+    [[noreturn]] void fail(const token& t, const std::string& problem,
+                           const std::string& hint = "") const {
+        fail(t.offset, problem, hint);
     }
 
     void tokenize() {
@@ -255,15 +257,15 @@ class parser {
                 const auto& funcs = known_functions();
                 if (std::find(funcs.begin(), funcs.end(), t.text) == funcs.end()) {
                     const std::string best = closest_name(t.text, funcs);
-                    fail(t, "unknown function '" + t.text + "'" +
-                                (best.empty() ? "" : "; did you mean '" + best + "'?"));
+                    fail(t, "unknown function '" + t.text + "'",
+                         best.empty() ? "" : "; did you mean '" + best + "'?");
                 }
                 return call(t);
             }
             auto it = m_names.find(t.text);
             if (it != m_names.end()) return it->second;
             if (t.text == "pi") return GiNaC::Pi;
-            fail(t, "unknown symbol '" + t.text + "'" + suggestion(t.text));
+            fail(t, "unknown symbol '" + t.text + "'", suggestion(t.text));
         }
         case token::op:
             if (t.text == "(") {

@@ -30,20 +30,61 @@ std::string integer_text(const GiNaC::numeric& n) {
     return os.str();
 }
 
-// A term of a sum, split into sign and magnitude: -3*x -> (true, 3*x).
-std::pair<bool, ex> split_sign(const ex& term) {
-    if (is_a<GiNaC::numeric>(term) && ex_to<GiNaC::numeric>(term).is_negative())
-        return {true, -term};
-    if (is_a<GiNaC::mul>(term)) {
-        const ex c = term.op(term.nops() - 1); // GiNaC keeps the numeric coefficient last
-        if (is_a<GiNaC::numeric>(c) && ex_to<GiNaC::numeric>(c).is_negative()) return {true, -term};
-    }
-    return {false, term};
-}
-
 bool is_negative_power(const ex& f) {
     return is_a<GiNaC::power>(f) && is_a<GiNaC::numeric>(f.op(1)) &&
            ex_to<GiNaC::numeric>(f.op(1)).is_negative();
+}
+
+bool has_negative_coefficient(const ex& term) {
+    if (is_a<GiNaC::numeric>(term)) return ex_to<GiNaC::numeric>(term).is_negative();
+    if (is_a<GiNaC::mul>(term))
+        for (std::size_t i = 0; i < term.nops(); ++i)
+            if (is_a<GiNaC::numeric>(term.op(i))) return ex_to<GiNaC::numeric>(term.op(i)).is_negative();
+    return false;
+}
+
+// GiNaC holds 1/(a - b) as -1/(b - a) or not, by hash order, which changes from run to run. The
+// printers therefore choose the sign of a sum in a denominator themselves: its first term in
+// printed order is made positive. True when `sum` must be negated for that.
+bool denominator_needs_flip(const ex& sum) {
+    std::string first;
+    bool negative = false;
+    for (std::size_t i = 0; i < sum.nops(); ++i) {
+        const ex term = sum.op(i);
+        const bool neg = has_negative_coefficient(term);
+        const std::string text = text_printer()(neg ? ex(-term) : term);
+        if (i == 0 || text < first) {
+            first = text;
+            negative = neg;
+        }
+    }
+    return negative;
+}
+
+// True when f is 1/(sum)^n whose sum the printers negate; `odd` tells if the sign changes.
+bool flipped_denominator(const ex& f, bool* odd = nullptr) {
+    if (is_negative_power(f) && is_a<GiNaC::add>(f.op(0)) &&
+        ex_to<GiNaC::numeric>(f.op(1)).is_integer() && denominator_needs_flip(f.op(0))) {
+        if (odd) *odd = ex_to<GiNaC::numeric>(f.op(1)).is_odd();
+        return true;
+    }
+    return false;
+}
+
+bool flips_sign(const ex& f) {
+    bool odd = false;
+    return flipped_denominator(f, &odd) && odd;
+}
+
+// A term of a sum, split into sign and magnitude as printed: -3*x -> (true, 3*x).
+std::pair<bool, ex> split_sign(const ex& term) {
+    bool negative = has_negative_coefficient(term);
+    if (is_a<GiNaC::mul>(term)) {
+        for (std::size_t i = 0; i < term.nops(); ++i) negative ^= flips_sign(term.op(i));
+    } else {
+        negative ^= flips_sign(term);
+    }
+    return {negative, negative ? ex(-term) : term};
 }
 
 } // namespace
@@ -53,7 +94,8 @@ std::string expression_printer::print(const ex& e, int context) const {
     if (is_a<GiNaC::symbol>(e)) return symbol(ex_to<GiNaC::symbol>(e));
     if (is_a<GiNaC::constant>(e)) return constant(ex_to<GiNaC::constant>(e));
     if (is_a<GiNaC::add>(e)) return sum(e, context);
-    if (is_a<GiNaC::mul>(e)) return product(e, context);
+    if (is_a<GiNaC::mul>(e) || (is_negative_power(e) && is_a<GiNaC::add>(e.op(0))))
+        return product(e, context);
     if (is_a<GiNaC::power>(e)) return power(e.op(0), e.op(1), context);
     if (is_a<GiNaC::function>(e)) {
         std::vector<std::string> args;
@@ -90,11 +132,11 @@ std::string expression_printer::constant(const GiNaC::constant& c) const {
     throw std::logic_error("rotgen printer: unknown constant " + os.str());
 }
 
-std::string expression_printer::sum(const ex& e, int context) const {
+std::string expression_printer::sum(const ex& e, int context, bool negate) const {
     std::vector<std::pair<std::string, bool>> terms;
     for (std::size_t i = 0; i < e.nops(); ++i) {
         const auto [negative, magnitude] = split_sign(e.op(i));
-        terms.emplace_back(print(magnitude, 1), negative);
+        terms.emplace_back(print(magnitude, 1), negative != negate);
     }
     std::sort(terms.begin(), terms.end());
     std::string s;
@@ -110,8 +152,16 @@ std::string expression_printer::sum(const ex& e, int context) const {
 std::string expression_printer::product(const ex& e, int context) const {
     GiNaC::numeric coeff = 1;
     std::vector<std::string> num, den;
-    for (std::size_t i = 0; i < e.nops(); ++i) {
-        const ex f = e.op(i);
+    const std::size_t count = is_a<GiNaC::mul>(e) ? e.nops() : 1;
+    for (std::size_t i = 0; i < count; ++i) {
+        const ex f = is_a<GiNaC::mul>(e) ? e.op(i) : e;
+        if (flipped_denominator(f)) {
+            // 1/(sum)^n printed as (-1)^n / (-sum)^n, the negated sum's terms printed negated.
+            const int n = -ex_to<GiNaC::numeric>(f.op(1)).to_int();
+            if (n % 2) coeff = -coeff;
+            den.push_back(integer_power(parenthesise(sum(f.op(0), 0, true)), n));
+            continue;
+        }
         if (is_a<GiNaC::numeric>(f)) {
             coeff *= ex_to<GiNaC::numeric>(f);
         } else if (is_negative_power(f)) {
@@ -158,6 +208,20 @@ static bool is_wrapped(const std::string& s) {
 std::string expression_printer::fraction(const std::string& num, const std::string& den) const {
     const bool simple = den.find_first_of("*/+- ") == std::string::npos || is_wrapped(den);
     return num + "/" + (simple ? den : parenthesise(den));
+}
+
+std::string expression_printer::integer_power(const std::string& base, int n) const {
+    return n == 1 ? base : base + "**" + std::to_string(n);
+}
+
+std::string latex_printer::integer_power(const std::string& base, int n) const {
+    return n == 1 ? base : base + "^{" + std::to_string(n) + "}";
+}
+
+std::string c_printer::integer_power(const std::string& base, int n) const {
+    std::string s = base;
+    for (int i = 1; i < n; ++i) s += "*" + base;
+    return s;
 }
 
 std::string expression_printer::power(const ex& base, const ex& exponent, int context) const {

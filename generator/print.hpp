@@ -30,13 +30,16 @@ class expression_printer {
     virtual std::string number(const GiNaC::numeric& n, int context) const;
     virtual std::string symbol(const GiNaC::symbol& s) const;
     virtual std::string constant(const GiNaC::constant& c) const;
-    virtual std::string sum(const GiNaC::ex& e, int context) const;
+    // `negate` prints the sum of the negated terms (for denominators whose sign is chosen here).
+    virtual std::string sum(const GiNaC::ex& e, int context, bool negate = false) const;
     virtual std::string product(const GiNaC::ex& e, int context) const;
     virtual std::string power(const GiNaC::ex& base, const GiNaC::ex& exponent, int context) const;
     virtual std::string function(const std::string& name, const std::vector<std::string>& args) const;
 
     // Pieces the styles differ in.
     virtual std::string times() const { return "*"; }
+    // base (already printed and parenthesised) to a positive integer power.
+    virtual std::string integer_power(const std::string& base, int n) const;
     virtual std::string fraction(const std::string& num, const std::string& den) const;
     virtual std::string function_name(const std::string& ginac_name) const { return ginac_name; }
 
@@ -53,6 +56,7 @@ class latex_printer : public expression_printer {
     std::string power(const GiNaC::ex& base, const GiNaC::ex& exponent, int context) const override;
     std::string function(const std::string& name, const std::vector<std::string>& args) const override;
     std::string times() const override { return " "; }
+    std::string integer_power(const std::string& base, int n) const override;
     std::string fraction(const std::string& num, const std::string& den) const override;
 };
 
@@ -70,6 +74,7 @@ class c_printer : public expression_printer {
     std::string constant(const GiNaC::constant& c) const override;
     std::string power(const GiNaC::ex& base, const GiNaC::ex& exponent, int context) const override;
     std::string fraction(const std::string& num, const std::string& den) const override;
+    std::string integer_power(const std::string& base, int n) const override;
 
   private:
     std::map<std::string, std::string> m_names;

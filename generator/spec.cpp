@@ -109,8 +109,31 @@ class model_reader {
         return n;
     }
 
+    // Parses an expression and checks that it is finite with the parameters' defaults at a
+    // generic state (a parameter that defaults to 0 under a division would give inf at run time).
     ex expression(const YAML::Node& n, const name_table& names, const std::string& what) const {
-        return parse_expression(scalar(n, what).Scalar(), names, at(n), what);
+        const ex e = parse_expression(scalar(n, what).Scalar(), names, at(n), what);
+        const auto& s = symbols();
+        GiNaC::exmap generic = m_spec.parameter_defaults();
+        const double values[3] = {0.3, 0.7, 1.1};
+        for (int i = 0; i < 3; ++i) {
+            generic[s.q[i]] = values[i];
+            generic[s.qd[i]] = values[i] / 2;
+        }
+        generic[s.t] = 0.5;
+        bool finite = false;
+        try {
+            const ex v = GiNaC::evalf(e.subs(generic));
+            finite = GiNaC::is_a<GiNaC::numeric>(v) && GiNaC::ex_to<GiNaC::numeric>(v).is_real() &&
+                     std::isfinite(GiNaC::ex_to<GiNaC::numeric>(v).to_double());
+        } catch (const std::exception&) {
+            finite = false;
+        }
+        if (!finite)
+            throw user_error(at(n), what + " is not a finite real number with the parameters' "
+                                           "defaults (a division by zero or a logarithm of a "
+                                           "non-positive number?)");
+        return e;
     }
 
     void read_name(const YAML::Node& root) {

@@ -1,0 +1,91 @@
+// Shared helpers for the generator's tests.
+#pragma once
+
+#include "derive.hpp"
+#include "spec.hpp"
+#include "symbols.hpp"
+
+#include <ginac/ginac.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <fstream>
+#include <random>
+#include <string>
+
+namespace rotgen::test {
+
+inline std::string model_path(const std::string& name) {
+    return std::string(ROTGEN_SOURCE_DIR) + "/models/" + name + ".yaml";
+}
+
+// A random point: angles with theta away from the singularity, rates, accelerations, momenta, t.
+struct point {
+    GiNaC::exmap values;
+    explicit point(std::mt19937& rng, double theta_min = 0.3) {
+        const auto& s = symbols();
+        std::uniform_real_distribution<double> angle(0, 6.283185307179586);
+        std::uniform_real_distribution<double> polar(theta_min, 3.141592653589793 - theta_min);
+        std::uniform_real_distribution<double> rate(-2, 2);
+        values[s.q[0]] = angle(rng);
+        values[s.q[1]] = polar(rng);
+        values[s.q[2]] = angle(rng);
+        for (int i = 0; i < 3; ++i) {
+            values[s.qd[i]] = rate(rng);
+            values[s.qdd[i]] = rate(rng);
+            values[s.p[i]] = rate(rng);
+        }
+        values[s.t] = rate(rng);
+    }
+};
+
+// Evaluates e numerically with `at` and the model's parameter defaults.
+inline double eval(const GiNaC::ex& e, const GiNaC::exmap& at, const model_spec& spec) {
+    GiNaC::exmap all = spec.parameter_defaults();
+    for (const auto& kv : at) all[kv.first] = kv.second;
+    const GiNaC::ex v = GiNaC::evalf(e.subs(all));
+    if (!GiNaC::is_a<GiNaC::numeric>(v)) throw std::runtime_error("not numeric after substitution");
+    return GiNaC::ex_to<GiNaC::numeric>(v).to_double();
+}
+
+// The result of running the rotgen executable.
+struct run_result {
+    int status = -1;
+    std::string out, err;
+};
+
+inline std::string read_file(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// Runs `rotgen ARGS` (ARGS already shell-quoted) in `dir` (if not empty).
+inline run_result run_rotgen(const std::string& args, const std::string& dir = "") {
+    static int counter = 0;
+    const std::string base = std::string(ROTGEN_BINARY_DIR) + "/tests_tmp_run" +
+                             std::to_string(::getpid()) + "_" + std::to_string(counter++);
+    const std::string cmd = (dir.empty() ? "" : "cd '" + dir + "' && ") + "'" + ROTGEN_EXE + "' " +
+                            args + " >'" + base + ".out' 2>'" + base + ".err' </dev/null";
+    const int raw = std::system(cmd.c_str());
+    run_result r;
+    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    r.out = read_file(base + ".out");
+    r.err = read_file(base + ".err");
+    std::remove((base + ".out").c_str());
+    std::remove((base + ".err").c_str());
+    return r;
+}
+
+// A scratch file holding `text`, removed at scope exit.
+struct scratch_file {
+    std::string path;
+    scratch_file(const std::string& name, const std::string& text)
+        : path(std::string(ROTGEN_BINARY_DIR) + "/" + name) {
+        std::ofstream(path, std::ios::binary) << text;
+    }
+    ~scratch_file() { std::remove(path.c_str()); }
+};
+
+} // namespace rotgen::test
