@@ -1,0 +1,226 @@
+#include "scene.hpp"
+
+#include "symbols.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <regex>
+
+namespace rotgen {
+
+const char* to_string(form_kind f) {
+    switch (f) {
+    case form_kind::lagrangian: return "lagrangian";
+    case form_kind::hamiltonian: return "hamiltonian";
+    case form_kind::reduced: return "reduced";
+    case form_kind::body: return "body";
+    }
+    return "?";
+}
+
+const std::vector<std::string>& recordable_names() {
+    static const std::vector<std::string> names{
+        "phi",    "theta",  "psi",    "phi_dot", "theta_dot", "psi_dot", "p_phi",  "p_theta",
+        "p_psi",  "omega1", "omega2", "omega3",  "energy",    "body_x",  "body_y", "body_z"};
+    return names;
+}
+
+std::vector<std::string> record_columns(const std::string& name) {
+    if (name.rfind("body_", 0) == 0) return {name + "_x", name + "_y", name + "_z"};
+    return {name};
+}
+
+namespace {
+
+class scene_reader {
+  public:
+    explicit scene_reader(std::string file) : m_file(std::move(file)) {}
+
+    scene_spec read() {
+        std::string source;
+        const YAML::Node root = load_yaml_file(m_file, &source);
+        check_keys(root, {"model", "parameters", "form", "initial", "time", "integrator", "record",
+                          "description"},
+                   m_file, "the scene");
+        m_scene.file = m_file;
+        for (const char* key : {"model", "initial", "time"})
+            if (!root[key])
+                throw user_error({m_file, 1, 1}, std::string("missing field '") + key + "'");
+        read_model(root["model"], source);
+        read_parameters(root["parameters"]);
+        read_form(root["form"]);
+        read_initial(root["initial"]);
+        read_time(root["time"]);
+        if (root["integrator"]) read_integrator(root["integrator"]);
+        read_record(root["record"]);
+        return std::move(m_scene);
+    }
+
+  private:
+    source_location at(const YAML::Node& n) const { return location_of(n, m_file); }
+
+    double number(const YAML::Node& n, const std::string& what) const {
+        static const std::regex re("[+-]?([0-9]+\\.?[0-9]*|\\.[0-9]+)([eE][+-]?[0-9]+)?");
+        if (!n.IsScalar() || !std::regex_match(n.Scalar(), re))
+            throw user_error(at(n), what + " must be a finite number");
+        const double v = std::strtod(n.Scalar().c_str(), nullptr);
+        if (!std::isfinite(v)) throw user_error(at(n), what + " must be a finite number");
+        return v;
+    }
+
+    void read_model(const YAML::Node& n, const std::string& source) {
+        if (n.IsMap()) {
+            m_scene.model = parse_model(n, m_file, source);
+            return;
+        }
+        if (!n.IsScalar()) throw user_error(at(n), "'model' must be a file name or a model mapping");
+        std::string path = n.Scalar();
+        if (!path.empty() && path[0] != '/') {
+            const auto slash = m_file.find_last_of('/');
+            if (slash != std::string::npos) path = m_file.substr(0, slash + 1) + path;
+        }
+        m_scene.model = load_model(path);
+    }
+
+    void read_parameters(const YAML::Node& n) {
+        for (const auto& p : m_scene.model.parameters) m_scene.parameters.push_back(p.value);
+        if (!n) return;
+        if (!n.IsMap()) throw user_error(at(n), "'parameters' must be a mapping of name: value");
+        std::vector<std::string> names;
+        for (const auto& p : m_scene.model.parameters) names.push_back(p.name);
+        check_keys(n, names, m_file, "parameters (of model '" + m_scene.model.name + "')");
+        for (const auto& kv : n) {
+            const auto it = std::find(names.begin(), names.end(), kv.first.Scalar());
+            m_scene.parameters[static_cast<std::size_t>(it - names.begin())] =
+                number(kv.second, "parameter '" + kv.first.Scalar() + "'");
+        }
+    }
+
+    void read_form(const YAML::Node& n) {
+        if (!n) return;
+        const std::string f = n.IsScalar() ? n.Scalar() : "";
+        if (f == "lagrangian") m_scene.form = form_kind::lagrangian;
+        else if (f == "hamiltonian") m_scene.form = form_kind::hamiltonian;
+        else if (f == "reduced") m_scene.form = form_kind::reduced;
+        else if (f == "body") m_scene.form = form_kind::body;
+        else
+            throw user_error(at(n), "unknown form '" + f +
+                                        "' (expected lagrangian, hamiltonian, reduced or body)");
+    }
+
+    void read_initial(const YAML::Node& n) {
+        if (!n.IsMap()) throw user_error(at(n), "'initial' must be a mapping of angles and rates");
+        const std::vector<std::string> allowed{"phi",   "theta",   "psi",   "phi_dot", "theta_dot",
+                                               "psi_dot", "p_phi", "p_theta", "p_psi", "omega1",
+                                               "omega2",  "omega3"};
+        check_keys(n, allowed, m_file, "initial");
+        const auto& q = coordinate_names();
+        for (int i = 0; i < 3; ++i)
+            m_scene.angles[i] = n[q[i]] ? number(n[q[i]], "initial " + q[i]) : 0.0;
+        const std::array<std::array<std::string, 3>, 3> groups{
+            {{"phi_dot", "theta_dot", "psi_dot"}, {"p_phi", "p_theta", "p_psi"},
+             {"omega1", "omega2", "omega3"}}};
+        int chosen = -1;
+        for (int g = 0; g < 3; ++g)
+            for (const auto& key : groups[g])
+                if (n[key]) {
+                    if (chosen >= 0 && chosen != g)
+                        throw user_error(at(n[key]), "give the initial rates one way only: "
+                                                     "angle rates, momenta or body omega");
+                    chosen = g;
+                }
+        if (chosen < 0) chosen = 0;
+        m_scene.initial = static_cast<initial_kind>(chosen);
+        for (int i = 0; i < 3; ++i) {
+            const std::string& key = groups[chosen][i];
+            m_scene.initial_rates[i] = n[key] ? number(n[key], "initial " + key) : 0.0;
+        }
+        const double theta = m_scene.angles[1];
+        if (theta < 0 || theta > 3.141592653589793238)
+            throw user_error(at(n["theta"]), "initial theta = " + std::to_string(theta) +
+                                                 " is outside [0, pi] (z-x-z Euler angles)");
+    }
+
+    void read_time(const YAML::Node& n) {
+        if (!n.IsMap()) throw user_error(at(n), "'time' must be {start, end, samples}");
+        check_keys(n, {"start", "end", "samples"}, m_file, "time");
+        if (!n["end"]) throw user_error(at(n), "time needs 'end'");
+        m_scene.t_start = n["start"] ? number(n["start"], "time start") : 0.0;
+        m_scene.t_end = number(n["end"], "time end");
+        if (!(m_scene.t_end > m_scene.t_start))
+            throw user_error(at(n["end"]), "time end must be after time start");
+        if (n["samples"]) {
+            const double s = number(n["samples"], "time samples");
+            if (s < 2 || s > 1e8 || s != std::floor(s))
+                throw user_error(at(n["samples"]), "time samples must be a whole number from 2 to 1e8");
+            m_scene.samples = static_cast<long>(s);
+        }
+    }
+
+    void read_integrator(const YAML::Node& n) {
+        if (!n.IsMap()) throw user_error(at(n), "'integrator' must be {method, rtol, atol} or {method, step}");
+        check_keys(n, {"method", "rtol", "atol", "step", "max_steps"}, m_file, "integrator");
+        integrator_spec& ig = m_scene.integrator;
+        if (n["method"]) {
+            const std::vector<std::string> methods{"rk4", "dopri5", "dop853", "implicit_midpoint",
+                                                   "rosenbrock"};
+            ig.method = n["method"].Scalar();
+            if (std::find(methods.begin(), methods.end(), ig.method) == methods.end()) {
+                const std::string best = closest_name(ig.method, methods);
+                throw user_error(at(n["method"]),
+                                 "unknown integrator '" + ig.method +
+                                     "' (expected rk4, dopri5, dop853, implicit_midpoint or rosenbrock)" +
+                                     (best.empty() ? "" : "; did you mean '" + best + "'?"));
+            }
+        }
+        const auto positive = [&](const char* key, double& value) {
+            if (!n[key]) return;
+            value = number(n[key], std::string("integrator ") + key);
+            if (!(value > 0)) throw user_error(at(n[key]), std::string("integrator ") + key + " must be positive");
+        };
+        positive("rtol", ig.rtol);
+        positive("atol", ig.atol);
+        positive("step", ig.step);
+        if (n["max_steps"]) {
+            double m = 0;
+            positive("max_steps", m);
+            ig.max_steps = static_cast<long>(m);
+        }
+        if (ig.fixed_step() && !n["step"])
+            throw user_error(at(n), "integrator " + ig.method + " is fixed-step and needs 'step'");
+        if (ig.rtol < 1e-15 && !ig.fixed_step())
+            throw user_error(at(n["rtol"]), "integrator rtol below 1e-15 cannot be met in double precision");
+        if (ig.step > 0 && ig.step > m_scene.t_end - m_scene.t_start)
+            throw user_error(at(n["step"]), "integrator step is longer than the time span");
+    }
+
+    void read_record(const YAML::Node& n) {
+        if (!n) {
+            m_scene.record = {"phi", "theta", "psi", "energy"};
+            return;
+        }
+        if (!n.IsSequence() || n.size() == 0)
+            throw user_error(at(n), "'record' must be a list of quantities");
+        const auto& allowed = recordable_names();
+        for (const auto& item : n) {
+            const std::string name = item.IsScalar() ? item.Scalar() : "";
+            if (std::find(allowed.begin(), allowed.end(), name) == allowed.end()) {
+                const std::string best = closest_name(name, allowed);
+                throw user_error(at(item), "cannot record '" + name + "'" +
+                                               (best.empty() ? "" : "; did you mean '" + best + "'?"));
+            }
+            if (std::find(m_scene.record.begin(), m_scene.record.end(), name) != m_scene.record.end())
+                throw user_error(at(item), "'" + name + "' is recorded twice");
+            m_scene.record.push_back(name);
+        }
+    }
+
+    std::string m_file;
+    scene_spec m_scene;
+};
+
+} // namespace
+
+scene_spec load_scene(const std::string& path) { return scene_reader(path).read(); }
+
+} // namespace rotgen
