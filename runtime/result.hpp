@@ -16,17 +16,23 @@ enum class status {
     newton_failure,      // the implicit solve (implicit midpoint) did not converge
     max_steps,           // the step budget (`max_steps`) was used up before the end time
     non_finite,          // NaN/Inf in the state or its derivative; stopped at the last good state
-    invalid_argument     // bad options or sample times (non-positive tolerance, unsorted times, …)
+    invalid_argument // bad options or sample times (non-positive tolerance, unsorted times, …)
 };
 
 inline const char* status_name(status s) {
     switch (s) {
-    case status::ok: return "ok";
-    case status::step_size_underflow: return "step_size_underflow";
-    case status::newton_failure: return "newton_failure";
-    case status::max_steps: return "max_steps";
-    case status::non_finite: return "non_finite";
-    case status::invalid_argument: return "invalid_argument";
+    case status::ok:
+        return "ok";
+    case status::step_size_underflow:
+        return "step_size_underflow";
+    case status::newton_failure:
+        return "newton_failure";
+    case status::max_steps:
+        return "max_steps";
+    case status::non_finite:
+        return "non_finite";
+    case status::invalid_argument:
+        return "invalid_argument";
     }
     return "unknown";
 }

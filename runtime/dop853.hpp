@@ -1,0 +1,382 @@
+// rotgen runtime — Dormand–Prince 8(5,3) (Hairer's DOP853) with 7th-order dense output.
+//
+// Method (Hairer, Nørsett & Wanner I, §II.10, and the code DOP853): 12 stages for the 8th-order
+// solution y1 = y0 + h Σ b_i k_i; f(t + h, y1) = k13 is computed after acceptance and is the next
+// step's k1 (FSAL), so 12 evaluations of f per accepted step.
+// Error estimate (DOP853's "stretched" 5th/3rd-order combination):
+//   e5_i = Σ er_j k_j,   e3_i = Σ b_j k_j − (bhh1 k1 + bhh2 k9 + bhh3 k12),
+//   sk_i = atol + rtol·max(|y0_i|, |y1_i|),   E5 = Σ (e5_i/sk_i)²,  E3 = Σ (e3_i/sk_i)²,
+//   err  = |h| · E5 / sqrt(n · (E5 + 0.01·E3)),
+// which behaves like O(h^8): controller exponent 1/8 (q = 8). Hairer's defaults: beta = 0
+// (I controller), facmin = 0.333, facmax = 6.
+// Dense output (DOP853's CONTD8): three more stages k14, k15, k16 (computed only in steps that
+// hold samples) give, with θ = (t − t_n)/h and θ1 = 1 − θ,
+//   y(θ) = r1 + θ(r2 + θ1(r3 + θ(r4 + θ1(r5 + θ(r6 + θ1(r7 + θ r8))))))
+//   r1 = y0, r2 = y1 − y0, r3 = h k1 − r2, r4 = r2 − h k13 − r3, r5..r8 = h Σ d_{4..7,j} k_j,
+// a continuous extension of order 7 (local error O(h^8)).
+// The coefficients are Hairer's published constants (30 digits); tests check the consistency
+// conditions Σ_j a_ij = c_i, Σ b = 1, Σ er = 0 and the orders 8 and 7 numerically.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <string>
+
+#include "derivatives.hpp"
+#include "integrate.hpp"
+#include "step_control.hpp"
+#include "system.hpp"
+
+namespace rotgen {
+
+struct dop853_tableau {
+    static constexpr long double c2 = 0.526001519587677318785587544488e-01L;
+    static constexpr long double c3 = 0.789002279381515978178381316732e-01L;
+    static constexpr long double c4 = 0.118350341907227396726757197510e+00L;
+    static constexpr long double c5 = 0.281649658092772603273242802490e+00L;
+    static constexpr long double c6 = 0.333333333333333333333333333333e+00L;
+    static constexpr long double c7 = 0.25e+00L;
+    static constexpr long double c8 = 0.307692307692307692307692307692e+00L;
+    static constexpr long double c9 = 0.651282051282051282051282051282e+00L;
+    static constexpr long double c10 = 0.6e+00L;
+    static constexpr long double c11 = 0.857142857142857142857142857142e+00L;
+    static constexpr long double c14 = 0.1e+00L, c15 = 0.2e+00L,
+                                 c16 = 0.777777777777777777777777777778e+00L;
+
+    static constexpr long double b1 = 5.42937341165687622380535766363e-2L;
+    static constexpr long double b6 = 4.45031289275240888144113950566e0L;
+    static constexpr long double b7 = 1.89151789931450038304281599044e0L;
+    static constexpr long double b8 = -5.8012039600105847814672114227e0L;
+    static constexpr long double b9 = 3.1116436695781989440891606237e-1L;
+    static constexpr long double b10 = -1.52160949662516078556178806805e-1L;
+    static constexpr long double b11 = 2.01365400804030348374776537501e-1L;
+    static constexpr long double b12 = 4.47106157277725905176885569043e-2L;
+
+    static constexpr long double bhh1 = 0.244094488188976377952755905512e+00L;
+    static constexpr long double bhh2 = 0.733846688281611857341361741547e+00L;
+    static constexpr long double bhh3 = 0.220588235294117647058823529412e-01L;
+
+    static constexpr long double er1 = 0.1312004499419488073250102996e-01L;
+    static constexpr long double er6 = -0.1225156446376204440720569753e+01L;
+    static constexpr long double er7 = -0.4957589496572501915214079952e+00L;
+    static constexpr long double er8 = 0.1664377182454986536961530415e+01L;
+    static constexpr long double er9 = -0.3503288487499736816886487290e+00L;
+    static constexpr long double er10 = 0.3341791187130174790297318841e+00L;
+    static constexpr long double er11 = 0.8192320648511571246570742613e-01L;
+    static constexpr long double er12 = -0.2235530786388629525884427845e-01L;
+
+    static constexpr long double a21 = 5.26001519587677318785587544488e-2L;
+    static constexpr long double a31 = 1.97250569845378994544595329183e-2L;
+    static constexpr long double a32 = 5.91751709536136983633785987549e-2L;
+    static constexpr long double a41 = 2.95875854768068491816892993775e-2L;
+    static constexpr long double a43 = 8.87627564304205475450678981324e-2L;
+    static constexpr long double a51 = 2.41365134159266685502369798665e-1L;
+    static constexpr long double a53 = -8.84549479328286085344864962717e-1L;
+    static constexpr long double a54 = 9.24834003261792003115737966543e-1L;
+    static constexpr long double a61 = 3.7037037037037037037037037037e-2L;
+    static constexpr long double a64 = 1.70828608729473871279604482173e-1L;
+    static constexpr long double a65 = 1.25467687566822425016691814123e-1L;
+    static constexpr long double a71 = 3.7109375e-2L;
+    static constexpr long double a74 = 1.70252211019544039314978060272e-1L;
+    static constexpr long double a75 = 6.02165389804559606850219397283e-2L;
+    static constexpr long double a76 = -1.7578125e-2L;
+    static constexpr long double a81 = 3.70920001185047927108779319836e-2L;
+    static constexpr long double a84 = 1.70383925712239993810214054705e-1L;
+    static constexpr long double a85 = 1.07262030446373284651809199168e-1L;
+    static constexpr long double a86 = -1.53194377486244017527936158236e-2L;
+    static constexpr long double a87 = 8.27378916381402288758473766002e-3L;
+    static constexpr long double a91 = 6.24110958716075717114429577812e-1L;
+    static constexpr long double a94 = -3.36089262944694129406857109825e0L;
+    static constexpr long double a95 = -8.68219346841726006818189891453e-1L;
+    static constexpr long double a96 = 2.75920996994467083049415600797e1L;
+    static constexpr long double a97 = 2.01540675504778934086186788979e1L;
+    static constexpr long double a98 = -4.34898841810699588477366255144e1L;
+    static constexpr long double a101 = 4.77662536438264365890433908527e-1L;
+    static constexpr long double a104 = -2.48811461997166764192642586468e0L;
+    static constexpr long double a105 = -5.90290826836842996371446475743e-1L;
+    static constexpr long double a106 = 2.12300514481811942347288949897e1L;
+    static constexpr long double a107 = 1.52792336328824235832596922938e1L;
+    static constexpr long double a108 = -3.32882109689848629194453265587e1L;
+    static constexpr long double a109 = -2.03312017085086261358222928593e-2L;
+    static constexpr long double a111 = -9.3714243008598732571704021658e-1L;
+    static constexpr long double a114 = 5.18637242884406370830023853209e0L;
+    static constexpr long double a115 = 1.09143734899672957818500254654e0L;
+    static constexpr long double a116 = -8.14978701074692612513997267357e0L;
+    static constexpr long double a117 = -1.85200656599969598641566180701e1L;
+    static constexpr long double a118 = 2.27394870993505042818970056734e1L;
+    static constexpr long double a119 = 2.49360555267965238987089396762e0L;
+    static constexpr long double a1110 = -3.0467644718982195003823669022e0L;
+    static constexpr long double a121 = 2.27331014751653820792359768449e0L;
+    static constexpr long double a124 = -1.05344954667372501984066689879e1L;
+    static constexpr long double a125 = -2.00087205822486249909675718444e0L;
+    static constexpr long double a126 = -1.79589318631187989172765950534e1L;
+    static constexpr long double a127 = 2.79488845294199600508499808837e1L;
+    static constexpr long double a128 = -2.85899827713502369474065508674e0L;
+    static constexpr long double a129 = -8.87285693353062954433549289258e0L;
+    static constexpr long double a1210 = 1.23605671757943030647266201528e1L;
+    static constexpr long double a1211 = 6.43392746015763530355970484046e-1L;
+
+    static constexpr long double a141 = 5.61675022830479523392909219681e-2L;
+    static constexpr long double a147 = 2.53500210216624811088794765333e-1L;
+    static constexpr long double a148 = -2.46239037470802489917441475441e-1L;
+    static constexpr long double a149 = -1.24191423263816360469010140626e-1L;
+    static constexpr long double a1410 = 1.5329179827876569731206322685e-1L;
+    static constexpr long double a1411 = 8.20105229563468988491666602057e-3L;
+    static constexpr long double a1412 = 7.56789766054569976138603589584e-3L;
+    static constexpr long double a1413 = -8.298e-3L;
+    static constexpr long double a151 = 3.18346481635021405060768473261e-2L;
+    static constexpr long double a156 = 2.83009096723667755288322961402e-2L;
+    static constexpr long double a157 = 5.35419883074385676223797384372e-2L;
+    static constexpr long double a158 = -5.49237485713909884646569340306e-2L;
+    static constexpr long double a1511 = -1.08347328697249322858509316994e-4L;
+    static constexpr long double a1512 = 3.82571090835658412954920192323e-4L;
+    static constexpr long double a1513 = -3.40465008687404560802977114492e-4L;
+    static constexpr long double a1514 = 1.41312443674632500278074618366e-1L;
+    static constexpr long double a161 = -4.28896301583791923408573538692e-1L;
+    static constexpr long double a166 = -4.69762141536116384314449447206e0L;
+    static constexpr long double a167 = 7.68342119606259904184240953878e0L;
+    static constexpr long double a168 = 4.06898981839711007970213554331e0L;
+    static constexpr long double a169 = 3.56727187455281109270669543021e-1L;
+    static constexpr long double a1613 = -1.39902416515901462129418009734e-3L;
+    static constexpr long double a1614 = 2.9475147891527723389556272149e0L;
+    static constexpr long double a1615 = -9.15095847217987001081870187138e0L;
+
+    static constexpr long double d41 = -0.84289382761090128651353491142e+01L;
+    static constexpr long double d46 = 0.56671495351937776962531783590e+00L;
+    static constexpr long double d47 = -0.30689499459498916912797304727e+01L;
+    static constexpr long double d48 = 0.23846676565120698287728149680e+01L;
+    static constexpr long double d49 = 0.21170345824450282767155149946e+01L;
+    static constexpr long double d410 = -0.87139158377797299206789907490e+00L;
+    static constexpr long double d411 = 0.22404374302607882758541771650e+01L;
+    static constexpr long double d412 = 0.63157877876946881815570249290e+00L;
+    static constexpr long double d413 = -0.88990336451333310820698117400e-01L;
+    static constexpr long double d414 = 0.18148505520854727256656404962e+02L;
+    static constexpr long double d415 = -0.91946323924783554000451984436e+01L;
+    static constexpr long double d416 = -0.44360363875948939664310572000e+01L;
+    static constexpr long double d51 = 0.10427508642579134603413151009e+02L;
+    static constexpr long double d56 = 0.24228349177525818288430175319e+03L;
+    static constexpr long double d57 = 0.16520045171727028198505394887e+03L;
+    static constexpr long double d58 = -0.37454675472269020279518312152e+03L;
+    static constexpr long double d59 = -0.22113666853125306036270938578e+02L;
+    static constexpr long double d510 = 0.77334326684722638389603898808e+01L;
+    static constexpr long double d511 = -0.30674084731089398182061213626e+02L;
+    static constexpr long double d512 = -0.93321305264302278729567221706e+01L;
+    static constexpr long double d513 = 0.15697238121770843886131091075e+02L;
+    static constexpr long double d514 = -0.31139403219565177677282850411e+02L;
+    static constexpr long double d515 = -0.93529243588444783865713862664e+01L;
+    static constexpr long double d516 = 0.35816841486394083752465898540e+02L;
+    static constexpr long double d61 = 0.19985053242002433820987653617e+02L;
+    static constexpr long double d66 = -0.38703730874935176555105901742e+03L;
+    static constexpr long double d67 = -0.18917813819516756882830838328e+03L;
+    static constexpr long double d68 = 0.52780815920542364900561016686e+03L;
+    static constexpr long double d69 = -0.11573902539959630126141871134e+02L;
+    static constexpr long double d610 = 0.68812326946963000169666922661e+01L;
+    static constexpr long double d611 = -0.10006050966910838403183860980e+01L;
+    static constexpr long double d612 = 0.77771377980534432092869265740e+00L;
+    static constexpr long double d613 = -0.27782057523535084065932004339e+01L;
+    static constexpr long double d614 = -0.60196695231264120758267380846e+02L;
+    static constexpr long double d615 = 0.84320405506677161018159903784e+02L;
+    static constexpr long double d616 = 0.11992291136182789328035130030e+02L;
+    static constexpr long double d71 = -0.25693933462703749003312586129e+02L;
+    static constexpr long double d76 = -0.15418974869023643374053993627e+03L;
+    static constexpr long double d77 = -0.23152937917604549567536039109e+03L;
+    static constexpr long double d78 = 0.35763911791061412378285349910e+03L;
+    static constexpr long double d79 = 0.93405324183624310003907691704e+02L;
+    static constexpr long double d710 = -0.37458323136451633156875139351e+02L;
+    static constexpr long double d711 = 0.10409964950896230045147246184e+03L;
+    static constexpr long double d712 = 0.29840293426660503123344363579e+02L;
+    static constexpr long double d713 = -0.43533456590011143754432175058e+02L;
+    static constexpr long double d714 = 0.96324553959188282948394950600e+02L;
+    static constexpr long double d715 = -0.39177261675615439165231486172e+02L;
+    static constexpr long double d716 = -0.14972683625798562581422125276e+03L;
+};
+
+template <class T, class S> class dop853_stepper;
+
+// Options: adaptive_options with DOP853's defaults (safety 0.9, facmin 0.333, facmax 6, beta 0).
+template <class T> struct dop853 : adaptive_options<T> {
+    using scalar = T;
+    static constexpr bool is_rotgen_method = true;
+    static constexpr bool adaptive = true;
+    template <class S> using stepper = dop853_stepper<T, S>;
+
+    dop853() {
+        this->facmin = T(0.333);
+        this->facmax = T(6);
+        this->beta = T(0);
+    }
+    dop853(T rtol, T atol) : dop853() {
+        this->rtol = rtol;
+        this->atol = atol;
+    }
+    std::string name() const { return "dop853"; }
+    std::string check() const { return detail::check_adaptive_options<T>(*this); }
+};
+
+template <class T, class S> class dop853_stepper {
+  public:
+    using vector = state_vector<T, S>;
+    using tab = dop853_tableau;
+
+    dop853_stepper(const dop853<T>& m, std::size_t n) : m_atol(m.atol), m_rtol(m.rtol) {
+        m_y0 = vector::Zero(n);
+        m_y1 = m_y0;
+        m_tmp = m_y0;
+        m_bk = m_y0;
+        for (auto& k : m_k)
+            k = m_y0;
+        for (auto& r : m_r)
+            r = m_y0;
+    }
+
+    int order() const { return 8; }
+    const vector& f_start() const { return k(1); }
+    const vector& y_new() const { return m_y1; }
+
+    bool start(const S& sys, T t0, const vector& y0, step_stats& stats) {
+        detail::eval_rhs(sys, t0, y0, k(1), stats);
+        return k(1).allFinite();
+    }
+
+    struct outcome {
+        status code;
+        T err;
+    };
+
+    outcome attempt(const S& sys, T t, const vector& y, T h, step_stats& stats) {
+        m_y0 = y;
+        m_t = t;
+        m_h = h;
+        auto stage = [&](int i, long double c) {
+            detail::eval_rhs(sys, t + T(c) * h, m_tmp, k(i), stats);
+        };
+        m_tmp = y + h * T(tab::a21) * k(1);
+        stage(2, tab::c2);
+        m_tmp = y + h * (T(tab::a31) * k(1) + T(tab::a32) * k(2));
+        stage(3, tab::c3);
+        m_tmp = y + h * (T(tab::a41) * k(1) + T(tab::a43) * k(3));
+        stage(4, tab::c4);
+        m_tmp = y + h * (T(tab::a51) * k(1) + T(tab::a53) * k(3) + T(tab::a54) * k(4));
+        stage(5, tab::c5);
+        m_tmp = y + h * (T(tab::a61) * k(1) + T(tab::a64) * k(4) + T(tab::a65) * k(5));
+        stage(6, tab::c6);
+        m_tmp = y + h * (T(tab::a71) * k(1) + T(tab::a74) * k(4) + T(tab::a75) * k(5) +
+                         T(tab::a76) * k(6));
+        stage(7, tab::c7);
+        m_tmp = y + h * (T(tab::a81) * k(1) + T(tab::a84) * k(4) + T(tab::a85) * k(5) +
+                         T(tab::a86) * k(6) + T(tab::a87) * k(7));
+        stage(8, tab::c8);
+        m_tmp = y + h * (T(tab::a91) * k(1) + T(tab::a94) * k(4) + T(tab::a95) * k(5) +
+                         T(tab::a96) * k(6) + T(tab::a97) * k(7) + T(tab::a98) * k(8));
+        stage(9, tab::c9);
+        m_tmp = y + h * (T(tab::a101) * k(1) + T(tab::a104) * k(4) + T(tab::a105) * k(5) +
+                         T(tab::a106) * k(6) + T(tab::a107) * k(7) + T(tab::a108) * k(8) +
+                         T(tab::a109) * k(9));
+        stage(10, tab::c10);
+        m_tmp = y + h * (T(tab::a111) * k(1) + T(tab::a114) * k(4) + T(tab::a115) * k(5) +
+                         T(tab::a116) * k(6) + T(tab::a117) * k(7) + T(tab::a118) * k(8) +
+                         T(tab::a119) * k(9) + T(tab::a1110) * k(10));
+        stage(11, tab::c11);
+        m_tmp = y + h * (T(tab::a121) * k(1) + T(tab::a124) * k(4) + T(tab::a125) * k(5) +
+                         T(tab::a126) * k(6) + T(tab::a127) * k(7) + T(tab::a128) * k(8) +
+                         T(tab::a129) * k(9) + T(tab::a1210) * k(10) + T(tab::a1211) * k(11));
+        stage(12, 1.0L);
+        // Σ b_i k_i and the 8th-order solution y1 = y0 + h Σ b_i k_i
+        m_bk = T(tab::b1) * k(1) + T(tab::b6) * k(6) + T(tab::b7) * k(7) + T(tab::b8) * k(8) +
+               T(tab::b9) * k(9) + T(tab::b10) * k(10) + T(tab::b11) * k(11) + T(tab::b12) * k(12);
+        m_y1 = y + h * m_bk;
+        // error estimate: e3 = Σ b k − (bhh1 k1 + bhh2 k9 + bhh3 k12), e5 = Σ er_j k_j
+        using std::abs;
+        using std::max;
+        using std::sqrt;
+        const T tiny = std::numeric_limits<T>::min();
+        T err5 = T(0), err3 = T(0);
+        for (Eigen::Index i = 0; i < y.size(); ++i) {
+            const T sk = max(m_atol + m_rtol * max(abs(y[i]), abs(m_y1[i])), tiny);
+            const T e3 =
+                m_bk[i] - T(tab::bhh1) * k(1)[i] - T(tab::bhh2) * k(9)[i] - T(tab::bhh3) * k(12)[i];
+            const T e5 = T(tab::er1) * k(1)[i] + T(tab::er6) * k(6)[i] + T(tab::er7) * k(7)[i] +
+                         T(tab::er8) * k(8)[i] + T(tab::er9) * k(9)[i] + T(tab::er10) * k(10)[i] +
+                         T(tab::er11) * k(11)[i] + T(tab::er12) * k(12)[i];
+            err3 += (e3 / sk) * (e3 / sk);
+            err5 += (e5 / sk) * (e5 / sk);
+        }
+        T deno = err5 + T(0.01) * err3;
+        if (deno <= T(0)) deno = T(1);
+        const T err = abs(h) * err5 * sqrt(T(1) / (T(y.size()) * deno));
+        using std::isfinite;
+        if (!isfinite(err) || !m_y1.allFinite()) return {status::non_finite, err};
+        return {status::ok, err};
+    }
+
+    bool accept(const S& sys, step_stats& stats, bool need_dense) {
+        const T h = m_h;
+        const T t = m_t;
+        detail::eval_rhs(sys, t + h, m_y1, k(13), stats); // k13 = f(t + h, y1)
+        if (need_dense && k(13).allFinite()) {
+            // r1 = y0 (m_y0), r2 = y1 − y0, r3 = h k1 − r2, r4 = r2 − h k13 − r3
+            r(2) = m_y1 - m_y0;
+            r(3) = h * k(1) - r(2);
+            r(4) = r(2) - h * k(13) - r(3);
+            r(5) = T(tab::d41) * k(1) + T(tab::d46) * k(6) + T(tab::d47) * k(7) +
+                   T(tab::d48) * k(8) + T(tab::d49) * k(9) + T(tab::d410) * k(10) +
+                   T(tab::d411) * k(11) + T(tab::d412) * k(12);
+            r(6) = T(tab::d51) * k(1) + T(tab::d56) * k(6) + T(tab::d57) * k(7) +
+                   T(tab::d58) * k(8) + T(tab::d59) * k(9) + T(tab::d510) * k(10) +
+                   T(tab::d511) * k(11) + T(tab::d512) * k(12);
+            r(7) = T(tab::d61) * k(1) + T(tab::d66) * k(6) + T(tab::d67) * k(7) +
+                   T(tab::d68) * k(8) + T(tab::d69) * k(9) + T(tab::d610) * k(10) +
+                   T(tab::d611) * k(11) + T(tab::d612) * k(12);
+            r(8) = T(tab::d71) * k(1) + T(tab::d76) * k(6) + T(tab::d77) * k(7) +
+                   T(tab::d78) * k(8) + T(tab::d79) * k(9) + T(tab::d710) * k(10) +
+                   T(tab::d711) * k(11) + T(tab::d712) * k(12);
+            // three extra stages for the 7th-order extension
+            m_tmp =
+                m_y0 + h * (T(tab::a141) * k(1) + T(tab::a147) * k(7) + T(tab::a148) * k(8) +
+                            T(tab::a149) * k(9) + T(tab::a1410) * k(10) + T(tab::a1411) * k(11) +
+                            T(tab::a1412) * k(12) + T(tab::a1413) * k(13));
+            detail::eval_rhs(sys, t + T(tab::c14) * h, m_tmp, k(14), stats);
+            m_tmp =
+                m_y0 + h * (T(tab::a151) * k(1) + T(tab::a156) * k(6) + T(tab::a157) * k(7) +
+                            T(tab::a158) * k(8) + T(tab::a1511) * k(11) + T(tab::a1512) * k(12) +
+                            T(tab::a1513) * k(13) + T(tab::a1514) * k(14));
+            detail::eval_rhs(sys, t + T(tab::c15) * h, m_tmp, k(15), stats);
+            m_tmp = m_y0 + h * (T(tab::a161) * k(1) + T(tab::a166) * k(6) + T(tab::a167) * k(7) +
+                                T(tab::a168) * k(8) + T(tab::a169) * k(9) + T(tab::a1613) * k(13) +
+                                T(tab::a1614) * k(14) + T(tab::a1615) * k(15));
+            detail::eval_rhs(sys, t + T(tab::c16) * h, m_tmp, k(16), stats);
+            r(5) = h * (r(5) + T(tab::d413) * k(13) + T(tab::d414) * k(14) + T(tab::d415) * k(15) +
+                        T(tab::d416) * k(16));
+            r(6) = h * (r(6) + T(tab::d513) * k(13) + T(tab::d514) * k(14) + T(tab::d515) * k(15) +
+                        T(tab::d516) * k(16));
+            r(7) = h * (r(7) + T(tab::d613) * k(13) + T(tab::d614) * k(14) + T(tab::d615) * k(15) +
+                        T(tab::d616) * k(16));
+            r(8) = h * (r(8) + T(tab::d713) * k(13) + T(tab::d714) * k(14) + T(tab::d715) * k(15) +
+                        T(tab::d716) * k(16));
+        }
+        k(1).swap(k(13)); // FSAL
+        return k(1).allFinite();
+    }
+
+    // y(θ) = r1 + θ(r2 + θ1(r3 + θ(r4 + θ1(r5 + θ(r6 + θ1(r7 + θ r8)))))), θ1 = 1 − θ
+    void dense(T s, vector& out) const {
+        const T s1 = T(1) - s;
+        out = m_y0 +
+              s * (r(2) +
+                   s1 * (r(3) + s * (r(4) + s1 * (r(5) + s * (r(6) + s1 * (r(7) + s * r(8)))))));
+    }
+
+  private:
+    vector& k(int i) { return m_k[static_cast<std::size_t>(i - 1)]; }
+    const vector& k(int i) const { return m_k[static_cast<std::size_t>(i - 1)]; }
+    vector& r(int i) { return m_r[static_cast<std::size_t>(i - 2)]; }
+    const vector& r(int i) const { return m_r[static_cast<std::size_t>(i - 2)]; }
+
+    T m_atol, m_rtol;
+    T m_t = T(0), m_h = T(0);
+    vector m_y0, m_y1, m_tmp, m_bk;
+    std::array<vector, 16> m_k; // k1..k16
+    std::array<vector, 7> m_r;  // r2..r8
+};
+
+} // namespace rotgen

@@ -1,0 +1,70 @@
+// rotgen runtime — choosing a method at run time (for scene files and the `simulate` command).
+//
+//   any_method<T>                       std::variant of the five method option structs
+//   make_method<T>(name, rtol, atol, step) -> std::optional<any_method<T>>
+//       names: rk4, dopri5, dop853, implicit_midpoint (or midpoint), rodas4 (or rosenbrock);
+//       rk4 and implicit_midpoint take `step`; the adaptive methods take rtol/atol, and `step`
+//       if > 0 switches them to fixed steps without error control.
+//   integrate(system, any_method, t0, y, sample_times, observer)   dispatches with std::visit.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string_view>
+#include <utility>
+#include <variant>
+
+#include "dop853.hpp"
+#include "dopri5.hpp"
+#include "implicit_midpoint.hpp"
+#include "integrate.hpp"
+#include "rk4.hpp"
+#include "rosenbrock.hpp"
+
+namespace rotgen {
+
+template <class T>
+using any_method = std::variant<rk4<T>, dopri5<T>, dop853<T>, implicit_midpoint<T>, rodas4<T>>;
+
+inline constexpr std::array<std::string_view, 5> method_names = {"rk4", "dopri5", "dop853",
+                                                                 "implicit_midpoint", "rodas4"};
+
+template <class T>
+std::optional<any_method<T>> make_method(std::string_view name, T rtol, T atol, T step) {
+    auto adaptive = [&](auto m) {
+        m.rtol = rtol;
+        m.atol = atol;
+        m.fixed_step = step;
+        return any_method<T>(m);
+    };
+    if (name == "rk4") {
+        rk4<T> m;
+        m.step = step;
+        return any_method<T>(m);
+    }
+    if (name == "implicit_midpoint" || name == "midpoint") {
+        implicit_midpoint<T> m;
+        m.step = step;
+        return any_method<T>(m);
+    }
+    if (name == "dopri5") return adaptive(dopri5<T>());
+    if (name == "dop853") return adaptive(dop853<T>());
+    if (name == "rodas4" || name == "rosenbrock") return adaptive(rodas4<T>());
+    return std::nullopt;
+}
+
+template <class S, class T, class Times, class Observer>
+integration_result<T> integrate(const S& sys, const any_method<T>& method, detail::identity_t<T> t0,
+                                state_vector<T, S>& y, const Times& sample_times,
+                                Observer&& observer) {
+    return std::visit(
+        [&](const auto& m) { return integrate(sys, m, t0, y, sample_times, observer); }, method);
+}
+
+template <class S, class T>
+integration_result<T> integrate(const S& sys, const any_method<T>& method, detail::identity_t<T> t0,
+                                state_vector<T, S>& y, detail::identity_t<T> t_end) {
+    return std::visit([&](const auto& m) { return integrate(sys, m, t0, y, t_end); }, method);
+}
+
+} // namespace rotgen

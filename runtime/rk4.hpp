@@ -1,0 +1,105 @@
+// rotgen runtime — the classic 4th-order Runge–Kutta method, fixed step.
+//
+//   k1 = f(t, y)
+//   k2 = f(t + h/2, y + h/2 k1)
+//   k3 = f(t + h/2, y + h/2 k2)
+//   k4 = f(t + h,   y + h k3)
+//   y1 = y + h/6 (k1 + 2 k2 + 2 k3 + k4)                     (global error O(h^4))
+//
+// Steps lie on the grid t0 + k·h; the last step is shortened to end exactly at the end time
+// (see integrate.hpp). Samples between grid points are filled by cubic Hermite interpolation
+// from y and f at both ends of the step (local error O(h^4), so the samples keep order 4);
+// f at the step end is the next step's k1, so the interpolation costs no extra evaluations.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <string>
+
+#include "derivatives.hpp"
+#include "integrate.hpp"
+#include "system.hpp"
+
+namespace rotgen {
+
+template <class T, class S> class rk4_stepper;
+
+template <class T> struct rk4 {
+    using scalar = T;
+    static constexpr bool is_rotgen_method = true;
+    static constexpr bool adaptive = false;
+    template <class S> using stepper = rk4_stepper<T, S>;
+
+    T step = T(0);                     // step size h > 0
+    std::size_t max_steps = 100000000; // step budget
+
+    std::string name() const { return "rk4"; }
+    std::string check() const {
+        using std::isfinite;
+        return step > T(0) && isfinite(step) ? "" : "step must be finite and > 0";
+    }
+};
+
+template <class T, class S> class rk4_stepper {
+  public:
+    using vector = state_vector<T, S>;
+
+    rk4_stepper(const rk4<T>&, std::size_t n)
+        : m_y0(vector::Zero(n)), m_y1(m_y0), m_tmp(m_y0), m_k1(m_y0), m_k2(m_y0), m_k3(m_y0),
+          m_k4(m_y0), m_f1(m_y0) {}
+
+    int order() const { return 4; }
+    const vector& f_start() const { return m_k1; }
+    const vector& y_new() const { return m_y1; }
+
+    bool start(const S& sys, T t0, const vector& y0, step_stats& stats) {
+        detail::eval_rhs(sys, t0, y0, m_f1, stats); // becomes k1 of the first step
+        m_f1_valid = true;
+        return m_f1.allFinite();
+    }
+
+    struct outcome {
+        status code;
+        T err;
+    };
+
+    outcome attempt(const S& sys, T t, const vector& y, T h, step_stats& stats) {
+        m_y0 = y;
+        m_h = h;
+        const T h2 = h / T(2);
+        if (m_f1_valid)
+            m_k1.swap(m_f1); // f at the end of the previous step = f(t, y)
+        else
+            detail::eval_rhs(sys, t, y, m_k1, stats);
+        m_f1_valid = false;
+        m_tmp = y + h2 * m_k1; // y + h/2 k1
+        detail::eval_rhs(sys, t + h2, m_tmp, m_k2, stats);
+        m_tmp = y + h2 * m_k2; // y + h/2 k2
+        detail::eval_rhs(sys, t + h2, m_tmp, m_k3, stats);
+        m_tmp = y + h * m_k3; // y + h k3
+        detail::eval_rhs(sys, t + h, m_tmp, m_k4, stats);
+        m_y1 = y + (h / T(6)) * (m_k1 + T(2) * m_k2 + T(2) * m_k3 + m_k4);
+        m_t1 = t + h;
+        return {m_y1.allFinite() ? status::ok : status::non_finite, T(0)};
+    }
+
+    bool accept(const S& sys, step_stats& stats, bool need_dense) {
+        if (need_dense) { // f(t + h, y1) for the Hermite interpolant; reused as the next k1
+            detail::eval_rhs(sys, m_t1, m_y1, m_f1, stats);
+            m_f1_valid = true;
+            return m_f1.allFinite();
+        }
+        return true;
+    }
+
+    void dense(T theta, vector& out) const {
+        detail::hermite(theta, m_h, m_y0, m_k1, m_y1, m_f1, out);
+    }
+
+  private:
+    T m_h = T(0), m_t1 = T(0);
+    bool m_f1_valid = false;
+    vector m_y0, m_y1, m_tmp, m_k1, m_k2, m_k3, m_k4, m_f1;
+};
+
+} // namespace rotgen

@@ -1,0 +1,168 @@
+// rotgen runtime — error norm, PI step-size controller and initial step selection for the
+// adaptive methods (Hairer, Nørsett & Wanner, Solving ODEs I, §II.4; the codes DOPRI5/DOP853).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "derivatives.hpp"
+#include "result.hpp"
+
+namespace rotgen {
+
+// Options shared by the adaptive methods. Each method sets its own defaults in its header.
+template <class T> struct adaptive_options {
+    T rtol = T(1e-6);    // relative tolerance, >= 10·eps(T) (or 0 with atol > 0)
+    T atol = T(1e-9);    // absolute tolerance, >= 0
+    T h0 = T(0);         // initial step; 0 selects it automatically (hinit below)
+    T hmax = T(0);       // largest step; 0 means |t_end − t0|
+    T fixed_step = T(0); // > 0: no error control, steps of this size (order studies, benches)
+    T safety = T(0.9);   // safety factor of the controller
+    T facmin = T(0.2);   // smallest step-size ratio h_new/h
+    T facmax = T(10);    // largest step-size ratio h_new/h
+    T beta = T(0.04);    // PI controller weight of the previous error (0: I controller)
+    std::size_t max_steps = 1000000; // attempted steps before status::max_steps
+};
+
+namespace detail {
+
+// Error norm (HNW I, (4.11)): RMS over i of err_i / sk_i, sk_i = atol + rtol·max(|y0_i|, |y1_i|).
+template <class T, class V> T error_norm(const V& err, const V& y0, const V& y1, T atol, T rtol) {
+    using std::sqrt;
+    const T tiny = std::numeric_limits<T>::min();
+    T sum = T(0);
+    for (Eigen::Index i = 0; i < err.size(); ++i) {
+        using std::abs;
+        using std::max;
+        const T sk = max(atol + rtol * max(abs(y0[i]), abs(y1[i])), tiny);
+        const T r = err[i] / sk;
+        sum += r * r;
+    }
+    return sqrt(sum / T(err.size()));
+}
+
+// Validation of the options shared by the adaptive methods; returns an empty string when valid.
+template <class T> std::string check_adaptive_options(const adaptive_options<T>& o) {
+    using std::isfinite;
+    const T eps = std::numeric_limits<T>::epsilon();
+    if (!(o.fixed_step >= T(0)) || !isfinite(o.fixed_step)) return "fixed_step must be >= 0";
+    if (o.fixed_step > T(0)) return "";
+    if (!(o.rtol >= T(0)) || !(o.atol >= T(0)) || !isfinite(o.rtol) || !isfinite(o.atol))
+        return "tolerances must be finite and >= 0";
+    if (o.rtol == T(0) && o.atol == T(0)) return "rtol and atol are both 0";
+    if (o.rtol != T(0) && o.rtol < T(10) * eps)
+        return "rtol is below 10*epsilon of the scalar type; use a wider scalar or a looser rtol";
+    if (!(o.h0 >= T(0)) || !(o.hmax >= T(0))) return "h0 and hmax must be >= 0";
+    if (!(o.safety > T(0) && o.safety < T(1))) return "safety must lie in (0, 1)";
+    if (!(o.facmin > T(0) && o.facmin < T(1))) return "facmin must lie in (0, 1)";
+    if (!(o.facmax > T(1))) return "facmax must be > 1";
+    if (!(o.beta >= T(0) && o.beta < T(0.2))) return "beta must lie in [0, 0.2)";
+    return "";
+}
+
+// PI controller (HNW I, (4.13) and the code DOPRI5):
+//   fac11 = err^alpha,  alpha = 1/q − 0.75·beta,  q = order of the error estimate + 1
+//   accepted (err <= 1): h_new = h · clamp(safety / (fac11 · err_old^(−beta)), facmin, facmax),
+//                        err_old = max(err, 1e-4); no growth right after a rejection
+//   rejected (err > 1):  h_new = h · max(facmin, safety / fac11)
+template <class T> class pi_controller {
+  public:
+    pi_controller(const adaptive_options<T>& o, int q)
+        : m_safety(o.safety), m_facmin(o.facmin), m_facmax(o.facmax), m_beta(o.beta),
+          m_alpha(T(1) / T(q) - T(0.75) * o.beta) {}
+
+    // New step after an accepted step of size h with error err (<= 1).
+    T accepted(T h, T err) {
+        using std::abs;
+        using std::max;
+        using std::min;
+        using std::pow;
+        const T fac11 = pow(err, m_alpha);
+        T ratio = m_safety / (fac11 / pow(m_err_old, m_beta)); // = 1/fac of the Fortran code
+        if (!(ratio == ratio) || fac11 == T(0)) ratio = m_facmax;
+        ratio = min(m_facmax, max(m_facmin, ratio));
+        if (m_rejected) ratio = min(ratio, T(1));
+        m_err_old = max(err, T(1e-4));
+        m_rejected = false;
+        return h * ratio;
+    }
+
+    // New step after a rejected step of size h with error err (> 1, or non-finite).
+    T rejected(T h, T err) {
+        using std::max;
+        using std::pow;
+        m_rejected = true;
+        using std::isfinite;
+        if (!isfinite(err)) return h * T(0.25);
+        return h * max(m_facmin, m_safety / pow(err, m_alpha));
+    }
+
+  private:
+    T m_safety, m_facmin, m_facmax, m_beta, m_alpha;
+    T m_err_old = T(1e-4);
+    bool m_rejected = false;
+};
+
+// Stand-in controller of the fixed-step methods (never consulted: they accept every step).
+template <class T> struct no_controller {
+    T accepted(T h, T) const { return h; }
+    T rejected(T h, T) const { return h; }
+};
+
+template <class Method> auto make_controller(const Method& m, int q) {
+    using T = typename Method::scalar;
+    if constexpr (Method::adaptive) {
+        return pi_controller<T>(m, q);
+    } else {
+        (void)m;
+        (void)q;
+        return no_controller<T>{};
+    }
+}
+
+// Initial step (HNW I, §II.4, "Starting step size"; the routine HINIT of DOPRI5), with `order`
+// the order of the method. `f0` = f(t0, y0), `dir` = ±1, `hmax` > 0.
+//   d0 = ‖y0‖, d1 = ‖f0‖ (weighted RMS norms);  h = 0.01·d0/d1 (or 1e-6 if either is tiny)
+//   explicit Euler step to y1, d2 = ‖f(t0 + h, y1) − f0‖ / h
+//   h1 = (0.01 / max(d1, d2))^(1/order)  (or max(1e-6, 1e-3·h) if both are tiny)
+//   h  = min(100·h, h1, hmax)
+template <class S, class T, class V>
+T initial_step(const S& sys, T t0, const V& y0, const V& f0, T dir, T hmax, T atol, T rtol,
+               int order, step_stats& stats) {
+    using std::abs;
+    using std::max;
+    using std::min;
+    using std::pow;
+    using std::sqrt;
+    const T tiny = std::numeric_limits<T>::min();
+    const T n = T(y0.size());
+    T dnf = T(0), dny = T(0);
+    for (Eigen::Index i = 0; i < y0.size(); ++i) {
+        const T sk = max(atol + rtol * abs(y0[i]), tiny);
+        dnf += (f0[i] / sk) * (f0[i] / sk);
+        dny += (y0[i] / sk) * (y0[i] / sk);
+    }
+    dnf /= n;
+    dny /= n;
+    T h = (dnf <= T(1e-10) || dny <= T(1e-10)) ? T(1e-6) : sqrt(dny / dnf) * T(0.01);
+    h = min(h, hmax);
+    V y1 = y0 + (dir * h) * f0;
+    V f1 = f0;
+    eval_rhs(sys, t0 + dir * h, y1, f1, stats);
+    T der2 = T(0);
+    for (Eigen::Index i = 0; i < y0.size(); ++i) {
+        const T sk = max(atol + rtol * abs(y0[i]), tiny);
+        der2 += ((f1[i] - f0[i]) / sk) * ((f1[i] - f0[i]) / sk);
+    }
+    der2 = sqrt(der2 / n) / h;
+    if (!(der2 == der2) || der2 > std::numeric_limits<T>::max()) return dir * h; // f1 not finite
+    const T der12 = max(der2, sqrt(dnf));
+    const T h1 =
+        der12 <= T(1e-15) ? max(T(1e-6), h * T(1e-3)) : pow(T(0.01) / der12, T(1) / T(order));
+    return dir * min(min(T(100) * h, h1), hmax);
+}
+
+} // namespace detail
+} // namespace rotgen
