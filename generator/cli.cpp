@@ -33,6 +33,8 @@ int run_cli(int argc, char** argv) {
         const std::string command = args[0];
         args.erase(args.begin());
         if (command == "inspect") return cmd_inspect(args);
+        if (command == "emit") return cmd_emit(args);
+        if (command == "simulate") return cmd_simulate(args);
         throw user_error({"rotgen"}, "unknown command '" + command + "' (expected inspect, emit or simulate; see rotgen --help)");
     } catch (const user_error& e) {
         std::cerr << "rotgen: error: " << e.message() << "\n";

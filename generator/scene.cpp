@@ -43,6 +43,8 @@ class scene_reader {
                           "description"},
                    m_file, "the scene");
         m_scene.file = m_file;
+        m_scene.where = {m_file, 1, 1};
+        m_scene.integrator_where = m_scene.where;
         for (const char* key : {"model", "initial", "time"})
             if (!root[key])
                 throw user_error({m_file, 1, 1}, std::string("missing field '") + key + "'");
@@ -110,6 +112,7 @@ class scene_reader {
 
     void read_initial(const YAML::Node& n) {
         if (!n.IsMap()) throw user_error(at(n), "'initial' must be a mapping of angles and rates");
+        m_scene.initial_where = at(n);
         const std::vector<std::string> allowed{"phi",   "theta",   "psi",   "phi_dot", "theta_dot",
                                                "psi_dot", "p_phi", "p_theta", "p_psi", "omega1",
                                                "omega2",  "omega3"};
@@ -160,6 +163,7 @@ class scene_reader {
     void read_integrator(const YAML::Node& n) {
         if (!n.IsMap()) throw user_error(at(n), "'integrator' must be {method, rtol, atol} or {method, step}");
         check_keys(n, {"method", "rtol", "atol", "step", "max_steps"}, m_file, "integrator");
+        m_scene.integrator_where = at(n);
         integrator_spec& ig = m_scene.integrator;
         if (n["method"]) {
             const std::vector<std::string> methods{"rk4", "dopri5", "dop853", "implicit_midpoint",
@@ -197,6 +201,7 @@ class scene_reader {
     void read_record(const YAML::Node& n) {
         if (!n) {
             m_scene.record = {"phi", "theta", "psi", "energy"};
+            m_scene.record_where.assign(m_scene.record.size(), m_scene.where);
             return;
         }
         if (!n.IsSequence() || n.size() == 0)
@@ -212,6 +217,7 @@ class scene_reader {
             if (std::find(m_scene.record.begin(), m_scene.record.end(), name) != m_scene.record.end())
                 throw user_error(at(item), "'" + name + "' is recorded twice");
             m_scene.record.push_back(name);
+            m_scene.record_where.push_back(at(item));
         }
     }
 

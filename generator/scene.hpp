@@ -45,7 +45,13 @@ struct scene_spec {
     double t_start = 0, t_end = 1;
     long samples = 101;
     integrator_spec integrator;
-    std::vector<std::string> record; // column names, in order (body_z expands to 3 columns)
+    std::vector<std::string> record; // quantities, in order (body_z expands to 3 columns)
+
+    // Where things were written, for errors found later (an unrecordable quantity, a failed run).
+    source_location where;            // the scene file itself
+    source_location initial_where;    // the `initial` mapping
+    source_location integrator_where; // the `integrator` mapping (or the file)
+    std::vector<source_location> record_where;
 };
 
 // The names `record` accepts, with the columns each one expands to.

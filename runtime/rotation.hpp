@@ -29,45 +29,45 @@
 
 namespace rotgen {
 
-template <class T> using matrix3 = Eigen::Matrix<T, 3, 3>;
+template <class T> using mat3 = Eigen::Matrix<T, 3, 3>;
 
 // Az(a), (5.8): passive rotation of the coordinate axes by a about z.
-template <class T> matrix3<T> rot_z(T a) {
+template <class T> mat3<T> rot_z(T a) {
     using std::cos;
     using std::sin;
     const T c = cos(a), s = sin(a);
-    matrix3<T> m;
+    mat3<T> m;
     m << c, s, T(0), -s, c, T(0), T(0), T(0), T(1);
     return m;
 }
 
 // Ax(a), (5.9)
-template <class T> matrix3<T> rot_x(T a) {
+template <class T> mat3<T> rot_x(T a) {
     using std::cos;
     using std::sin;
     const T c = cos(a), s = sin(a);
-    matrix3<T> m;
+    mat3<T> m;
     m << T(1), T(0), T(0), T(0), c, s, T(0), -s, c;
     return m;
 }
 
 // Ay(a), (5.9)
-template <class T> matrix3<T> rot_y(T a) {
+template <class T> mat3<T> rot_y(T a) {
     using std::cos;
     using std::sin;
     const T c = cos(a), s = sin(a);
-    matrix3<T> m;
+    mat3<T> m;
     m << c, T(0), -s, T(0), T(1), T(0), s, T(0), c;
     return m;
 }
 
 // A = Az(ψ) Ax(θ) Az(φ), written out as in (5.25); z-x-z, passive, body ← space.
-template <class T> matrix3<T> euler_matrix(T phi, T theta, T psi) {
+template <class T> mat3<T> euler_matrix(T phi, T theta, T psi) {
     using std::cos;
     using std::sin;
     const T cf = cos(phi), sf = sin(phi), ct = cos(theta), st = sin(theta), cp = cos(psi),
             sp = sin(psi);
-    matrix3<T> a;
+    mat3<T> a;
     a << cp * cf - sp * ct * sf, cp * sf + sp * ct * cf, sp * st,  //
         -sp * cf - cp * ct * sf, -sp * sf + cp * ct * cf, cp * st, //
         st * sf, -st * cf, ct;
@@ -75,28 +75,28 @@ template <class T> matrix3<T> euler_matrix(T phi, T theta, T psi) {
 }
 
 // Rotation `first` followed by rotation `second`: B = second · first (5.10).
-template <class T> matrix3<T> compose(const matrix3<T>& second, const matrix3<T>& first) {
+template <class T> mat3<T> compose(const mat3<T>& second, const mat3<T>& first) {
     return second * first;
 }
 
 // Inverse of a rotation matrix: its transpose.
-template <class T> matrix3<T> inverse(const matrix3<T>& a) {
+template <class T> mat3<T> inverse(const mat3<T>& a) {
     return a.transpose();
 }
 
 // ‖AᵀA − I‖_max <= tol
-template <class T> bool is_orthogonal(const matrix3<T>& a, T tol) {
-    return (a.transpose() * a - matrix3<T>::Identity()).cwiseAbs().maxCoeff() <= tol;
+template <class T> bool is_orthogonal(const mat3<T>& a, T tol) {
+    return (a.transpose() * a - mat3<T>::Identity()).cwiseAbs().maxCoeff() <= tol;
 }
 
 // Orthogonal with det A = +1 (a rotation).
-template <class T> bool is_proper_rotation(const matrix3<T>& a, T tol) {
+template <class T> bool is_proper_rotation(const mat3<T>& a, T tol) {
     using std::abs;
     return is_orthogonal(a, tol) && abs(a.determinant() - T(1)) <= tol;
 }
 
 // Orthogonal with det A = −1 (a rotation combined with a reflection).
-template <class T> bool is_improper_rotation(const matrix3<T>& a, T tol) {
+template <class T> bool is_improper_rotation(const mat3<T>& a, T tol) {
     using std::abs;
     return is_orthogonal(a, tol) && abs(a.determinant() + T(1)) <= tol;
 }
@@ -126,7 +126,7 @@ template <class T> T wrap_two_pi(T a) {
 //   A11 − A22 = (1 − cosθ) cos(ψ−φ),  A12 + A21 = (1 − cosθ) sin(φ−ψ)   → ψ = φ − (φ−ψ), θ > π/2
 // Taking ψ from the well-conditioned sum (or difference) keeps A reproduced to rounding even
 // close to the singularity; at it (sin θ <= 4·eps) ψ = 0, φ = atan2(A12, A11), θ = 0 or π.
-template <class T> euler_angles<T> euler_from_matrix(const matrix3<T>& a) {
+template <class T> euler_angles<T> euler_from_matrix(const mat3<T>& a) {
     using std::atan2;
     using std::hypot;
     const T eps = std::numeric_limits<T>::epsilon();
@@ -150,17 +150,17 @@ template <class T> euler_angles<T> euler_from_matrix(const matrix3<T>& a) {
     return e;
 }
 
-template <class T> matrix3<T> euler_matrix(const euler_angles<T>& e) {
+template <class T> mat3<T> euler_matrix(const euler_angles<T>& e) {
     return euler_matrix(e.phi, e.theta, e.psi);
 }
 
 // Passive matrix A = R(q)ᵀ of a quaternion (normalised first). R(q), the active rotation:
 //   [[1−2(y²+z²), 2(xy−wz), 2(xz+wy)], [2(xy+wz), 1−2(x²+z²), 2(yz−wx)], [2(xz−wy), 2(yz+wx),
 //   1−2(x²+y²)]]
-template <class T> matrix3<T> matrix_from_quaternion(const Eigen::Quaternion<T>& qin) {
+template <class T> mat3<T> matrix_from_quaternion(const Eigen::Quaternion<T>& qin) {
     const Eigen::Quaternion<T> q = qin.normalized();
     const T w = q.w(), x = q.x(), y = q.y(), z = q.z();
-    matrix3<T> r;
+    mat3<T> r;
     r << T(1) - T(2) * (y * y + z * z), T(2) * (x * y - w * z), T(2) * (x * z + w * y), //
         T(2) * (x * y + w * z), T(1) - T(2) * (x * x + z * z), T(2) * (y * z - w * x),  //
         T(2) * (x * z - w * y), T(2) * (y * z + w * x), T(1) - T(2) * (x * x + y * y);
@@ -169,9 +169,9 @@ template <class T> matrix3<T> matrix_from_quaternion(const Eigen::Quaternion<T>&
 
 // Unit quaternion (w >= 0) of a proper rotation matrix A (passive), from R = Aᵀ by Shepperd's
 // method: the largest of 4w², 4x², 4y², 4z² (from the trace and the diagonal) is taken first.
-template <class T> Eigen::Quaternion<T> quaternion_from_matrix(const matrix3<T>& a) {
+template <class T> Eigen::Quaternion<T> quaternion_from_matrix(const mat3<T>& a) {
     using std::sqrt;
-    const matrix3<T> r = a.transpose();
+    const mat3<T> r = a.transpose();
     const T tr = r.trace();
     T w, x, y, z;
     if (tr >= r(0, 0) && tr >= r(1, 1) && tr >= r(2, 2)) {
@@ -224,14 +224,14 @@ template <class T> euler_angles<T> euler_from_quaternion(const Eigen::Quaternion
 // Rotation angle α ∈ [0, π] of a rotation matrix M:
 //   cos α = (tr M − 1)/2,  sin α = ½‖(M32 − M23, M13 − M31, M21 − M12)‖,  α = atan2(sin α, cos α)
 // (accurate for small angles and near π, unlike acos of the trace).
-template <class T> T rotation_angle(const matrix3<T>& m) {
+template <class T> T rotation_angle(const mat3<T>& m) {
     using std::atan2;
     const Eigen::Matrix<T, 3, 1> v(m(2, 1) - m(1, 2), m(0, 2) - m(2, 0), m(1, 0) - m(0, 1));
     return atan2(v.norm() / T(2), (m.trace() - T(1)) / T(2));
 }
 
 // Orientation error between two attitudes: the angle of A_ref Aᵀ, in [0, π].
-template <class T> T orientation_error(const matrix3<T>& a_ref, const matrix3<T>& a) {
+template <class T> T orientation_error(const mat3<T>& a_ref, const mat3<T>& a) {
     return rotation_angle<T>(a_ref * a.transpose());
 }
 

@@ -12,7 +12,7 @@ using namespace rotgen;
 
 namespace {
 
-template <class T> T max_abs_diff(const matrix3<T>& a, const matrix3<T>& b) {
+template <class T> T max_abs_diff(const mat3<T>& a, const mat3<T>& b) {
     return (a - b).cwiseAbs().maxCoeff();
 }
 
@@ -35,42 +35,42 @@ TEMPLATE_TEST_CASE("elementary rotations are proper orthogonal matrices", "[rota
     const T tol = T(16) * std::numeric_limits<T>::epsilon();
     for (int i = -8; i <= 8; ++i) {
         const T a = T(i) * T(0.7);
-        for (const matrix3<T>& m : {rot_z(a), rot_x(a), rot_y(a)}) {
+        for (const mat3<T>& m : {rot_z(a), rot_x(a), rot_y(a)}) {
             CHECK(is_orthogonal(m, tol));
             CHECK(is_proper_rotation(m, tol));
             CHECK_FALSE(is_improper_rotation(m, tol));
-            CHECK(max_abs_diff<T>(inverse(m) * m, matrix3<T>::Identity()) <= tol);
+            CHECK(max_abs_diff<T>(inverse(m) * m, mat3<T>::Identity()) <= tol);
         }
     }
     // (5.8): Az(a) = [[c, s, 0], [−s, c, 0], [0, 0, 1]] — the passive sign convention
-    const matrix3<T> az = rot_z(T(0.3));
+    const mat3<T> az = rot_z(T(0.3));
     CHECK(az(0, 1) == Approx(std::sin(0.3)).epsilon(1e-6));
     CHECK(az(1, 0) == Approx(-std::sin(0.3)).epsilon(1e-6));
-    const matrix3<T> ax = rot_x(T(0.3));
+    const mat3<T> ax = rot_x(T(0.3));
     CHECK(ax(1, 2) == Approx(std::sin(0.3)).epsilon(1e-6));
     CHECK(ax(2, 1) == Approx(-std::sin(0.3)).epsilon(1e-6));
 
-    matrix3<T> reflection = matrix3<T>::Identity();
+    mat3<T> reflection = mat3<T>::Identity();
     reflection(2, 2) = T(-1);
     CHECK(is_improper_rotation(reflection, tol));
     CHECK_FALSE(is_proper_rotation(reflection, tol));
-    matrix3<T> sheared = matrix3<T>::Identity();
+    mat3<T> sheared = mat3<T>::Identity();
     sheared(0, 1) = T(1e-2);
     CHECK_FALSE(is_orthogonal(sheared, T(1e-3)));
 }
 
 TEST_CASE("Example 5.1 and 5.2: products of elementary rotations do not commute", "[rotation]") {
     const double d = pi / 180;
-    const matrix3<double> a =
+    const mat3<double> a =
         compose(rot_z(45 * d), rot_x(30 * d)); // 30° about x, then 45° about z
-    matrix3<double> expected;                  // (5.13)
+    mat3<double> expected;                  // (5.13)
     const double r2 = std::sqrt(2.0), r3 = std::sqrt(3.0), r6 = std::sqrt(6.0);
     expected << r2 / 2, r6 / 4, r2 / 4, -r2 / 2, r6 / 4, r2 / 4, 0, -0.5, r3 / 2;
     CHECK(max_abs_diff(a, expected) < 1e-15);
 
-    const matrix3<double> b =
+    const mat3<double> b =
         compose(rot_x(30 * d), rot_z(45 * d)); // 45° about z, then 30° about x
-    matrix3<double> expected_b;                // Example 5.2, B' = Ax Az
+    mat3<double> expected_b;                // Example 5.2, B' = Ax Az
     expected_b << r2 / 2, r2 / 2, 0, -r6 / 4, r6 / 4, 0.5, r2 / 4, -r2 / 4, r3 / 2;
     CHECK(max_abs_diff(b, expected_b) < 1e-15);
     CHECK(max_abs_diff(a, b) > 0.3);
@@ -80,8 +80,8 @@ TEST_CASE("Euler matrix (5.25) equals the product Az(psi) Ax(theta) Az(phi)", "[
     for (double phi : {0.0, 0.4, 2.0, 4.5})
         for (double theta : {0.0, 0.3, 1.5, 2.9, pi})
             for (double psi : {0.0, 1.1, 3.3, 6.0}) {
-                const matrix3<double> a = euler_matrix(phi, theta, psi);
-                CHECK(max_abs_diff(a, matrix3<double>(rot_z(psi) * rot_x(theta) * rot_z(phi))) <
+                const mat3<double> a = euler_matrix(phi, theta, psi);
+                CHECK(max_abs_diff(a, mat3<double>(rot_z(psi) * rot_x(theta) * rot_z(phi))) <
                       1e-15);
                 // third row (sinθ sinφ, −sinθ cosφ, cosθ)
                 CHECK(a(2, 0) == Approx(std::sin(theta) * std::sin(phi)).margin(1e-15));
@@ -132,7 +132,7 @@ TEMPLATE_TEST_CASE("Euler angles -> matrix -> Euler angles round trip, including
             }
             // θ = π: A = Az(ψ − φ) Ax(π) = Ax(π) Az(φ − ψ); ψ = 0, φ = φ − ψ (mod 2π)
             {
-                const matrix3<T> a = euler_matrix(phi, tpi, psi);
+                const mat3<T> a = euler_matrix(phi, tpi, psi);
                 const euler_angles<T> e = euler_from_matrix(a);
                 CHECK(e.theta == Approx(tpi).epsilon(T(4) * eps));
                 CHECK(e.psi == T(0));
@@ -142,7 +142,7 @@ TEMPLATE_TEST_CASE("Euler angles -> matrix -> Euler angles round trip, including
         }
     // close to the singularity the matrix is still reproduced to rounding
     for (T theta : {T(1e-9), tpi - T(1e-9)}) {
-        const matrix3<T> a = euler_matrix(T(1.0), theta, T(2.0));
+        const mat3<T> a = euler_matrix(T(1.0), theta, T(2.0));
         CHECK(max_abs_diff(euler_matrix(euler_from_matrix(a)), a) <= T(16) * eps);
     }
 }
@@ -154,7 +154,7 @@ TEMPLATE_TEST_CASE("quaternion <-> matrix round trip and agreement with Euler an
     for (T phi : {T(0), T(0.7), T(3.0), T(5.5)})
         for (T theta : {T(0), T(0.4), T(1.6), T(3.0), T(EIGEN_PI)})
             for (T psi : {T(0), T(1.2), T(3.14), T(4.9)}) {
-                const matrix3<T> a = euler_matrix(phi, theta, psi);
+                const mat3<T> a = euler_matrix(phi, theta, psi);
                 const Eigen::Quaternion<T> q = quaternion_from_matrix(a);
                 CHECK(q.w() >= T(0));
                 CHECK(std::abs(q.norm() - T(1)) <= T(4) * eps);
@@ -163,7 +163,7 @@ TEMPLATE_TEST_CASE("quaternion <-> matrix round trip and agreement with Euler an
                 const Eigen::Quaternion<T> qe = quaternion_from_euler(phi, theta, psi);
                 CHECK(std::abs(std::abs(qe.dot(q)) - T(1)) <= T(16) * eps);
                 // convention: A is the transpose of Eigen's active rotation matrix of q
-                CHECK(max_abs_diff(matrix3<T>(q.toRotationMatrix().transpose()), a) <= T(16) * eps);
+                CHECK(max_abs_diff(mat3<T>(q.toRotationMatrix().transpose()), a) <= T(16) * eps);
                 CHECK(max_abs_diff(euler_matrix(euler_from_quaternion(q)), a) <= T(32) * eps);
             }
     // a rotation by α about n: q = (cos α/2, n sin α/2) carries body axes to space axes, so the
@@ -181,11 +181,11 @@ TEMPLATE_TEST_CASE("rotation angle and orientation error", "[rotation]", float, 
         CHECK(rotation_angle<T>(rot_z(a)) == Approx(a).epsilon(T(16) * eps).margin(T(4) * eps));
         CHECK(rotation_angle<T>(rot_x(-a)) == Approx(a).epsilon(T(16) * eps).margin(T(4) * eps));
     }
-    const matrix3<T> a = euler_matrix(T(0.3), T(1.1), T(2.0));
+    const mat3<T> a = euler_matrix(T(0.3), T(1.1), T(2.0));
     CHECK(orientation_error<T>(a, a) <= T(4) * eps);
     // a small extra rotation is measured to rounding (absolute error ~eps), not to sqrt(eps) as
     // acos of the trace would: δ = 1e4·eps is found within 1 % (100·eps)
     const T delta = T(1e4) * eps;
-    const matrix3<T> b = compose<T>(rot_y(delta), a);
+    const mat3<T> b = compose<T>(rot_y(delta), a);
     CHECK(orientation_error<T>(b, a) == Approx(delta).epsilon(T(1e-2)));
 }

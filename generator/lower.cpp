@@ -1,0 +1,878 @@
+#include "lower.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <functional>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+namespace rotgen {
+
+using GiNaC::ex;
+using GiNaC::ex_to;
+using GiNaC::is_a;
+using GiNaC::numeric;
+
+namespace {
+
+// ---- digests: FNV-1a over content only (never GiNaC's hash, never a pointer) ----
+
+constexpr std::uint64_t fnv_offset = 1469598103934665603ULL;
+constexpr std::uint64_t fnv_prime = 1099511628211ULL;
+
+void mix(std::uint64_t& h, const std::string& s) {
+    for (unsigned char c : s) {
+        h ^= c;
+        h *= fnv_prime;
+    }
+    h ^= 0xffu; // separator
+    h *= fnv_prime;
+}
+
+void mix(std::uint64_t& h, std::uint64_t v) {
+    for (int i = 0; i < 8; ++i) {
+        h ^= (v >> (8 * i)) & 0xffu;
+        h *= fnv_prime;
+    }
+}
+
+std::string numeric_text(const numeric& n) {
+    std::ostringstream os;
+    os << n;
+    return os.str();
+}
+
+// A value as (coefficient, node): node < 0 means the number `c` alone.
+struct linear {
+    numeric c;
+    int node;
+};
+
+// A product as factor -> integer exponent (negative: below the bar).
+using monomial = std::map<int, long>;
+struct poly_term {
+    numeric c;
+    monomial m;
+};
+
+const std::set<std::string>& known_calls() {
+    static const std::set<std::string> f{"sin",  "cos",  "tan",  "asin", "acos", "atan", "atan2",
+                                         "sinh", "cosh", "tanh", "exp",  "log",  "abs"};
+    return f;
+}
+
+bool is_identifier(const std::string& s) {
+    static const std::regex id("[A-Za-z_][A-Za-z0-9_]*");
+    return std::regex_match(s, id);
+}
+
+// Builds the hash-consed DAG.
+class dag_builder {
+  public:
+    dag_builder(lowered_program& program) : m_p(program) {
+        for (std::size_t i = 0; i < m_p.inputs.size(); ++i) {
+            const program_input& in = m_p.inputs[i];
+            if (!is_a<GiNaC::symbol>(in.symbol))
+                throw std::logic_error("lower: input '" + in.name + "' is not a symbol");
+            lowered_node n;
+            n.k = lowered_node::kind::input;
+            n.name = in.name;
+            const int id = intern(std::move(n), "I|" + in.name);
+            if (!m_input_of.emplace(in.symbol, id).second)
+                throw std::logic_error("lower: input '" + in.name + "' given twice");
+        }
+    }
+
+    int materialize(const linear& v) {
+        if (v.node < 0) return number(v.c);
+        if (v.c.is_equal(1)) return v.node;
+        return sum({{v.c, v.node}}, 0);
+    }
+
+    linear convert(const ex& e) {
+        const auto it = m_memo.find(e);
+        if (it != m_memo.end()) return it->second;
+        const linear r = convert_uncached(e);
+        m_memo.emplace(e, r);
+        return r;
+    }
+
+  private:
+    linear convert_uncached(const ex& e) {
+        if (is_a<numeric>(e)) {
+            const numeric& n = ex_to<numeric>(e);
+            if (!n.is_real()) throw std::logic_error("lower: complex number " + numeric_text(n));
+            return {n, -1};
+        }
+        if (is_a<GiNaC::symbol>(e)) {
+            const auto it = m_input_of.find(e);
+            if (it == m_input_of.end())
+                throw std::logic_error("lower: free symbol '" + ex_to<GiNaC::symbol>(e).get_name() +
+                                       "' (not an input of the program)");
+            return {1, it->second};
+        }
+        if (is_a<GiNaC::constant>(e)) {
+            if (!e.is_equal(GiNaC::Pi)) {
+                std::ostringstream os;
+                os << e;
+                throw std::logic_error("lower: unknown constant " + os.str());
+            }
+            lowered_node n;
+            n.k = lowered_node::kind::constant;
+            n.name = "pi";
+            return {1, intern(std::move(n), "K|pi")};
+        }
+        if (is_a<GiNaC::add>(e)) return convert_sum(e);
+        if (is_a<GiNaC::mul>(e) || is_a<GiNaC::power>(e)) return convert_product(e);
+        if (is_a<GiNaC::function>(e)) {
+            const std::string name = ex_to<GiNaC::function>(e).get_name();
+            if (!known_calls().count(name))
+                throw std::logic_error("lower: unsupported function '" + name + "'");
+            std::vector<int> args;
+            for (std::size_t i = 0; i < e.nops(); ++i) args.push_back(materialize(convert(e.op(i))));
+            return {1, call(name, args)};
+        }
+        std::ostringstream os;
+        os << e;
+        throw std::logic_error("lower: cannot lower expression '" + os.str() + "'");
+    }
+
+    linear convert_sum(const ex& e) {
+        std::map<int, numeric> acc;
+        numeric k = 0;
+        for (std::size_t i = 0; i < e.nops(); ++i) {
+            const linear t = convert(e.op(i));
+            if (t.node < 0)
+                k += t.c;
+            else
+                acc[t.node] += t.c;
+        }
+        std::vector<poly_term> terms;
+        for (const auto& [node, c] : acc)
+            if (!c.is_zero()) terms.push_back({c, monomial_of(node)});
+        sort_poly(terms);
+        return horner(std::move(terms), k);
+    }
+
+    // Greedy multivariate Horner scheme: pull the factor shared by the most terms out of them,
+    // recursively (x y + x z + w -> x (y + z) + w). Denominator factors count as factors too
+    // (a/s + b/s -> (a + b)/s). Ties go to the smaller digest, so the result is deterministic.
+    linear horner(std::vector<poly_term> terms, const numeric& k) {
+        std::map<std::pair<int, int>, int> count; // (factor, sign of its exponent) -> terms
+        for (const poly_term& t : terms)
+            for (const auto& [b, x] : t.m) ++count[{b, x > 0 ? 1 : -1}];
+        int best = -1, best_sign = 0, best_count = 1;
+        for (const auto& [key, n] : count) {
+            const bool better = n > best_count ||
+                                (n == best_count && best >= 0 &&
+                                 (before(key.first, best) || (key.first == best && key.second > best_sign)));
+            if (n >= 2 && better) best = key.first, best_sign = key.second, best_count = n;
+        }
+        if (best < 0) return plain_sum(terms, k);
+        std::vector<poly_term> with, without;
+        long power_of = 0;
+        for (poly_term& t : terms) {
+            const auto it = t.m.find(best);
+            if (it != t.m.end() && (it->second > 0 ? 1 : -1) == best_sign) {
+                const long x = std::labs(it->second);
+                power_of = power_of == 0 ? x : std::min(power_of, x);
+                with.push_back(std::move(t));
+            } else {
+                without.push_back(std::move(t));
+            }
+        }
+        for (poly_term& t : with) {
+            auto it = t.m.find(best);
+            it->second -= best_sign * power_of;
+            if (it->second == 0) t.m.erase(it);
+        }
+        const linear inner = horner(std::move(with), 0);
+        monomial m;
+        if (inner.node >= 0) merge(m, inner.node, 1);
+        merge(m, best, best_sign * power_of);
+        without.push_back({inner.c, std::move(m)});
+        sort_poly(without);
+        return horner(std::move(without), k);
+    }
+
+    // A sum with no factor to pull out: leading term positive, a common numeric factor outside
+    // when that saves multiplications.
+    linear plain_sum(const std::vector<poly_term>& poly, const numeric& k) {
+        std::map<int, numeric> acc;
+        numeric constant = k;
+        for (const poly_term& t : poly) {
+            const linear v = from_monomial(t.c, t.m);
+            if (v.node < 0)
+                constant += v.c;
+            else
+                acc[v.node] += v.c;
+        }
+        std::vector<std::pair<numeric, int>> terms;
+        for (const auto& [node, c] : acc)
+            if (!c.is_zero()) terms.emplace_back(c, node);
+        if (terms.empty()) return {constant, -1};
+        if (terms.size() == 1 && constant.is_zero()) return {terms[0].first, terms[0].second};
+        sort_terms(terms);
+        numeric scale = terms[0].first.is_negative() ? -1 : 1; // leading term positive
+        if (all_rational(terms, constant)) {
+            numeric num = 0, den = 1;
+            for (const auto& t : terms) num = GiNaC::gcd(num, t.first.numer()), den = GiNaC::lcm(den, t.first.denom());
+            if (!constant.is_zero())
+                num = GiNaC::gcd(num, constant.numer()), den = GiNaC::lcm(den, constant.denom());
+            const numeric content = num / den;
+            std::size_t cost_now = 0, cost_then = 1;
+            for (const auto& t : terms) {
+                cost_now += abs(t.first).is_equal(1) ? 0 : 1;
+                cost_then += abs(t.first / content).is_equal(1) ? 0 : 1;
+            }
+            if (cost_then < cost_now) scale *= content;
+        }
+        for (auto& t : terms) t.first = t.first / scale;
+        return {scale, sum(std::move(terms), constant / scale)};
+    }
+
+    static bool all_rational(const std::vector<std::pair<numeric, int>>& terms, const numeric& k) {
+        for (const auto& t : terms)
+            if (!t.first.is_rational()) return false;
+        return k.is_rational();
+    }
+
+    void sort_poly(std::vector<poly_term>& v) const {
+        // by the digests of the factors, then their exponents: a content order
+        std::sort(v.begin(), v.end(), [&](const poly_term& a, const poly_term& b) {
+            return key_of(a) < key_of(b);
+        });
+    }
+
+    std::vector<std::pair<std::uint64_t, long>> key_of(const poly_term& t) const {
+        std::vector<std::pair<std::uint64_t, long>> k;
+        for (const auto& [b, x] : t.m) k.emplace_back(digest(b), x);
+        std::sort(k.begin(), k.end());
+        return k;
+    }
+
+    // m *= node^k, looking inside products so that x * (y/x) cancels.
+    void merge(monomial& m, int node, long k) const {
+        for (const auto& [b, x] : monomial_of(node)) {
+            long& e = m[b];
+            e += k * x;
+            if (e == 0) m.erase(b);
+        }
+    }
+
+    monomial monomial_of(int node) const {
+        const auto it = m_monomial.find(node);
+        if (it != m_monomial.end()) return it->second;
+        return {{node, 1}};
+    }
+
+    // coefficient * prod factor^exponent as (coefficient, node).
+    linear from_monomial(const numeric& c, const monomial& m) {
+        std::vector<int> num, den;
+        for (const auto& [b, x] : m) {
+            if (x > 0) num.push_back(power(b, x));
+            if (x < 0) den.push_back(power(b, -x));
+        }
+        if (num.empty() && den.empty()) return {c, -1};
+        if (num.size() == 1 && den.empty()) return {c, num[0]};
+        int id;
+        if (den.empty()) {
+            id = product(std::move(num), {});
+        } else if (num.empty()) {
+            id = product({}, std::move(den));
+        } else {
+            // a/(b c) = a * (1/(b c)): the reciprocal is one node, shared by every product with
+            // the same denominator (one division); used once, it prints back as a/(b*c).
+            num.push_back(product({}, std::move(den)));
+            id = product(std::move(num), {});
+        }
+        m_monomial.emplace(id, m);
+        return {c, id};
+    }
+
+    // A product or a power: numeric coefficient times a product node.
+    linear convert_product(const ex& e) {
+        numeric coef = 1;
+        monomial expo;
+        const auto factor = [&](const ex& f) {
+            if (is_a<numeric>(f)) {
+                coef *= ex_to<numeric>(f);
+                return;
+            }
+            if (is_a<GiNaC::power>(f) && is_a<numeric>(f.op(1))) {
+                const numeric n = ex_to<numeric>(f.op(1));
+                if (n.is_integer()) {
+                    const linear b = convert(f.op(0));
+                    const long k = n.to_long();
+                    coef *= b.c.power(n);
+                    if (b.node >= 0) merge(expo, b.node, k);
+                    return;
+                }
+                if (n.is_rational() && n.denom().is_equal(2)) {
+                    // x^(m/2), m odd: x^((m-1)/2) * sqrt(x), or its reciprocal.
+                    const int b = materialize(convert(f.op(0)));
+                    const int root = call("sqrt", {b});
+                    const long m = n.numer().to_long();
+                    if (m > 0) {
+                        merge(expo, b, (m - 1) / 2);
+                        merge(expo, root, 1);
+                    } else {
+                        merge(expo, b, -(-m - 1) / 2);
+                        merge(expo, root, -1);
+                    }
+                    return;
+                }
+            }
+            if (is_a<GiNaC::power>(f)) {
+                const int b = materialize(convert(f.op(0)));
+                const int x = materialize(convert(f.op(1)));
+                merge(expo, call("pow", {b, x}), 1);
+                return;
+            }
+            const linear v = convert(f);
+            coef *= v.c;
+            if (v.node >= 0) merge(expo, v.node, 1);
+        };
+        if (is_a<GiNaC::mul>(e))
+            for (std::size_t i = 0; i < e.nops(); ++i) factor(e.op(i));
+        else
+            factor(e);
+        if (coef.is_zero()) return {0, -1};
+        return from_monomial(coef, expo);
+    }
+
+    // x^k, k >= 1, by binary powering: shares x^2 between x^2, x^3, x^4, ...
+    int power(int x, long k) {
+        if (k == 1) return x;
+        const int half = power(x, k / 2);
+        const int square = product({half, half}, {});
+        const int r = k % 2 ? product({square, x}, {}) : square;
+        m_monomial.emplace(r, monomial{{x, k}});
+        return r;
+    }
+
+  public:
+    int number(const numeric& v) {
+        lowered_node n;
+        n.k = lowered_node::kind::number;
+        n.value = v;
+        return intern(std::move(n), "N|" + numeric_text(v));
+    }
+
+    int sum(std::vector<std::pair<numeric, int>> terms, const numeric& k) {
+        sort_terms(terms);
+        lowered_node n;
+        n.k = lowered_node::kind::sum;
+        n.value = k;
+        std::string key = "S|" + numeric_text(k);
+        for (const auto& [c, id] : terms) key += "|" + numeric_text(c) + ":" + std::to_string(id);
+        n.terms = std::move(terms);
+        return intern(std::move(n), key);
+    }
+
+    int product(std::vector<int> num, std::vector<int> den) {
+        sort_nodes(num);
+        sort_nodes(den);
+        std::string key = "P";
+        for (int id : num) key += "|" + std::to_string(id);
+        key += "|/";
+        for (int id : den) key += "|" + std::to_string(id);
+        lowered_node n;
+        n.k = lowered_node::kind::product;
+        n.numerator = std::move(num);
+        n.denominator = std::move(den);
+        return intern(std::move(n), key);
+    }
+
+    int call(const std::string& name, const std::vector<int>& args) {
+        std::string key = "C|" + name;
+        for (int id : args) key += "|" + std::to_string(id);
+        lowered_node n;
+        n.k = lowered_node::kind::call;
+        n.name = name;
+        n.args = args;
+        return intern(std::move(n), key);
+    }
+
+  private:
+    std::uint64_t digest(int id) const { return m_p.nodes[static_cast<std::size_t>(id)].digest; }
+
+    bool before(int a, int b) const {
+        const std::uint64_t da = digest(a), db = digest(b);
+        if (da == db && a != b)
+            throw std::logic_error("lower: digest collision between two different subexpressions");
+        return da < db;
+    }
+
+    void sort_nodes(std::vector<int>& v) const {
+        std::sort(v.begin(), v.end(), [&](int a, int b) { return before(a, b); });
+    }
+
+    void sort_terms(std::vector<std::pair<numeric, int>>& v) const {
+        std::sort(v.begin(), v.end(), [&](const auto& a, const auto& b) { return before(a.second, b.second); });
+    }
+
+    int intern(lowered_node n, const std::string& key) {
+        const auto it = m_table.find(key);
+        if (it != m_table.end()) return it->second;
+        std::uint64_t h = fnv_offset;
+        const auto child = [&](int id) {
+            const lowered_node& c = m_p.nodes[static_cast<std::size_t>(id)];
+            mix(h, c.digest);
+            n.height = std::max(n.height, c.height + 1);
+        };
+        switch (n.k) {
+        case lowered_node::kind::input: mix(h, "input"), mix(h, n.name); break;
+        case lowered_node::kind::number: mix(h, "number"), mix(h, numeric_text(n.value)); break;
+        case lowered_node::kind::constant: mix(h, "constant"), mix(h, n.name); break;
+        case lowered_node::kind::sum:
+            mix(h, "sum"), mix(h, numeric_text(n.value));
+            for (const auto& [c, id] : n.terms) mix(h, numeric_text(c)), child(id);
+            break;
+        case lowered_node::kind::product:
+            mix(h, "product");
+            for (int id : n.numerator) child(id);
+            mix(h, "/");
+            for (int id : n.denominator) child(id);
+            break;
+        case lowered_node::kind::call:
+            mix(h, "call"), mix(h, n.name);
+            for (int id : n.args) child(id);
+            break;
+        }
+        n.digest = h;
+        const int id = static_cast<int>(m_p.nodes.size());
+        m_p.nodes.push_back(std::move(n));
+        m_table.emplace(key, id);
+        return id;
+    }
+
+    lowered_program& m_p;
+    std::map<std::string, int> m_table;
+    std::map<ex, linear, GiNaC::ex_is_less> m_memo;
+    std::map<ex, int, GiNaC::ex_is_less> m_input_of;
+    std::map<int, monomial> m_monomial; // product nodes as monomials, for factoring sums
+};
+
+std::vector<int> children(const lowered_node& n) {
+    std::vector<int> c;
+    for (const auto& t : n.terms) c.push_back(t.second);
+    c.insert(c.end(), n.numerator.begin(), n.numerator.end());
+    c.insert(c.end(), n.denominator.begin(), n.denominator.end());
+    c.insert(c.end(), n.args.begin(), n.args.end());
+    return c;
+}
+
+bool is_hoisted_trig(const lowered_program& p, const lowered_node& n) {
+    if (n.k != lowered_node::kind::call || (n.name != "sin" && n.name != "cos") || n.args.size() != 1)
+        return false;
+    const lowered_node& a = p.nodes[static_cast<std::size_t>(n.args[0])];
+    return a.k == lowered_node::kind::input && is_identifier(a.name);
+}
+
+// ---- printing ----
+
+struct printed {
+    std::string text;
+    op_count ops;
+    bool atomic = true; // needs no parentheses as a factor
+};
+
+std::string integer_literal(const numeric& n, const std::string& S) {
+    // Exact in every scalar type that can hold it; beyond 64 bits a long double literal.
+    const numeric limit = numeric(2).power(62);
+    if (abs(n) < limit) return S + "(" + numeric_text(n) + ")";
+    return S + "(" + numeric_text(n) + ".0L)";
+}
+
+// A non-negative number as a C++ expression: S(p) or S(p)/S(q) (folded by the compiler).
+std::string number_literal(const numeric& n, const std::string& S) {
+    if (n.is_integer()) return integer_literal(n, S);
+    if (n.is_rational()) return integer_literal(n.numer(), S) + "/" + integer_literal(n.denom(), S);
+    // An inexact float (not produced by rotgen's parser): as many digits as a long double holds.
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.21Lg", static_cast<long double>(n.to_double()));
+    std::string s = buf;
+    if (s.find_first_of(".e") == std::string::npos) s += ".0";
+    return S + "(" + s + "L)";
+}
+
+class program_printer {
+  public:
+    program_printer(const lowered_program& p, std::string scalar) : m_p(p), m_S(std::move(scalar)) {}
+
+    // The node as used by a parent: a temporary or input by name, else inline.
+    printed ref(int id) const {
+        const lowered_node& n = node(id);
+        const auto t = m_p.temporary_name.find(id);
+        if (t != m_p.temporary_name.end()) return {t->second, {}, true};
+        if (n.k == lowered_node::kind::input) return {n.name, {}, true};
+        return definition(id);
+    }
+
+    // The node's own expression (children by reference).
+    printed definition(int id) const {
+        const lowered_node& n = node(id);
+        switch (n.k) {
+        case lowered_node::kind::input: return {n.name, {}, true};
+        case lowered_node::kind::number: {
+            const std::string lit = number_literal(abs(n.value), m_S);
+            if (n.value.is_negative()) {
+                op_count o;
+                o.add = 1;
+                return {"-" + lit, o, false};
+            }
+            return {lit, {}, n.value.is_integer()};
+        }
+        case lowered_node::kind::constant:
+            return {m_S + "(3.141592653589793238462643383279502884L)", {}, true};
+        case lowered_node::kind::sum: return sum(n);
+        case lowered_node::kind::product: return product(n, 1);
+        case lowered_node::kind::call: {
+            printed r;
+            r.text = n.name + "(";
+            r.ops.call = 1;
+            for (std::size_t i = 0; i < n.args.size(); ++i) {
+                const printed a = ref(n.args[i]);
+                r.text += (i ? ", " : "") + a.text;
+                r.ops += a.ops;
+            }
+            r.text += ")";
+            return r;
+        }
+        }
+        throw std::logic_error("lower: unknown node kind");
+    }
+
+  private:
+    const lowered_node& node(int id) const { return m_p.nodes.at(static_cast<std::size_t>(id)); }
+
+    bool inline_product(int id) const {
+        return node(id).k == lowered_node::kind::product && !m_p.temporary_name.count(id);
+    }
+
+    static std::string paren(const printed& p) { return p.atomic ? p.text : "(" + p.text + ")"; }
+
+    // Flattens inline products into one list of factors above and one below the bar.
+    void factors(int id, bool above, std::vector<std::string>& num, std::vector<std::string>& den,
+                 op_count& ops) const {
+        if (inline_product(id)) {
+            const lowered_node& n = node(id);
+            for (int c : n.numerator) factors(c, above, num, den, ops);
+            for (int c : n.denominator) factors(c, !above, num, den, ops);
+            return;
+        }
+        const printed f = ref(id);
+        ops += f.ops;
+        (above ? num : den).push_back(paren(f));
+    }
+
+    // coefficient * product, the coefficient a non-negative number (1: none).
+    printed product(const lowered_node& n, const numeric& coef) const {
+        std::vector<std::string> num, den;
+        printed r;
+        for (int c : n.numerator) factors(c, true, num, den, r.ops);
+        for (int c : n.denominator) factors(c, false, num, den, r.ops);
+        std::sort(num.begin(), num.end());
+        std::sort(den.begin(), den.end());
+        const bool has_coef = !coef.is_equal(1);
+        std::string s;
+        if (has_coef) s = number_literal(coef, m_S);
+        for (std::size_t i = 0; i < num.size(); ++i) s += (s.empty() ? "" : "*") + num[i];
+        if (s.empty()) s = m_S + "(1)";
+        if (num.size() > 1) r.ops.mul += num.size() - 1;
+        if (has_coef && !num.empty()) r.ops.mul += 1;
+        if (!den.empty()) {
+            r.ops.div += 1;
+            r.ops.mul += den.size() - 1;
+            std::string d;
+            for (std::size_t i = 0; i < den.size(); ++i) d += (i ? "*" : "") + den[i];
+            s += "/" + (den.size() > 1 ? "(" + d + ")" : d);
+        }
+        r.text = s;
+        r.atomic = false;
+        return r;
+    }
+
+    printed sum(const lowered_node& n) const {
+        struct entry {
+            bool negative;
+            std::string text;
+        };
+        std::vector<entry> entries;
+        printed r;
+        for (const auto& [c, id] : n.terms) {
+            const numeric m = abs(c);
+            std::string text;
+            if (inline_product(id)) {
+                const printed p = product(node(id), m);
+                r.ops += p.ops;
+                text = p.text;
+            } else {
+                const printed p = ref(id);
+                r.ops += p.ops;
+                if (m.is_equal(1)) {
+                    text = p.text; // a term of a sum needs no parentheses unless it is a sum
+                    if (!p.atomic && node(id).k == lowered_node::kind::sum && !m_p.temporary_name.count(id))
+                        text = "(" + text + ")";
+                } else {
+                    text = number_literal(m, m_S) + "*" + paren(p);
+                    r.ops.mul += 1;
+                }
+            }
+            entries.push_back({c.is_negative(), text});
+        }
+        if (!n.value.is_zero())
+            entries.push_back({n.value.is_negative(), number_literal(abs(n.value), m_S)});
+        // Positive terms first (no unary minus unless all are negative), then by text.
+        std::sort(entries.begin(), entries.end(), [](const entry& a, const entry& b) {
+            return a.negative != b.negative ? !a.negative : a.text < b.text;
+        });
+        std::string s;
+        for (std::size_t i = 0; i < entries.size(); ++i) {
+            if (i == 0)
+                s = entries[i].negative ? "-" + entries[i].text : entries[i].text;
+            else
+                s += (entries[i].negative ? " - " : " + ") + entries[i].text;
+        }
+        r.ops.add += entries.size() - 1 + (entries[0].negative ? 1 : 0);
+        r.text = s;
+        r.atomic = false;
+        return r;
+    }
+
+    const lowered_program& m_p;
+    std::string m_S;
+};
+
+// ---- naive operation counts of GiNaC expressions (tree size; memoised on the DAG) ----
+
+class naive_counter {
+  public:
+    op_count operator()(const ex& e) {
+        const auto it = m_memo.find(e);
+        if (it != m_memo.end()) return it->second;
+        op_count r = count(e);
+        m_memo.emplace(e, r);
+        return r;
+    }
+
+  private:
+    op_count count(const ex& e) {
+        op_count r;
+        if (is_a<numeric>(e) || is_a<GiNaC::symbol>(e) || is_a<GiNaC::constant>(e)) return r;
+        if (is_a<GiNaC::add>(e)) {
+            r.add = e.nops() - 1;
+            for (std::size_t i = 0; i < e.nops(); ++i) r += (*this)(e.op(i));
+            return r;
+        }
+        if (is_a<GiNaC::mul>(e) || is_a<GiNaC::power>(e)) {
+            std::size_t num = 0, den = 0;
+            const auto factor = [&](const ex& f) {
+                if (is_a<numeric>(f)) {
+                    if (!abs(ex_to<numeric>(f)).is_equal(1)) ++num;
+                    return;
+                }
+                if (is_a<GiNaC::power>(f) && is_a<numeric>(f.op(1)) && ex_to<numeric>(f.op(1)).is_integer()) {
+                    const long k = ex_to<numeric>(f.op(1)).to_long();
+                    r.mul += static_cast<std::size_t>(std::labs(k) - 1);
+                    ++(k > 0 ? num : den);
+                    r += (*this)(f.op(0));
+                    return;
+                }
+                if (is_a<GiNaC::power>(f)) {
+                    r.call += 1;
+                    ++num;
+                    r += (*this)(f.op(0));
+                    r += (*this)(f.op(1));
+                    return;
+                }
+                ++num;
+                r += (*this)(f);
+            };
+            if (is_a<GiNaC::mul>(e))
+                for (std::size_t i = 0; i < e.nops(); ++i) factor(e.op(i));
+            else
+                factor(e);
+            if (num > 1) r.mul += num - 1;
+            if (den > 0) r.div += 1, r.mul += den - 1;
+            return r;
+        }
+        if (is_a<GiNaC::function>(e)) {
+            r.call = 1;
+            for (std::size_t i = 0; i < e.nops(); ++i) r += (*this)(e.op(i));
+            return r;
+        }
+        return r;
+    }
+
+    std::map<ex, op_count, GiNaC::ex_is_less> m_memo;
+};
+
+} // namespace
+
+op_count count_ops(const ex& e) { return naive_counter()(e); }
+
+lowered_program lower(const std::vector<ex>& outputs, const std::vector<program_input>& inputs) {
+    lowered_program p;
+    p.inputs = inputs;
+    {
+        naive_counter naive;
+        for (const ex& e : outputs) p.before += naive(e);
+    }
+    dag_builder b(p);
+    for (const ex& e : outputs) p.outputs.push_back(b.materialize(b.convert(e)));
+
+    // Uses of each node reachable from the outputs (each occurrence in a parent counts).
+    std::vector<int> uses(p.nodes.size(), 0);
+    std::vector<char> reached(p.nodes.size(), 0);
+    std::vector<int> order; // depth-first post-order, children in digest order
+    std::function<void(int)> visit = [&](int id) {
+        if (reached[static_cast<std::size_t>(id)]) return;
+        reached[static_cast<std::size_t>(id)] = 1;
+        for (int c : children(p.nodes[static_cast<std::size_t>(id)])) {
+            ++uses[static_cast<std::size_t>(c)];
+            visit(c);
+        }
+        order.push_back(id);
+    };
+    for (int o : p.outputs) {
+        ++uses[static_cast<std::size_t>(o)];
+        visit(o);
+    }
+
+    // Temporaries: sums, products and calls used more than once; sin/cos of inputs always.
+    std::vector<int> hoisted, temps;
+    for (int id : order) {
+        const lowered_node& n = p.nodes[static_cast<std::size_t>(id)];
+        if (is_hoisted_trig(p, n))
+            hoisted.push_back(id);
+        else if ((n.k == lowered_node::kind::sum || n.k == lowered_node::kind::product ||
+                  n.k == lowered_node::kind::call) &&
+                 uses[static_cast<std::size_t>(id)] >= 2)
+            temps.push_back(id);
+    }
+    // sin/cos first, in input order (sin before cos).
+    std::vector<int> trig;
+    for (const program_input& in : p.inputs)
+        for (const char* f : {"sin", "cos"})
+            for (int id : hoisted) {
+                const lowered_node& n = p.nodes[static_cast<std::size_t>(id)];
+                if (n.name == f && p.nodes[static_cast<std::size_t>(n.args[0])].name == in.name)
+                    trig.push_back(id);
+            }
+    std::vector<int> all = trig;
+    all.insert(all.end(), temps.begin(), temps.end());
+    int counter = 0;
+    for (int id : all) {
+        const lowered_node& n = p.nodes[static_cast<std::size_t>(id)];
+        std::string name;
+        if (is_hoisted_trig(p, n)) {
+            name = n.name + "_" + p.nodes[static_cast<std::size_t>(n.args[0])].name;
+        } else {
+            char buf[32];
+            std::snprintf(buf, sizeof buf, "t%03d", counter++);
+            name = buf;
+        }
+        p.steps.push_back({id, name});
+        p.temporary_name[id] = name;
+    }
+
+    const program_printer printer(p, "S");
+    for (const auto& s : p.steps) p.after += printer.definition(s.node).ops;
+    for (int o : p.outputs) p.after += printer.ref(o).ops;
+    return p;
+}
+
+std::string print_node(const lowered_program& program, int node, const std::string& scalar) {
+    return program_printer(program, scalar).ref(node).text;
+}
+
+std::string print_definition(const lowered_program& program, int node, const std::string& scalar) {
+    return program_printer(program, scalar).definition(node).text;
+}
+
+std::vector<bool> used_inputs(const lowered_program& program) {
+    std::vector<char> reached(program.nodes.size(), 0);
+    std::vector<int> stack(program.outputs.begin(), program.outputs.end());
+    while (!stack.empty()) {
+        const int id = stack.back();
+        stack.pop_back();
+        if (reached[static_cast<std::size_t>(id)]) continue;
+        reached[static_cast<std::size_t>(id)] = 1;
+        for (int c : children(program.nodes[static_cast<std::size_t>(id)])) stack.push_back(c);
+    }
+    std::vector<bool> used(program.inputs.size(), false);
+    for (std::size_t i = 0; i < program.nodes.size(); ++i) {
+        const lowered_node& n = program.nodes[i];
+        if (!reached[i] || n.k != lowered_node::kind::input) continue;
+        for (std::size_t k = 0; k < program.inputs.size(); ++k)
+            if (program.inputs[k].name == n.name) used[k] = true;
+    }
+    return used;
+}
+
+bool is_zero_node(const lowered_program& program, int node) {
+    const lowered_node& n = program.nodes.at(static_cast<std::size_t>(node));
+    return n.k == lowered_node::kind::number && n.value.is_zero();
+}
+
+std::vector<numeric> evaluate(const lowered_program& program, const GiNaC::exmap& values) {
+    std::vector<ex> v(program.nodes.size());
+    std::map<std::string, ex> input_value; // a missing value leaves the symbol: not a number
+    for (const program_input& in : program.inputs) {
+        const auto it = values.find(in.symbol);
+        input_value[in.name] = it != values.end() ? it->second : in.symbol;
+    }
+    for (std::size_t i = 0; i < program.nodes.size(); ++i) {
+        const lowered_node& n = program.nodes[i];
+        const auto at = [&](int id) { return v[static_cast<std::size_t>(id)]; };
+        ex r;
+        switch (n.k) {
+        case lowered_node::kind::input: r = input_value.at(n.name); break;
+        case lowered_node::kind::number: r = n.value; break;
+        case lowered_node::kind::constant: r = GiNaC::Pi; break;
+        case lowered_node::kind::sum:
+            r = n.value;
+            for (const auto& [c, id] : n.terms) r += c * at(id);
+            break;
+        case lowered_node::kind::product:
+            r = 1;
+            for (int id : n.numerator) r *= at(id);
+            for (int id : n.denominator) r /= at(id);
+            break;
+        case lowered_node::kind::call: {
+            const ex a = at(n.args[0]);
+            if (n.name == "sin") r = GiNaC::sin(a);
+            else if (n.name == "cos") r = GiNaC::cos(a);
+            else if (n.name == "tan") r = GiNaC::tan(a);
+            else if (n.name == "asin") r = GiNaC::asin(a);
+            else if (n.name == "acos") r = GiNaC::acos(a);
+            else if (n.name == "atan") r = GiNaC::atan(a);
+            else if (n.name == "atan2") r = GiNaC::atan2(a, at(n.args.at(1)));
+            else if (n.name == "sinh") r = GiNaC::sinh(a);
+            else if (n.name == "cosh") r = GiNaC::cosh(a);
+            else if (n.name == "tanh") r = GiNaC::tanh(a);
+            else if (n.name == "exp") r = GiNaC::exp(a);
+            else if (n.name == "log") r = GiNaC::log(a);
+            else if (n.name == "abs") r = GiNaC::abs(a);
+            else if (n.name == "sqrt") r = GiNaC::sqrt(a);
+            else if (n.name == "pow") r = GiNaC::pow(a, at(n.args.at(1)));
+            else throw std::logic_error("lower: cannot evaluate " + n.name);
+            break;
+        }
+        }
+        v[i] = GiNaC::evalf(r);
+    }
+    std::vector<numeric> out;
+    for (int o : program.outputs) {
+        const ex r = v[static_cast<std::size_t>(o)];
+        if (!is_a<numeric>(r)) throw std::logic_error("lower: an output did not evaluate to a number");
+        out.push_back(ex_to<numeric>(r));
+    }
+    return out;
+}
+
+} // namespace rotgen

@@ -1,0 +1,106 @@
+// rotgen — stage 4: lowering. GiNaC expressions become a straight-line program.
+//
+// GiNaC has no common-subexpression elimination; this module supplies it, on the expression DAG:
+//
+//   * every subexpression is converted once into a node of a hash-consed DAG (structurally equal
+//     subexpressions are one node, whatever GiNaC's internal order);
+//   * a sum is kept with its leading term positive, so a - b and b - a are one node (times -1);
+//   * numeric coefficients stay outside products and sums (2*x*y is 2 times the node x*y), so that
+//     x*y is shared with 3*x*y;
+//   * integer powers become products by binary powering (x^2 = x*x, x^3 = x^2*x, x^4 = x^2*x^2),
+//     negative ones a division, so x^2 is shared by x^2, x^3 and 1/x^2;
+//   * sums are factored by a greedy Horner scheme (x y + x z -> x (y + z), a/s + b/s -> (a + b)/s),
+//     and a common numeric factor goes outside when that saves multiplications;
+//   * a denominator is one node (a reciprocal), shared by every product that divides by it;
+//   * sin and cos of each input (an angle) are computed once, named sin_<input>, cos_<input>;
+//   * numbers stay exact rationals; GiNaC folds numeric arithmetic as it builds expressions.
+//
+// A node used more than once becomes a temporary; the rest print inline where they are used.
+// The result has the shape of SymEngine's `cse`: an ordered list of (temporary, expression) plus
+// the outputs, each in terms of inputs and earlier temporaries.
+//
+// Determinism: GiNaC's term order changes from run to run (its hash seeds depend on addresses),
+// so nothing here depends on it. Each node gets a 64-bit digest computed by rotgen from its content
+// alone (kind, printed names and exact numbers, children's digests, commutative children sorted);
+// children are ordered by digest, temporaries are numbered t000, t001, ... in a depth-first
+// traversal from the outputs in that order, and the printer sorts the terms of sums and factors of
+// products by their printed text. Same expressions in, same program (and same bytes) out.
+#pragma once
+
+#include <ginac/ginac.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace rotgen {
+
+// How the program refers to a GiNaC symbol. Inputs are matched by symbol object, never by name.
+struct program_input {
+    GiNaC::ex symbol;       // a GiNaC symbol
+    std::string name;       // what the code writes for it: "theta", "p.I1", "t"
+    std::string definition; // if not empty, `const T name = definition;` is emitted when used
+};
+
+// Arithmetic as printed: + and - (binary or unary), *, /, and calls (sin, cos, sqrt, pow, ...).
+struct op_count {
+    std::size_t add = 0, mul = 0, div = 0, call = 0;
+    std::size_t total() const { return add + mul + div + call; }
+    op_count& operator+=(const op_count& o) {
+        add += o.add, mul += o.mul, div += o.div, call += o.call;
+        return *this;
+    }
+};
+
+struct lowered_node {
+    enum class kind { input, number, constant, sum, product, call };
+    kind k = kind::number;
+    std::string name;        // input: the code's name for it; call: the function; constant: "pi"
+    GiNaC::numeric value;    // number: the value; sum: the constant term
+    std::vector<std::pair<GiNaC::numeric, int>> terms; // sum: value + sum of coefficient * node
+    std::vector<int> numerator, denominator;           // product: factors (repeats allowed)
+    std::vector<int> args;                             // call
+    std::uint64_t digest = 0;
+    int height = 0;
+};
+
+struct lowered_program {
+    std::vector<program_input> inputs;
+    std::vector<lowered_node> nodes; // children before parents
+    std::vector<int> outputs;        // one node per output expression
+    struct step {
+        int node;
+        std::string name; // t000, t001, ... or sin_theta, cos_theta
+    };
+    std::vector<step> steps;         // the temporaries, in order
+    std::map<int, std::string> temporary_name; // node -> its step's name
+    op_count before; // the outputs printed naively, each on its own (no sharing, no hoisting)
+    op_count after;  // the program as printed: temporaries plus outputs
+};
+
+// Lowers `outputs` (in terms of the inputs' symbols; any other symbol is an internal error).
+lowered_program lower(const std::vector<GiNaC::ex>& outputs, const std::vector<program_input>& inputs);
+
+// Operations in `e` printed naively (integer powers as repeated products, as c_printer does).
+op_count count_ops(const GiNaC::ex& e);
+
+// C++ text of a node as used in an expression: temporaries and inputs by name, anything else
+// inline; `scalar` names the type of literals (`S(1)/S(3)`, folded by the compiler).
+std::string print_node(const lowered_program& program, int node, const std::string& scalar = "S");
+// The expression a node stands for (a temporary's right-hand side).
+std::string print_definition(const lowered_program& program, int node, const std::string& scalar = "S");
+
+// The program's value at a point, computed node by node with GiNaC floats (to check lowering
+// against the original expressions). `values` maps input symbols to numbers; returns the outputs.
+std::vector<GiNaC::numeric> evaluate(const lowered_program& program, const GiNaC::exmap& values);
+
+// Which inputs the printed program uses (to emit only the definitions it needs).
+std::vector<bool> used_inputs(const lowered_program& program);
+
+// True if the node is the number zero.
+bool is_zero_node(const lowered_program& program, int node);
+
+} // namespace rotgen

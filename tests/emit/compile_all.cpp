@@ -1,0 +1,73 @@
+// Compiled by the ctest tests emit_compile_<compiler>_<scalar> with -Wall -Wextra -Wpedantic -Werror:
+// every generated header, every function, instantiated for one scalar type.
+#if defined(ROTGEN_SCALAR_eigen_array)
+#include <Eigen/Core>
+using scalar = Eigen::Array<double, 4, 1>;
+#elif defined(ROTGEN_SCALAR_float)
+using scalar = float;
+#elif defined(ROTGEN_SCALAR_double)
+using scalar = double;
+#elif defined(ROTGEN_SCALAR_long_double)
+using scalar = long double;
+#else
+#error "define ROTGEN_SCALAR_<float|double|long_double|eigen_array>"
+#endif
+
+#include "units.hpp"
+
+template <class T>
+struct buffers {
+    T y[7], f[7], J[49], out[9];
+    buffers() {
+        for (auto& v : y) v = T(0.5);
+    }
+};
+
+#define ROTGEN_USE_COMMON(u)                                   \
+    {                                                          \
+        namespace ns = rotgen::models::u;                      \
+        const ns::params<scalar> p{};                          \
+        ns::rhs(scalar(0.25), b.y, b.f, p);                    \
+        ns::jacobian(scalar(0.25), b.y, b.J, p);               \
+        ns::rhs_and_jacobian(scalar(0.25), b.y, b.f, b.J, p); \
+        b.out[0] = ns::energy(b.y, p);                         \
+        ns::momenta(b.y, b.out, p);
+#define ROTGEN_USE_FULL(u)                \
+    ROTGEN_USE_COMMON(u)                  \
+    ns::omega(b.y, b.out, p);             \
+    ns::rotation(b.y, b.out, p);          \
+    ns::mass_matrix(b.y, b.out, p);       \
+    }
+#define ROTGEN_USE_BODY(u)                        \
+    ROTGEN_USE_COMMON(u)                          \
+    ns::omega(b.y, b.out, p);                     \
+    ns::rotation(b.y, b.out, p);                  \
+    ns::mass_matrix(b.y, b.out, p);               \
+    }
+#define ROTGEN_USE_BODY_OMEGA(u)    \
+    ROTGEN_USE_COMMON(u)            \
+    ns::omega(b.y, b.out, p);       \
+    ns::mass_matrix(b.y, b.out, p); \
+    }
+#define ROTGEN_USE_REDUCED(u)           \
+    ROTGEN_USE_COMMON(u)                \
+    ns::ignored_rates(b.y, b.out, p);   \
+    }
+
+void use_all(buffers<scalar>& b);
+void use_all(buffers<scalar>& b) {
+    ROTGEN_UNITS_LAGRANGIAN(ROTGEN_USE_FULL)
+    ROTGEN_UNITS_HAMILTONIAN(ROTGEN_USE_FULL)
+    ROTGEN_UNITS_REDUCED(ROTGEN_USE_REDUCED)
+    ROTGEN_UNITS_BODY(ROTGEN_USE_BODY)
+    ROTGEN_UNITS_BODY_OMEGA(ROTGEN_USE_BODY_OMEGA)
+}
+
+#if !defined(ROTGEN_SCALAR_eigen_array)
+// The quaternion helpers are for scalar types (they use floor and atan2).
+void use_helpers(scalar* q, scalar* a);
+void use_helpers(scalar* q, scalar* a) {
+    rotgen::models::heavy_top_body::quaternion_from_angles(a, q);
+    rotgen::models::heavy_top_body::angles_from_quaternion(q, a);
+}
+#endif

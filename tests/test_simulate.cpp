@@ -1,0 +1,218 @@
+// `rotgen simulate` end to end: derive -> emit -> compile -> integrate -> CSV, checked against the
+// physics of the chapter (5.74-5.79, 5.94, 5.100) and for its handling of bad scenes.
+#include "support.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <sstream>
+
+using namespace rotgen::test;
+
+namespace {
+
+struct csv_table {
+    std::vector<std::string> header;
+    std::vector<std::vector<double>> rows;
+    std::size_t column(const std::string& name) const {
+        for (std::size_t i = 0; i < header.size(); ++i)
+            if (header[i] == name) return i;
+        throw std::runtime_error("no column " + name);
+    }
+    std::vector<double> values(const std::string& name) const {
+        std::vector<double> v;
+        for (const auto& r : rows) v.push_back(r.at(column(name)));
+        return v;
+    }
+};
+
+csv_table read_csv(const std::string& path) {
+    csv_table t;
+    std::istringstream in(read_file(path));
+    std::string line, cell;
+    std::getline(in, line);
+    std::istringstream h(line);
+    while (std::getline(h, cell, ',')) t.header.push_back(cell);
+    while (std::getline(in, line)) {
+        std::istringstream r(line);
+        std::vector<double> row;
+        while (std::getline(r, cell, ',')) row.push_back(std::stod(cell));
+        t.rows.push_back(row);
+    }
+    return t;
+}
+
+std::string scratch(const std::string& name) { return std::string(ROTGEN_BINARY_DIR) + "/" + name; }
+
+// A scene file in the build tree that names a shipped model by absolute path.
+std::string scene_text(const std::string& model, const std::string& rest) {
+    return "model: " + model_path(model) + "\n" + rest;
+}
+
+double max_abs_change(const std::vector<double>& v) {
+    double m = 0;
+    for (double x : v) m = std::max(m, std::abs(x - v.front()));
+    return m;
+}
+
+} // namespace
+
+TEST_CASE("heavy top: theta nods between the turning points of the effective potential",
+          "[simulate]") {
+    // Parameters of models/heavy_top.yaml.
+    const double I1 = 1.0, I3 = 0.5, M = 1.0, g = 9.81, h = 0.1;
+    const double theta0 = 0.5, spin = 30; // psi_dot; phi_dot = theta_dot = 0
+    const scratch_file scene(
+        "nutation_scene.yaml",
+        scene_text("heavy_top", "initial: {theta: 0.5, psi_dot: 30}\n"
+                                "time: {end: 5, samples: 5001}\n"
+                                "integrator: {method: dop853, rtol: 1e-11, atol: 1e-13}\n"
+                                "record: [theta, energy, p_phi, p_psi]\n"));
+    const run_result r = run_rotgen("simulate '" + scene.path + "' -o '" + scratch("nutation.csv") + "'");
+    INFO(r.out << r.err);
+    REQUIRE(r.status == 0);
+    const csv_table t = read_csv(scratch("nutation.csv"));
+    REQUIRE(t.rows.size() == 5001);
+    CHECK(t.header == std::vector<std::string>{"t", "theta", "energy", "p_phi", "p_psi"});
+
+    // (5.74)-(5.76) at t = 0: p_psi = I3 psi_dot, p_phi = p_psi cos(theta); both conserved.
+    const double p_psi = I3 * spin, p_phi = p_psi * std::cos(theta0);
+    CHECK(t.values("p_psi").front() == Approx(p_psi).epsilon(1e-14));
+    CHECK(t.values("p_phi").front() == Approx(p_phi).epsilon(1e-14));
+    CHECK(max_abs_change(t.values("p_phi")) < 1e-11 * p_phi);
+    CHECK(max_abs_change(t.values("p_psi")) < 1e-11 * p_psi);
+    CHECK(max_abs_change(t.values("energy")) < 1e-10 * t.values("energy").front());
+
+    // Turning points: with u = cos(theta), (5.79) gives theta_dot = 0 where
+    //   f(u) = (beta - alpha u)(1 - u^2) - (b - a u)^2 = 0,
+    // a = p_psi/I1, b = p_phi/I1, alpha = 2 M g h/I1, beta = 2 E'/I1, E' = E - p_psi^2/(2 I3).
+    const double E = t.values("energy").front();
+    const double a = p_psi / I1, b = p_phi / I1, alpha = 2 * M * g * h / I1;
+    const double beta = 2 * (E - p_psi * p_psi / (2 * I3)) / I1;
+    const auto f = [&](double u) { return (beta - alpha * u) * (1 - u * u) - (b - a * u) * (b - a * u); };
+    // u0 = cos(theta0) is one root; the other in (-1, u0) by bisection.
+    const double u0 = std::cos(theta0);
+    CHECK(std::abs(f(u0)) < 1e-9);
+    double lo = -1 + 1e-12, hi = u0 - 1e-9;
+    REQUIRE(f(lo) * f(hi) < 0);
+    for (int i = 0; i < 200; ++i) {
+        const double mid = (lo + hi) / 2;
+        (f(lo) * f(mid) <= 0 ? hi : lo) = mid;
+    }
+    const double theta_max = std::acos((lo + hi) / 2);
+    const auto theta = t.values("theta");
+    const double sampled_max = *std::max_element(theta.begin(), theta.end());
+    const double sampled_min = *std::min_element(theta.begin(), theta.end());
+    CHECK(sampled_min == Approx(theta0).margin(1e-9));
+    // samples every 1e-3 resolve the maximum to ~ theta_ddot dt^2 / 8 (< 1e-6 here)
+    CHECK(sampled_max == Approx(theta_max).margin(1e-6));
+    CHECK(sampled_max > theta0 + 1e-3); // it does nod
+}
+
+TEST_CASE("free asymmetric top: stable about axes 1 and 3, flips about axis 2", "[simulate]") {
+    for (int axis : {1, 2, 3}) {
+        const std::string csv = scratch("free_axis" + std::to_string(axis) + ".csv");
+        const run_result r = run_rotgen("simulate '" + std::string(ROTGEN_SOURCE_DIR) +
+                                        "/models/scenes/free_top_axis" + std::to_string(axis) +
+                                        ".yaml' -o '" + csv + "'");
+        INFO("axis " << axis << "\n" << r.out << r.err);
+        REQUIRE(r.status == 0);
+        const auto w = read_csv(csv).values("omega" + std::to_string(axis));
+        const double lowest = *std::min_element(w.begin(), w.end());
+        if (axis == 2)
+            CHECK(lowest < -0.9); // the intermediate axis: omega2 reverses (5.100)
+        else
+            CHECK(lowest > 0.99); // small oscillations only (5.94)
+    }
+}
+
+TEST_CASE("body form and Lagrangian form agree away from theta = 0", "[simulate]") {
+    std::vector<double> theta[2];
+    int k = 0;
+    for (const char* form : {"lagrangian", "body"}) {
+        const scratch_file scene(
+            "form_scene.yaml",
+            scene_text("full_tensor_top",
+                       std::string("form: ") + form +
+                           "\ninitial: {phi: 0.2, theta: 1.1, psi: 0.4, phi_dot: 0.3, theta_dot: "
+                           "-0.2, psi_dot: 6}\ntime: {end: 3, samples: 31}\n"
+                           "integrator: {method: dop853, rtol: 1e-12, atol: 1e-14}\n"
+                           "record: [theta, energy]\n"));
+        const run_result r = run_rotgen("simulate '" + scene.path + "' -o '" + scratch("form.csv") + "'");
+        INFO(form << "\n" << r.out << r.err);
+        REQUIRE(r.status == 0);
+        theta[k++] = read_csv(scratch("form.csv")).values("theta");
+    }
+    REQUIRE(theta[0].size() == theta[1].size());
+    for (std::size_t i = 0; i < theta[0].size(); ++i) CHECK(theta[1][i] == Approx(theta[0][i]).margin(1e-9));
+}
+
+TEST_CASE("gimbal lock: the Euler-angle forms refuse theta = 0, the body form runs", "[simulate]") {
+    const std::string common = "initial: {theta: 0, omega1: 0.1, omega2: 0.2, omega3: 1}\n"
+                               "time: {end: 10, samples: 11}\nrecord: [omega1, theta, energy]\n";
+    const scratch_file euler("lock_euler.yaml", scene_text("free_asymmetric_top", "form: hamiltonian\n" + common));
+    const run_result bad = run_rotgen("simulate '" + euler.path + "'");
+    CHECK(bad.status == 2);
+    CHECK(bad.err.find("lock_euler.yaml:3:10: initial theta = 0 is the gimbal-lock singularity") != std::string::npos);
+    const scratch_file body("lock_body.yaml", scene_text("free_asymmetric_top", "form: body\n" + common));
+    const run_result good = run_rotgen("simulate '" + body.path + "' -o '" + scratch("lock.csv") + "'");
+    INFO(good.out << good.err);
+    CHECK(good.status == 0);
+    const auto th = read_csv(scratch("lock.csv")).values("theta");
+    CHECK(th.front() == Approx(0).margin(1e-12));
+    CHECK(th.back() > 0.01); // it moves off the singular point
+}
+
+TEST_CASE("bad scenes: exit 2, one line naming file and place, no output file", "[simulate][errors]") {
+    using row = std::tuple<std::string, std::string, std::string>;
+    const auto [name, body, expected] = GENERATE(table<std::string, std::string, std::string>({
+        row{"NaN initial value", "initial: {theta: .nan}\ntime: {end: 1}\n", "bad_scene.yaml:2:18: initial theta must be a finite number"},
+        row{"theta out of range", "initial: {theta: 4}\ntime: {end: 1}\n", "bad_scene.yaml:2:18: initial theta = 4"},
+        row{"end before start", "initial: {theta: 1}\ntime: {start: 2, end: 1}\n", "bad_scene.yaml:3:23: time end must be after time start"},
+        row{"non-positive rtol", "initial: {theta: 1}\ntime: {end: 1}\nintegrator: {method: dopri5, rtol: 0}\n", "bad_scene.yaml:4:36: integrator rtol must be positive"},
+        row{"negative step", "initial: {theta: 1}\ntime: {end: 1}\nintegrator: {method: rk4, step: -0.1}\n", "bad_scene.yaml:4:33: integrator step must be positive"},
+        row{"fixed step without a step", "initial: {theta: 1}\ntime: {end: 1}\nintegrator: {method: rk4}\n", "bad_scene.yaml:4:13: integrator rk4 is fixed-step and needs 'step'"},
+        row{"unknown method", "initial: {theta: 1}\ntime: {end: 1}\nintegrator: {method: dopri}\n", "did you mean 'dopri5'?"},
+        row{"unknown record", "initial: {theta: 1}\ntime: {end: 1}\nrecord: [thetta]\n", "bad_scene.yaml:4:10: cannot record 'thetta'; did you mean 'theta'?"},
+        row{"rates given two ways", "initial: {theta: 1, psi_dot: 1, omega1: 2}\ntime: {end: 1}\n", "give the initial rates one way only"},
+        row{"unknown parameter override", "parameters: {I2: 3}\ninitial: {theta: 1}\ntime: {end: 1}\n", "unknown field 'I2' in parameters"},
+        row{"missing time", "initial: {theta: 1}\n", "bad_scene.yaml:1:1: missing field 'time'"},
+        row{"unknown form", "form: euler\ninitial: {theta: 1}\ntime: {end: 1}\n", "unknown form 'euler'"},
+        row{"record not in the form", "form: reduced\ninitial: {theta: 1, psi_dot: 3}\ntime: {end: 1}\nrecord: [phi]\n", "bad_scene.yaml:5:10: the reduced form does not give 'phi'"},
+    }));
+    INFO(name);
+    const scratch_file scene("bad_scene.yaml", scene_text("heavy_top", body));
+    const std::string csv = scratch("bad_scene.csv");
+    std::remove(csv.c_str());
+    const run_result r = run_rotgen("simulate bad_scene.yaml -o '" + csv + "'", ROTGEN_BINARY_DIR);
+    INFO(r.err);
+    CHECK(r.status == 2);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    CHECK(r.err.rfind("rotgen: error: ", 0) == 0);
+    CHECK(r.err.find(expected) != std::string::npos);
+    CHECK(read_file(csv).empty()); // no output file
+}
+
+TEST_CASE("an unwritable output path is a clear error before any work", "[simulate][errors]") {
+    const run_result r = run_rotgen("simulate '" + std::string(ROTGEN_SOURCE_DIR) +
+                                    "/models/scenes/heavy_top_nutation.yaml' -o /nonexistent/dir/out.csv");
+    CHECK(r.status == 2);
+    CHECK(r.err == "rotgen: error: /nonexistent/dir/out.csv: cannot write: No such file or directory\n");
+}
+
+TEST_CASE("an integration that cannot go on stops with a message and keeps the samples", "[simulate][errors]") {
+    // The damped top falls to theta = pi, where the Euler-angle forms are singular.
+    const scratch_file scene(
+        "falling_scene.yaml",
+        scene_text("damped_driven_top", "initial: {theta: 1.0, psi_dot: 5}\ntime: {end: 40, samples: 401}\n"
+                                        "integrator: {method: dopri5, rtol: 1e-8, atol: 1e-10}\nrecord: [theta]\n"));
+    const std::string csv = scratch("falling.csv");
+    const run_result r = run_rotgen("simulate '" + scene.path + "' -o '" + csv + "'");
+    INFO(r.out << r.err);
+    CHECK(r.status == 2);
+    CHECK(r.err.find("falling_scene.yaml:4:13: the integration stopped: ") != std::string::npos);
+    const csv_table t = read_csv(csv);
+    REQUIRE(t.rows.size() > 100);
+    CHECK(t.rows.size() < 401);
+    CHECK(t.values("theta").back() > 3.0); // it got close to pi before stopping
+}
