@@ -216,3 +216,94 @@ TEST_CASE("an integration that cannot go on stops with a message and keeps the s
     CHECK(t.rows.size() < 401);
     CHECK(t.values("theta").back() > 3.0); // it got close to pi before stopping
 }
+
+namespace {
+
+// Runs a free-top scene (body form, omega only) and returns the CSV.
+csv_table run_free_top(const std::string& model, const std::string& initial, double end,
+                       long samples, const std::string& name) {
+    const scratch_file scene(name + ".yaml",
+                             model + "form: body\ninitial: {" + initial + "}\ntime: {end: " +
+                                 std::to_string(end) + ", samples: " + std::to_string(samples) +
+                                 "}\nintegrator: {method: dop853, rtol: 1e-12, atol: 1e-14}\n"
+                                 "record: [omega1, omega2, omega3]\n");
+    const run_result r = run_rotgen("simulate '" + scene.path + "' -o '" + scratch(name + ".csv") + "'");
+    INFO(r.out << r.err);
+    REQUIRE(r.status == 0);
+    return read_csv(scratch(name + ".csv"));
+}
+
+// Mean period of a signal from its upward zero crossings (linear interpolation between samples).
+double mean_period(const std::vector<double>& t, const std::vector<double>& x) {
+    std::vector<double> crossings;
+    for (std::size_t i = 1; i < x.size(); ++i)
+        if (x[i - 1] < 0 && x[i] >= 0)
+            crossings.push_back(t[i - 1] + (t[i] - t[i - 1]) * (-x[i - 1]) / (x[i] - x[i - 1]));
+    REQUIRE(crossings.size() >= 3);
+    return (crossings.back() - crossings.front()) / double(crossings.size() - 1);
+}
+
+} // namespace
+
+TEST_CASE("steady rotation: frequencies (5.94) about axes 1 and 3, growth (5.100) about axis 2",
+          "[simulate][stability]") {
+    // I = (1, 2, 3), spin 1 about each axis, perturbation 1e-6. (The chapter orders I1 > I2 > I3;
+    // the formulas are symmetric, here axis 1 has the smallest moment.)
+    const double I1 = 1, I2 = 2, I3 = 3, spin = 1, eps = 1e-6;
+    const std::string model = "model: " + model_path("free_asymmetric_top") + "\n";
+    const double pi = 3.141592653589793;
+
+    SECTION("axis 1: oscillation at Omega1") {
+        const double omega1 = std::sqrt((I1 - I3) * (I1 - I2) / (I2 * I3)) * spin;
+        const csv_table t = run_free_top(model, "theta: 1, omega1: 1, omega2: 1e-6, omega3: 1e-6",
+                                         60, 6001, "stable1");
+        const double measured = 2 * pi / mean_period(t.values("t"), t.values("omega2"));
+        CHECK(measured == Approx(omega1).epsilon(0.01));
+        const auto w2 = t.values("omega2");
+        CHECK(*std::max_element(w2.begin(), w2.end()) < 10 * eps); // stays small
+    }
+    SECTION("axis 3: oscillation at Omega3") {
+        const double omega3 = std::sqrt((I1 - I3) * (I2 - I3) / (I1 * I2)) * spin;
+        const csv_table t = run_free_top(model, "theta: 1, omega1: 1e-6, omega2: 1e-6, omega3: 1",
+                                         60, 6001, "stable3");
+        const double measured = 2 * pi / mean_period(t.values("t"), t.values("omega1"));
+        CHECK(measured == Approx(omega3).epsilon(0.01));
+    }
+    SECTION("axis 2: exponential growth at Omega2") {
+        const double omega2 = std::sqrt((I1 - I2) * (I2 - I3) / (I1 * I3)) * spin;
+        const csv_table t = run_free_top(model, "theta: 1, omega1: 1e-6, omega2: 1, omega3: 0",
+                                         16, 1601, "unstable2");
+        // While the deviation is small, omega1 and omega3 grow like exp(Omega2 t): fit the
+        // slope of log|omega1| over the samples with 1e-5 < |omega1| < 1e-2 (past the
+        // transient of the decaying mode, before the nonlinear flip).
+        const auto ts = t.values("t"), w1 = t.values("omega1");
+        double sx = 0, sy = 0, sxx = 0, sxy = 0, n = 0;
+        for (std::size_t i = 0; i < ts.size(); ++i)
+            if (std::abs(w1[i]) > 1e-5 && std::abs(w1[i]) < 1e-2) {
+                const double y = std::log(std::abs(w1[i]));
+                sx += ts[i], sy += y, sxx += ts[i] * ts[i], sxy += ts[i] * y, n += 1;
+            }
+        REQUIRE(n > 50);
+        const double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+        CHECK(slope == Approx(omega2).epsilon(0.01));
+    }
+}
+
+TEST_CASE("free symmetric top: omega precesses about the symmetry axis at (I3 - I1)/I1 omega3",
+          "[simulate]") {
+    // An inline model in the scene; I1 = I2 = 2, I3 = 1.
+    const std::string model = "model:\n  name: symmetric\n  inertia: [2, 2, 1]\n";
+    const double I1 = 2, I3 = 1, w3 = 3, w_perp = 0.4;
+    const double Omega = (I3 - I1) / I1 * w3; // (omega1 + i omega2) ~ exp(-i Omega t)
+    const csv_table t = run_free_top(model, "theta: 0.7, omega1: 0.4, omega2: 0, omega3: 3", 10, 101,
+                                     "symmetric");
+    const auto ts = t.values("t"), w1 = t.values("omega1"), w2 = t.values("omega2"),
+               w3s = t.values("omega3");
+    for (std::size_t i = 0; i < ts.size(); ++i) {
+        // I1 omega1_dot = (I1 - I3) omega2 omega3, I1 omega2_dot = (I3 - I1) omega3 omega1:
+        // omega1 = w_perp cos(Omega t), omega2 = w_perp sin(Omega t)
+        CHECK(w1[i] == Approx(w_perp * std::cos(Omega * ts[i])).margin(1e-10));
+        CHECK(w2[i] == Approx(w_perp * std::sin(Omega * ts[i])).margin(1e-10));
+        CHECK(w3s[i] == Approx(w3).margin(1e-12));
+    }
+}
