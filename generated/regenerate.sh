@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# Regenerates the checked-in headers of the shipped models (run from anywhere):
+#   generated/regenerate.sh [path/to/rotgen]
+# Every form a model has; the reduced form only where the model has a cyclic coordinate.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+rotgen=${1:-build/rotgen}
+for model in heavy_top free_asymmetric_top full_tensor_top damped_driven_top; do
+  for form in lagrangian hamiltonian body reduced; do
+    if [ "$form" = reduced ] && [ "$model" = damped_driven_top ]; then continue; fi
+    "$rotgen" emit "models/$model.yaml" -o generated --form "$form" >/dev/null
+  done
+done
+ls generated/*.hpp

@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Installs rotgen from BUILD_DIR into a scratch prefix, then configures, builds and runs the
+# separate project examples/embed against it (find_package(rotgen), rotgen_add_model()).
+# Then edits the model and checks that the next build regenerates the kernels.
+#   example_project.sh BUILD_DIR SOURCE_DIR
+set -euo pipefail
+build=$1
+src=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cmake --install "$build" --prefix "$work/prefix" >/dev/null
+cp -r "$src/examples/embed" "$work/embed"
+cmake -S "$work/embed" -B "$work/build" -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$work/build" >/dev/null
+"$work/build/gyroscope"
+header=$(find "$work/build" -name gyroscope_kernels.hpp)
+grep -q "T M = T(rg_scalar(1)/rg_scalar(2)); // mass" "$header" || { echo "unexpected default of M in $header"; exit 1; }
+# An edited model must regenerate the header on the next build.
+sed -i 's/M: {value: 0.5,/M: {value: 0.7,/' "$work/embed/gyroscope.yaml"
+cmake --build "$work/build" >/dev/null
+grep -q "T M = T(rg_scalar(7)/rg_scalar(10)); // mass" "$header" || { echo "the header was not regenerated after the model changed"; exit 1; }
+echo "example project: built, ran, and regenerated after a model change"
