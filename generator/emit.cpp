@@ -38,7 +38,8 @@ numeric exact_decimal(double x) {
     return m[1].str() == "-" ? -v : v;
 }
 
-std::string fill_template(const std::string& name, const std::map<std::string, std::string>& values) {
+std::string fill_template(const std::string& name,
+                          const std::map<std::string, std::string>& values) {
     const char* text = nullptr;
     for (const auto& t : templates::all)
         if (name == t.name) text = t.text;
@@ -50,7 +51,8 @@ std::string fill_template(const std::string& name, const std::map<std::string, s
         const std::size_t at = in.find('@', i);
         if (at == std::string::npos) break;
         const std::size_t end = in.find('@', at + 1);
-        if (end == std::string::npos) throw std::logic_error("emit: unterminated placeholder in " + name);
+        if (end == std::string::npos)
+            throw std::logic_error("emit: unterminated placeholder in " + name);
         const std::string key = in.substr(at + 1, end - at - 1);
         const auto v = values.find(key);
         if (v == values.end())
@@ -64,22 +66,31 @@ std::string fill_template(const std::string& name, const std::map<std::string, s
 
 namespace {
 
+// Text for a // comment: line breaks would end the comment and let the text become code.
+std::string one_line(std::string s) {
+    for (char& c : s)
+        if (c == '\n' || c == '\r') c = ' ';
+    return s;
+}
+
 std::string join(const std::vector<std::string>& v, const std::string& sep) {
     std::string s;
-    for (std::size_t i = 0; i < v.size(); ++i) s += (i ? sep : "") + v[i];
+    for (std::size_t i = 0; i < v.size(); ++i)
+        s += (i ? sep : "") + v[i];
     return s;
 }
 
 std::string quoted_list(const std::vector<std::string>& v) {
     std::vector<std::string> q;
-    for (const auto& s : v) q.push_back("\"" + s + "\"");
+    for (const auto& s : v)
+        q.push_back("\"" + s + "\"");
     return join(q, ", ");
 }
 
 std::string ops_text(const op_count& before, const op_count& after) {
     std::ostringstream os;
-    os << before.total() << " before lowering, " << after.total() << " after (" << after.add << " +-, "
-       << after.mul << " *, " << after.div << " /, " << after.call << " calls)";
+    os << before.total() << " before lowering, " << after.total() << " after (" << after.add
+       << " +-, " << after.mul << " *, " << after.div << " /, " << after.call << " calls)";
     return os.str();
 }
 
@@ -96,11 +107,14 @@ std::vector<token> tokens(const std::string& s) {
         const unsigned char c = static_cast<unsigned char>(s[i]);
         if (std::isalpha(c) || c == '_') {
             std::size_t j = i;
-            while (j < s.size() && (std::isalnum(static_cast<unsigned char>(s[j])) || s[j] == '_')) ++j;
-            r.push_back({s.substr(i, j - i), i > 0 && s[i - 1] == '.', j < s.size() && s[j] == '('});
+            while (j < s.size() && (std::isalnum(static_cast<unsigned char>(s[j])) || s[j] == '_'))
+                ++j;
+            r.push_back(
+                {s.substr(i, j - i), i > 0 && s[i - 1] == '.', j < s.size() && s[j] == '('});
             i = j;
         } else if (std::isdigit(c)) {
-            while (i < s.size() && (std::isalnum(static_cast<unsigned char>(s[i])) || s[i] == '.')) ++i;
+            while (i < s.size() && (std::isalnum(static_cast<unsigned char>(s[i])) || s[i] == '.'))
+                ++i;
         } else {
             ++i;
         }
@@ -121,15 +135,17 @@ class body_writer {
 
     // `targets[i]` receives output i: "dydt[0]", "J[7]", or "return" for a returned value.
     // `arguments` are the function's arguments that may go unused (t, y, p).
-    // Of several equivalent candidates, the one that lowers to the fewest operations (the first
-    // of equals).
-    function_body write(const std::vector<std::vector<ex>>& candidates, const std::vector<std::string>& targets,
+    // Of several equivalent candidates, the cheapest after lowering (the first of equals), an
+    // operation weighted by its rough cost in cycles: +-* 1, / 4, a call (sin, cos, sqrt) 20.
+    function_body write(const std::vector<std::vector<ex>>& candidates,
+                        const std::vector<std::string>& targets,
                         const std::vector<std::string>& arguments) const {
+        const auto cost = [](const op_count& o) { return o.add + o.mul + 4 * o.div + 20 * o.call; };
         std::size_t best = 0;
         std::vector<lowered_program> programs;
         for (std::size_t i = 0; i < candidates.size(); ++i) {
             programs.push_back(lower(candidates[i], m_inputs));
-            if (programs[i].after.total() < programs[best].after.total()) best = i;
+            if (cost(programs[i].after) < cost(programs[best].after)) best = i;
         }
         return write(programs[best], targets, arguments);
     }
@@ -143,7 +159,8 @@ class body_writer {
             const int o = prog.outputs[i];
             std::string v = print_node(prog, o);
             const auto k = prog.nodes[static_cast<std::size_t>(o)].k;
-            if (k == lowered_node::kind::number || k == lowered_node::kind::constant) v = "T(" + v + ")";
+            if (k == lowered_node::kind::number || k == lowered_node::kind::constant)
+                v = "T(" + v + ")";
             assigns.push_back(targets[i] == "return" ? "    return " + v + ";"
                                                      : "    " + targets[i] + " = " + v + ";");
         }
@@ -157,9 +174,9 @@ class body_writer {
                     if (t.call) calls.insert(t.name);
                 }
         std::vector<std::string> lines;
-        static const std::vector<std::string> math{"abs",  "acos", "asin", "atan", "atan2", "cos", "cosh",
-                                                   "exp",  "log",  "pow",  "sin",  "sinh",  "sqrt", "tan",
-                                                   "tanh"};
+        static const std::vector<std::string> math{"abs", "acos", "asin", "atan", "atan2",
+                                                   "cos", "cosh", "exp",  "log",  "pow",
+                                                   "sin", "sinh", "sqrt", "tan",  "tanh"};
         for (const auto& f : math)
             if (calls.count(f)) lines.push_back("    using std::" + f + ";");
         if (names.count("S")) lines.push_back("    using S = typename detail::scalar_of<T>::type;");
@@ -168,7 +185,8 @@ class body_writer {
         std::vector<std::string> aliases;
         for (std::size_t i = 0; i < m_inputs.size(); ++i)
             if (used[i] && !m_inputs[i].definition.empty()) {
-                aliases.push_back("    const T " + m_inputs[i].name + " = " + m_inputs[i].definition + ";");
+                aliases.push_back("    const T " + m_inputs[i].name + " = " +
+                                  m_inputs[i].definition + ";");
                 y_used = true;
             }
         for (const auto& a : arguments) {
@@ -195,8 +213,8 @@ class body_writer {
 // an entry below 1e-28 of its row's largest is taken for zero. A non-zero analytic expression is
 // that small at four random points with probability nil; the points are fixed, so the answer is
 // the same in every run.
-std::vector<bool> identically_zero(const std::vector<ex>& entries, const std::vector<program_input>& inputs,
-                                   std::size_t n) {
+std::vector<bool> identically_zero(const std::vector<ex>& entries,
+                                   const std::vector<program_input>& inputs, std::size_t n) {
     const lowered_program prog = lower(entries, inputs);
     std::vector<bool> zero(entries.size(), true);
     std::vector<numeric> scale(entries.size() / n, numeric(0));
@@ -208,7 +226,8 @@ std::vector<bool> identically_zero(const std::vector<ex>& entries, const std::ve
     try {
         for (int point = 0; point < 4; ++point) {
             GiNaC::exmap at;
-            for (const auto& in : inputs) at[in.symbol] = numeric(draw(rng), 1000);
+            for (const auto& in : inputs)
+                at[in.symbol] = numeric(draw(rng), 1000);
             values.push_back(evaluate(prog, at));
         }
     } catch (...) {
@@ -223,7 +242,8 @@ std::vector<bool> identically_zero(const std::vector<ex>& entries, const std::ve
         }
     for (const auto& v : values)
         for (std::size_t i = 0; i < entries.size(); ++i)
-            if (abs(v[i]) > numeric(1, 10).power(28) * std::max(scale[i / n], numeric(1))) zero[i] = false;
+            if (abs(v[i]) > numeric(1, 10).power(28) * std::max(scale[i / n], numeric(1)))
+                zero[i] = false;
     return zero;
 }
 
@@ -235,7 +255,8 @@ std::vector<std::vector<ex>> candidates_of(const form_output& out) {
 
 std::string guard_of(const std::string& unit) {
     std::string g = "ROTGEN_MODELS_";
-    for (char c : unit) g += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    for (char c : unit)
+        g += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
     return g + "_HPP";
 }
 
@@ -245,11 +266,14 @@ std::string form_title(const form_expressions& f) {
         return f.strategy == lagrangian_strategy::solve
                    ? "Lagrangian form, y = (q, q_dot), M(q) q_ddot = f solved inline (LDL^T)"
                    : "Lagrangian form, y = (q, q_dot), explicit accelerations q_ddot = M^{-1} f";
-    case form_kind::hamiltonian: return "Hamiltonian form, y = (q, p)";
-    case form_kind::reduced: return "reduced (Routh) form, cyclic coordinates ignored";
+    case form_kind::hamiltonian:
+        return "Hamiltonian form, y = (q, p)";
+    case form_kind::reduced:
+        return "reduced (Routh) form, cyclic coordinates ignored";
     case form_kind::body:
-        return f.state.size() == 7 ? "body form, Euler's equations with a quaternion, y = (q, omega)"
-                                   : "body form, Euler's equations, y = omega";
+        return f.state.size() == 7
+                   ? "body form, Euler's equations with a quaternion, y = (q, omega)"
+                   : "body form, Euler's equations, y = omega";
     }
     return "";
 }
@@ -290,7 +314,8 @@ emitted_header emit_header(const model_spec& spec, const derivation& d, const em
     for (const auto& r : requested)
         if (std::find(all.begin(), all.end(), r) == all.end()) {
             const std::string best = closest_name(r, all);
-            throw user_error({where}, "unknown output '" + r + "' (expected some of " + join(all, ", ") + ")" +
+            throw user_error({where}, "unknown output '" + r + "' (expected some of " +
+                                          join(all, ", ") + ")" +
                                           (best.empty() ? "" : "; did you mean '" + best + "'?"));
         }
     const auto wants = [&](const std::string& name) {
@@ -306,9 +331,10 @@ emitted_header emit_header(const model_spec& spec, const derivation& d, const em
     for (const auto& r : requested)
         if (r != "rhs" && r != "jacobian" && !f.outputs.count(r)) {
             const auto why = f.unavailable.find(r);
-            throw user_error({where}, std::string("the ") + to_string(o.form) + " form of '" + spec.name +
-                                          "' cannot give '" + r + "': " +
-                                          (why != f.unavailable.end() ? why->second : "not available"));
+            throw user_error(
+                {where}, std::string("the ") + to_string(o.form) + " form of '" + spec.name +
+                             "' cannot give '" + r +
+                             "': " + (why != f.unavailable.end() ? why->second : "not available"));
         }
     // In a fixed order, whatever order the command gave.
     std::vector<std::string> outputs;
@@ -325,14 +351,15 @@ emitted_header emit_header(const model_spec& spec, const derivation& d, const em
     for (const auto& s : o.specialise)
         if (std::find(names.begin(), names.end(), s) == names.end()) {
             const std::string best = closest_name(s, names);
-            throw user_error({where}, "--specialise: model '" + spec.name + "' has no parameter '" + s + "'" +
+            throw user_error({where}, "--specialise: model '" + spec.name + "' has no parameter '" +
+                                          s + "'" +
                                           (best.empty() ? "" : "; did you mean '" + best + "'?"));
         }
     std::vector<form_parameter> runtime;
     for (const auto& p : f.parameters) {
         const bool fold = p.specialisable &&
-                          (o.specialise_all ||
-                           std::find(o.specialise.begin(), o.specialise.end(), p.name) != o.specialise.end());
+                          (o.specialise_all || std::find(o.specialise.begin(), o.specialise.end(),
+                                                         p.name) != o.specialise.end());
         if (fold) {
             folded[p.symbol] = exact_decimal(p.value);
             folded_text.push_back(p.name + " = " + format_double(p.value));
@@ -341,28 +368,36 @@ emitted_header emit_header(const model_spec& spec, const derivation& d, const em
         }
     }
     if (!folded.empty()) {
-        for (auto& e : f.rates) e = e.subs(folded);
+        for (auto& e : f.rates)
+            e = e.subs(folded);
         for (auto& alt : f.alternative_rates)
-            for (auto& e : alt) e = e.subs(folded);
+            for (auto& e : alt)
+                e = e.subs(folded);
         for (auto& row : f.mass)
-            for (auto& e : row) e = e.subs(folded);
-        for (auto& e : f.forcing) e = e.subs(folded);
+            for (auto& e : row)
+                e = e.subs(folded);
+        for (auto& e : f.forcing)
+            e = e.subs(folded);
         for (auto& [name, out] : f.outputs) {
-            for (auto& e : out.values) e = e.subs(folded);
+            for (auto& e : out.values)
+                e = e.subs(folded);
             for (auto& alt : out.alternatives)
-                for (auto& e : alt) e = e.subs(folded);
+                for (auto& e : alt)
+                    e = e.subs(folded);
         }
     }
 
     std::vector<program_input> inputs;
     for (std::size_t i = 0; i < f.state.size(); ++i)
         inputs.push_back({f.state[i].symbol, f.state[i].name, "y[" + std::to_string(i) + "]"});
-    for (const auto& p : runtime) inputs.push_back({p.symbol, "p." + p.name, ""});
+    for (const auto& p : runtime)
+        inputs.push_back({p.symbol, "p." + p.name, ""});
     inputs.push_back({f.time, "t", ""});
 
     const std::size_t n = f.state.size();
     std::vector<std::string> state_names, layout;
-    for (const auto& s : f.state) state_names.push_back(s.name);
+    for (const auto& s : f.state)
+        state_names.push_back(s.name);
     const std::string layout_text = "(" + join(state_names, ", ") + ")";
 
     emitted_header h;
@@ -371,22 +406,29 @@ emitted_header emit_header(const model_spec& spec, const derivation& d, const em
     const body_writer writer(inputs);
     std::string functions;
     std::vector<std::vector<ex>> rate_candidates{f.rates};
-    rate_candidates.insert(rate_candidates.end(), f.alternative_rates.begin(), f.alternative_rates.end());
+    rate_candidates.insert(rate_candidates.end(), f.alternative_rates.begin(),
+                           f.alternative_rates.end());
     std::vector<std::vector<ex>> jac_candidates, both_candidates;
     std::vector<std::string> dydt_targets, jac_targets;
-    for (std::size_t i = 0; i < n; ++i) dydt_targets.push_back("dydt[" + std::to_string(i) + "]");
-    for (std::size_t i = 0; i < n * n; ++i) jac_targets.push_back("J[" + std::to_string(i) + "]");
-    const bool want_jacobian = std::find(outputs.begin(), outputs.end(), "jacobian") != outputs.end();
+    for (std::size_t i = 0; i < n; ++i)
+        dydt_targets.push_back("dydt[" + std::to_string(i) + "]");
+    for (std::size_t i = 0; i < n * n; ++i)
+        jac_targets.push_back("J[" + std::to_string(i) + "]");
+    const bool want_jacobian =
+        std::find(outputs.begin(), outputs.end(), "jacobian") != outputs.end();
     const bool want_rhs = std::find(outputs.begin(), outputs.end(), "rhs") != outputs.end();
     // The Jacobian's structural zeros: an entry that is exactly 0 by any route is 0, and so is an
     // entry that vanishes identically (an identity such as sin^2 + cos^2 = 1 cancels it).
     std::vector<bool> zero(n * n, false);
     if (want_jacobian) {
-        for (const auto& r : rate_candidates) jac_candidates.push_back(jacobian(f, r));
+        for (const auto& r : rate_candidates)
+            jac_candidates.push_back(jacobian(f, r));
         for (const auto& J : jac_candidates)
-            for (std::size_t i = 0; i < n * n; ++i) zero[i] = zero[i] || J[i].is_zero();
+            for (std::size_t i = 0; i < n * n; ++i)
+                zero[i] = zero[i] || J[i].is_zero();
         const std::vector<bool> vanishing = identically_zero(jac_candidates[0], inputs, n);
-        for (std::size_t i = 0; i < n * n; ++i) zero[i] = zero[i] || vanishing[i];
+        for (std::size_t i = 0; i < n * n; ++i)
+            zero[i] = zero[i] || vanishing[i];
         for (auto& J : jac_candidates)
             for (std::size_t i = 0; i < n * n; ++i)
                 if (zero[i]) J[i] = 0;
@@ -397,8 +439,10 @@ emitted_header emit_header(const model_spec& spec, const derivation& d, const em
         }
     }
     const auto common = [&](const function_body& b) {
-        return std::map<std::string, std::string>{{"n", std::to_string(n)}, {"layout", layout_text},
-                                                  {"body", b.text}, {"ops", ops_text(b.before, b.after)},
+        return std::map<std::string, std::string>{{"n", std::to_string(n)},
+                                                  {"layout", layout_text},
+                                                  {"body", b.text},
+                                                  {"ops", ops_text(b.before, b.after)},
                                                   {"rate_names", join(f.rate_names, ", ")}};
     };
     const auto record = [&](const std::string& name, const function_body& b) {
@@ -418,10 +462,12 @@ emitted_header emit_header(const model_spec& spec, const derivation& d, const em
             for (std::size_t i = 0; i < n; ++i) {
                 rows += "   ";
                 for (std::size_t k = 0; k < n; ++k)
-                    rows += std::string(" ") + (zero[i * n + k] ? "0" : "1") + (i + 1 < n || k + 1 < n ? "," : "");
+                    rows += std::string(" ") + (zero[i * n + k] ? "0" : "1") +
+                            (i + 1 < n || k + 1 < n ? "," : "");
                 rows += "\n";
             }
-            pattern_piece = fill_template("jacobian_pattern.hpp.in", {{"nn", std::to_string(n * n)}, {"pattern", rows}});
+            pattern_piece = fill_template("jacobian_pattern.hpp.in",
+                                          {{"nn", std::to_string(n * n)}, {"pattern", rows}});
             if (want_rhs) {
                 std::vector<std::string> targets = dydt_targets;
                 targets.insert(targets.end(), jac_targets.begin(), jac_targets.end());
@@ -430,30 +476,40 @@ emitted_header emit_header(const model_spec& spec, const derivation& d, const em
                 functions += fill_template("rhs_and_jacobian.hpp.in", common(bj));
             }
         } else if (name == "energy") {
-            const function_body b = writer.write(candidates_of(f.outputs.at(name)), {"return"}, {"y", "p"});
+            const function_body b =
+                writer.write(candidates_of(f.outputs.at(name)), {"return"}, {"y", "p"});
             record(name, b);
             auto v = common(b);
             v["doc"] = o.form == form_kind::body || o.form == form_kind::lagrangian
                            ? "The energy T + V (conserved without damping and driving torques)."
-                           : "The energy, the Hamiltonian H = T + V (conserved without damping and driving torques).";
+                           : "The energy, the Hamiltonian H = T + V (conserved without damping and "
+                             "driving torques).";
             functions += fill_template("energy.hpp.in", v);
         } else {
             const form_output& out = f.outputs.at(name);
             std::vector<std::string> targets;
             static const std::map<std::string, std::pair<std::string, std::string>> info{
                 {"momenta", {"momentum", "The conjugate momenta p = dL/dq_dot (5.74)-(5.76)."}},
-                {"mass_matrix", {"M", "The mass matrix M(q) = J^T I J of the Euler-angle rates, row-major (p = M q_dot)."}},
+                {"mass_matrix",
+                 {"M", "The mass matrix M(q) = J^T I J of the Euler-angle rates, row-major (p = M "
+                       "q_dot)."}},
                 {"omega", {"w", "The body angular velocity (5.30)."}},
-                {"rotation", {"A", "The rotation matrix A (5.25), passive, body <- space, row-major: x_body = A x_space."}},
-                {"ignored_rates", {"rates", "The rates of the ignored (cyclic) coordinates; integrate them to recover the angles."}}};
+                {"rotation",
+                 {"A", "The rotation matrix A (5.25), passive, body <- space, row-major: x_body = "
+                       "A x_space."}},
+                {"ignored_rates",
+                 {"rates", "The rates of the ignored (cyclic) coordinates; integrate them to "
+                           "recover the angles."}}};
             std::string arg = info.at(name).first, doc = info.at(name).second;
             if (o.form == form_kind::body && name == "momenta")
                 doc = "The body angular momentum l = I omega (body axes).";
             if (o.form == form_kind::body && name == "mass_matrix")
                 doc = "The inertia tensor I in body axes, row-major (l = I omega).";
             if (o.form == form_kind::body && name == "rotation")
-                doc = "The rotation matrix A (5.25), passive, body <- space, row-major: A = R(q)^T / |q|^2.";
-            for (std::size_t i = 0; i < out.values.size(); ++i) targets.push_back(arg + "[" + std::to_string(i) + "]");
+                doc = "The rotation matrix A (5.25), passive, body <- space, row-major: A = R(q)^T "
+                      "/ |q|^2.";
+            for (std::size_t i = 0; i < out.values.size(); ++i)
+                targets.push_back(arg + "[" + std::to_string(i) + "]");
             const function_body b = writer.write(candidates_of(out), targets, {"y", "p"});
             record(name, b);
             auto v = common(b);
@@ -461,56 +517,71 @@ emitted_header emit_header(const model_spec& spec, const derivation& d, const em
             v["arg"] = arg;
             v["arg_doc"] = arg + std::string(arg.size() < 5 ? 5 - arg.size() : 0, ' ');
             v["function"] = name;
-            v["dim"] = out.values.size() == 9 ? "3 x 3 (row-major)" : std::to_string(out.values.size());
+            v["dim"] =
+                out.values.size() == 9 ? "3 x 3 (row-major)" : std::to_string(out.values.size());
             v["names"] = join(out.names, ", ");
             functions += fill_template("output.hpp.in", v);
         }
     }
-    if (o.form == form_kind::body && f.state.size() == 7) functions += fill_template("quaternion.hpp.in", {});
+    if (o.form == form_kind::body && f.state.size() == 7)
+        functions += fill_template("quaternion.hpp.in", {});
 
     // params<T>
     std::string members;
     if (runtime.empty()) {
-        members = "    // none: every parameter is folded into the code (" + join(folded_text, ", ") + ")";
+        members = "    // none: every parameter is folded into the code (" +
+                  join(folded_text, ", ") + ")";
     } else {
         members = "    using rg_scalar = typename detail::scalar_of<T>::type;";
         for (const auto& p : runtime) {
-            members += "\n    T " + p.name + " = T(" + literal(exact_decimal(p.value), "rg_scalar") + ");";
-            if (!p.description.empty()) members += " // " + p.description;
+            members +=
+                "\n    T " + p.name + " = T(" + literal(exact_decimal(p.value), "rg_scalar") + ");";
+            if (!p.description.empty()) members += " // " + one_line(p.description);
         }
     }
     std::vector<std::string> param_names;
-    for (const auto& p : runtime) param_names.push_back(p.name);
+    for (const auto& p : runtime)
+        param_names.push_back(p.name);
 
     // The description block of the header comment.
     std::string desc;
     desc += comment_block("Form: " + form_title(f) + ".");
-    for (const auto& note : f.notes) desc += comment_block(note, "  ");
+    for (const auto& note : f.notes)
+        desc += comment_block(note, "  ");
     desc += "//\n";
-    desc += comment_block("State y (dim " + std::to_string(n) + "): " + join(state_names, ", ") + ".");
+    desc +=
+        comment_block("State y (dim " + std::to_string(n) + "): " + join(state_names, ", ") + ".");
     if (o.form != form_kind::body || n == 7)
-        desc += comment_block("Angles: z-x-z Euler angles (5.3), phi about z, theta about the new x, psi about the "
-                              "new z; phi, psi in [0, 2 pi), theta in [0, pi], in radians. A = Az(psi) Ax(theta) "
-                              "Az(phi) is passive, body <- space (5.25); omega is in body axes (5.30).");
+        desc += comment_block(
+            "Angles: z-x-z Euler angles (5.3), phi about z, theta about the new x, psi about the "
+            "new z; phi, psi in [0, 2 pi), theta in [0, pi], in radians. A = Az(psi) Ax(theta) "
+            "Az(phi) is passive, body <- space (5.25); omega is in body axes (5.30).");
     if (o.form == form_kind::body)
-        desc += comment_block("Singularities: none from the coordinates (unless a warning above says otherwise).");
+        desc += comment_block(
+            "Singularities: none from the coordinates (unless a warning above says otherwise).");
     else
-        desc += comment_block("Singular at theta = 0 and theta = pi (gimbal lock: det J = -sin(theta), J = d omega / d "
-                              "q_dot): rates and Jacobian grow like 1/sin(theta) there. Keep theta away from 0 and "
-                              "pi, or use the body form (--form body).");
+        desc += comment_block(
+            "Singular at theta = 0 and theta = pi (gimbal lock: det J = -sin(theta), J = d omega / "
+            "d "
+            "q_dot): rates and Jacobian grow like 1/sin(theta) there. Keep theta away from 0 and "
+            "pi, or use the body form (--form body).");
     desc += "//\n";
     if (runtime.empty())
-        desc += comment_block("Parameters: none at run time; folded in: " + join(folded_text, ", ") + ".");
+        desc += comment_block(
+            "Parameters: none at run time; folded in: " + join(folded_text, ", ") + ".");
     else {
         std::vector<std::string> defaults;
-        for (const auto& p : runtime) defaults.push_back(p.name + " = " + format_double(p.value));
-        desc += comment_block("Parameters (params<T>, defaults from the model file): " + join(defaults, ", ") + "." +
-                              (folded_text.empty() ? "" : " Folded in: " + join(folded_text, ", ") + "."));
+        for (const auto& p : runtime)
+            defaults.push_back(p.name + " = " + format_double(p.value));
+        desc += comment_block(
+            "Parameters (params<T>, defaults from the model file): " + join(defaults, ", ") + "." +
+            (folded_text.empty() ? "" : " Folded in: " + join(folded_text, ", ") + "."));
     }
     desc += "//\n// Operations (+ - * / and calls), before lowering -> after:\n";
     for (const auto& s : h.stats)
         desc += "//   " + s.function + ": " + std::to_string(s.before.total()) + " -> " +
-                std::to_string(s.after.total()) + " (" + std::to_string(s.temporaries) + " temporaries)\n";
+                std::to_string(s.after.total()) + " (" + std::to_string(s.temporaries) +
+                " temporaries)\n";
     if (!desc.empty() && desc.back() == '\n') desc.pop_back();
 
     const std::map<std::string, std::string> constants{
@@ -522,21 +593,22 @@ emitted_header emit_header(const model_spec& spec, const derivation& d, const em
         {"np", std::to_string(runtime.size())},
         {"parameter_names", runtime.empty() ? "" : "{" + quoted_list(param_names) + "}"}};
 
-    h.text = fill_template(
-        "header.hpp.in",
-        {{"file_name", h.file_name},
-         {"model", spec.name},
-         {"form_title", form_title(f)},
-         {"version", ROTGEN_VERSION},
-         {"model_file", spec.file},
-         {"model_hash", "0x" + hex(fnv1a(spec.source))},
-         {"command", o.command},
-         {"description", desc},
-         {"guard", guard_of(h.unit)},
-         {"unit", h.unit},
-         {"params", fill_template("params.hpp.in", {{"model_file", spec.file}, {"members", members}})},
-         {"constants", fill_template("constants.hpp.in", constants) + pattern_piece},
-         {"functions", functions}});
+    h.text =
+        fill_template("header.hpp.in",
+                      {{"file_name", h.file_name},
+                       {"model", spec.name},
+                       {"form_title", form_title(f)},
+                       {"version", ROTGEN_VERSION},
+                       {"model_file", one_line(spec.file)},
+                       {"model_hash", "0x" + hex(fnv1a(spec.source))},
+                       {"command", one_line(o.command)},
+                       {"description", desc},
+                       {"guard", guard_of(h.unit)},
+                       {"unit", h.unit},
+                       {"params", fill_template("params.hpp.in",
+                                                {{"model_file", one_line(spec.file)}, {"members", members}})},
+                       {"constants", fill_template("constants.hpp.in", constants) + pattern_piece},
+                       {"functions", functions}});
     return h;
 }
 

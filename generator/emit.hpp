@@ -5,7 +5,8 @@
 //
 // The generated header (the contract the runtime and `rotgen simulate` rely on):
 //
-//   file      <unit>.hpp, unit = <model name> for the Lagrangian form and <model name>_<form> for the
+//   file      <unit>.hpp, unit = <model name> for the Lagrangian form and <model name>_<form> for
+//   the
 //             others (heavy_top.hpp, heavy_top_hamiltonian.hpp, heavy_top_reduced.hpp,
 //             heavy_top_body.hpp), so that every form of a model can live in one directory and one
 //             translation unit; `--name` chooses another unit (two variants of one form);
@@ -22,7 +23,8 @@
 //     template <class T> void omega(const T* y, T* w, const params<T>& p);            (3)
 //     template <class T> void rotation(const T* y, T* A, const params<T>& p);         (3x3, 5.25)
 //     template <class T> void ignored_rates(const T* y, T* rates, const params<T>& p); (reduced)
-//   body form with a quaternion: quaternion_from_angles(angles, q), angles_from_quaternion(q, angles).
+//   body form with a quaternion: quaternion_from_angles(angles, q), angles_from_quaternion(q,
+//   angles).
 #pragma once
 
 #include "derive.hpp"
@@ -41,8 +43,8 @@ struct emit_options {
     std::vector<std::string> outputs;    // empty: every output the form can give
     bool specialise_all = false;         // fold every model parameter into the code
     std::vector<std::string> specialise; // or these
-    std::string command;                 // the command that regenerates the header (for its comment)
-    std::string name;                    // the unit (namespace and file stem); empty: unit_name()
+    std::string command; // the command that regenerates the header (for its comment)
+    std::string name;    // the unit (namespace and file stem); empty: unit_name()
 };
 
 struct function_stats {
@@ -63,13 +65,15 @@ std::string unit_name(const std::string& model, form_kind form);
 
 // The header. Throws user_error for an output the form cannot give, or an unknown parameter name
 // in `specialise`; std::logic_error for internal failures.
-emitted_header emit_header(const model_spec& spec, const derivation& d, const emit_options& options);
+emitted_header emit_header(const model_spec& spec, const derivation& d,
+                           const emit_options& options);
 
 // The exact rational a parameter default stands for: the shortest decimal that reads back as the
 // double (9.81 -> 981/100), so that folded constants are exact in every scalar type.
 GiNaC::numeric exact_decimal(double x);
 
 // Fills the @name@ placeholders of templates/<name>; a placeholder without a value is an error.
-std::string fill_template(const std::string& name, const std::map<std::string, std::string>& values);
+std::string fill_template(const std::string& name,
+                          const std::map<std::string, std::string>& values);
 
 } // namespace rotgen

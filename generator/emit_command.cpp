@@ -26,11 +26,14 @@ namespace {
 
 const char* const emit_usage =
     "usage: rotgen emit MODEL.yaml -o DIR [--form lagrangian|hamiltonian|reduced|body]\n"
-    "                   [--outputs rhs,jacobian,energy,momenta,mass_matrix,omega,rotation,ignored_rates]\n"
+    "                   [--outputs "
+    "rhs,jacobian,energy,momenta,mass_matrix,omega,rotation,ignored_rates]\n"
     "                   [--specialise | --specialise=NAME,...] [--strategy explicit|solve]\n"
     "                   [--name UNIT]   (file UNIT.hpp, namespace rotgen::models::UNIT)\n";
 
-user_error usage_error(const std::string& problem) { return user_error({"rotgen emit"}, problem); }
+user_error usage_error(const std::string& problem) {
+    return user_error({"rotgen emit"}, problem);
+}
 
 std::vector<std::string> split_list(const std::string& text, const std::string& option) {
     std::vector<std::string> items;
@@ -48,28 +51,32 @@ std::vector<std::string> split_list(const std::string& text, const std::string& 
 }
 
 std::string shell_quote(const std::string& s) {
-    if (!s.empty() && s.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789"
-                                          "_-./=,+:@%") == std::string::npos)
+    if (!s.empty() &&
+        s.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789"
+                            "_-./=,+:@%") == std::string::npos)
         return s;
     std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    for (char c : s)
+        q += c == '\'' ? std::string("'\\''") : std::string(1, c);
     return q + "'";
 }
 
 // Writes `text` to `path` via a temporary file in the same directory and a rename.
-void write_atomically(const std::filesystem::path& dir, const std::string& file, const std::string& text) {
+void write_atomically(const std::filesystem::path& dir, const std::string& file,
+                      const std::string& text) {
     namespace fs = std::filesystem;
     std::error_code ec;
+    if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+        throw user_error({dir.string()}, "the output path exists and is not a directory");
     fs::create_directories(dir, ec);
     if (ec) throw user_error({dir.string()}, "cannot create the output directory: " + ec.message());
-    if (!fs::is_directory(dir, ec))
-        throw user_error({dir.string()}, "the output path exists and is not a directory");
     const fs::path target = dir / file;
     const fs::path temporary = dir / ("." + file + ".tmp." + std::to_string(::getpid()));
     {
         std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
         if (!out)
-            throw user_error({dir.string()}, "cannot write to the output directory: " + std::string(std::strerror(errno)));
+            throw user_error({dir.string()}, "cannot write to the output directory: " +
+                                                 std::string(std::strerror(errno)));
         out << text;
         out.flush();
         if (!out) {
@@ -110,22 +117,31 @@ int cmd_emit(const std::vector<std::string>& args) {
             if (form_given) throw usage_error("--form given twice");
             form_given = true;
             const std::string f = value(i, a, "lagrangian, hamiltonian, reduced or body");
-            if (f == "lagrangian") o.form = form_kind::lagrangian;
-            else if (f == "hamiltonian") o.form = form_kind::hamiltonian;
-            else if (f == "reduced") o.form = form_kind::reduced;
-            else if (f == "body") o.form = form_kind::body;
+            if (f == "lagrangian")
+                o.form = form_kind::lagrangian;
+            else if (f == "hamiltonian")
+                o.form = form_kind::hamiltonian;
+            else if (f == "reduced")
+                o.form = form_kind::reduced;
+            else if (f == "body")
+                o.form = form_kind::body;
             else {
-                const std::string best = closest_name(f, {"lagrangian", "hamiltonian", "reduced", "body"});
-                throw usage_error("unknown form '" + f + "' (expected lagrangian, hamiltonian, reduced or body)" +
+                const std::string best =
+                    closest_name(f, {"lagrangian", "hamiltonian", "reduced", "body"});
+                throw usage_error("unknown form '" + f +
+                                  "' (expected lagrangian, hamiltonian, reduced or body)" +
                                   (best.empty() ? "" : "; did you mean '" + best + "'?"));
             }
         } else if (a == "--strategy") {
             if (strategy_given) throw usage_error("--strategy given twice");
             strategy_given = true;
             const std::string s = value(i, a, "explicit or solve");
-            if (s == "explicit") o.strategy = lagrangian_strategy::explicit_inverse;
-            else if (s == "solve") o.strategy = lagrangian_strategy::solve;
-            else throw usage_error("unknown strategy '" + s + "' (expected explicit or solve)");
+            if (s == "explicit")
+                o.strategy = lagrangian_strategy::explicit_inverse;
+            else if (s == "solve")
+                o.strategy = lagrangian_strategy::solve;
+            else
+                throw usage_error("unknown strategy '" + s + "' (expected explicit or solve)");
         } else if (a == "--outputs") {
             if (outputs_given) throw usage_error("--outputs given twice");
             outputs_given = true;
@@ -144,8 +160,8 @@ int cmd_emit(const std::vector<std::string>& args) {
             o.specialise = split_list(list, "--specialise");
             specialise_text = "--specialise=" + list;
         } else if (a.size() > 1 && a[0] == '-') {
-            const std::string best =
-                closest_name(a, {"-o", "--form", "--outputs", "--specialise", "--strategy", "--name"});
+            const std::string best = closest_name(
+                a, {"-o", "--form", "--outputs", "--specialise", "--strategy", "--name"});
             throw usage_error("unknown option '" + a + "' for emit" +
                               (best.empty() ? "" : "; did you mean '" + best + "'?"));
         } else if (model.empty()) {
@@ -154,7 +170,8 @@ int cmd_emit(const std::vector<std::string>& args) {
             throw usage_error("emit takes one model file, got '" + model + "' and '" + a + "'");
         }
     }
-    if (model.empty()) throw usage_error("emit needs a model file\n" + std::string(emit_usage));
+    if (model.empty())
+        throw usage_error("emit needs a model file: rotgen emit MODEL.yaml -o DIR [options]");
     if (dir.empty()) throw usage_error("emit needs an output directory: -o DIR");
     if (strategy_given && o.form != form_kind::lagrangian)
         throw usage_error("--strategy applies to the Lagrangian form only (got --form " +
@@ -163,10 +180,12 @@ int cmd_emit(const std::vector<std::string>& args) {
     // The command that regenerates exactly this header.
     std::string command = "rotgen emit " + shell_quote(model) + " -o " + shell_quote(dir) +
                           " --form " + to_string(o.form);
-    if (o.form == form_kind::lagrangian) command += std::string(" --strategy ") + to_string(o.strategy);
+    if (o.form == form_kind::lagrangian)
+        command += std::string(" --strategy ") + to_string(o.strategy);
     if (outputs_given) {
         std::string list;
-        for (const auto& s : o.outputs) list += (list.empty() ? "" : ",") + s;
+        for (const auto& s : o.outputs)
+            list += (list.empty() ? "" : ",") + s;
         command += " --outputs " + shell_quote(list);
     }
     if (!specialise_text.empty()) command += " " + shell_quote(specialise_text);
@@ -180,10 +199,10 @@ int cmd_emit(const std::vector<std::string>& args) {
 
     std::string summary;
     for (const auto& s : h.stats)
-        summary += (summary.empty() ? "" : ", ") + s.function + " " + std::to_string(s.before.total()) + " -> " +
-                   std::to_string(s.after.total());
-    std::cout << "rotgen: wrote " << (std::filesystem::path(dir) / h.file_name).string() << " (operations: " << summary
-              << ")\n";
+        summary += (summary.empty() ? "" : ", ") + s.function + " " +
+                   std::to_string(s.before.total()) + " -> " + std::to_string(s.after.total());
+    std::cout << "rotgen: wrote " << (std::filesystem::path(dir) / h.file_name).string()
+              << " (operations: " << summary << ")\n";
     return 0;
 }
 

@@ -14,16 +14,16 @@ const char* to_string(lagrangian_strategy s) {
 }
 
 const std::array<GiNaC::realsymbol, 4>& quaternion_symbols() {
-    static const std::array<GiNaC::realsymbol, 4> q{GiNaC::realsymbol("qw", "q_{w}"),
-                                                    GiNaC::realsymbol("qx", "q_{x}"),
-                                                    GiNaC::realsymbol("qy", "q_{y}"),
-                                                    GiNaC::realsymbol("qz", "q_{z}")};
+    static const std::array<GiNaC::realsymbol, 4> q{
+        GiNaC::realsymbol("qw", "q_{w}"), GiNaC::realsymbol("qx", "q_{x}"),
+        GiNaC::realsymbol("qy", "q_{y}"), GiNaC::realsymbol("qz", "q_{z}")};
     return q;
 }
 
 const std::vector<std::string>& output_names() {
-    static const std::vector<std::string> names{"rhs",   "jacobian", "energy",   "momenta",
-                                                "mass_matrix", "omega", "rotation", "ignored_rates"};
+    static const std::vector<std::string> names{"rhs",      "jacobian",     "energy",
+                                                "momenta",  "mass_matrix",  "omega",
+                                                "rotation", "ignored_rates"};
     return names;
 }
 
@@ -32,17 +32,20 @@ std::array<ex, 9> rotation_matrix() {
     // Ax(a) = [[1, 0, 0], [0, c, s], [0, -s, c]] (5.8, 5.9).
     const auto& s = symbols();
     const auto az = [](const ex& a) {
-        return std::array<ex, 9>{GiNaC::cos(a), GiNaC::sin(a), 0, -GiNaC::sin(a), GiNaC::cos(a), 0, 0, 0, 1};
+        return std::array<ex, 9>{
+            GiNaC::cos(a), GiNaC::sin(a), 0, -GiNaC::sin(a), GiNaC::cos(a), 0, 0, 0, 1};
     };
     const auto ax = [](const ex& a) {
-        return std::array<ex, 9>{1, 0, 0, 0, GiNaC::cos(a), GiNaC::sin(a), 0, -GiNaC::sin(a), GiNaC::cos(a)};
+        return std::array<ex, 9>{
+            1, 0, 0, 0, GiNaC::cos(a), GiNaC::sin(a), 0, -GiNaC::sin(a), GiNaC::cos(a)};
     };
     const auto times = [](const std::array<ex, 9>& a, const std::array<ex, 9>& b) {
         std::array<ex, 9> c;
         for (int i = 0; i < 3; ++i)
             for (int j = 0; j < 3; ++j) {
                 ex v = 0;
-                for (int k = 0; k < 3; ++k) v += a[3 * i + k] * b[3 * k + j];
+                for (int k = 0; k < 3; ++k)
+                    v += a[3 * i + k] * b[3 * k + j];
                 c[3 * i + j] = v.expand();
             }
         return c;
@@ -58,7 +61,8 @@ vec mat_vec(const matrix3& m, const vec& v) {
     vec r;
     for (int i = 0; i < 3; ++i) {
         r[i] = 0;
-        for (int j = 0; j < 3; ++j) r[i] += m[i][j] * v[j];
+        for (int j = 0; j < 3; ++j)
+            r[i] += m[i][j] * v[j];
     }
     return r;
 }
@@ -67,7 +71,8 @@ vec mat_t_vec(const matrix3& m, const vec& v) {
     vec r;
     for (int i = 0; i < 3; ++i) {
         r[i] = 0;
-        for (int j = 0; j < 3; ++j) r[i] += m[j][i] * v[j];
+        for (int j = 0; j < 3; ++j)
+            r[i] += m[j][i] * v[j];
     }
     return r;
 }
@@ -76,7 +81,9 @@ vec cross(const vec& a, const vec& b) {
     return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
 
-ex dot(const vec& a, const vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+ex dot(const vec& a, const vec& b) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 
 // M = L D L^T for a symmetric 3x3 M (lower triangle read), L unit lower triangular.
 struct ldlt {
@@ -109,14 +116,16 @@ vec ldlt_solve(const ldlt& F, const vec& b) {
 std::vector<ex> flat(const matrix3& m) {
     std::vector<ex> v;
     for (const auto& row : m)
-        for (const ex& e : row) v.push_back(e);
+        for (const ex& e : row)
+            v.push_back(e);
     return v;
 }
 
 std::vector<std::string> matrix_names(const std::string& m) {
     std::vector<std::string> n;
     for (int i = 1; i <= 3; ++i)
-        for (int j = 1; j <= 3; ++j) n.push_back(m + std::to_string(i) + std::to_string(j));
+        for (int j = 1; j <= 3; ++j)
+            n.push_back(m + std::to_string(i) + std::to_string(j));
     return n;
 }
 
@@ -135,7 +144,8 @@ ex gravity_potential(const model_spec& spec) {
     const vec e{GiNaC::sin(s.q[1]) * GiNaC::sin(s.q[2]), GiNaC::sin(s.q[1]) * GiNaC::cos(s.q[2]),
                 GiNaC::cos(s.q[1])};
     ex h = 0;
-    for (int i = 0; i < 3; ++i) h += spec.gravity->com[i] * e[i];
+    for (int i = 0; i < 3; ++i)
+        h += spec.gravity->com[i] * e[i];
     return spec.gravity->mass * spec.gravity->g * h;
 }
 
@@ -163,7 +173,8 @@ void lagrangian(const model_spec& spec, const derivation& d, form_expressions& f
         const vec g = mat_t_vec(d.inverse_omega_jacobian, d.forcing);
         const vec h = mat_vec(d.inverse_inertia, g);
         const vec qdd = mat_vec(d.inverse_omega_jacobian, h);
-        for (int i = 0; i < 3; ++i) f.rates.push_back(qdd[i]);
+        for (int i = 0; i < 3; ++i)
+            f.rates.push_back(qdd[i]);
         // Alternatively M^{-1} itself in canonical form (identities such as sin^2 + cos^2 of psi
         // cancel there), times f.
         matrix3 minv;
@@ -178,18 +189,46 @@ void lagrangian(const model_spec& spec, const derivation& d, form_expressions& f
             }
         const vec qdd2 = mat_vec(minv, d.forcing);
         f.alternative_rates.push_back({s.qd[0], s.qd[1], s.qd[2], qdd2[0], qdd2[1], qdd2[2]});
-        f.notes.push_back("q_ddot = J^{-1} I^{-1} J^{-T} f (M^{-1} = J^{-1} I^{-1} J^{-T}, M = J^T I J, "
-                          "J = d omega/d q_dot of (5.30)); singular at theta = 0, pi through 1/sin(theta).");
+        // Or by Euler's equations: omega_dot = I^{-1} (tau - omega x I omega), tau = J^{-T} Q_total
+        // (Q_total = -dV/dq + Q, in canonical form: for gravity the 1/sin(theta) cancels), and
+        // q_ddot = J^{-1} (omega_dot - J_dot q_dot), J_dot q_dot = sum_j d omega/d q_j q_dot_j.
+        vec q_total;
+        for (int i = 0; i < 3; ++i)
+            q_total[i] = -d.potential.diff(s.q[i]) + d.generalized_force[i];
+        vec tau = mat_t_vec(d.inverse_omega_jacobian, q_total);
+        for (auto& t : tau)
+            t = canonical(t);
+        const vec Iw = mat_vec(spec.inertia, d.omega);
+        const vec gyro = cross(d.omega, Iw);
+        vec b;
+        for (int i = 0; i < 3; ++i)
+            b[i] = tau[i] - gyro[i];
+        const vec wd = mat_vec(d.inverse_inertia, b);
+        vec a;
+        for (int i = 0; i < 3; ++i) {
+            ex jdot = 0;
+            for (int j = 0; j < 3; ++j)
+                jdot += d.omega[i].diff(s.q[j]) * s.qd[j];
+            a[i] = wd[i] - canonical(jdot);
+        }
+        const vec qdd3 = mat_vec(d.inverse_omega_jacobian, a);
+        f.alternative_rates.push_back({s.qd[0], s.qd[1], s.qd[2], qdd3[0], qdd3[1], qdd3[2]});
+        f.notes.push_back(
+            "q_ddot = J^{-1} I^{-1} J^{-T} f (M^{-1} = J^{-1} I^{-1} J^{-T}, M = J^T I J, "
+            "J = d omega/d q_dot of (5.30)); singular at theta = 0, pi through 1/sin(theta).");
     } else {
         // M q_ddot = f by LDL^T, written out: the zeros of M drop out as the code is built.
         f.mass = d.mass_matrix;
         f.forcing = d.forcing;
         const vec qdd = ldlt_solve(ldlt_factor(f.mass), d.forcing);
-        for (int i = 0; i < 3; ++i) f.rates.push_back(qdd[i]);
-        f.notes.push_back("M(q) q_ddot = f(t, q, q_dot) solved by an inline LDL^T (no pivoting; M = J^T I J "
-                          "is positive definite for 0 < theta < pi, singular at theta = 0, pi).");
+        for (int i = 0; i < 3; ++i)
+            f.rates.push_back(qdd[i]);
+        f.notes.push_back(
+            "M(q) q_ddot = f(t, q, q_dot) solved by an inline LDL^T (no pivoting; M = J^T I J "
+            "is positive definite for 0 < theta < pi, singular at theta = 0, pi).");
     }
-    for (int i = 0; i < 3; ++i) f.rate_names.push_back(q_names[i] + "_ddot");
+    for (int i = 0; i < 3; ++i)
+        f.rate_names.push_back(q_names[i] + "_ddot");
 
     // omega = J q_dot (5.30); T = 1/2 omega . I omega (5.38); p = J^T I omega.
     const vec w = d.omega;
@@ -210,15 +249,17 @@ hamilton_parts hamilton(const model_spec& spec, const derivation& d) {
     (void)spec;
     const auto& s = symbols();
     hamilton_parts h;
-    h.l = d.body_momentum;                        // l = J^{-T} p
-    h.w = mat_vec(d.inverse_inertia, h.l);        // omega = I^{-1} l
+    h.l = d.body_momentum;                           // l = J^{-T} p
+    h.w = mat_vec(d.inverse_inertia, h.l);           // omega = I^{-1} l
     h.qdot = mat_vec(d.inverse_omega_jacobian, h.w); // q_dot = J^{-1} omega = dH/dp
     GiNaC::exmap rates;
-    for (int i = 0; i < 3; ++i) rates[s.qd[i]] = h.qdot[i];
+    for (int i = 0; i < 3; ++i)
+        rates[s.qd[i]] = h.qdot[i];
     for (int i = 0; i < 3; ++i) {
         // dH/dq_i = omega . dl/dq_i + dV/dq_i  (H = 1/2 l . I^{-1} l + V)
         vec dl;
-        for (int k = 0; k < 3; ++k) dl[k] = h.l[k].diff(s.q[i]);
+        for (int k = 0; k < 3; ++k)
+            dl[k] = h.l[k].diff(s.q[i]);
         h.pdot[i] = -dot(h.w, dl) - d.potential.diff(s.q[i]) + d.generalized_force[i].subs(rates);
     }
     return h;
@@ -241,8 +282,9 @@ void hamiltonian(const model_spec& spec, const derivation& d, form_expressions& 
     }
     f.alternative_rates.push_back({d.hamilton_qdot[0], d.hamilton_qdot[1], d.hamilton_qdot[2],
                                    d.hamilton_pdot[0], d.hamilton_pdot[1], d.hamilton_pdot[2]});
-    f.notes.push_back("l = J^{-T} p (body angular momentum), omega = I^{-1} l, q_dot = J^{-1} omega = dH/dp, "
-                      "p_dot = -dH/dq + Q; singular at theta = 0, pi through 1/sin(theta).");
+    f.notes.push_back(
+        "l = J^{-T} p (body angular momentum), omega = I^{-1} l, q_dot = J^{-1} omega = dH/dp, "
+        "p_dot = -dH/dq + Q; singular at theta = 0, pi through 1/sin(theta).");
     add_output(f, "energy", {dot(h.w, h.l) / 2 + d.potential}, {"energy"});
     f.outputs["energy"].alternatives.push_back({d.hamiltonian});
     add_output(f, "momenta", {s.p[0], s.p[1], s.p[2]}, {"p_phi", "p_theta", "p_psi"});
@@ -262,9 +304,10 @@ void reduced(const model_spec& spec, const derivation& d, form_expressions& f) {
         if (absent) dropped.push_back(i);
     }
     if (dropped.empty())
-        throw user_error({spec.file}, "the reduced form needs a cyclic coordinate, and model '" + spec.name +
-                                          "' has none (damping, torques or the potential depend on every "
-                                          "angle or rate); use --form hamiltonian");
+        throw user_error({spec.file},
+                         "the reduced form needs a cyclic coordinate, and model '" + spec.name +
+                             "' has none (damping, torques or the potential depend on every "
+                             "angle or rate); use --form hamiltonian");
     const auto is_dropped = [&](int i) {
         return std::find(dropped.begin(), dropped.end(), i) != dropped.end();
     };
@@ -277,7 +320,8 @@ void reduced(const model_spec& spec, const derivation& d, form_expressions& f) {
             gone += (gone.empty() ? "" : ", ") + q_names[i];
         }
     for (int i = 0; i < 3; ++i)
-        if (!is_dropped(i)) f.state.push_back({"p_" + q_names[i], s.p[i], "its conjugate momentum"});
+        if (!is_dropped(i))
+            f.state.push_back({"p_" + q_names[i], s.p[i], "its conjugate momentum"});
     // The canonical equations, and the composed ones if they do not mention an ignored angle
     // (they may, where only an identity removes it).
     std::vector<ex> structured;
@@ -295,10 +339,12 @@ void reduced(const model_spec& spec, const derivation& d, form_expressions& f) {
         }
     for (int i : dropped)
         f.parameters.push_back({"p_" + q_names[i], s.p[i], 0.0,
-                                "conserved momentum of the ignored coordinate " + q_names[i], false});
-    f.notes.push_back("Routh reduction of the Hamiltonian form: the cyclic coordinates (" + gone +
-                      ") are ignored, their conserved momenta are parameters, their rates the output "
-                      "ignored_rates (integrate them to recover the angles).");
+                                "conserved momentum of the ignored coordinate " + q_names[i],
+                                false});
+    f.notes.push_back(
+        "Routh reduction of the Hamiltonian form: the cyclic coordinates (" + gone +
+        ") are ignored, their conserved momenta are parameters, their rates the output "
+        "ignored_rates (integrate them to recover the angles).");
 
     std::vector<ex> rates;
     std::vector<std::string> names;
@@ -312,12 +358,14 @@ void reduced(const model_spec& spec, const derivation& d, form_expressions& f) {
                 if (e.has(s.q[i])) return q_names[i];
         return std::string();
     };
-    const auto offer = [&](const std::string& name, std::vector<ex> values, std::vector<std::string> n) {
+    const auto offer = [&](const std::string& name, std::vector<ex> values,
+                           std::vector<std::string> n) {
         const std::string q = mentions_dropped(values);
         if (q.empty())
             add_output(f, name, std::move(values), std::move(n));
         else
-            f.unavailable[name] = "it depends on the ignored coordinate " + q + "; use --form hamiltonian";
+            f.unavailable[name] =
+                "it depends on the ignored coordinate " + q + "; use --form hamiltonian";
     };
     if (mentions_dropped(structured).empty()) f.alternative_rates.push_back(structured);
     offer("ignored_rates", rates, names);
@@ -342,21 +390,27 @@ void body(const model_spec& spec, const derivation& d, form_expressions& f, bool
 
     // R(q) = A^T (body -> space), divided by |q|^2 so that it is a rotation for any q != 0.
     const ex n2 = qw * qw + qx * qx + qy * qy + qz * qz;
-    const std::array<ex, 9> R{
-        (qw * qw + qx * qx - qy * qy - qz * qz) / n2, 2 * (qx * qy - qw * qz) / n2, 2 * (qx * qz + qw * qy) / n2,
-        2 * (qx * qy + qw * qz) / n2, (qw * qw - qx * qx + qy * qy - qz * qz) / n2, 2 * (qy * qz - qw * qx) / n2,
-        2 * (qx * qz - qw * qy) / n2, 2 * (qy * qz + qw * qx) / n2, (qw * qw - qx * qx - qy * qy + qz * qz) / n2};
+    const std::array<ex, 9> R{(qw * qw + qx * qx - qy * qy - qz * qz) / n2,
+                              2 * (qx * qy - qw * qz) / n2,
+                              2 * (qx * qz + qw * qy) / n2,
+                              2 * (qx * qy + qw * qz) / n2,
+                              (qw * qw - qx * qx + qy * qy - qz * qz) / n2,
+                              2 * (qy * qz - qw * qx) / n2,
+                              2 * (qx * qz - qw * qy) / n2,
+                              2 * (qy * qz + qw * qx) / n2,
+                              (qw * qw - qx * qx - qy * qy + qz * qz) / n2};
     // e, the space vertical in body axes: A's third column = R's third row.
     const vec e{R[6], R[7], R[8]};
 
-    // The Euler-angle chart, for whatever is only known in angles: from R = Rz(phi) Rx(theta) Rz(psi),
-    // R20 = sin(theta) sin(psi), R21 = sin(theta) cos(psi), R22 = cos(theta),
-    // R02 = sin(phi) sin(theta), R12 = -cos(phi) sin(theta).
+    // The Euler-angle chart, for whatever is only known in angles: from R = Rz(phi) Rx(theta)
+    // Rz(psi), R20 = sin(theta) sin(psi), R21 = sin(theta) cos(psi), R22 = cos(theta), R02 =
+    // sin(phi) sin(theta), R12 = -cos(phi) sin(theta).
     const ex st = GiNaC::sqrt(R[6] * R[6] + R[7] * R[7]);
     GiNaC::exmap trig_value;
-    std::array<GiNaC::realsymbol, 6> place{GiNaC::realsymbol("rg_sin_phi"), GiNaC::realsymbol("rg_cos_phi"),
-                                           GiNaC::realsymbol("rg_sin_theta"), GiNaC::realsymbol("rg_cos_theta"),
-                                           GiNaC::realsymbol("rg_sin_psi"), GiNaC::realsymbol("rg_cos_psi")};
+    std::array<GiNaC::realsymbol, 6> place{
+        GiNaC::realsymbol("rg_sin_phi"),   GiNaC::realsymbol("rg_cos_phi"),
+        GiNaC::realsymbol("rg_sin_theta"), GiNaC::realsymbol("rg_cos_theta"),
+        GiNaC::realsymbol("rg_sin_psi"),   GiNaC::realsymbol("rg_cos_psi")};
     trig_value[place[0]] = R[2] / st;
     trig_value[place[1]] = -R[5] / st;
     trig_value[place[2]] = st;
@@ -373,7 +427,8 @@ void body(const model_spec& spec, const derivation& d, form_expressions& f, bool
     angle_value[s.q[2]] = GiNaC::atan2(R[6], R[7]);
     GiNaC::exmap rates; // q_dot = J^{-1} omega
     const vec qdot = mat_vec(d.inverse_omega_jacobian, w);
-    for (int i = 0; i < 3; ++i) rates[s.qd[i]] = qdot[i];
+    for (int i = 0; i < 3; ++i)
+        rates[s.qd[i]] = qdot[i];
     bool chart_used = false;
     const auto chart = [&](const ex& x) {
         ex y = x.subs(rates);
@@ -390,34 +445,41 @@ void body(const model_spec& spec, const derivation& d, form_expressions& f, bool
         const vec r{spec.gravity->com[0], spec.gravity->com[1], spec.gravity->com[2]};
         const ex Mg = spec.gravity->mass * spec.gravity->g;
         const vec c = cross(r, e);
-        for (int i = 0; i < 3; ++i) tau[i] += -Mg * c[i]; // r_com x (-M g e)
+        for (int i = 0; i < 3; ++i)
+            tau[i] += -Mg * c[i]; // r_com x (-M g e)
         needs_orientation = true;
     }
     const ex v_rest = (spec.potential - gravity_potential(spec)).expand();
     ex v_body = 0;
     if (spec.gravity) {
         ex h = 0;
-        for (int i = 0; i < 3; ++i) h += spec.gravity->com[i] * e[i];
+        for (int i = 0; i < 3; ++i)
+            h += spec.gravity->com[i] * e[i];
         v_body = spec.gravity->mass * spec.gravity->g * h;
     }
     if (!v_rest.is_zero()) {
         // tau = -J^{-T} dV/dq
         vec dv;
-        for (int i = 0; i < 3; ++i) dv[i] = v_rest.diff(s.q[i]);
+        for (int i = 0; i < 3; ++i)
+            dv[i] = v_rest.diff(s.q[i]);
         const vec t = mat_t_vec(d.inverse_omega_jacobian, dv);
-        for (int i = 0; i < 3; ++i) tau[i] += chart(-t[i]);
+        for (int i = 0; i < 3; ++i)
+            tau[i] += chart(-t[i]);
         v_body += chart(v_rest);
         needs_orientation = true;
     }
     if (spec.has_damping) {
         // generalised force -c q_dot, as a torque J^{-T} Q
         vec q;
-        for (int i = 0; i < 3; ++i) q[i] = -spec.damping[i] * s.qd[i];
+        for (int i = 0; i < 3; ++i)
+            q[i] = -spec.damping[i] * s.qd[i];
         const vec t = mat_t_vec(d.inverse_omega_jacobian, q);
         bool zero = true;
-        for (int i = 0; i < 3; ++i) zero = zero && t[i].expand().is_zero();
+        for (int i = 0; i < 3; ++i)
+            zero = zero && t[i].expand().is_zero();
         if (!zero) {
-            for (int i = 0; i < 3; ++i) tau[i] += chart(t[i]);
+            for (int i = 0; i < 3; ++i)
+                tau[i] += chart(t[i]);
             needs_orientation = true;
         }
     }
@@ -431,15 +493,17 @@ void body(const model_spec& spec, const derivation& d, form_expressions& f, bool
 
     if (quaternion)
         for (int i = 0; i < 4; ++i)
-            f.state.push_back({Q[i].get_name(), Q[i],
-                               "orientation quaternion (body -> space), any norm"});
+            f.state.push_back(
+                {Q[i].get_name(), Q[i], "orientation quaternion (body -> space), any norm"});
     for (int i = 0; i < 3; ++i)
-        f.state.push_back({"omega" + std::to_string(i + 1), s.omega[i], "body angular velocity, rad/time"});
+        f.state.push_back(
+            {"omega" + std::to_string(i + 1), s.omega[i], "body angular velocity, rad/time"});
 
     if (quaternion) {
         // q_dot = 1/2 q (x) (0, omega)
-        const std::array<ex, 4> qd{(-qx * w[0] - qy * w[1] - qz * w[2]) / 2, (qw * w[0] + qy * w[2] - qz * w[1]) / 2,
-                                   (qw * w[1] + qz * w[0] - qx * w[2]) / 2, (qw * w[2] + qx * w[1] - qy * w[0]) / 2};
+        const std::array<ex, 4> qd{
+            (-qx * w[0] - qy * w[1] - qz * w[2]) / 2, (qw * w[0] + qy * w[2] - qz * w[1]) / 2,
+            (qw * w[1] + qz * w[0] - qx * w[2]) / 2, (qw * w[2] + qx * w[1] - qy * w[0]) / 2};
         for (int i = 0; i < 4; ++i) {
             f.rates.push_back(qd[i]);
             f.rate_names.push_back(Q[i].get_name() + "_dot");
@@ -449,25 +513,30 @@ void body(const model_spec& spec, const derivation& d, form_expressions& f, bool
     const vec Iw = mat_vec(spec.inertia, w);
     const vec gyro = cross(w, Iw);
     vec rhs;
-    for (int i = 0; i < 3; ++i) rhs[i] = tau[i] - gyro[i];
+    for (int i = 0; i < 3; ++i)
+        rhs[i] = tau[i] - gyro[i];
     const vec wd = mat_vec(d.inverse_inertia, rhs);
     for (int i = 0; i < 3; ++i) {
         f.rates.push_back(wd[i]);
         f.rate_names.push_back("omega" + std::to_string(i + 1) + "_dot");
     }
 
-    f.notes.push_back("I omega_dot = tau - omega x I omega (Euler's equations (5.87)-(5.89) for a full tensor "
-                      "with torque)" +
-                      std::string(quaternion ? "; q_dot = 1/2 q (x) (0, omega)." : "."));
+    f.notes.push_back(
+        "I omega_dot = tau - omega x I omega (Euler's equations (5.87)-(5.89) for a full tensor "
+        "with torque)" +
+        std::string(quaternion ? "; q_dot = 1/2 q (x) (0, omega)." : "."));
     if (quaternion)
-        f.notes.push_back("q = (qw, qx, qy, qz) rotates body axes into space axes: R(q) = A^T with A of "
-                          "(5.25); from Euler angles q = qz(phi) (x) qx(theta) (x) qz(psi). Every use "
-                          "divides by |q|^2, so q need not stay normalised.");
+        f.notes.push_back(
+            "q = (qw, qx, qy, qz) rotates body axes into space axes: R(q) = A^T with A of "
+            "(5.25); from Euler angles q = qz(phi) (x) qx(theta) (x) qz(psi). Every use "
+            "divides by |q|^2, so q need not stay normalised.");
     if (spec.gravity)
-        f.notes.push_back("gravity torque r_com x (-M g e), e = third row of R(q): no singularity.");
+        f.notes.push_back(
+            "gravity torque r_com x (-M g e), e = third row of R(q): no singularity.");
     if (chart_used)
-        f.notes.push_back("WARNING: part of the torque or potential is known only in Euler angles and is "
-                          "evaluated through the chart (angles from q): singular at theta = 0, pi.");
+        f.notes.push_back(
+            "WARNING: part of the torque or potential is known only in Euler angles and is "
+            "evaluated through the chart (angles from q): singular at theta = 0, pi.");
 
     add_output(f, "energy", {dot(w, Iw) / 2 + v_body}, {"energy"});
     add_output(f, "momenta", {Iw[0], Iw[1], Iw[2]}, {"l1", "l2", "l3"});
@@ -476,18 +545,22 @@ void body(const model_spec& spec, const derivation& d, form_expressions& f, bool
     if (quaternion) {
         std::vector<ex> A;
         for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j) A.push_back(R[3 * j + i]);
+            for (int j = 0; j < 3; ++j)
+                A.push_back(R[3 * j + i]);
         add_output(f, "rotation", A, matrix_names("A"));
     } else {
-        f.unavailable["rotation"] = "this body has no orientation-dependent torque, so its state is omega "
-                                    "alone; ask for rotation to keep the quaternion";
+        f.unavailable["rotation"] =
+            "this body has no orientation-dependent torque, so its state is omega "
+            "alone; ask for rotation to keep the quaternion";
     }
     f.unavailable["ignored_rates"] = "only the reduced form ignores coordinates";
 }
 
 } // namespace
 
-std::vector<ex> jacobian(const form_expressions& f) { return jacobian(f, f.rates); }
+std::vector<ex> jacobian(const form_expressions& f) {
+    return jacobian(f, f.rates);
+}
 
 std::vector<ex> jacobian(const form_expressions& f, const std::vector<ex>& rates) {
     const std::size_t n = f.state.size();
@@ -496,7 +569,8 @@ std::vector<ex> jacobian(const form_expressions& f, const std::vector<ex>& rates
     const bool solve = f.form == form_kind::lagrangian && f.strategy == lagrangian_strategy::solve;
     for (std::size_t i = 0; i < n; ++i) {
         if (solve && i >= 3) continue;
-        for (std::size_t k = 0; k < n; ++k) J[i * n + k] = d(rates[i], f.state[k].symbol);
+        for (std::size_t k = 0; k < n; ++k)
+            J[i * n + k] = d(rates[i], f.state[k].symbol);
     }
     if (solve) {
         // d q_ddot / d y_k = M^{-1} (df/dy_k - dM/dy_k q_ddot), with the factorisation of the rhs.
@@ -508,11 +582,13 @@ std::vector<ex> jacobian(const form_expressions& f, const std::vector<ex>& rates
             bool zero = true;
             for (int i = 0; i < 3; ++i) {
                 r[i] = d(f.forcing[i], y);
-                for (int j = 0; j < 3; ++j) r[i] -= d(f.mass[i][j], y) * qdd[j];
+                for (int j = 0; j < 3; ++j)
+                    r[i] -= d(f.mass[i][j], y) * qdd[j];
                 zero = zero && r[i].is_zero();
             }
             const vec c = zero ? vec{0, 0, 0} : ldlt_solve(F, r);
-            for (int i = 0; i < 3; ++i) J[(3 + i) * n + k] = c[i];
+            for (int i = 0; i < 3; ++i)
+                J[(3 + i) * n + k] = c[i];
         }
     }
     return J;

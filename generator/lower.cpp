@@ -131,7 +131,8 @@ class dag_builder {
             if (!known_calls().count(name))
                 throw std::logic_error("lower: unsupported function '" + name + "'");
             std::vector<int> args;
-            for (std::size_t i = 0; i < e.nops(); ++i) args.push_back(materialize(convert(e.op(i))));
+            for (std::size_t i = 0; i < e.nops(); ++i)
+                args.push_back(materialize(convert(e.op(i))));
             return {1, call(name, args)};
         }
         std::ostringstream os;
@@ -162,12 +163,14 @@ class dag_builder {
     linear horner(std::vector<poly_term> terms, const numeric& k) {
         std::map<std::pair<int, int>, int> count; // (factor, sign of its exponent) -> terms
         for (const poly_term& t : terms)
-            for (const auto& [b, x] : t.m) ++count[{b, x > 0 ? 1 : -1}];
+            for (const auto& [b, x] : t.m)
+                ++count[{b, x > 0 ? 1 : -1}];
         int best = -1, best_sign = 0, best_count = 1;
         for (const auto& [key, n] : count) {
-            const bool better = n > best_count ||
-                                (n == best_count && best >= 0 &&
-                                 (before(key.first, best) || (key.first == best && key.second > best_sign)));
+            const bool better =
+                n > best_count ||
+                (n == best_count && best >= 0 &&
+                 (before(key.first, best) || (key.first == best && key.second > best_sign)));
             if (n >= 2 && better) best = key.first, best_sign = key.second, best_count = n;
         }
         if (best < 0) return plain_sum(terms, k);
@@ -218,7 +221,8 @@ class dag_builder {
         numeric scale = terms[0].first.is_negative() ? -1 : 1; // leading term positive
         if (all_rational(terms, constant)) {
             numeric num = 0, den = 1;
-            for (const auto& t : terms) num = GiNaC::gcd(num, t.first.numer()), den = GiNaC::lcm(den, t.first.denom());
+            for (const auto& t : terms)
+                num = GiNaC::gcd(num, t.first.numer()), den = GiNaC::lcm(den, t.first.denom());
             if (!constant.is_zero())
                 num = GiNaC::gcd(num, constant.numer()), den = GiNaC::lcm(den, constant.denom());
             const numeric content = num / den;
@@ -229,7 +233,8 @@ class dag_builder {
             }
             if (cost_then < cost_now) scale *= content;
         }
-        for (auto& t : terms) t.first = t.first / scale;
+        for (auto& t : terms)
+            t.first = t.first / scale;
         return {scale, sum(std::move(terms), constant / scale)};
     }
 
@@ -241,14 +246,14 @@ class dag_builder {
 
     void sort_poly(std::vector<poly_term>& v) const {
         // by the digests of the factors, then their exponents: a content order
-        std::sort(v.begin(), v.end(), [&](const poly_term& a, const poly_term& b) {
-            return key_of(a) < key_of(b);
-        });
+        std::sort(v.begin(), v.end(),
+                  [&](const poly_term& a, const poly_term& b) { return key_of(a) < key_of(b); });
     }
 
     std::vector<std::pair<std::uint64_t, long>> key_of(const poly_term& t) const {
         std::vector<std::pair<std::uint64_t, long>> k;
-        for (const auto& [b, x] : t.m) k.emplace_back(digest(b), x);
+        for (const auto& [b, x] : t.m)
+            k.emplace_back(digest(b), x);
         std::sort(k.begin(), k.end());
         return k;
     }
@@ -336,7 +341,8 @@ class dag_builder {
             if (v.node >= 0) merge(expo, v.node, 1);
         };
         if (is_a<GiNaC::mul>(e))
-            for (std::size_t i = 0; i < e.nops(); ++i) factor(e.op(i));
+            for (std::size_t i = 0; i < e.nops(); ++i)
+                factor(e.op(i));
         else
             factor(e);
         if (coef.is_zero()) return {0, -1};
@@ -367,7 +373,8 @@ class dag_builder {
         n.k = lowered_node::kind::sum;
         n.value = k;
         std::string key = "S|" + numeric_text(k);
-        for (const auto& [c, id] : terms) key += "|" + numeric_text(c) + ":" + std::to_string(id);
+        for (const auto& [c, id] : terms)
+            key += "|" + numeric_text(c) + ":" + std::to_string(id);
         n.terms = std::move(terms);
         return intern(std::move(n), key);
     }
@@ -376,9 +383,11 @@ class dag_builder {
         sort_nodes(num);
         sort_nodes(den);
         std::string key = "P";
-        for (int id : num) key += "|" + std::to_string(id);
+        for (int id : num)
+            key += "|" + std::to_string(id);
         key += "|/";
-        for (int id : den) key += "|" + std::to_string(id);
+        for (int id : den)
+            key += "|" + std::to_string(id);
         lowered_node n;
         n.k = lowered_node::kind::product;
         n.numerator = std::move(num);
@@ -388,7 +397,8 @@ class dag_builder {
 
     int call(const std::string& name, const std::vector<int>& args) {
         std::string key = "C|" + name;
-        for (int id : args) key += "|" + std::to_string(id);
+        for (int id : args)
+            key += "|" + std::to_string(id);
         lowered_node n;
         n.k = lowered_node::kind::call;
         n.name = name;
@@ -411,7 +421,8 @@ class dag_builder {
     }
 
     void sort_terms(std::vector<std::pair<numeric, int>>& v) const {
-        std::sort(v.begin(), v.end(), [&](const auto& a, const auto& b) { return before(a.second, b.second); });
+        std::sort(v.begin(), v.end(),
+                  [&](const auto& a, const auto& b) { return before(a.second, b.second); });
     }
 
     int intern(lowered_node n, const std::string& key) {
@@ -424,22 +435,32 @@ class dag_builder {
             n.height = std::max(n.height, c.height + 1);
         };
         switch (n.k) {
-        case lowered_node::kind::input: mix(h, "input"), mix(h, n.name); break;
-        case lowered_node::kind::number: mix(h, "number"), mix(h, numeric_text(n.value)); break;
-        case lowered_node::kind::constant: mix(h, "constant"), mix(h, n.name); break;
+        case lowered_node::kind::input:
+            mix(h, "input"), mix(h, n.name);
+            break;
+        case lowered_node::kind::number:
+            mix(h, "number"), mix(h, numeric_text(n.value));
+            break;
+        case lowered_node::kind::constant:
+            mix(h, "constant"), mix(h, n.name);
+            break;
         case lowered_node::kind::sum:
             mix(h, "sum"), mix(h, numeric_text(n.value));
-            for (const auto& [c, id] : n.terms) mix(h, numeric_text(c)), child(id);
+            for (const auto& [c, id] : n.terms)
+                mix(h, numeric_text(c)), child(id);
             break;
         case lowered_node::kind::product:
             mix(h, "product");
-            for (int id : n.numerator) child(id);
+            for (int id : n.numerator)
+                child(id);
             mix(h, "/");
-            for (int id : n.denominator) child(id);
+            for (int id : n.denominator)
+                child(id);
             break;
         case lowered_node::kind::call:
             mix(h, "call"), mix(h, n.name);
-            for (int id : n.args) child(id);
+            for (int id : n.args)
+                child(id);
             break;
         }
         n.digest = h;
@@ -458,7 +479,8 @@ class dag_builder {
 
 std::vector<int> children(const lowered_node& n) {
     std::vector<int> c;
-    for (const auto& t : n.terms) c.push_back(t.second);
+    for (const auto& t : n.terms)
+        c.push_back(t.second);
     c.insert(c.end(), n.numerator.begin(), n.numerator.end());
     c.insert(c.end(), n.denominator.begin(), n.denominator.end());
     c.insert(c.end(), n.args.begin(), n.args.end());
@@ -466,7 +488,8 @@ std::vector<int> children(const lowered_node& n) {
 }
 
 bool is_hoisted_trig(const lowered_program& p, const lowered_node& n) {
-    if (n.k != lowered_node::kind::call || (n.name != "sin" && n.name != "cos") || n.args.size() != 1)
+    if (n.k != lowered_node::kind::call || (n.name != "sin" && n.name != "cos") ||
+        n.args.size() != 1)
         return false;
     const lowered_node& a = p.nodes[static_cast<std::size_t>(n.args[0])];
     return a.k == lowered_node::kind::input && is_identifier(a.name);
@@ -501,7 +524,8 @@ std::string number_literal(const numeric& n, const std::string& S) {
 
 class program_printer {
   public:
-    program_printer(const lowered_program& p, std::string scalar) : m_p(p), m_S(std::move(scalar)) {}
+    program_printer(const lowered_program& p, std::string scalar)
+        : m_p(p), m_S(std::move(scalar)) {}
 
     // The node as used by a parent: a temporary or input by name, else inline.
     printed ref(int id) const {
@@ -516,7 +540,8 @@ class program_printer {
     printed definition(int id) const {
         const lowered_node& n = node(id);
         switch (n.k) {
-        case lowered_node::kind::input: return {n.name, {}, true};
+        case lowered_node::kind::input:
+            return {n.name, {}, true};
         case lowered_node::kind::number: {
             const std::string lit = number_literal(abs(n.value), m_S);
             if (n.value.is_negative()) {
@@ -528,8 +553,10 @@ class program_printer {
         }
         case lowered_node::kind::constant:
             return {m_S + "(3.141592653589793238462643383279502884L)", {}, true};
-        case lowered_node::kind::sum: return sum(n);
-        case lowered_node::kind::product: return product(n, 1);
+        case lowered_node::kind::sum:
+            return sum(n);
+        case lowered_node::kind::product:
+            return product(n, 1);
         case lowered_node::kind::call: {
             printed r;
             r.text = n.name + "(";
@@ -560,8 +587,10 @@ class program_printer {
                  op_count& ops) const {
         if (inline_product(id)) {
             const lowered_node& n = node(id);
-            for (int c : n.numerator) factors(c, above, num, den, ops);
-            for (int c : n.denominator) factors(c, !above, num, den, ops);
+            for (int c : n.numerator)
+                factors(c, above, num, den, ops);
+            for (int c : n.denominator)
+                factors(c, !above, num, den, ops);
             return;
         }
         const printed f = ref(id);
@@ -573,14 +602,17 @@ class program_printer {
     printed product(const lowered_node& n, const numeric& coef) const {
         std::vector<std::string> num, den;
         printed r;
-        for (int c : n.numerator) factors(c, true, num, den, r.ops);
-        for (int c : n.denominator) factors(c, false, num, den, r.ops);
+        for (int c : n.numerator)
+            factors(c, true, num, den, r.ops);
+        for (int c : n.denominator)
+            factors(c, false, num, den, r.ops);
         std::sort(num.begin(), num.end());
         std::sort(den.begin(), den.end());
         const bool has_coef = !coef.is_equal(1);
         std::string s;
         if (has_coef) s = number_literal(coef, m_S);
-        for (std::size_t i = 0; i < num.size(); ++i) s += (s.empty() ? "" : "*") + num[i];
+        for (std::size_t i = 0; i < num.size(); ++i)
+            s += (s.empty() ? "" : "*") + num[i];
         if (s.empty()) s = m_S + "(1)";
         if (num.size() > 1) r.ops.mul += num.size() - 1;
         if (has_coef && !num.empty()) r.ops.mul += 1;
@@ -588,7 +620,8 @@ class program_printer {
             r.ops.div += 1;
             r.ops.mul += den.size() - 1;
             std::string d;
-            for (std::size_t i = 0; i < den.size(); ++i) d += (i ? "*" : "") + den[i];
+            for (std::size_t i = 0; i < den.size(); ++i)
+                d += (i ? "*" : "") + den[i];
             s += "/" + (den.size() > 1 ? "(" + d + ")" : d);
         }
         r.text = s;
@@ -615,7 +648,8 @@ class program_printer {
                 r.ops += p.ops;
                 if (m.is_equal(1)) {
                     text = p.text; // a term of a sum needs no parentheses unless it is a sum
-                    if (!p.atomic && node(id).k == lowered_node::kind::sum && !m_p.temporary_name.count(id))
+                    if (!p.atomic && node(id).k == lowered_node::kind::sum &&
+                        !m_p.temporary_name.count(id))
                         text = "(" + text + ")";
                 } else {
                     text = number_literal(m, m_S) + "*" + paren(p);
@@ -665,7 +699,8 @@ class naive_counter {
         if (is_a<numeric>(e) || is_a<GiNaC::symbol>(e) || is_a<GiNaC::constant>(e)) return r;
         if (is_a<GiNaC::add>(e)) {
             r.add = e.nops() - 1;
-            for (std::size_t i = 0; i < e.nops(); ++i) r += (*this)(e.op(i));
+            for (std::size_t i = 0; i < e.nops(); ++i)
+                r += (*this)(e.op(i));
             return r;
         }
         if (is_a<GiNaC::mul>(e) || is_a<GiNaC::power>(e)) {
@@ -675,7 +710,8 @@ class naive_counter {
                     if (!abs(ex_to<numeric>(f)).is_equal(1)) ++num;
                     return;
                 }
-                if (is_a<GiNaC::power>(f) && is_a<numeric>(f.op(1)) && ex_to<numeric>(f.op(1)).is_integer()) {
+                if (is_a<GiNaC::power>(f) && is_a<numeric>(f.op(1)) &&
+                    ex_to<numeric>(f.op(1)).is_integer()) {
                     const long k = ex_to<numeric>(f.op(1)).to_long();
                     r.mul += static_cast<std::size_t>(std::labs(k) - 1);
                     ++(k > 0 ? num : den);
@@ -693,7 +729,8 @@ class naive_counter {
                 r += (*this)(f);
             };
             if (is_a<GiNaC::mul>(e))
-                for (std::size_t i = 0; i < e.nops(); ++i) factor(e.op(i));
+                for (std::size_t i = 0; i < e.nops(); ++i)
+                    factor(e.op(i));
             else
                 factor(e);
             if (num > 1) r.mul += num - 1;
@@ -702,7 +739,8 @@ class naive_counter {
         }
         if (is_a<GiNaC::function>(e)) {
             r.call = 1;
-            for (std::size_t i = 0; i < e.nops(); ++i) r += (*this)(e.op(i));
+            for (std::size_t i = 0; i < e.nops(); ++i)
+                r += (*this)(e.op(i));
             return r;
         }
         return r;
@@ -713,17 +751,22 @@ class naive_counter {
 
 } // namespace
 
-op_count count_ops(const ex& e) { return naive_counter()(e); }
+op_count count_ops(const ex& e) {
+    return naive_counter()(e);
+}
 
-lowered_program lower(const std::vector<ex>& outputs, const std::vector<program_input>& inputs) {
+lowered_program lower(const std::vector<ex>& outputs, const std::vector<program_input>& inputs,
+                      const lower_options& options) {
     lowered_program p;
     p.inputs = inputs;
     {
         naive_counter naive;
-        for (const ex& e : outputs) p.before += naive(e);
+        for (const ex& e : outputs)
+            p.before += naive(e);
     }
     dag_builder b(p);
-    for (const ex& e : outputs) p.outputs.push_back(b.materialize(b.convert(e)));
+    for (const ex& e : outputs)
+        p.outputs.push_back(b.materialize(b.convert(e)));
 
     // Uses of each node reachable from the outputs (each occurrence in a parent counts).
     std::vector<int> uses(p.nodes.size(), 0);
@@ -743,16 +786,29 @@ lowered_program lower(const std::vector<ex>& outputs, const std::vector<program_
         visit(o);
     }
 
-    // Temporaries: sums, products and calls used more than once; sin/cos of inputs always.
+    // Temporaries: sums, products and calls used more than once; sin/cos of inputs always; and a
+    // subexpression whose inline text would exceed max_inline_ops operations (short statements:
+    // readable, and shallow expression templates for array scalar types such as Eigen's).
     std::vector<int> hoisted, temps;
-    for (int id : order) {
-        const lowered_node& n = p.nodes[static_cast<std::size_t>(id)];
-        if (is_hoisted_trig(p, n))
+    std::vector<std::size_t> inline_ops(p.nodes.size(), 0);
+    for (int id : order) { // children before parents
+        const auto u = static_cast<std::size_t>(id);
+        const lowered_node& n = p.nodes[u];
+        const bool compound = n.k == lowered_node::kind::sum ||
+                              n.k == lowered_node::kind::product || n.k == lowered_node::kind::call;
+        std::size_t cost = 0;
+        if (n.k == lowered_node::kind::sum) cost = n.terms.size() + (n.value.is_zero() ? 0 : 1);
+        if (n.k == lowered_node::kind::product) cost = n.numerator.size() + n.denominator.size();
+        if (n.k == lowered_node::kind::call) cost = 1;
+        for (int c : children(n))
+            cost += inline_ops[static_cast<std::size_t>(c)];
+        if (is_hoisted_trig(p, n)) {
             hoisted.push_back(id);
-        else if ((n.k == lowered_node::kind::sum || n.k == lowered_node::kind::product ||
-                  n.k == lowered_node::kind::call) &&
-                 uses[static_cast<std::size_t>(id)] >= 2)
+        } else if (compound && (uses[u] >= 2 || cost > options.max_inline_ops)) {
             temps.push_back(id);
+        } else {
+            inline_ops[u] = cost;
+        }
     }
     // sin/cos first, in input order (sin before cos).
     std::vector<int> trig;
@@ -781,8 +837,10 @@ lowered_program lower(const std::vector<ex>& outputs, const std::vector<program_
     }
 
     const program_printer printer(p, "S");
-    for (const auto& s : p.steps) p.after += printer.definition(s.node).ops;
-    for (int o : p.outputs) p.after += printer.ref(o).ops;
+    for (const auto& s : p.steps)
+        p.after += printer.definition(s.node).ops;
+    for (int o : p.outputs)
+        p.after += printer.ref(o).ops;
     return p;
 }
 
@@ -802,7 +860,8 @@ std::vector<bool> used_inputs(const lowered_program& program) {
         stack.pop_back();
         if (reached[static_cast<std::size_t>(id)]) continue;
         reached[static_cast<std::size_t>(id)] = 1;
-        for (int c : children(program.nodes[static_cast<std::size_t>(id)])) stack.push_back(c);
+        for (int c : children(program.nodes[static_cast<std::size_t>(id)]))
+            stack.push_back(c);
     }
     std::vector<bool> used(program.inputs.size(), false);
     for (std::size_t i = 0; i < program.nodes.size(); ++i) {
@@ -831,36 +890,61 @@ std::vector<numeric> evaluate(const lowered_program& program, const GiNaC::exmap
         const auto at = [&](int id) { return v[static_cast<std::size_t>(id)]; };
         ex r;
         switch (n.k) {
-        case lowered_node::kind::input: r = input_value.at(n.name); break;
-        case lowered_node::kind::number: r = n.value; break;
-        case lowered_node::kind::constant: r = GiNaC::Pi; break;
+        case lowered_node::kind::input:
+            r = input_value.at(n.name);
+            break;
+        case lowered_node::kind::number:
+            r = n.value;
+            break;
+        case lowered_node::kind::constant:
+            r = GiNaC::Pi;
+            break;
         case lowered_node::kind::sum:
             r = n.value;
-            for (const auto& [c, id] : n.terms) r += c * at(id);
+            for (const auto& [c, id] : n.terms)
+                r += c * at(id);
             break;
         case lowered_node::kind::product:
             r = 1;
-            for (int id : n.numerator) r *= at(id);
-            for (int id : n.denominator) r /= at(id);
+            for (int id : n.numerator)
+                r *= at(id);
+            for (int id : n.denominator)
+                r /= at(id);
             break;
         case lowered_node::kind::call: {
             const ex a = at(n.args[0]);
-            if (n.name == "sin") r = GiNaC::sin(a);
-            else if (n.name == "cos") r = GiNaC::cos(a);
-            else if (n.name == "tan") r = GiNaC::tan(a);
-            else if (n.name == "asin") r = GiNaC::asin(a);
-            else if (n.name == "acos") r = GiNaC::acos(a);
-            else if (n.name == "atan") r = GiNaC::atan(a);
-            else if (n.name == "atan2") r = GiNaC::atan2(a, at(n.args.at(1)));
-            else if (n.name == "sinh") r = GiNaC::sinh(a);
-            else if (n.name == "cosh") r = GiNaC::cosh(a);
-            else if (n.name == "tanh") r = GiNaC::tanh(a);
-            else if (n.name == "exp") r = GiNaC::exp(a);
-            else if (n.name == "log") r = GiNaC::log(a);
-            else if (n.name == "abs") r = GiNaC::abs(a);
-            else if (n.name == "sqrt") r = GiNaC::sqrt(a);
-            else if (n.name == "pow") r = GiNaC::pow(a, at(n.args.at(1)));
-            else throw std::logic_error("lower: cannot evaluate " + n.name);
+            if (n.name == "sin")
+                r = GiNaC::sin(a);
+            else if (n.name == "cos")
+                r = GiNaC::cos(a);
+            else if (n.name == "tan")
+                r = GiNaC::tan(a);
+            else if (n.name == "asin")
+                r = GiNaC::asin(a);
+            else if (n.name == "acos")
+                r = GiNaC::acos(a);
+            else if (n.name == "atan")
+                r = GiNaC::atan(a);
+            else if (n.name == "atan2")
+                r = GiNaC::atan2(a, at(n.args.at(1)));
+            else if (n.name == "sinh")
+                r = GiNaC::sinh(a);
+            else if (n.name == "cosh")
+                r = GiNaC::cosh(a);
+            else if (n.name == "tanh")
+                r = GiNaC::tanh(a);
+            else if (n.name == "exp")
+                r = GiNaC::exp(a);
+            else if (n.name == "log")
+                r = GiNaC::log(a);
+            else if (n.name == "abs")
+                r = GiNaC::abs(a);
+            else if (n.name == "sqrt")
+                r = GiNaC::sqrt(a);
+            else if (n.name == "pow")
+                r = GiNaC::pow(a, at(n.args.at(1)));
+            else
+                throw std::logic_error("lower: cannot evaluate " + n.name);
             break;
         }
         }
@@ -869,7 +953,8 @@ std::vector<numeric> evaluate(const lowered_program& program, const GiNaC::exmap
     std::vector<numeric> out;
     for (int o : program.outputs) {
         const ex r = v[static_cast<std::size_t>(o)];
-        if (!is_a<numeric>(r)) throw std::logic_error("lower: an output did not evaluate to a number");
+        if (!is_a<numeric>(r))
+            throw std::logic_error("lower: an output did not evaluate to a number");
         out.push_back(ex_to<numeric>(r));
     }
     return out;

@@ -15,7 +15,8 @@
 //   * sin and cos of each input (an angle) are computed once, named sin_<input>, cos_<input>;
 //   * numbers stay exact rationals; GiNaC folds numeric arithmetic as it builds expressions.
 //
-// A node used more than once becomes a temporary; the rest print inline where they are used.
+// A node used more than once becomes a temporary, and so does one that would print too long
+// inline; the rest print inline where they are used.
 // The result has the shape of SymEngine's `cse`: an ordered list of (temporary, expression) plus
 // the outputs, each in terms of inputs and earlier temporaries.
 //
@@ -24,7 +25,8 @@
 // alone (kind, printed names and exact numbers, children's digests, commutative children sorted);
 // children are ordered by digest, temporaries are numbered t000, t001, ... in a depth-first
 // traversal from the outputs in that order, and the printer sorts the terms of sums and factors of
-// products by their printed text. Same expressions in, same program (and same bytes) out.
+// products by their printed text. Same expressions in, same program (and same bytes) out. (Two
+// different nodes with one digest would be a collision: lowering throws rather than guess.)
 #pragma once
 
 #include <ginac/ginac.h>
@@ -58,8 +60,8 @@ struct op_count {
 struct lowered_node {
     enum class kind { input, number, constant, sum, product, call };
     kind k = kind::number;
-    std::string name;        // input: the code's name for it; call: the function; constant: "pi"
-    GiNaC::numeric value;    // number: the value; sum: the constant term
+    std::string name;     // input: the code's name for it; call: the function; constant: "pi"
+    GiNaC::numeric value; // number: the value; sum: the constant term
     std::vector<std::pair<GiNaC::numeric, int>> terms; // sum: value + sum of coefficient * node
     std::vector<int> numerator, denominator;           // product: factors (repeats allowed)
     std::vector<int> args;                             // call
@@ -75,14 +77,21 @@ struct lowered_program {
         int node;
         std::string name; // t000, t001, ... or sin_theta, cos_theta
     };
-    std::vector<step> steps;         // the temporaries, in order
+    std::vector<step> steps;                   // the temporaries, in order
     std::map<int, std::string> temporary_name; // node -> its step's name
     op_count before; // the outputs printed naively, each on its own (no sharing, no hoisting)
     op_count after;  // the program as printed: temporaries plus outputs
 };
 
+struct lower_options {
+    // A subexpression longer than this (roughly, in operations) becomes a temporary even if used
+    // once: statements stay short, and array types with expression templates (Eigen) compile fast.
+    std::size_t max_inline_ops = 12;
+};
+
 // Lowers `outputs` (in terms of the inputs' symbols; any other symbol is an internal error).
-lowered_program lower(const std::vector<GiNaC::ex>& outputs, const std::vector<program_input>& inputs);
+lowered_program lower(const std::vector<GiNaC::ex>& outputs,
+                      const std::vector<program_input>& inputs, const lower_options& options = {});
 
 // Operations in `e` printed naively (integer powers as repeated products, as c_printer does).
 op_count count_ops(const GiNaC::ex& e);
@@ -91,7 +100,8 @@ op_count count_ops(const GiNaC::ex& e);
 // inline; `scalar` names the type of literals (`S(1)/S(3)`, folded by the compiler).
 std::string print_node(const lowered_program& program, int node, const std::string& scalar = "S");
 // The expression a node stands for (a temporary's right-hand side).
-std::string print_definition(const lowered_program& program, int node, const std::string& scalar = "S");
+std::string print_definition(const lowered_program& program, int node,
+                             const std::string& scalar = "S");
 
 // The program's value at a point, computed node by node with GiNaC floats (to check lowering
 // against the original expressions). `values` maps input symbols to numbers; returns the outputs.

@@ -23,7 +23,8 @@ struct kernel {
     std::function<void(long double, const long double*, long double*)> rhs_long;
     std::function<double(const double*)> energy;
     // empty where the unit has no such function
-    std::function<void(const double*, double*)> momenta, omega, rotation, mass_matrix, ignored_rates;
+    std::function<void(const double*, double*)> momenta, omega, rotation, mass_matrix,
+        ignored_rates;
     std::function<void(const double*, double*)> quaternion_from_angles, angles_from_quaternion;
     // The same kernel with other parameter values (in parameter_names order).
     std::function<kernel(const std::vector<double>&)> with_parameters;
