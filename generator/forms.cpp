@@ -533,6 +533,7 @@ void body(const model_spec& spec, const derivation& d, form_expressions& f, bool
     if (spec.gravity)
         f.notes.push_back(
             "gravity torque r_com x (-M g e), e = third row of R(q): no singularity.");
+    f.uses_euler_chart = chart_used;
     if (chart_used)
         f.notes.push_back(
             "WARNING: part of the torque or potential is known only in Euler angles and is "

@@ -96,6 +96,9 @@ struct form_expressions {
     std::map<std::string, std::string> unavailable; // output -> why this form cannot give it
 
     std::vector<std::string> notes; // documentation for the header: layout, singularities, ...
+    // Body form: part of the torque or potential goes through the Euler-angle chart, so this form
+    // too is singular at theta = 0, pi.
+    bool uses_euler_chart = false;
 };
 
 // The names of every output the emitter knows, in a fixed order.

@@ -68,6 +68,25 @@ double number(const ex& e, const GiNaC::exmap& at) {
     return GiNaC::ex_to<GiNaC::numeric>(v).to_double();
 }
 
+std::string format_number(double x) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.17g", x);
+    return buf;
+}
+
+// Three significant digits, for the summary.
+std::string short_number(double x) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3g", x);
+    return buf;
+}
+
+std::string shell_quote(const std::string& s) {
+    std::string q = "'";
+    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+}
+
 // An output file is written to a temporary beside it, then renamed: never a partial file.
 class output_file {
   public:
@@ -150,43 +169,6 @@ initial_state initial_kinematics(const scene_spec& scene, const derivation& d,
     return k;
 }
 
-// Where a recorded column comes from.
-struct column_source {
-    enum kind_t { compiled, angle_of_quaternion } kind;
-    int index; // compiled: output of the record program; angle: 0, 1, 2
-};
-
-// The expression for a recorded quantity in the form's state, if the form gives it.
-std::optional<ex> record_expression(const form_expressions& f, const std::string& name) {
-    for (const auto& v : f.state)
-        if (v.name == name) return v.symbol;
-    for (const auto& [output, o] : f.outputs)
-        for (std::size_t i = 0; i < o.names.size() && i < o.values.size(); ++i)
-            if (o.names[i] == name && output != "rotation") return o.values[i];
-    for (std::size_t i = 0; i < f.rate_names.size() && i < f.rates.size(); ++i)
-        if (f.rate_names[i] == name) return f.rates[i];
-    return std::nullopt;
-}
-
-std::string format_number(double x) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.17g", x);
-    return buf;
-}
-
-// Three significant digits, for the summary.
-std::string short_number(double x) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.3g", x);
-    return buf;
-}
-
-std::string shell_quote(const std::string& s) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
-}
-
 // A system whose kernels were compiled and loaded at run time (runtime/system.hpp concept).
 struct loaded_system {
     using kernel = void (*)(double, const double*, double*);
@@ -251,6 +233,196 @@ void plot(const std::string& png, const std::string& csv, const std::vector<std:
     out.commit();
 }
 
+// Where a recorded column (or a monitored invariant) comes from in one compiled form.
+struct value_source {
+    enum kind_t {
+        compiled,           // an output of the compiled record program
+        angle,              // body form: Euler angle `index` of the quaternion
+        euler_rate,         // body form: q_dot = J^{-1} omega (5.30), undefined at theta = 0, pi
+        canonical_momentum, // body form: p = J^T I omega
+    } kind;
+    int index;
+};
+
+// The expression for a recorded quantity in the form's state, if the form gives it.
+std::optional<ex> record_expression(const form_expressions& f, const std::string& name) {
+    for (const auto& v : f.state)
+        if (v.name == name) return v.symbol;
+    for (const auto& [output, o] : f.outputs)
+        for (std::size_t i = 0; i < o.names.size() && i < o.values.size(); ++i)
+            if (o.names[i] == name && output != "rotation") return o.values[i];
+    for (std::size_t i = 0; i < f.rate_names.size() && i < f.rates.size(); ++i)
+        if (f.rate_names[i] == name) return f.rates[i];
+    return std::nullopt;
+}
+
+// One form of the scene's model: emitted, compiled, loaded, with a record program that computes
+// the recorded columns and the monitored invariants from the form's state.
+struct compiled_form {
+    form_kind form = form_kind::lagrangian;
+    form_expressions f;
+    loaded_library lib;
+    loaded_system sys;
+    loaded_system::kernel record = nullptr;
+    std::vector<value_source> columns;    // one per quantity column (body_x expands to 3)
+    std::vector<value_source> invariants; // as scene invariants are listed
+    std::size_t outputs = 0;
+    double seconds = 0; // deriving the form, emitting and compiling (or loading)
+};
+
+struct invariant {
+    std::string name;
+    bool conserved;
+};
+
+compiled_form compile_form(const scene_spec& scene, const derivation& d, form_kind form,
+                           bool orientation, const std::vector<invariant>& invariants,
+                           const std::string& command) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const model_spec& spec = scene.model;
+    compiled_form c;
+    c.form = form;
+    c.f = build_form(spec, d, form, lagrangian_strategy::explicit_inverse, orientation);
+    const form_expressions& f = c.f;
+    emit_options eo;
+    eo.form = form;
+    eo.outputs = {"rhs", "jacobian"};
+    if (form == form_kind::body && orientation) eo.outputs.push_back("rotation");
+    eo.command = command;
+    const emitted_header header = emit_header(spec, d, eo);
+    // The compiled kernels and the state built here must agree on the layout.
+    const std::string size_decl = "state_size = " + std::to_string(f.state.size()) + ";";
+    if (header.text.find(size_decl) == std::string::npos)
+        throw std::logic_error("simulate: the emitted " + header.unit + " does not have " + size_decl);
+
+    // Where each quantity comes from: the form's own expressions where it has them; in the body
+    // form the Euler-angle quantities are computed here from the quaternion and omega.
+    std::vector<ex> program;
+    const bool body_with_angles = form == form_kind::body && orientation;
+    const auto source_of = [&](const std::string& name, const source_location& where) -> value_source {
+        if (auto e = record_expression(f, name)) {
+            program.push_back(*e);
+            return {value_source::compiled, static_cast<int>(program.size() - 1)};
+        }
+        for (int i = 0; i < 3 && body_with_angles; ++i) {
+            const std::string& q = coordinate_names()[i];
+            if (name == q) return {value_source::angle, i};
+            if (name == q + "_dot") return {value_source::euler_rate, i};
+            if (name == "p_" + q) return {value_source::canonical_momentum, i};
+        }
+        throw user_error(where, "the " + std::string(to_string(form)) + " form does not give '" + name + "'");
+    };
+    for (std::size_t r = 0; r < scene.record.size(); ++r) {
+        const std::string& name = scene.record[r];
+        if (name.rfind("body_", 0) == 0) {
+            const auto it = f.outputs.find("rotation");
+            if (it == f.outputs.end())
+                throw user_error(scene.record_where[r], "the " + std::string(to_string(form)) +
+                                                            " form does not give '" + name + "'");
+            const int row = name.back() - 'x'; // body axis i in space axes = row i of A
+            for (int k = 0; k < 3; ++k) {
+                program.push_back(it->second.values[static_cast<std::size_t>(3 * row + k)]);
+                c.columns.push_back({value_source::compiled, static_cast<int>(program.size() - 1)});
+            }
+        } else {
+            c.columns.push_back(source_of(name, scene.record_where[r]));
+        }
+    }
+    for (const auto& inv : invariants) c.invariants.push_back(source_of(inv.name, scene.where));
+    c.outputs = program.size();
+
+    // The record program, lowered like the kernels, and the exported entry points.
+    std::vector<program_input> inputs;
+    for (std::size_t i = 0; i < f.state.size(); ++i)
+        inputs.push_back({f.state[i].symbol, f.state[i].name, "y[" + std::to_string(i) + "]"});
+    for (const auto& fp : f.parameters) inputs.push_back({fp.symbol, fp.name, "rg_p." + fp.name});
+    inputs.push_back({f.time, "t", ""});
+    const lowered_program lowered = lower(program, inputs);
+    const std::vector<bool> used = used_inputs(lowered);
+    std::ostringstream shim;
+    shim << header.text << "\n// ---- rotgen simulate: entry points for the runtime ----\n"
+         << "namespace {\nnamespace rg_model = rotgen::models::" << header.unit << ";\n"
+         << "rg_model::params<double> rg_p;\n}\n\nextern \"C\" {\n"
+         << "void rotgen_set_parameters(const double* v) {\n";
+    for (std::size_t i = 0; i < f.parameters.size(); ++i)
+        shim << "    rg_p." << f.parameters[i].name << " = v[" << i << "];\n";
+    shim << (f.parameters.empty() ? "    (void)v;\n" : "") << "}\n"
+         << "void rotgen_rhs(double t, const double* y, double* dydt) { rg_model::rhs(t, y, dydt, rg_p); }\n"
+         << "void rotgen_jacobian(double t, const double* y, double* J) { rg_model::jacobian(t, y, J, rg_p); }\n"
+         << "void rotgen_record(double t, const double* y, double* out) {\n"
+         << "    using namespace std;\n    (void)t;\n    (void)y;\n    (void)out;\n";
+    for (std::size_t i = 0; i < inputs.size(); ++i)
+        if (used[i] && !inputs[i].definition.empty())
+            shim << "    const double " << inputs[i].name << " = " << inputs[i].definition << ";\n";
+    for (const auto& step : lowered.steps)
+        shim << "    const double " << step.name << " = " << print_definition(lowered, step.node, "double")
+             << ";\n";
+    for (std::size_t i = 0; i < lowered.outputs.size(); ++i)
+        shim << "    out[" << i << "] = " << print_node(lowered, lowered.outputs[i], "double") << ";\n";
+    shim << "}\n}\n";
+
+    c.lib = compile_and_load(shim.str(), header.unit);
+    c.sys.n = f.state.size();
+    c.sys.f = reinterpret_cast<loaded_system::kernel>(c.lib.symbol("rotgen_rhs"));
+    c.sys.jac = reinterpret_cast<loaded_system::kernel>(c.lib.symbol("rotgen_jacobian"));
+    c.record = reinterpret_cast<loaded_system::kernel>(c.lib.symbol("rotgen_record"));
+    c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return c;
+}
+
+// The form's parameters: the scene's values of the model's, and the conserved momenta (reduced).
+std::vector<double> form_parameter_values(const scene_spec& scene, const form_expressions& f,
+                                          const initial_state& k0) {
+    const model_spec& spec = scene.model;
+    std::vector<double> values;
+    for (const auto& fp : f.parameters) {
+        std::optional<double> v;
+        for (std::size_t i = 0; i < spec.parameters.size(); ++i)
+            if (spec.parameters[i].name == fp.name) v = scene.parameters[i];
+        for (int i = 0; i < 3 && !v; ++i)
+            if ("p_" + coordinate_names()[i] == fp.name) {
+                if (!k0.have_rates)
+                    throw user_error(scene.initial_where, "the reduced form needs the initial momenta");
+                v = k0.p[i];
+            }
+        if (!v) throw std::logic_error("simulate: no value for form parameter " + fp.name);
+        values.push_back(*v);
+    }
+    return values;
+}
+
+// The state vector of a form from the initial kinematics.
+Eigen::VectorXd form_state(const scene_spec& scene, const form_expressions& f, const initial_state& k) {
+    const Eigen::Quaterniond quat = quaternion_from_euler(k.q[0], k.q[1], k.q[2]);
+    Eigen::VectorXd y(static_cast<Eigen::Index>(f.state.size()));
+    for (std::size_t s = 0; s < f.state.size(); ++s) {
+        const std::string& name = f.state[s].name;
+        std::optional<double> v;
+        for (int i = 0; i < 3 && !v; ++i) {
+            const std::string& q = coordinate_names()[i];
+            if (name == q) v = k.q[i];
+            else if (name == "omega" + std::to_string(i + 1)) v = k.omega[i];
+            else if (name == q + "_dot" || name == "p_" + q) {
+                if (!k.have_rates)
+                    throw user_error(scene.initial_where,
+                                     "at theta = 0 the " + std::string(to_string(scene.form)) +
+                                         " form cannot start from body omega; use form: body");
+                v = name == q + "_dot" ? k.qd[i] : k.p[i];
+            }
+        }
+        if (name == "qw") v = quat.w();
+        if (name == "qx") v = quat.x();
+        if (name == "qy") v = quat.y();
+        if (name == "qz") v = quat.z();
+        if (!v) throw std::logic_error("simulate: unknown state variable " + name);
+        y[static_cast<Eigen::Index>(s)] = *v;
+    }
+    return y;
+}
+
+// Thrown by the observer to leave an Euler-angle run near the singularity.
+struct leave_chart {};
+
 } // namespace
 
 int cmd_simulate(const std::vector<std::string>& args) {
@@ -263,171 +435,59 @@ int cmd_simulate(const std::vector<std::string>& args) {
     if (!opt.csv.empty()) csv_out.emplace(opt.csv);
     if (!opt.plot.empty()) output_file probe(opt.plot);
 
-    const bool euler_form = scene.form != form_kind::body;
-    if (euler_form && std::abs(std::sin(scene.angles[1])) < 1e-10)
-        throw user_error(scene.initial_where,
-                         "initial theta = " + format_number(scene.angles[1]) +
-                             " is the gimbal-lock singularity of the Euler-angle forms (sin theta = "
-                             "0); use form: body");
-
     const auto t_derive = std::chrono::steady_clock::now();
     const derivation d = derive(spec);
-    // The body form keeps the quaternion only when something needs the orientation (a potential,
-    // or a recorded angle or body axis); a free body is then integrated as omega alone.
-    bool orientation = false;
-    for (const auto& name : scene.record)
-        orientation = orientation || name == "phi" || name == "theta" || name == "psi" ||
-                      name.rfind("body_", 0) == 0;
-    const form_expressions f =
-        build_form(spec, d, scene.form, lagrangian_strategy::explicit_inverse, orientation);
-    emit_options eo;
-    eo.form = scene.form;
-    eo.outputs = {"rhs", "jacobian"};
-    if (scene.form == form_kind::body && orientation) eo.outputs.push_back("rotation");
-    eo.command = "rotgen simulate " + opt.scene;
-    const emitted_header header = emit_header(spec, d, eo);
-    // The compiled kernels and the state built here must agree on the layout.
-    const std::string size_decl = "state_size = " + std::to_string(f.state.size()) + ";";
-    if (header.text.find(size_decl) == std::string::npos)
-        throw std::logic_error("simulate: the emitted " + header.unit + " does not have " + size_decl);
-
-    // The parameters' values: the scene's, and the conserved momenta of a reduced form.
     GiNaC::exmap parameter_values;
     for (std::size_t i = 0; i < spec.parameters.size(); ++i)
         parameter_values[spec.parameters[i].symbol] = scene.parameters[i];
+    Eigen::Matrix3d inertia;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) inertia(i, j) = number(spec.inertia[i][j], parameter_values);
+
+    // Gimbal lock: the Lagrangian and Hamiltonian forms continue in the body form (quaternion
+    // and omega, no singularity) when |sin(theta)| falls below this at a sample, or when their
+    // integration fails — provided the model's body form does not itself go through the chart.
+    const double switch_below = 0.1;
+    const bool can_switch =
+        (scene.form == form_kind::lagrangian || scene.form == form_kind::hamiltonian) &&
+        !build_form(spec, d, form_kind::body, lagrangian_strategy::explicit_inverse, true).uses_euler_chart;
+    const bool euler_form = scene.form != form_kind::body;
+    bool start_in_body = false;
+    if (euler_form && std::abs(std::sin(scene.angles[1])) < 1e-10) {
+        if (!can_switch)
+            throw user_error(scene.initial_where,
+                             "initial theta = " + format_number(scene.angles[1]) +
+                                 " is the gimbal-lock singularity of the Euler-angle forms (sin theta = "
+                                 "0); use form: body" +
+                                 (scene.form == form_kind::reduced ? "" : " (this model's body form goes through the Euler-angle chart too)"));
+        start_in_body = true;
+    }
     const initial_state k0 = initial_kinematics(scene, d, parameter_values);
-    std::vector<double> form_parameters;
-    for (const auto& fp : f.parameters) {
-        double v = 0;
-        bool found = false;
-        for (std::size_t i = 0; i < spec.parameters.size(); ++i)
-            if (spec.parameters[i].name == fp.name) v = scene.parameters[i], found = true;
-        for (int i = 0; i < 3 && !found; ++i)
-            if ("p_" + coordinate_names()[i] == fp.name) {
-                if (!k0.have_rates)
-                    throw user_error(scene.initial_where, "the reduced form needs the initial momenta");
-                v = k0.p[i], found = true;
-            }
-        if (!found) throw std::logic_error("simulate: no value for form parameter " + fp.name);
-        form_parameters.push_back(v);
-    }
-
-    // The initial state vector of the form.
-    const Eigen::Quaterniond quat = quaternion_from_euler(k0.q[0], k0.q[1], k0.q[2]);
-    const auto state_value = [&](const std::string& name) -> double {
-        for (int i = 0; i < 3; ++i) {
-            const std::string& q = coordinate_names()[i];
-            if (name == q) return k0.q[i];
-            if (name == q + "_dot" || name == "p_" + q) {
-                if (!k0.have_rates)
-                    throw user_error(scene.initial_where,
-                                     "at theta = 0 the " + std::string(to_string(scene.form)) +
-                                         " form cannot start from body omega; use form: body");
-                return name == q + "_dot" ? k0.qd[i] : k0.p[i];
-            }
-            if (name == "omega" + std::to_string(i + 1)) return k0.omega[i];
-        }
-        if (name == "qw") return quat.w();
-        if (name == "qx") return quat.x();
-        if (name == "qy") return quat.y();
-        if (name == "qz") return quat.z();
-        throw std::logic_error("simulate: unknown state variable " + name);
-    };
-    const std::size_t n = f.state.size();
-    Eigen::VectorXd y(static_cast<Eigen::Index>(n));
-    for (std::size_t i = 0; i < n; ++i) y[static_cast<Eigen::Index>(i)] = state_value(f.state[i].name);
-
-    // What to record, and the invariants to monitor.
-    std::vector<ex> program_outputs;
-    std::vector<std::string> columns;
-    std::vector<column_source> sources;
-    for (std::size_t r = 0; r < scene.record.size(); ++r) {
-        const std::string& name = scene.record[r];
-        if (name.rfind("body_", 0) == 0) {
-            const auto it = f.outputs.find("rotation");
-            if (it == f.outputs.end())
-                throw user_error(scene.record_where[r], "the " + std::string(to_string(scene.form)) +
-                                                            " form does not give '" + name + "'");
-            const int row = name.back() - 'x'; // body axis i in space axes = row i of A
-            for (int c = 0; c < 3; ++c) {
-                sources.push_back({column_source::compiled, static_cast<int>(program_outputs.size())});
-                program_outputs.push_back(it->second.values[static_cast<std::size_t>(3 * row + c)]);
-            }
-        } else if (auto e = record_expression(f, name)) {
-            sources.push_back({column_source::compiled, static_cast<int>(program_outputs.size())});
-            program_outputs.push_back(*e);
-        } else if (scene.form == form_kind::body && (name == "phi" || name == "theta" || name == "psi")) {
-            sources.push_back({column_source::angle_of_quaternion, name == "phi" ? 0 : name == "theta" ? 1 : 2});
-        } else {
-            throw user_error(scene.record_where[r], "the " + std::string(to_string(scene.form)) +
-                                                        " form does not give '" + name + "'");
-        }
-        for (const auto& c : record_columns(name)) columns.push_back(c);
-    }
-    struct invariant {
-        std::string name;
-        int output;
-        bool conserved;
-    };
-    std::vector<invariant> invariants;
-    const bool conservative = !spec.has_damping && !spec.has_torque;
-    if (auto e = record_expression(f, "energy")) {
-        invariants.push_back({"energy", static_cast<int>(program_outputs.size()), conservative});
-        program_outputs.push_back(*e);
-    }
-    for (int i : d.cyclic) {
-        const std::string name = "p_" + coordinate_names()[i];
-        if (auto e = record_expression(f, name)) {
-            invariants.push_back({name, static_cast<int>(program_outputs.size()), true});
-            program_outputs.push_back(*e);
-        }
-    }
-
-    // The record program, lowered like the kernels, and the exported entry points.
-    std::vector<program_input> inputs;
-    for (std::size_t i = 0; i < n; ++i)
-        inputs.push_back({f.state[i].symbol, f.state[i].name, "y[" + std::to_string(i) + "]"});
-    for (const auto& fp : f.parameters) inputs.push_back({fp.symbol, fp.name, "rg_p." + fp.name});
-    inputs.push_back({f.time, "t", ""});
-    const lowered_program program = lower(program_outputs, inputs);
-    const std::vector<bool> used = used_inputs(program);
-    std::ostringstream shim;
-    shim << header.text << "\n// ---- rotgen simulate: entry points for the runtime ----\n"
-         << "namespace {\nnamespace rg_model = rotgen::models::" << header.unit << ";\n"
-         << "rg_model::params<double> rg_p;\n}\n\nextern \"C\" {\n"
-         << "void rotgen_set_parameters(const double* v) {\n";
-    for (std::size_t i = 0; i < f.parameters.size(); ++i)
-        shim << "    rg_p." << f.parameters[i].name << " = v[" << i << "];\n";
-    shim << (f.parameters.empty() ? "    (void)v;\n" : "") << "}\n"
-         << "void rotgen_rhs(double t, const double* y, double* dydt) { rg_model::rhs(t, y, dydt, rg_p); }\n"
-         << "void rotgen_jacobian(double t, const double* y, double* J) { rg_model::jacobian(t, y, J, rg_p); }\n"
-         << "void rotgen_record(double t, const double* y, double* out) {\n"
-         << "    using namespace std;\n    (void)t;\n    (void)y;\n";
-    for (std::size_t i = 0; i < inputs.size(); ++i)
-        if (used[i] && !inputs[i].definition.empty())
-            shim << "    const double " << inputs[i].name << " = " << inputs[i].definition << ";\n";
-    for (const auto& step : program.steps)
-        shim << "    const double " << step.name << " = " << print_definition(program, step.node, "double")
-             << ";\n";
-    for (std::size_t i = 0; i < program.outputs.size(); ++i)
-        shim << "    out[" << i << "] = " << print_node(program, program.outputs[i], "double") << ";\n";
-    shim << "}\n}\n";
     const double derive_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t_derive).count();
 
-    const auto t_compile = std::chrono::steady_clock::now();
-    const loaded_library lib = compile_and_load(shim.str(), header.unit);
-    const double compile_seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t_compile).count();
-    using set_fn = void (*)(const double*);
-    reinterpret_cast<set_fn>(lib.symbol("rotgen_set_parameters"))(form_parameters.data());
-    loaded_system sys;
-    sys.n = n;
-    sys.f = reinterpret_cast<loaded_system::kernel>(lib.symbol("rotgen_rhs"));
-    sys.jac = reinterpret_cast<loaded_system::kernel>(lib.symbol("rotgen_jacobian"));
-    const auto record_fn = reinterpret_cast<loaded_system::kernel>(lib.symbol("rotgen_record"));
+    // The invariants to monitor: the energy, and every momentum the derivation found conserved.
+    std::vector<invariant> invariants{{"energy", !spec.has_damping && !spec.has_torque}};
+    for (int i : d.cyclic)
+        if (scene.form != form_kind::reduced) invariants.push_back({"p_" + coordinate_names()[i], true});
 
-    // Integrate, sampling at the requested times by dense output.
+    // The body form keeps the quaternion only when something needs the orientation (a potential,
+    // a recorded angle or body axis, a switch of chart); a free body is then integrated as omega.
+    bool orientation = can_switch;
+    for (const auto& name : scene.record)
+        orientation = orientation || name == "phi" || name == "theta" || name == "psi" ||
+                      name.rfind("body_", 0) == 0 || name.find("_dot") != std::string::npos ||
+                      name.rfind("p_", 0) == 0;
+    if (scene.form == form_kind::body && !orientation && invariants.size() > 1) orientation = true;
+    const std::string command = "rotgen simulate " + opt.scene;
+    std::vector<compiled_form> forms;
+    forms.push_back(compile_form(scene, d, start_in_body ? form_kind::body : scene.form, orientation,
+                                 invariants, command));
+    std::vector<std::string> columns;
+    for (const auto& name : scene.record)
+        for (const auto& c : record_columns(name)) columns.push_back(c);
+
+    // Integrate, sampling at the requested times by dense output, segment by segment.
     const integrator_spec& ig = scene.integrator;
     auto method = make_method<double>(ig.method, ig.rtol, ig.atol, ig.fixed_step() ? ig.step : 0.0);
     if (!method) throw std::logic_error("simulate: unknown method " + ig.method);
@@ -438,41 +498,100 @@ int cmd_simulate(const std::vector<std::string>& args) {
         times[i] = i + 1 == times.size()
                        ? scene.t_end
                        : scene.t_start + (scene.t_end - scene.t_start) * double(i) / double(times.size() - 1);
-    std::vector<double> sample_t;
-    std::vector<Eigen::VectorXd> sample_y;
-    sample_t.reserve(times.size());
-    sample_y.reserve(times.size());
-    const auto t_run = std::chrono::steady_clock::now();
-    const integration_result<double> result =
-        integrate(sys, *method, scene.t_start, y, times, [&](double t, const Eigen::VectorXd& yt) {
-            sample_t.push_back(t);
-            sample_y.push_back(yt);
-        });
-    const double run_seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t_run).count();
 
-    // Records and invariants at every sample.
-    std::vector<double> out(program_outputs.size());
-    std::vector<double> first(invariants.size()), drift(invariants.size(), 0.0);
-    std::vector<std::vector<double>> rows;
-    for (std::size_t k = 0; k < sample_t.size(); ++k) {
-        record_fn(sample_t[k], sample_y[k].data(), out.data());
-        std::vector<double> row{sample_t[k]};
-        std::optional<euler_angles<double>> angles;
-        for (const auto& src : sources) {
-            if (src.kind == column_source::compiled) {
-                row.push_back(out[static_cast<std::size_t>(src.index)]);
-            } else {
-                if (!angles) {
-                    const Eigen::Quaterniond q(sample_y[k][0], sample_y[k][1], sample_y[k][2], sample_y[k][3]);
-                    angles = euler_from_quaternion(q);
-                }
-                row.push_back(src.index == 0 ? angles->phi : src.index == 1 ? angles->theta : angles->psi);
-            }
+    struct sample {
+        double t;
+        Eigen::VectorXd y;
+        std::size_t form; // index into forms
+    };
+    std::vector<sample> samples;
+    samples.reserve(times.size());
+    step_stats stats;
+    integration_result<double> result;
+    double run_seconds = 0;
+    std::string chart_note = start_in_body ? "started in the body form (initial theta = 0)" : "";
+    Eigen::VectorXd y = form_state(scene, forms[0].f, k0);
+    std::vector<double> parameters = form_parameter_values(scene, forms[0].f, k0);
+    double t_from = scene.t_start;
+    std::size_t next_sample = 0;
+    while (true) {
+        compiled_form& cf = forms.back();
+        using set_fn = void (*)(const double*);
+        reinterpret_cast<set_fn>(cf.lib.symbol("rotgen_set_parameters"))(parameters.data());
+        const bool in_euler_chart = cf.form == form_kind::lagrangian || cf.form == form_kind::hamiltonian;
+        const std::vector<double> segment_times(times.begin() + static_cast<std::ptrdiff_t>(next_sample), times.end());
+        bool leaving = false;
+        const auto t_run = std::chrono::steady_clock::now();
+        try {
+            result = integrate(cf.sys, *method, t_from, y, segment_times,
+                               [&](double t, const Eigen::VectorXd& yt) {
+                                   samples.push_back({t, yt, forms.size() - 1});
+                                   if (can_switch && in_euler_chart && std::abs(std::sin(yt[1])) < switch_below &&
+                                       samples.size() > 1 && t < scene.t_end)
+                                       throw leave_chart{};
+                               });
+        } catch (const leave_chart&) {
+            leaving = true;
         }
+        run_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t_run).count();
+        if (!leaving) {
+            stats.steps += result.stats.steps, stats.accepted += result.stats.accepted;
+            stats.rejected += result.stats.rejected, stats.rhs_evals += result.stats.rhs_evals;
+            stats.jac_evals += result.stats.jac_evals, stats.factorisations += result.stats.factorisations;
+        }
+        const bool failed = !leaving && !result.ok();
+        if (!(can_switch && in_euler_chart && (leaving || failed) && !samples.empty() &&
+              samples.back().t < scene.t_end))
+            break;
+        // Continue from the last sample in the body form: omega = J q_dot (5.30).
+        const sample& last = samples.back();
+        initial_state k;
+        for (int i = 0; i < 3; ++i) k.q[i] = last.y[i];
+        Eigen::VectorXd dydt(last.y.size());
+        cf.sys.rhs(last.t, last.y.data(), dydt.data());
+        for (int i = 0; i < 3; ++i) k.qd[i] = dydt[i];
+        const double st = std::sin(k.q[1]), ct = std::cos(k.q[1]), sp = std::sin(k.q[2]), cp = std::cos(k.q[2]);
+        k.omega = {k.qd[0] * st * sp + k.qd[1] * cp, k.qd[0] * st * cp - k.qd[1] * sp, k.qd[0] * ct + k.qd[2]};
+        chart_note = "switched to the body form at t = " + short_number(last.t) + " (|sin theta| = " +
+                     short_number(std::abs(st)) + (leaving ? " < " + short_number(switch_below) + ")"
+                                                          : "; the Euler-angle run failed: " + result.message + ")");
+        forms.push_back(compile_form(scene, d, form_kind::body, true, invariants, command));
+        y = form_state(scene, forms.back().f, k);
+        parameters = form_parameter_values(scene, forms.back().f, k);
+        t_from = last.t;
+        next_sample = samples.size();
+    }
+
+    // Records and invariants at every sample, each by the form that integrated it.
+    std::vector<std::vector<double>> rows;
+    std::vector<double> first(invariants.size()), drift(invariants.size(), 0.0);
+    for (std::size_t k = 0; k < samples.size(); ++k) {
+        const compiled_form& cf = forms[samples[k].form];
+        const Eigen::VectorXd& ys = samples[k].y;
+        std::vector<double> out(cf.outputs);
+        cf.record(samples[k].t, ys.data(), out.data());
+        // Body form: Euler angles from the quaternion, q_dot = J^{-1} omega, p = J^T I omega.
+        std::optional<euler_angles<double>> e;
+        const auto value = [&](const value_source& src) -> double {
+            if (src.kind == value_source::compiled) return out[static_cast<std::size_t>(src.index)];
+            if (!e) e = euler_from_quaternion(Eigen::Quaterniond(ys[0], ys[1], ys[2], ys[3]));
+            const Eigen::Vector3d w(ys[4], ys[5], ys[6]);
+            const double st = std::sin(e->theta), ct = std::cos(e->theta), sp = std::sin(e->psi),
+                         cp = std::cos(e->psi);
+            if (src.kind == value_source::angle) return src.index == 0 ? e->phi : src.index == 1 ? e->theta : e->psi;
+            if (src.kind == value_source::euler_rate) {
+                const double phi_dot = (w[0] * sp + w[1] * cp) / st; // undefined at theta = 0, pi
+                return src.index == 0 ? phi_dot : src.index == 1 ? w[0] * cp - w[1] * sp : w[2] - phi_dot * ct;
+            }
+            const Eigen::Vector3d l = inertia * w; // p = J^T l, J of (5.30)
+            return src.index == 0 ? st * sp * l[0] + st * cp * l[1] + ct * l[2]
+                                  : src.index == 1 ? cp * l[0] - sp * l[1] : l[2];
+        };
+        std::vector<double> row{samples[k].t};
+        for (const auto& src : cf.columns) row.push_back(value(src));
         rows.push_back(std::move(row));
         for (std::size_t i = 0; i < invariants.size(); ++i) {
-            const double v = out[static_cast<std::size_t>(invariants[i].output)];
+            const double v = value(cf.invariants[i]);
             if (k == 0) first[i] = v;
             drift[i] = std::max(drift[i], std::abs(v - first[i]));
         }
@@ -491,30 +610,37 @@ int cmd_simulate(const std::vector<std::string>& args) {
     }
 
     // The summary.
-    const step_stats& st = result.stats;
+    double compile_seconds = 0;
+    bool all_cached = true;
+    for (const auto& cf : forms) compile_seconds += cf.seconds, all_cached = all_cached && cf.lib.was_cached();
     std::cout << "rotgen simulate " << opt.scene << "\n"
               << "  model   " << spec.name << " (" << spec.file << "), " << to_string(scene.form)
-              << " form, " << n << " states\n"
-              << "  method  " << ig.method;
+              << " form, " << forms[0].f.state.size() << " states\n";
+    if (!chart_note.empty()) std::cout << "  chart   " << chart_note << "\n";
+    std::cout << "  method  " << ig.method;
     if (ig.fixed_step()) std::cout << " step " << format_double(ig.step);
     else std::cout << " rtol " << format_double(ig.rtol) << " atol " << format_double(ig.atol);
-    std::cout << ", t " << format_double(scene.t_start) << " .. " << format_double(result.t) << "\n"
-              << "  steps   " << st.accepted << " accepted, " << st.rejected << " rejected; "
-              << st.rhs_evals << " RHS and " << st.jac_evals << " Jacobian evaluations, "
-              << st.factorisations << " factorisations\n"
+    std::cout << ", t " << format_double(scene.t_start) << " .. "
+              << format_double(samples.empty() ? scene.t_start : samples.back().t) << "\n"
+              << "  steps   " << stats.accepted << " accepted, " << stats.rejected << " rejected; "
+              << stats.rhs_evals << " RHS and " << stats.jac_evals << " Jacobian evaluations, "
+              << stats.factorisations << " factorisations\n"
               << "  time    " << short_number(run_seconds * 1e3) << " ms integrating; "
-              << short_number(derive_seconds) << " s deriving, "
-              << short_number(compile_seconds) << " s "
-              << (lib.was_cached() ? "loading the cached kernels" : "compiling the kernels") << "\n";
+              << short_number(derive_seconds) << " s deriving, " << short_number(compile_seconds) << " s "
+              << (all_cached ? "emitting and loading the cached kernels" : "emitting and compiling the kernels") << "\n";
     for (std::size_t i = 0; i < invariants.size(); ++i) {
         const double scale = std::max(std::abs(first[i]), 1e-300);
         std::cout << "  " << (invariants[i].conserved ? "drift   " : "change  ") << invariants[i].name
                   << ": max |" << invariants[i].name << "(t) - " << invariants[i].name
-                  << "(0)| = " << short_number(drift[i]) << " (relative "
-                  << short_number(drift[i] / scale) << ")"
-                  << (invariants[i].conserved ? "" : ", not conserved: the model is damped or driven")
-                  << "\n";
+                  << "(0)| = " << short_number(drift[i]) << " (relative " << short_number(drift[i] / scale) << ")"
+                  << (invariants[i].conserved ? "" : ", not conserved: the model is damped or driven") << "\n";
     }
+    std::size_t non_finite = 0;
+    for (const auto& row : rows)
+        for (double v : row) non_finite += std::isfinite(v) ? 0 : 1;
+    if (non_finite > 0)
+        std::cout << "  note    " << non_finite << " recorded values are not finite (inf or nan): "
+                  << "Euler-angle rates are undefined at theta = 0 and pi\n";
     if (csv_out) std::cout << "  wrote   " << opt.csv << " (" << rows.size() << " samples)\n";
     if (!opt.plot.empty()) {
         std::string csv_for_plot = opt.csv;

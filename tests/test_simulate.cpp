@@ -2,6 +2,8 @@
 // physics of the chapter (5.74-5.79, 5.94, 5.100) and for its handling of bad scenes.
 #include "support.hpp"
 
+#include <exact_free_top.hpp>
+
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -147,20 +149,58 @@ TEST_CASE("body form and Lagrangian form agree away from theta = 0", "[simulate]
     for (std::size_t i = 0; i < theta[0].size(); ++i) CHECK(theta[1][i] == Approx(theta[0][i]).margin(1e-9));
 }
 
-TEST_CASE("gimbal lock: the Euler-angle forms refuse theta = 0, the body form runs", "[simulate]") {
+TEST_CASE("gimbal lock: theta = 0 starts in the body form, or is refused when no chart is free",
+          "[simulate][gimbal]") {
     const std::string common = "initial: {theta: 0, omega1: 0.1, omega2: 0.2, omega3: 1}\n"
-                               "time: {end: 10, samples: 11}\nrecord: [omega1, theta, energy]\n";
-    const scratch_file euler("lock_euler.yaml", scene_text("free_asymmetric_top", "form: hamiltonian\n" + common));
-    const run_result bad = run_rotgen("simulate '" + euler.path + "'");
+                               "time: {end: 10, samples: 11}\nrecord: [omega1, theta, phi_dot, energy]\n";
+    // The damped model's damping acts on Euler-angle rates: its body form is singular too.
+    const scratch_file damped("lock_damped.yaml", scene_text("damped_driven_top", "form: hamiltonian\n" + common));
+    const run_result bad = run_rotgen("simulate '" + damped.path + "'");
     CHECK(bad.status == 2);
-    CHECK(bad.err.find("lock_euler.yaml:3:10: initial theta = 0 is the gimbal-lock singularity") != std::string::npos);
-    const scratch_file body("lock_body.yaml", scene_text("free_asymmetric_top", "form: body\n" + common));
-    const run_result good = run_rotgen("simulate '" + body.path + "' -o '" + scratch("lock.csv") + "'");
+    CHECK(bad.err.find("lock_damped.yaml:3:10: initial theta = 0 is the gimbal-lock singularity") != std::string::npos);
+    const scratch_file free_top("lock_free.yaml", scene_text("free_asymmetric_top", "form: hamiltonian\n" + common));
+    const run_result good = run_rotgen("simulate '" + free_top.path + "' -o '" + scratch("lock.csv") + "'");
     INFO(good.out << good.err);
     CHECK(good.status == 0);
-    const auto th = read_csv(scratch("lock.csv")).values("theta");
-    CHECK(th.front() == Approx(0).margin(1e-12));
-    CHECK(th.back() > 0.01); // it moves off the singular point
+    CHECK(good.out.find("chart   started in the body form (initial theta = 0)") != std::string::npos);
+    // phi_dot is undefined at theta = 0: written as inf, and said so in the summary.
+    CHECK(good.out.find("recorded values are not finite") != std::string::npos);
+    const csv_table t = read_csv(scratch("lock.csv"));
+    CHECK(t.values("theta").front() == Approx(0).margin(1e-12));
+    CHECK(t.values("theta").back() > 0.01); // it moves off the singular point
+    CHECK(std::isfinite(t.values("phi_dot").back()));
+}
+
+TEST_CASE("a free top tumbling through theta ~ 0 stays on the exact solution (chart switch)",
+          "[simulate][gimbal]") {
+    // Issue goal: tracked to the exact solution within 1e-8 over 100 time units at rtol 1e-10.
+    // Started in the Lagrangian form; rotgen switches to the body form when |sin theta| < 0.1.
+    const std::array<double, 3> I{1, 2, 3};
+    for (const std::string start : {"theta: 0.5", "theta: 0"}) {
+        const scratch_file scene(
+            "tumble.yaml",
+            scene_text("free_asymmetric_top",
+                       "form: lagrangian\ninitial: {" + start +
+                           ", omega1: 0.05, omega2: 0.5, omega3: 1}\ntime: {end: 100, samples: 2001}\n"
+                           "integrator: {method: dop853, rtol: 1e-10, atol: 1e-12}\n"
+                           "record: [omega1, omega2, omega3, theta]\n"));
+        const run_result r = run_rotgen("simulate '" + scene.path + "' -o '" + scratch("tumble.csv") + "'");
+        INFO(start << "\n" << r.out << r.err);
+        REQUIRE(r.status == 0);
+        CHECK(r.out.find("chart   ") != std::string::npos);
+        const csv_table t = read_csv(scratch("tumble.csv"));
+        const auto th = t.values("theta");
+        CHECK(*std::min_element(th.begin(), th.end()) < 0.02); // it does pass close to theta = 0
+        const rotgen::free_top_exact<double> exact(I, {0.05, 0.5, 1});
+        double worst = 0;
+        const auto ts = t.values("t");
+        for (std::size_t i = 0; i < ts.size(); ++i) {
+            const auto w = exact(ts[i]);
+            for (int k = 0; k < 3; ++k)
+                worst = std::max(worst, std::abs(t.rows[i][1 + k] - w[static_cast<std::size_t>(k)]));
+        }
+        CHECK(worst < 1e-8);
+    }
 }
 
 TEST_CASE("bad scenes: exit 2, one line naming file and place, no output file", "[simulate][errors]") {
