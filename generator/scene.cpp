@@ -40,7 +40,7 @@ class scene_reader {
         std::string source;
         const YAML::Node root = load_yaml_file(m_file, &source);
         check_keys(root, {"model", "parameters", "form", "initial", "time", "integrator", "record",
-                          "description"},
+                          "description", "switch_chart"},
                    m_file, "the scene");
         m_scene.file = m_file;
         m_scene.where = {m_file, 1, 1};
@@ -55,6 +55,11 @@ class scene_reader {
         read_time(root["time"]);
         if (root["integrator"]) read_integrator(root["integrator"]);
         read_record(root["record"]);
+        if (const YAML::Node sw = root["switch_chart"]) {
+            if (!sw.IsScalar() || (sw.Scalar() != "true" && sw.Scalar() != "false"))
+                throw user_error(at(sw), "switch_chart must be true or false");
+            m_scene.switch_chart = sw.Scalar() == "true";
+        }
         return std::move(m_scene);
     }
 

@@ -449,19 +449,21 @@ int cmd_simulate(const std::vector<std::string>& args) {
     // integration fails — provided the model's body form does not itself go through the chart.
     const double switch_below = 0.1;
     const bool can_switch =
+        scene.switch_chart &&
         (scene.form == form_kind::lagrangian || scene.form == form_kind::hamiltonian) &&
         !build_form(spec, d, form_kind::body, lagrangian_strategy::explicit_inverse, true).uses_euler_chart;
     const bool euler_form = scene.form != form_kind::body;
     bool start_in_body = false;
-    if (euler_form && std::abs(std::sin(scene.angles[1])) < 1e-10) {
-        if (!can_switch)
-            throw user_error(scene.initial_where,
-                             "initial theta = " + format_number(scene.angles[1]) +
-                                 " is the gimbal-lock singularity of the Euler-angle forms (sin theta = "
-                                 "0); use form: body" +
-                                 (scene.form == form_kind::reduced ? "" : " (this model's body form goes through the Euler-angle chart too)"));
-        start_in_body = true;
-    }
+    const double sin_theta0 = std::abs(std::sin(scene.angles[1]));
+    if (euler_form && sin_theta0 < 1e-10 && !can_switch)
+        throw user_error(scene.initial_where,
+                         "initial theta = " + format_number(scene.angles[1]) +
+                             " is the gimbal-lock singularity of the Euler-angle forms (sin theta = "
+                             "0); use form: body" +
+                             (scene.form == form_kind::reduced || !scene.switch_chart
+                                  ? ""
+                                  : " (this model's body form goes through the Euler-angle chart too)"));
+    if (euler_form && can_switch && sin_theta0 < switch_below) start_in_body = true;
     const initial_state k0 = initial_kinematics(scene, d, parameter_values);
     const double derive_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t_derive).count();
@@ -509,7 +511,10 @@ int cmd_simulate(const std::vector<std::string>& args) {
     step_stats stats;
     integration_result<double> result;
     double run_seconds = 0;
-    std::string chart_note = start_in_body ? "started in the body form (initial theta = 0)" : "";
+    std::string chart_note = start_in_body ? "started in the body form (initial |sin theta| = " +
+                                                 short_number(sin_theta0) + " < " +
+                                                 short_number(switch_below) + ")"
+                                           : "";
     Eigen::VectorXd y = form_state(scene, forms[0].f, k0);
     std::vector<double> parameters = form_parameter_values(scene, forms[0].f, k0);
     double t_from = scene.t_start;
