@@ -26,6 +26,18 @@ bool same(const ex& a, const ex& b) {
     return d.is_zero();
 }
 
+// Solves M(q) q_ddot = f(q, q_dot, t) numerically at the point and adds q_ddot to it.
+void add_accelerations(point& pt, const derivation& d, const model_spec& spec) {
+    Eigen::Matrix3d M;
+    Eigen::Vector3d f;
+    for (int i = 0; i < 3; ++i) {
+        f[i] = eval(d.forcing[i], pt.values, spec);
+        for (int j = 0; j < 3; ++j) M(i, j) = eval(d.mass_matrix[i][j], pt.values, spec);
+    }
+    const Eigen::Vector3d qdd = M.lu().solve(f);
+    for (int i = 0; i < 3; ++i) pt.values[symbols().qdd[i]] = qdd[i];
+}
+
 ex param(const model_spec& spec, const std::string& name) { return spec.parameter_names().at(name); }
 
 struct heavy_top_fixture {
@@ -103,15 +115,7 @@ TEST_CASE("free top: the Euler-Lagrange equations are Euler's equations (5.87)-(
     std::mt19937 rng(5087);
     for (int k = 0; k < 50; ++k) {
         point pt(rng, 0.05);
-        // q_ddot from M q_ddot = f
-        Eigen::Matrix3d M;
-        Eigen::Vector3d f;
-        for (int i = 0; i < 3; ++i) {
-            f[i] = eval(d.forcing[i], pt.values, spec);
-            for (int j = 0; j < 3; ++j) M(i, j) = eval(d.mass_matrix[i][j], pt.values, spec);
-        }
-        const Eigen::Vector3d qdd = M.lu().solve(f);
-        for (int i = 0; i < 3; ++i) pt.values[s.qdd[i]] = qdd[i];
+        add_accelerations(pt, d, spec); // q_ddot from M q_ddot = f
         double w[3], wd[3];
         for (int i = 0; i < 3; ++i) {
             w[i] = eval(d.omega[i], pt.values, spec);
@@ -136,14 +140,7 @@ TEST_CASE("H equals T + V and Hamilton's equations agree with Euler-Lagrange", "
     std::mt19937 rng(5079);
     for (int k = 0; k < 20; ++k) {
         point pt(rng);
-        Eigen::Matrix3d M;
-        Eigen::Vector3d f;
-        for (int i = 0; i < 3; ++i) {
-            f[i] = eval(d.forcing[i], pt.values, spec);
-            for (int j = 0; j < 3; ++j) M(i, j) = eval(d.mass_matrix[i][j], pt.values, spec);
-        }
-        const Eigen::Vector3d qdd = M.lu().solve(f);
-        for (int i = 0; i < 3; ++i) pt.values[s.qdd[i]] = qdd[i];
+        add_accelerations(pt, d, spec);
         // the point in phase space: p = p(q, q_dot)
         GiNaC::exmap phase = pt.values;
         for (int i = 0; i < 3; ++i) phase[s.p[i]] = eval(d.momenta[i], pt.values, spec);
