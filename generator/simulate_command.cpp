@@ -481,7 +481,9 @@ int cmd_simulate(const std::vector<std::string>& args) {
                       name.rfind("body_", 0) == 0 || name.find("_dot") != std::string::npos ||
                       name.rfind("p_", 0) == 0;
     if (scene.form == form_kind::body && !orientation && invariants.size() > 1) orientation = true;
-    const std::string command = "rotgen simulate " + opt.scene;
+    // The stamp in the compiled source names no path, so the same kernels are compiled once,
+    // whatever scene file asks for them.
+    const std::string command = "rotgen simulate (kernels of model '" + spec.name + "')";
     std::vector<compiled_form> forms;
     forms.push_back(compile_form(scene, d, start_in_body ? form_kind::body : scene.form, orientation,
                                  invariants, command));

@@ -48,12 +48,19 @@ template <class T> class free_top_exact {
             j = {I[2], I[1], I[0]};
             v = {w0[2], -w0[1], w0[0]};
         }
-        const T e2 = m_e2, l2 = m_l2;
-        m_a1 = sqrt((e2 * j[2] - l2) / (j[0] * (j[2] - j[0])));
-        m_a2 = sqrt((l2 - e2 * j[0]) / (j[1] * (j[1] - j[0])));
-        m_a3 = sqrt((l2 - e2 * j[0]) / (j[2] * (j[2] - j[0])));
-        m_lambda = sqrt((j[1] - j[0]) * (e2 * j[2] - l2) / (j[0] * j[1] * j[2]));
-        m_k = sqrt((j[2] - j[1]) * (l2 - e2 * j[0]) / ((j[1] - j[0]) * (e2 * j[2] - l2)));
+        // 2E I3 - L^2 and L^2 - 2E I1 without cancellation (they are small differences of large
+        // numbers when the moments span many orders of magnitude):
+        //   2E I_k - L^2 = sum_i I_i (I_k - I_i) omega_i^2.
+        T high = 0, low = 0; // 2E j3 - L^2, L^2 - 2E j1
+        for (int i = 0; i < 3; ++i) {
+            high += j[i] * (j[2] - j[i]) * v[i] * v[i];
+            low += j[i] * (j[i] - j[0]) * v[i] * v[i];
+        }
+        m_a1 = sqrt(high / (j[0] * (j[2] - j[0])));
+        m_a2 = sqrt(low / (j[1] * (j[1] - j[0])));
+        m_a3 = sqrt(low / (j[2] * (j[2] - j[0])));
+        m_lambda = sqrt((j[1] - j[0]) * high / (j[0] * j[1] * j[2]));
+        m_k = sqrt((j[2] - j[1]) * low / ((j[1] - j[0]) * high));
         m_s1 = v[0] >= T(0) ? T(1) : T(-1);
         m_sigma = m_s1 * (j[2] > j[0] ? T(1) : T(-1));
         using std::atan2;
