@@ -3,8 +3,9 @@
 #include "symbols.hpp"
 
 #include <algorithm>
+#include <cctype>
+#include <cstdio>
 #include <cmath>
-#include <regex>
 
 namespace rotgen {
 
@@ -31,6 +32,30 @@ std::vector<std::string> record_columns(const std::string& name) {
 }
 
 namespace {
+
+// [+-]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][+-]?[0-9]+)?, matched by hand: libstdc++'s std::regex
+// recurses once per character and overflows the stack on a long scalar.
+bool is_decimal(const std::string& s) {
+    std::size_t i = 0;
+    const auto digits = [&] {
+        const std::size_t from = i;
+        while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i]))) ++i;
+        return i - from;
+    };
+    if (i < s.size() && (s[i] == '+' || s[i] == '-')) ++i;
+    std::size_t mantissa = digits();
+    if (i < s.size() && s[i] == '.') {
+        ++i;
+        mantissa += digits();
+    }
+    if (mantissa == 0) return false;
+    if (i < s.size() && (s[i] == 'e' || s[i] == 'E')) {
+        ++i;
+        if (i < s.size() && (s[i] == '+' || s[i] == '-')) ++i;
+        if (digits() == 0) return false;
+    }
+    return i == s.size();
+}
 
 class scene_reader {
   public:
@@ -67,17 +92,22 @@ class scene_reader {
     source_location at(const YAML::Node& n) const { return location_of(n, m_file); }
 
     double number(const YAML::Node& n, const std::string& what) const {
-        static const std::regex re("[+-]?([0-9]+\\.?[0-9]*|\\.[0-9]+)([eE][+-]?[0-9]+)?");
-        if (!n.IsScalar() || !std::regex_match(n.Scalar(), re))
+        if (!n.IsScalar() || !is_decimal(n.Scalar()))
             throw user_error(at(n), what + " must be a finite number");
         const double v = std::strtod(n.Scalar().c_str(), nullptr);
         if (!std::isfinite(v)) throw user_error(at(n), what + " must be a finite number");
+        // GiNaC::numeric(double) throws CLN's underflow exception on a subnormal number.
+        if (std::fpclassify(v) == FP_SUBNORMAL)
+            throw user_error(at(n), what + " must be 0 or at least 2.2e-308 in magnitude");
         return v;
     }
 
     void read_model(const YAML::Node& n, const std::string& source) {
         if (n.IsMap()) {
             m_scene.model = parse_model(n, m_file, source);
+            m_model_root = n;
+            m_model_file = m_file;
+            m_model_source = source;
             return;
         }
         if (!n.IsScalar()) throw user_error(at(n), "'model' must be a file name or a model mapping");
@@ -86,7 +116,9 @@ class scene_reader {
             const auto slash = m_file.find_last_of('/');
             if (slash != std::string::npos) path = m_file.substr(0, slash + 1) + path;
         }
-        m_scene.model = load_model(path);
+        m_model_root = load_yaml_file(path, &m_model_source);
+        m_model_file = path;
+        m_scene.model = parse_model(m_model_root, m_model_file, m_model_source);
     }
 
     void read_parameters(const YAML::Node& n) {
@@ -100,6 +132,29 @@ class scene_reader {
             const auto it = std::find(names.begin(), names.end(), kv.first.Scalar());
             m_scene.parameters[static_cast<std::size_t>(it - names.begin())] =
                 number(kv.second, "parameter '" + kv.first.Scalar() + "'");
+        }
+        if (n.size() > 0) check_model_with_overrides(n);
+    }
+
+    // The model was checked with its defaults (finite expressions, a physical inertia); check it
+    // again with the scene's values by reading it with those as its defaults (a mass of 0 under a
+    // division, or a negative moment, would otherwise reach the integrator).
+    void check_model_with_overrides(const YAML::Node& overrides) const {
+        // A new parameters mapping (a value may be an alias shared with other nodes).
+        YAML::Node values(YAML::NodeType::Map);
+        for (std::size_t i = 0; i < m_scene.parameters.size(); ++i) {
+            char text[32];
+            std::snprintf(text, sizeof text, "%.17g", m_scene.parameters[i]);
+            values[m_scene.model.parameters[i].name] = std::string(text);
+        }
+        YAML::Node model = YAML::Clone(m_model_root);
+        model.remove("parameters");
+        model["parameters"] = values;
+        try {
+            (void)parse_model(model, m_model_file, m_model_source);
+        } catch (const user_error& e) {
+            throw user_error(at(overrides), "with these parameter values the model (" + m_model_file +
+                                                ") is not valid: " + e.problem());
         }
     }
 
@@ -157,6 +212,8 @@ class scene_reader {
         m_scene.t_end = number(n["end"], "time end");
         if (!(m_scene.t_end > m_scene.t_start))
             throw user_error(at(n["end"]), "time end must be after time start");
+        if (!std::isfinite(m_scene.t_end - m_scene.t_start))
+            throw user_error(at(n["end"]), "the time span end - start is not a finite number");
         if (n["samples"]) {
             const double s = number(n["samples"], "time samples");
             if (s < 2 || s > 1e8 || s != std::floor(s))
@@ -193,6 +250,8 @@ class scene_reader {
         if (n["max_steps"]) {
             double m = 0;
             positive("max_steps", m);
+            if (m < 1 || m > 1e15 || m != std::floor(m))
+                throw user_error(at(n["max_steps"]), "integrator max_steps must be a whole number from 1 to 1e15");
             ig.max_steps = static_cast<long>(m);
         }
         if (ig.fixed_step() && !n["step"])
@@ -228,6 +287,8 @@ class scene_reader {
 
     std::string m_file;
     scene_spec m_scene;
+    YAML::Node m_model_root; // the model's mapping, its file and text (for check_model_with_overrides)
+    std::string m_model_file, m_model_source;
 };
 
 } // namespace

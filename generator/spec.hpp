@@ -1,13 +1,20 @@
 // rotgen — stage 1: a model file, parsed and validated.
 //
 // Schema (DESIGN.md "Interfaces"): name, parameters, inertia (three principal moments or a full
-// symmetric 3x3 matrix in body axes, sign convention of (5.39)), potential (any expression in
-// phi, theta, psi and the parameters), gravity {mass, g, com} shorthand, damping, torque.
-// Keys beyond these are errors. Every error is a user_error naming file, line and column.
+// symmetric 3x3 matrix in body axes, sign convention of (5.39)) or body {pivot, parts} (the
+// tensor computed exactly from point masses, boxes, rods, cylinders and spheres: inertia.hpp),
+// potential (any expression in phi, theta, psi and the parameters), gravity {mass, g, com}
+// shorthand, damping, torque. Keys beyond these are errors. Every error is a user_error naming
+// file, line and column.
+//
+// With `body:` the gravity shorthand may leave out `mass` (default: the parts' total mass) and
+// `com` (default: the parts' centre of mass relative to the pivot; 0 when the pivot is the
+// default, the centre of mass).
 #pragma once
 
 #include "error.hpp"
 #include "expr_parse.hpp"
+#include "inertia.hpp"
 
 #include <ginac/ginac.h>
 #include <yaml-cpp/yaml.h>
@@ -34,8 +41,7 @@ struct gravity_spec {
     std::array<GiNaC::ex, 3> com; // centre of mass in body axes, relative to the fixed point
 };
 
-using matrix3 = std::array<std::array<GiNaC::ex, 3>, 3>;
-using vector3 = std::array<GiNaC::ex, 3>;
+// matrix3, vector3: inertia.hpp
 
 struct model_spec {
     std::string name;   // a C++ identifier: names the header and the namespace
@@ -44,6 +50,10 @@ struct model_spec {
     std::vector<parameter> parameters; // in file order
     matrix3 inertia;                   // body axes, symmetric
     bool inertia_diagonal = true;
+    // `body:` (inertia from parts): the parts as read and what they add up to (body->tensor is
+    // `inertia`); empty when the model gives `inertia:`.
+    std::vector<part> parts;
+    std::optional<body_inertia> body;
     GiNaC::ex potential;               // the `potential:` field plus the gravity shorthand
     std::optional<gravity_spec> gravity;
     vector3 damping;                   // generalised force -damping[i] * q_dot[i]

@@ -77,7 +77,19 @@ TEST_CASE("bad model files give one clear line and exit 2", "[spec][errors]") {
         row{"damping of the wrong length", top + "damping: [1, 2]\n", "4:10",
             "'damping' must be one coefficient or a list of three"},
         row{"torque not a list", top + "torque: 1\n", "4:9", "'torque' must be a list of three"},
-        row{"body not supported yet", "name: top\nbody: {parts: []}\n", "2:7", "'body'"},
+        row{"inertia and body together",
+            "name: top\ninertia: [1, 1, 1]\nbody: {parts: [{point: {mass: 1, at: [1, 0, 0]}}]}\n", "3:7",
+            "give either 'inertia' or 'body'"},
+        row{"body without parts", "name: top\nbody: {parts: []}\n", "2:15", "body 'parts' must be a non-empty list"},
+        row{"unknown part", "name: top\nbody: {parts: [{cylindre: {mass: 1, radius: 1, length: 1, at: [0, 0, 0], axis: [0, 0, 1]}}]}\n",
+            "2:17", "unknown part 'cylindre'"},
+        row{"part without mass", "name: top\nbody: {parts: [{box: {size: [1, 1, 1], at: [0, 0, 0]}}]}\n", "2:17",
+            "the box needs 'mass'"},
+        row{"part of negative size", "name: top\nbody: {parts: [{box: {mass: 1, size: [1, -1, 1], at: [0, 0, 0]}}]}\n",
+            "2:42", "box size must be non-negative, got -1"},
+        row{"part axis of zero length",
+            "name: top\nbody: {parts: [{rod: {mass: 1, length: 1, at: [0, 0, 0], axis: [0, 0, 0]}}]}\n", "2:64",
+            "the rod axis has zero length"},
     }));
     INFO(name);
     const scratch_file file("bad_model.yaml", text);
