@@ -5,7 +5,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 rotgen=${1:-build/rotgen}
-for model in heavy_top free_asymmetric_top full_tensor_top damped_driven_top; do
+for model in heavy_top free_asymmetric_top full_tensor_top damped_driven_top cube_on_corner; do
   for form in lagrangian hamiltonian body reduced; do
     if [ "$form" = reduced ] && [ "$model" = damped_driven_top ]; then continue; fi
     "$rotgen" emit "models/$model.yaml" -o generated --form "$form" >/dev/null
