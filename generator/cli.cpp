@@ -3,6 +3,7 @@
 #include "commands.hpp"
 #include "error.hpp"
 
+#include <cstdio>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -16,6 +17,22 @@ const char* const usage =
     "       rotgen emit MODEL.yaml -o DIR [--form lagrangian|hamiltonian|reduced|body]\n"
     "                  [--outputs rhs,jacobian,...] [--specialise]\n"
     "       rotgen simulate SCENE.yaml [-o out.csv] [--plot out.png]\n";
+
+// A diagnostic is one line whatever the input held: control characters (a newline in a quoted YAML
+// key, a NUL) are shown escaped.
+std::string one_line(const std::string& text) {
+    std::string out;
+    for (unsigned char c : text) {
+        if (c == '\n') out += "\\n";
+        else if (c == '\t') out += "\\t";
+        else if (c < 0x20 || c == 0x7f) {
+            char buf[8];
+            std::snprintf(buf, sizeof buf, "\\x%02x", c);
+            out += buf;
+        } else out += static_cast<char>(c);
+    }
+    return out;
+}
 
 } // namespace
 
@@ -35,12 +52,13 @@ int run_cli(int argc, char** argv) {
         if (command == "inspect") return cmd_inspect(args);
         if (command == "emit") return cmd_emit(args);
         if (command == "simulate") return cmd_simulate(args);
+        if (command == "bench") return cmd_bench(args);
         throw user_error({"rotgen"}, "unknown command '" + command + "' (expected inspect, emit or simulate; see rotgen --help)");
     } catch (const user_error& e) {
-        std::cerr << "rotgen: error: " << e.message() << "\n";
+        std::cerr << "rotgen: error: " << one_line(e.message()) << "\n";
         return 2;
     } catch (const std::exception& e) {
-        std::cerr << "rotgen: internal error: " << e.what() << "\n";
+        std::cerr << "rotgen: internal error: " << one_line(e.what()) << "\n";
         return 1;
     }
 }

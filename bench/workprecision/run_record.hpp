@@ -1,0 +1,33 @@
+// rotgen bench — what one configuration's run produced: the final state (for the error, computed
+// later in long double against the reference), the work counters, the status and the timing.
+#pragma once
+
+#include "timing.hpp"
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace rotgen::bench {
+
+// One line of the plan: which variant (formulation + code generation), which integrator.
+struct run_spec {
+    int variant = 0;
+    std::string peer = "rotgen"; // rotgen | odeint | cvode
+    std::string method;          // rk4 dopri5 dop853 implicit_midpoint rodas4 | dopri5 rkf78 rk4
+                                 // | adams bdf
+    std::string scalar = "double";
+    double tol = 0;  // adaptive methods (rtol = atol = tol), else 0
+    double step = 0; // fixed-step methods, else 0
+};
+
+struct run_record {
+    run_spec spec;
+    std::string status = "ok";
+    std::vector<long double> y; // the final state at the end time (in the variant's layout)
+    std::size_t rhs_evals = 0, jac_evals = 0, steps = 0;
+    timed_job job; // what is timed: the same integration again, from the initial state
+    timing time;   // filled by the driver from job's samples
+};
+
+} // namespace rotgen::bench
