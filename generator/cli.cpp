@@ -16,7 +16,8 @@ const char* const usage =
     "usage: rotgen inspect MODEL.yaml [--format text|latex|json]\n"
     "       rotgen emit MODEL.yaml -o DIR [--form lagrangian|hamiltonian|reduced|body]\n"
     "                  [--outputs rhs,jacobian,...] [--specialise]\n"
-    "       rotgen simulate SCENE.yaml [-o out.csv] [--plot out.png]\n";
+    "       rotgen simulate SCENE.yaml [-o out.csv] [--plot out.png]\n"
+    "       rotgen bench SCENE.yaml [-o DIR] [--quick] [--long-steps N]\n";
 
 // A diagnostic is one line whatever the input held: control characters (a newline in a quoted YAML
 // key, a NUL) are shown escaped.
@@ -53,7 +54,7 @@ int run_cli(int argc, char** argv) {
         if (command == "emit") return cmd_emit(args);
         if (command == "simulate") return cmd_simulate(args);
         if (command == "bench") return cmd_bench(args);
-        throw user_error({"rotgen"}, "unknown command '" + command + "' (expected inspect, emit or simulate; see rotgen --help)");
+        throw user_error({"rotgen"}, "unknown command '" + command + "' (expected inspect, emit, simulate or bench; see rotgen --help)");
     } catch (const user_error& e) {
         std::cerr << "rotgen: error: " << one_line(e.message()) << "\n";
         return 2;

@@ -252,6 +252,6 @@ TEST_CASE("fuzz regressions: control characters in quoted names stay on one line
         row{"a NUL byte (yaml-cpp quotes it in its message)", top + std::string("potential: cos(theta)\0\n", 23)},
     }));
     INFO(name);
-    const scratch_file file("fuzz_regression_model.yaml", text);
+    const scratch_file file("fuzz_regression_control.yaml", text);
     check_one_user_error(run_limited("inspect '" + file.path + "'"), "");
 }
