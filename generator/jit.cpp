@@ -28,14 +28,16 @@ std::string hex(std::uint64_t value) {
     return buf;
 }
 
-namespace {
-
 std::string compiler() {
     const char* cxx = std::getenv("CXX");
     return cxx && *cxx ? cxx : "c++";
 }
 
-const char* const flags = "-std=c++17 -O3 -fno-math-errno -fPIC -shared -Wall -Wextra";
+std::string shell_quote(const std::string& s) {
+    std::string q = "'";
+    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+}
 
 std::string run_capture(const std::string& cmd, int* status) {
     std::string out;
@@ -48,6 +50,10 @@ std::string run_capture(const std::string& cmd, int* status) {
     *status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
     return out;
 }
+
+namespace {
+
+const char* const flags = "-std=c++17 -O3 -fno-math-errno -fPIC -shared -Wall -Wextra";
 
 const std::string& compiler_identity() {
     static const std::string id = [] {

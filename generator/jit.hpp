@@ -37,6 +37,13 @@ class loaded_library {
 
 std::string cache_directory();
 
+// The C++ compiler: $CXX, else c++.
+std::string compiler();
+// s in single quotes for /bin/sh.
+std::string shell_quote(const std::string& s);
+// Runs a shell command, returns its stdout and stderr together; *status = its exit status.
+std::string run_capture(const std::string& cmd, int* status);
+
 // Compiles `source` (a complete translation unit) unless the cache has it, then loads it.
 // `name` labels the files in the cache. Throws std::runtime_error with the compiler's output.
 loaded_library compile_and_load(const std::string& source, const std::string& name);

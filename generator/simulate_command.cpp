@@ -81,12 +81,6 @@ std::string short_number(double x) {
     return buf;
 }
 
-std::string shell_quote(const std::string& s) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
-}
-
 // An output file is written to a temporary beside it, then renamed: never a partial file.
 class output_file {
   public:
