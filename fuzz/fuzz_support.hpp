@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <vector>
@@ -61,7 +62,7 @@ template <class F> void expect_result_or_user_error(F&& f) {
 }
 
 // A scratch directory for the targets that read files (one per process; libFuzzer is
-// single-threaded). Prefers /dev/shm (no disk writes per execution).
+// single-threaded), removed at exit. Prefers /dev/shm (no disk writes per execution).
 inline const std::string& scratch_dir() {
     static const std::string dir = [] {
         const char* base = std::getenv("ROTGEN_FUZZ_TMP");
@@ -71,6 +72,13 @@ inline const std::string& scratch_dir() {
             std::perror("rotgen-fuzz: mkdtemp");
             std::abort();
         }
+        // Removed by an exit handler that does not touch `dir` (destroyed before it runs).
+        static char cleanup[4096];
+        std::snprintf(cleanup, sizeof cleanup, "%s", tmpl.c_str());
+        std::atexit([] {
+            std::error_code ignored;
+            std::filesystem::remove_all(cleanup, ignored);
+        });
         return tmpl;
     }();
     return dir;
