@@ -292,6 +292,11 @@ class parser {
     // base^exponent, refusing 0^(non-positive) and powers whose exact value would be enormous.
     ex checked_pow(const token& at, const ex& base, const ex& exponent) {
         const bool numeric_exponent = GiNaC::is_a<GiNaC::numeric>(exponent);
+        // The derivation expands every expression: (a + b)^1000 would expand to a vast sum
+        // (found by fuzzing: minutes and gigabytes). Sums may be raised to at most the 32nd power.
+        if (numeric_exponent && GiNaC::is_a<GiNaC::add>(base) &&
+            GiNaC::abs(GiNaC::ex_to<GiNaC::numeric>(exponent)) > 32)
+            fail(at, "a sum raised to a power above 32 is not supported (the derivation expands it)");
         if (base.is_zero() && numeric_exponent &&
             !GiNaC::ex_to<GiNaC::numeric>(exponent).is_positive())
             fail(at, "division by zero (0 raised to a non-positive power)");
