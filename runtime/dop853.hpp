@@ -20,8 +20,10 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <string>
 
+#include "combine.hpp"
 #include "derivatives.hpp"
 #include "integrate.hpp"
 #include "step_control.hpp"
@@ -216,26 +218,25 @@ template <class T> struct dop853 : adaptive_options<T> {
 template <class T, class S> class dop853_stepper {
   public:
     using vector = state_vector<T, S>;
+    using work = detail::work_vector<T, S>;
     using tab = dop853_tableau;
 
     dop853_stepper(const dop853<T>& m, std::size_t n) : m_atol(m.atol), m_rtol(m.rtol) {
-        m_y0 = vector::Zero(n);
-        m_y1 = m_y0;
-        m_tmp = m_y0;
-        m_bk = m_y0;
-        for (auto& k : m_k)
-            k = m_y0;
-        for (auto& r : m_r)
-            r = m_y0;
+        const auto zero = detail::make_work_vector<work>(n);
+        m_y0 = m_y1 = m_k1 = zero;
+        m_k.fill(zero);
+        m_r.fill(zero);
     }
 
     int order() const { return 8; }
-    const vector& f_start() const { return k(1); }
-    const vector& y_new() const { return m_y1; }
+    const work& f_start() const { return m_k1; }
+    const work& y_new() const { return m_y1; }
 
     bool start(const S& sys, T t0, const vector& y0, step_stats& stats) {
-        detail::eval_rhs(sys, t0, y0, k(1), stats);
-        return k(1).allFinite();
+        work y = m_y0;
+        detail::assign(y, y0);
+        detail::eval_rhs(sys, t0, y, m_k1, stats);
+        return detail::all_finite(m_k1);
     }
 
     struct outcome {
@@ -243,140 +244,187 @@ template <class T, class S> class dop853_stepper {
         T err;
     };
 
-    outcome attempt(const S& sys, T t, const vector& y, T h, step_stats& stats) {
-        m_y0 = y;
+    // One step of size h from (t, y): stages 2..12, y1 and the error estimate (see combine.hpp
+    // for where the stages are kept).
+    ROTGEN_ALWAYS_INLINE outcome attempt(const S& sys, T t, const vector& y, T h, step_stats& stats,
+                                         bool need_dense) {
         m_t = t;
         m_h = h;
-        auto stage = [&](int i, long double c) {
-            detail::eval_rhs(sys, t + T(c) * h, m_tmp, k(i), stats);
-        };
-        m_tmp = y + h * T(tab::a21) * k(1);
-        stage(2, tab::c2);
-        m_tmp = y + h * (T(tab::a31) * k(1) + T(tab::a32) * k(2));
-        stage(3, tab::c3);
-        m_tmp = y + h * (T(tab::a41) * k(1) + T(tab::a43) * k(3));
-        stage(4, tab::c4);
-        m_tmp = y + h * (T(tab::a51) * k(1) + T(tab::a53) * k(3) + T(tab::a54) * k(4));
-        stage(5, tab::c5);
-        m_tmp = y + h * (T(tab::a61) * k(1) + T(tab::a64) * k(4) + T(tab::a65) * k(5));
-        stage(6, tab::c6);
-        m_tmp = y + h * (T(tab::a71) * k(1) + T(tab::a74) * k(4) + T(tab::a75) * k(5) +
-                         T(tab::a76) * k(6));
-        stage(7, tab::c7);
-        m_tmp = y + h * (T(tab::a81) * k(1) + T(tab::a84) * k(4) + T(tab::a85) * k(5) +
-                         T(tab::a86) * k(6) + T(tab::a87) * k(7));
-        stage(8, tab::c8);
-        m_tmp = y + h * (T(tab::a91) * k(1) + T(tab::a94) * k(4) + T(tab::a95) * k(5) +
-                         T(tab::a96) * k(6) + T(tab::a97) * k(7) + T(tab::a98) * k(8));
-        stage(9, tab::c9);
-        m_tmp = y + h * (T(tab::a101) * k(1) + T(tab::a104) * k(4) + T(tab::a105) * k(5) +
-                         T(tab::a106) * k(6) + T(tab::a107) * k(7) + T(tab::a108) * k(8) +
-                         T(tab::a109) * k(9));
-        stage(10, tab::c10);
-        m_tmp = y + h * (T(tab::a111) * k(1) + T(tab::a114) * k(4) + T(tab::a115) * k(5) +
-                         T(tab::a116) * k(6) + T(tab::a117) * k(7) + T(tab::a118) * k(8) +
-                         T(tab::a119) * k(9) + T(tab::a1110) * k(10));
-        stage(11, tab::c11);
-        m_tmp = y + h * (T(tab::a121) * k(1) + T(tab::a124) * k(4) + T(tab::a125) * k(5) +
-                         T(tab::a126) * k(6) + T(tab::a127) * k(7) + T(tab::a128) * k(8) +
-                         T(tab::a129) * k(9) + T(tab::a1210) * k(10) + T(tab::a1211) * k(11));
-        stage(12, 1.0L);
-        // Σ b_i k_i and the 8th-order solution y1 = y0 + h Σ b_i k_i
-        m_bk = T(tab::b1) * k(1) + T(tab::b6) * k(6) + T(tab::b7) * k(7) + T(tab::b8) * k(8) +
-               T(tab::b9) * k(9) + T(tab::b10) * k(10) + T(tab::b11) * k(11) + T(tab::b12) * k(12);
-        m_y1 = y + h * m_bk;
-        // error estimate: e3 = Σ b k − (bhh1 k1 + bhh2 k9 + bhh3 k12), e5 = Σ er_j k_j
-        using std::abs;
-        using std::max;
-        using std::sqrt;
-        const T tiny = std::numeric_limits<T>::min();
-        T err5 = T(0), err3 = T(0);
-        for (Eigen::Index i = 0; i < y.size(); ++i) {
-            const T sk = max(m_atol + m_rtol * max(abs(y[i]), abs(m_y1[i])), tiny);
-            const T e3 =
-                m_bk[i] - T(tab::bhh1) * k(1)[i] - T(tab::bhh2) * k(9)[i] - T(tab::bhh3) * k(12)[i];
-            const T e5 = T(tab::er1) * k(1)[i] + T(tab::er6) * k(6)[i] + T(tab::er7) * k(7)[i] +
-                         T(tab::er8) * k(8)[i] + T(tab::er9) * k(9)[i] + T(tab::er10) * k(10)[i] +
-                         T(tab::er11) * k(11)[i] + T(tab::er12) * k(12)[i];
-            err3 += (e3 / sk) * (e3 / sk);
-            err5 += (e5 / sk) * (e5 / sk);
+        if constexpr (static_state_size<S>() > 0) {
+            if (need_dense) return attempt_keeping_stages(sys, t, y, h, stats);
+            stages local;
+            return steps(sys, t, y, h, stats, local);
+        } else {
+            return steps(sys, t, y, h, stats, m_k);
         }
-        T deno = err5 + T(0.01) * err3;
-        if (deno <= T(0)) deno = T(1);
-        const T err = abs(h) * err5 * sqrt(T(1) / (T(y.size()) * deno));
-        using std::isfinite;
-        if (!isfinite(err) || !m_y1.allFinite()) return {status::non_finite, err};
-        return {status::ok, err};
     }
 
-    bool accept(const S& sys, step_stats& stats, bool need_dense) {
-        const T h = m_h;
-        const T t = m_t;
-        detail::eval_rhs(sys, t + h, m_y1, k(13), stats); // k13 = f(t + h, y1)
-        if (need_dense && k(13).allFinite()) {
-            // r1 = y0 (m_y0), r2 = y1 − y0, r3 = h k1 − r2, r4 = r2 − h k13 − r3
-            r(2) = m_y1 - m_y0;
-            r(3) = h * k(1) - r(2);
-            r(4) = r(2) - h * k(13) - r(3);
-            r(5) = T(tab::d41) * k(1) + T(tab::d46) * k(6) + T(tab::d47) * k(7) +
-                   T(tab::d48) * k(8) + T(tab::d49) * k(9) + T(tab::d410) * k(10) +
-                   T(tab::d411) * k(11) + T(tab::d412) * k(12);
-            r(6) = T(tab::d51) * k(1) + T(tab::d56) * k(6) + T(tab::d57) * k(7) +
-                   T(tab::d58) * k(8) + T(tab::d59) * k(9) + T(tab::d510) * k(10) +
-                   T(tab::d511) * k(11) + T(tab::d512) * k(12);
-            r(7) = T(tab::d61) * k(1) + T(tab::d66) * k(6) + T(tab::d67) * k(7) +
-                   T(tab::d68) * k(8) + T(tab::d69) * k(9) + T(tab::d610) * k(10) +
-                   T(tab::d611) * k(11) + T(tab::d612) * k(12);
-            r(8) = T(tab::d71) * k(1) + T(tab::d76) * k(6) + T(tab::d77) * k(7) +
-                   T(tab::d78) * k(8) + T(tab::d79) * k(9) + T(tab::d710) * k(10) +
-                   T(tab::d711) * k(11) + T(tab::d712) * k(12);
-            // three extra stages for the 7th-order extension
-            m_tmp =
-                m_y0 + h * (T(tab::a141) * k(1) + T(tab::a147) * k(7) + T(tab::a148) * k(8) +
-                            T(tab::a149) * k(9) + T(tab::a1410) * k(10) + T(tab::a1411) * k(11) +
-                            T(tab::a1412) * k(12) + T(tab::a1413) * k(13));
-            detail::eval_rhs(sys, t + T(tab::c14) * h, m_tmp, k(14), stats);
-            m_tmp =
-                m_y0 + h * (T(tab::a151) * k(1) + T(tab::a156) * k(6) + T(tab::a157) * k(7) +
-                            T(tab::a158) * k(8) + T(tab::a1511) * k(11) + T(tab::a1512) * k(12) +
-                            T(tab::a1513) * k(13) + T(tab::a1514) * k(14));
-            detail::eval_rhs(sys, t + T(tab::c15) * h, m_tmp, k(15), stats);
-            m_tmp = m_y0 + h * (T(tab::a161) * k(1) + T(tab::a166) * k(6) + T(tab::a167) * k(7) +
-                                T(tab::a168) * k(8) + T(tab::a169) * k(9) + T(tab::a1613) * k(13) +
-                                T(tab::a1614) * k(14) + T(tab::a1615) * k(15));
-            detail::eval_rhs(sys, t + T(tab::c16) * h, m_tmp, k(16), stats);
-            r(5) = h * (r(5) + T(tab::d413) * k(13) + T(tab::d414) * k(14) + T(tab::d415) * k(15) +
-                        T(tab::d416) * k(16));
-            r(6) = h * (r(6) + T(tab::d513) * k(13) + T(tab::d514) * k(14) + T(tab::d515) * k(15) +
-                        T(tab::d516) * k(16));
-            r(7) = h * (r(7) + T(tab::d613) * k(13) + T(tab::d614) * k(14) + T(tab::d615) * k(15) +
-                        T(tab::d616) * k(16));
-            r(8) = h * (r(8) + T(tab::d713) * k(13) + T(tab::d714) * k(14) + T(tab::d715) * k(15) +
-                        T(tab::d716) * k(16));
-        }
-        k(1).swap(k(13)); // FSAL
-        return k(1).allFinite();
+    // After an accepted step: k13 = f(t + h, y1), the next step's k1 (FSAL), and the dense output
+    // if the step holds samples.
+    ROTGEN_ALWAYS_INLINE bool accept(const S& sys, step_stats& stats, bool need_dense) {
+        if (need_dense) return accept_dense(sys, stats);
+        detail::eval_rhs(sys, m_t + m_h, m_y1, m_k1, stats);
+        return detail::all_finite(m_k1);
     }
 
     // y(θ) = r1 + θ(r2 + θ1(r3 + θ(r4 + θ1(r5 + θ(r6 + θ1(r7 + θ r8)))))), θ1 = 1 − θ
     void dense(T s, vector& out) const {
         const T s1 = T(1) - s;
-        out = m_y0 +
-              s * (r(2) +
-                   s1 * (r(3) + s * (r(4) + s1 * (r(5) + s * (r(6) + s1 * (r(7) + s * r(8)))))));
+        for (std::size_t i = 0; i < detail::size_of(m_y0); ++i)
+            out[static_cast<Eigen::Index>(i)] =
+                m_y0[i] +
+                s * (r(2)[i] +
+                     s1 * (r(3)[i] +
+                           s * (r(4)[i] +
+                                s1 * (r(5)[i] + s * (r(6)[i] + s1 * (r(7)[i] + s * r(8)[i]))))));
     }
 
   private:
-    vector& k(int i) { return m_k[static_cast<std::size_t>(i - 1)]; }
-    const vector& k(int i) const { return m_k[static_cast<std::size_t>(i - 1)]; }
-    vector& r(int i) { return m_r[static_cast<std::size_t>(i - 2)]; }
-    const vector& r(int i) const { return m_r[static_cast<std::size_t>(i - 2)]; }
+    using stages = std::array<work, 16>; // k1..k16
+
+    // Stages 2..12, y1 and the error estimate, with the stages in k (k[0] receives k1).
+    ROTGEN_ALWAYS_INLINE outcome steps(const S& sys, T t, const vector& y, T h, step_stats& stats,
+                                       stages& k) {
+        using detail::stage;
+        work y0 = m_k1, arg = m_k1;
+        detail::assign(y0, y);
+        k[0] = m_k1;
+        auto f = [&](int i, long double c) {
+            detail::eval_rhs(sys, t + T(c) * h, arg, k[static_cast<std::size_t>(i - 1)], stats);
+        };
+        auto a = [&](long double coefficient, int j) {
+            return detail::make_term<T>(coefficient, k[static_cast<std::size_t>(j - 1)]);
+        };
+        stage(arg, y0, h, a(tab::a21, 1));
+        f(2, tab::c2);
+        stage(arg, y0, h, a(tab::a32, 2), a(tab::a31, 1));
+        f(3, tab::c3);
+        stage(arg, y0, h, a(tab::a43, 3), a(tab::a41, 1));
+        f(4, tab::c4);
+        stage(arg, y0, h, a(tab::a54, 4), a(tab::a51, 1), a(tab::a53, 3));
+        f(5, tab::c5);
+        stage(arg, y0, h, a(tab::a65, 5), a(tab::a61, 1), a(tab::a64, 4));
+        f(6, tab::c6);
+        stage(arg, y0, h, a(tab::a76, 6), a(tab::a71, 1), a(tab::a74, 4), a(tab::a75, 5));
+        f(7, tab::c7);
+        stage(arg, y0, h, a(tab::a87, 7), a(tab::a81, 1), a(tab::a84, 4), a(tab::a85, 5),
+              a(tab::a86, 6));
+        f(8, tab::c8);
+        stage(arg, y0, h, a(tab::a98, 8), a(tab::a91, 1), a(tab::a94, 4), a(tab::a95, 5),
+              a(tab::a96, 6), a(tab::a97, 7));
+        f(9, tab::c9);
+        stage(arg, y0, h, a(tab::a109, 9), a(tab::a101, 1), a(tab::a104, 4), a(tab::a105, 5),
+              a(tab::a106, 6), a(tab::a107, 7), a(tab::a108, 8));
+        f(10, tab::c10);
+        stage(arg, y0, h, a(tab::a1110, 10), a(tab::a111, 1), a(tab::a114, 4), a(tab::a115, 5),
+              a(tab::a116, 6), a(tab::a117, 7), a(tab::a118, 8), a(tab::a119, 9));
+        f(11, tab::c11);
+        stage(arg, y0, h, a(tab::a1211, 11), a(tab::a121, 1), a(tab::a124, 4), a(tab::a125, 5),
+              a(tab::a126, 6), a(tab::a127, 7), a(tab::a128, 8), a(tab::a129, 9),
+              a(tab::a1210, 10));
+        f(12, 1.0L);
+        // y1 = y0 + h Σ b_i k_i (8th order) and the error estimate:
+        //   e3 = Σ b k − (bhh1 k1 + bhh2 k9 + bhh3 k12),  e5 = Σ er_j k_j
+        using std::abs;
+        using std::max;
+        using std::sqrt;
+        const T tiny = std::numeric_limits<T>::min();
+        const std::size_t n = detail::size_of(y0);
+        T err5 = T(0), err3 = T(0);
+        for (std::size_t i = 0; i < n; ++i) {
+            const T bk = T(tab::b1) * k[0][i] + T(tab::b6) * k[5][i] + T(tab::b7) * k[6][i] +
+                         T(tab::b8) * k[7][i] + T(tab::b9) * k[8][i] + T(tab::b10) * k[9][i] +
+                         T(tab::b11) * k[10][i] + T(tab::b12) * k[11][i];
+            const T e3 =
+                bk - T(tab::bhh1) * k[0][i] - T(tab::bhh2) * k[8][i] - T(tab::bhh3) * k[11][i];
+            const T e5 = T(tab::er1) * k[0][i] + T(tab::er6) * k[5][i] + T(tab::er7) * k[6][i] +
+                         T(tab::er8) * k[7][i] + T(tab::er9) * k[8][i] + T(tab::er10) * k[9][i] +
+                         T(tab::er11) * k[10][i] + T(tab::er12) * k[11][i];
+            const T y1 = y0[i] + h * bk;
+            m_y1[i] = y1;
+            const T inv_sk = T(1) / max(m_atol + m_rtol * max(abs(y0[i]), abs(y1)), tiny);
+            err3 += (e3 * inv_sk) * (e3 * inv_sk);
+            err5 += (e5 * inv_sk) * (e5 * inv_sk);
+        }
+        m_y0 = y0;
+        T deno = err5 + T(0.01) * err3;
+        if (deno <= T(0)) deno = T(1);
+        const T err = abs(h) * err5 * sqrt(T(1) / (T(n) * deno));
+        using std::isfinite;
+        if (!isfinite(err) || !detail::all_finite(m_y1)) return {status::non_finite, err};
+        return {status::ok, err};
+    }
+
+
+    ROTGEN_COLD outcome attempt_keeping_stages(const S& sys, T t, const vector& y, T h,
+                                               step_stats& stats) {
+        return steps(sys, t, y, h, stats, m_k);
+    }
+
+    ROTGEN_COLD bool accept_dense(const S& sys, step_stats& stats) {
+        using detail::combination;
+        using detail::stage;
+        const T h = m_h;
+        const T t = m_t;
+        auto& k = m_k;
+        detail::eval_rhs(sys, t + h, m_y1, k[12], stats); // k13 = f(t + h, y1)
+        const bool finite = detail::all_finite(k[12]);
+        if (finite) {
+            auto a = [&](long double coefficient, int j) {
+                return detail::make_term<T>(coefficient, k[static_cast<std::size_t>(j - 1)]);
+            };
+            // r1 = y0, r2 = y1 − y0, r3 = h k1 − r2, r4 = r2 − h k13 − r3
+            for (std::size_t i = 0; i < detail::size_of(m_y0); ++i) {
+                r(2)[i] = m_y1[i] - m_y0[i];
+                r(3)[i] = h * k[0][i] - r(2)[i];
+                r(4)[i] = r(2)[i] - h * k[12][i] - r(3)[i];
+            }
+            // three extra stages for the 7th-order extension
+            work& arg = r(5);
+            auto f = [&](int i, long double c) {
+                detail::eval_rhs(sys, t + T(c) * h, arg, k[static_cast<std::size_t>(i - 1)], stats);
+            };
+            stage(arg, m_y0, h, a(tab::a1413, 13), a(tab::a141, 1), a(tab::a147, 7),
+                  a(tab::a148, 8), a(tab::a149, 9), a(tab::a1410, 10), a(tab::a1411, 11),
+                  a(tab::a1412, 12));
+            f(14, tab::c14);
+            stage(arg, m_y0, h, a(tab::a1514, 14), a(tab::a151, 1), a(tab::a156, 6),
+                  a(tab::a157, 7), a(tab::a158, 8), a(tab::a1511, 11), a(tab::a1512, 12),
+                  a(tab::a1513, 13));
+            f(15, tab::c15);
+            stage(arg, m_y0, h, a(tab::a1615, 15), a(tab::a161, 1), a(tab::a166, 6),
+                  a(tab::a167, 7), a(tab::a168, 8), a(tab::a169, 9), a(tab::a1613, 13),
+                  a(tab::a1614, 14));
+            f(16, tab::c16);
+            // r5..r8 = h Σ d_{4..7,j} k_j
+            combination(r(5), a(tab::d41, 1), a(tab::d46, 6), a(tab::d47, 7), a(tab::d48, 8),
+                        a(tab::d49, 9), a(tab::d410, 10), a(tab::d411, 11), a(tab::d412, 12),
+                        a(tab::d413, 13), a(tab::d414, 14), a(tab::d415, 15), a(tab::d416, 16));
+            combination(r(6), a(tab::d51, 1), a(tab::d56, 6), a(tab::d57, 7), a(tab::d58, 8),
+                        a(tab::d59, 9), a(tab::d510, 10), a(tab::d511, 11), a(tab::d512, 12),
+                        a(tab::d513, 13), a(tab::d514, 14), a(tab::d515, 15), a(tab::d516, 16));
+            combination(r(7), a(tab::d61, 1), a(tab::d66, 6), a(tab::d67, 7), a(tab::d68, 8),
+                        a(tab::d69, 9), a(tab::d610, 10), a(tab::d611, 11), a(tab::d612, 12),
+                        a(tab::d613, 13), a(tab::d614, 14), a(tab::d615, 15), a(tab::d616, 16));
+            combination(r(8), a(tab::d71, 1), a(tab::d76, 6), a(tab::d77, 7), a(tab::d78, 8),
+                        a(tab::d79, 9), a(tab::d710, 10), a(tab::d711, 11), a(tab::d712, 12),
+                        a(tab::d713, 13), a(tab::d714, 14), a(tab::d715, 15), a(tab::d716, 16));
+            for (int j = 5; j <= 8; ++j)
+                for (auto& v : r(j))
+                    v *= h;
+        }
+        m_k1 = k[12]; // FSAL: k13 is the next step's k1
+        return finite;
+    }
+
+    work& r(int i) { return m_r[static_cast<std::size_t>(i - 2)]; }
+    const work& r(int i) const { return m_r[static_cast<std::size_t>(i - 2)]; }
 
     T m_atol, m_rtol;
     T m_t = T(0), m_h = T(0);
-    vector m_y0, m_y1, m_tmp, m_bk;
-    std::array<vector, 16> m_k; // k1..k16
-    std::array<vector, 7> m_r;  // r2..r8
+    work m_y0, m_y1, m_k1; // start and end of the step, f at the start
+    stages m_k;            // the stages of the last step (with a static size: steps with samples)
+    std::array<work, 7> m_r; // r2..r8
 };
 
 } // namespace rotgen

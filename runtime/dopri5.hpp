@@ -12,9 +12,12 @@
 // a continuous extension of order 4 (local error O(h^5)), at no extra evaluations of f.
 #pragma once
 
+#include <array>
 #include <cmath>
+#include <limits>
 #include <string>
 
+#include "combine.hpp"
 #include "derivatives.hpp"
 #include "integrate.hpp"
 #include "step_control.hpp"
@@ -67,20 +70,24 @@ template <class T> struct dopri5 : adaptive_options<T> {
 template <class T, class S> class dopri5_stepper {
   public:
     using vector = state_vector<T, S>;
+    using work = detail::work_vector<T, S>; // see combine.hpp
     using tab = dopri5_tableau;
 
-    dopri5_stepper(const dopri5<T>& m, std::size_t n)
-        : m_atol(m.atol), m_rtol(m.rtol), m_y0(vector::Zero(n)), m_y1(m_y0), m_tmp(m_y0),
-          m_k1(m_y0), m_k2(m_y0), m_k3(m_y0), m_k4(m_y0), m_k5(m_y0), m_k6(m_y0), m_k7(m_y0),
-          m_r2(m_y0), m_r3(m_y0), m_r4(m_y0), m_r5(m_y0) {}
+    dopri5_stepper(const dopri5<T>& m, std::size_t n) : m_atol(m.atol), m_rtol(m.rtol) {
+        const auto zero = detail::make_work_vector<work>(n);
+        m_y0 = m_y1 = m_r2 = m_r3 = m_r4 = m_r5 = zero;
+        m_k.fill(zero);
+    }
 
     int order() const { return 5; }
-    const vector& f_start() const { return m_k1; }
-    const vector& y_new() const { return m_y1; }
+    const work& f_start() const { return m_k[0]; }
+    const work& y_new() const { return m_y1; }
 
     bool start(const S& sys, T t0, const vector& y0, step_stats& stats) {
-        detail::eval_rhs(sys, t0, y0, m_k1, stats); // k1 = f(t0, y0)
-        return m_k1.allFinite();
+        work y = m_y0;
+        detail::assign(y, y0);
+        detail::eval_rhs(sys, t0, y, m_k[0], stats); // k1 = f(t0, y0)
+        return detail::all_finite(m_k[0]);
     }
 
     struct outcome {
@@ -88,58 +95,109 @@ template <class T, class S> class dopri5_stepper {
         T err;
     };
 
-    outcome attempt(const S& sys, T t, const vector& y, T h, step_stats& stats) {
-        m_y0 = y;
+    // One step of size h from (t, y): stages 2..7 (k7 = f(t + h, y1), FSAL), y1 and the error
+    // estimate (see combine.hpp for where the stages are kept).
+    ROTGEN_ALWAYS_INLINE outcome attempt(const S& sys, T t, const vector& y, T h, step_stats& stats,
+                                         bool need_dense) {
         m_h = h;
-        m_tmp = y + h * T(tab::a21) * m_k1;
-        detail::eval_rhs(sys, t + T(tab::c2) * h, m_tmp, m_k2, stats);
-        m_tmp = y + h * (T(tab::a31) * m_k1 + T(tab::a32) * m_k2);
-        detail::eval_rhs(sys, t + T(tab::c3) * h, m_tmp, m_k3, stats);
-        m_tmp = y + h * (T(tab::a41) * m_k1 + T(tab::a42) * m_k2 + T(tab::a43) * m_k3);
-        detail::eval_rhs(sys, t + T(tab::c4) * h, m_tmp, m_k4, stats);
-        m_tmp = y + h * (T(tab::a51) * m_k1 + T(tab::a52) * m_k2 + T(tab::a53) * m_k3 +
-                         T(tab::a54) * m_k4);
-        detail::eval_rhs(sys, t + T(tab::c5) * h, m_tmp, m_k5, stats);
-        m_tmp = y + h * (T(tab::a61) * m_k1 + T(tab::a62) * m_k2 + T(tab::a63) * m_k3 +
-                         T(tab::a64) * m_k4 + T(tab::a65) * m_k5);
-        detail::eval_rhs(sys, t + h, m_tmp, m_k6, stats);
-        // y1 = y0 + h Σ b_i k_i   (5th order)
-        m_y1 = y + h * (T(tab::a71) * m_k1 + T(tab::a73) * m_k3 + T(tab::a74) * m_k4 +
-                        T(tab::a75) * m_k5 + T(tab::a76) * m_k6);
-        detail::eval_rhs(sys, t + h, m_y1, m_k7, stats); // k7 = f(t + h, y1), FSAL
-        // err_vec = h Σ e_i k_i
-        m_tmp = h * (T(tab::e1) * m_k1 + T(tab::e3) * m_k3 + T(tab::e4) * m_k4 + T(tab::e5) * m_k5 +
-                     T(tab::e6) * m_k6 + T(tab::e7) * m_k7);
-        const T err = detail::error_norm(m_tmp, y, m_y1, m_atol, m_rtol);
-        using std::isfinite;
-        if (!isfinite(err) || !m_y1.allFinite() || !m_k7.allFinite())
-            return {status::non_finite, err};
-        return {status::ok, err};
+        if constexpr (static_state_size<S>() > 0) {
+            if (need_dense) return attempt_keeping_stages(sys, t, y, h, stats);
+            stages local;
+            local[0] = m_k[0];
+            const outcome out = steps(sys, t, y, h, stats, local);
+            m_k[6] = local[6];
+            return out;
+        } else {
+            return steps(sys, t, y, h, stats, m_k);
+        }
     }
 
-    bool accept(const S&, step_stats&, bool need_dense) {
-        if (need_dense) {
-            // r2 = y1 − y0, r3 = h k1 − r2, r4 = r2 − h k7 − r3, r5 = h Σ d_i k_i
-            m_r2 = m_y1 - m_y0;
-            m_r3 = m_h * m_k1 - m_r2;
-            m_r4 = m_r2 - m_h * m_k7 - m_r3;
-            m_r5 = m_h * (T(tab::d1) * m_k1 + T(tab::d3) * m_k3 + T(tab::d4) * m_k4 +
-                          T(tab::d5) * m_k5 + T(tab::d6) * m_k6 + T(tab::d7) * m_k7);
-        }
-        m_k1.swap(m_k7); // FSAL: f(t + h, y1) is the next step's first stage
+    ROTGEN_ALWAYS_INLINE bool accept(const S&, step_stats&, bool need_dense) {
+        if (need_dense) prepare_dense();
+        m_k[0] = m_k[6]; // FSAL: f(t + h, y1) is the next step's first stage
         return true;
     }
 
     // y(t_n + θh) = r1 + θ(r2 + (1−θ)(r3 + θ(r4 + (1−θ) r5))), valid after accept(…, true)
     void dense(T theta, vector& out) const {
         const T th1 = T(1) - theta;
-        out = m_y0 + theta * (m_r2 + th1 * (m_r3 + theta * (m_r4 + th1 * m_r5)));
+        for (std::size_t i = 0; i < detail::size_of(m_y0); ++i)
+            out[static_cast<Eigen::Index>(i)] =
+                m_y0[i] + theta * (m_r2[i] + th1 * (m_r3[i] + theta * (m_r4[i] + th1 * m_r5[i])));
     }
 
   private:
+    using stages = std::array<work, 7>; // k1..k7
+
+    ROTGEN_COLD outcome attempt_keeping_stages(const S& sys, T t, const vector& y, T h,
+                                               step_stats& stats) {
+        return steps(sys, t, y, h, stats, m_k);
+    }
+
+    // Stages 2..7, y1 and the error estimate, with the stages in k (k[0] holds k1).
+    ROTGEN_ALWAYS_INLINE outcome steps(const S& sys, T t, const vector& y, T h, step_stats& stats,
+                                       stages& k) {
+        using detail::stage;
+        work y0 = k[0], arg = k[0];
+        detail::assign(y0, y);
+        auto f = [&](int i, long double c, const work& at) {
+            detail::eval_rhs(sys, t + T(c) * h, at, k[static_cast<std::size_t>(i - 1)], stats);
+        };
+        auto a = [&](long double coefficient, int j) {
+            return detail::make_term<T>(coefficient, k[static_cast<std::size_t>(j - 1)]);
+        };
+        stage(arg, y0, h, a(tab::a21, 1));
+        f(2, tab::c2, arg);
+        stage(arg, y0, h, a(tab::a32, 2), a(tab::a31, 1));
+        f(3, tab::c3, arg);
+        stage(arg, y0, h, a(tab::a43, 3), a(tab::a41, 1), a(tab::a42, 2));
+        f(4, tab::c4, arg);
+        stage(arg, y0, h, a(tab::a54, 4), a(tab::a51, 1), a(tab::a52, 2), a(tab::a53, 3));
+        f(5, tab::c5, arg);
+        stage(arg, y0, h, a(tab::a65, 5), a(tab::a61, 1), a(tab::a62, 2), a(tab::a63, 3),
+              a(tab::a64, 4));
+        f(6, 1.0L, arg);
+        // y1 = y0 + h Σ b_i k_i (5th order); k7 = f(t + h, y1) (FSAL)
+        stage(m_y1, y0, h, a(tab::a76, 6), a(tab::a71, 1), a(tab::a73, 3), a(tab::a74, 4),
+              a(tab::a75, 5));
+        f(7, 1.0L, m_y1);
+        // err_i = h Σ e_j k_j,i;  err = RMS_i err_i / (atol + rtol·max(|y0_i|, |y1_i|))
+        using std::abs;
+        using std::max;
+        using std::sqrt;
+        const T tiny = std::numeric_limits<T>::min();
+        const std::size_t n = detail::size_of(y0);
+        T sum = T(0);
+        for (std::size_t i = 0; i < n; ++i) {
+            const T e = h * (T(tab::e1) * k[0][i] + T(tab::e3) * k[2][i] + T(tab::e4) * k[3][i] +
+                             T(tab::e5) * k[4][i] + T(tab::e6) * k[5][i] + T(tab::e7) * k[6][i]);
+            const T r = e / max(m_atol + m_rtol * max(abs(y0[i]), abs(m_y1[i])), tiny);
+            sum += r * r;
+        }
+        m_y0 = y0;
+        const T err = sqrt(sum / T(n));
+        using std::isfinite;
+        if (!isfinite(err) || !detail::all_finite(m_y1) || !detail::all_finite(k[6]))
+            return {status::non_finite, err};
+        return {status::ok, err};
+    }
+
+    // r2 = y1 − y0, r3 = h k1 − r2, r4 = r2 − h k7 − r3, r5 = h Σ d_i k_i
+    ROTGEN_COLD void prepare_dense() {
+        const auto& k = m_k;
+        for (std::size_t i = 0; i < detail::size_of(m_y0); ++i) {
+            m_r2[i] = m_y1[i] - m_y0[i];
+            m_r3[i] = m_h * k[0][i] - m_r2[i];
+            m_r4[i] = m_r2[i] - m_h * k[6][i] - m_r3[i];
+            m_r5[i] = m_h * (T(tab::d1) * k[0][i] + T(tab::d3) * k[2][i] + T(tab::d4) * k[3][i] +
+                             T(tab::d5) * k[4][i] + T(tab::d6) * k[5][i] + T(tab::d7) * k[6][i]);
+        }
+    }
+
     T m_atol, m_rtol;
     T m_h = T(0);
-    vector m_y0, m_y1, m_tmp, m_k1, m_k2, m_k3, m_k4, m_k5, m_k6, m_k7, m_r2, m_r3, m_r4, m_r5;
+    work m_y0, m_y1, m_r2, m_r3, m_r4, m_r5;
+    stages m_k; // the last step's stages (static size: k1 and k7, all in steps with samples)
 };
 
 } // namespace rotgen

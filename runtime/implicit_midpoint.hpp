@@ -85,7 +85,7 @@ template <class T, class S> class implicit_midpoint_stepper {
         T err;
     };
 
-    outcome attempt(const S& sys, T t, const vector& y, T h, step_stats& stats) {
+    outcome attempt(const S& sys, T t, const vector& y, T h, step_stats& stats, bool) {
         m_y0 = y;
         m_h = h;
         m_t1 = t + h;

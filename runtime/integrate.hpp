@@ -34,6 +34,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "combine.hpp"
 #include "result.hpp"
 #include "step_control.hpp"
 #include "system.hpp"
@@ -47,14 +48,15 @@ template <class M> struct is_method<M, std::enable_if_t<M::is_rotgen_method>> : 
 
 // Cubic Hermite interpolation on a step [t, t + h] at t + θh from y and f at both ends:
 //   y(θ) = (1+2θ)(1−θ)² y0 + θ(1−θ)² h f0 + θ²(3−2θ) y1 + θ²(θ−1) h f1
-template <class T, class V>
-void hermite(T theta, T h, const V& y0, const V& f0, const V& y1, const V& f1, V& out) {
+template <class T, class V, class Out>
+void hermite(T theta, T h, const V& y0, const V& f0, const V& y1, const V& f1, Out& out) {
     const T one_m = T(1) - theta;
     const T h00 = (T(1) + T(2) * theta) * one_m * one_m;
-    const T h10 = theta * one_m * one_m;
+    const T h10 = theta * one_m * one_m * h;
     const T h01 = theta * theta * (T(3) - T(2) * theta);
-    const T h11 = theta * theta * (theta - T(1));
-    out = h00 * y0 + (h10 * h) * f0 + h01 * y1 + (h11 * h) * f1;
+    const T h11 = theta * theta * (theta - T(1)) * h;
+    for (std::size_t i = 0; i < size_of(y0); ++i)
+        out[static_cast<Eigen::Index>(i)] = h00 * y0[i] + h10 * f0[i] + h01 * y1[i] + h11 * f1[i];
 }
 
 template <class T> std::string format_time(T t) {
@@ -62,6 +64,24 @@ template <class T> std::string format_time(T t) {
     os.precision(std::numeric_limits<T>::digits10 + 2);
     os << static_cast<long double>(t);
     return os.str();
+}
+
+// The messages of a stopped integration, out of line: they are built once per run at most, and
+// keeping them out of the stepping loop keeps the loop small enough for the compiler to hold the
+// state in registers.
+template <class T> ROTGEN_COLD std::string underflow_message(bool nonfinite, T h, T t) {
+    return (nonfinite ? std::string("non-finite values in the stages; ") : std::string()) +
+           "step size " + format_time(h) + " underflows at t = " + format_time(t);
+}
+template <class T> ROTGEN_COLD std::string max_steps_message(std::size_t max_steps, T t) {
+    return "max_steps = " + std::to_string(max_steps) + " reached at t = " + format_time(t);
+}
+template <class T> ROTGEN_COLD std::string newton_message(T t, T h) {
+    return "Newton iteration did not converge in the step from t = " + format_time(t) +
+           " with h = " + format_time(h);
+}
+template <class T> ROTGEN_COLD std::string nonfinite_message(const char* what, T t) {
+    return what + format_time(t);
 }
 
 template <class T>
@@ -180,6 +200,9 @@ integrate(const S& sys, const Method& method, detail::identity_t<typename Method
         }
     }
 
+    // The current state lives in a local copy while stepping (registers, for small static sizes;
+    // the caller's vector would be stored and reloaded on every step) and goes back to `y` at the end.
+    vector y_now = y;
     vector ys = y; // scratch for dense output
     T t = t0;
     bool last_nonfinite = false;
@@ -200,32 +223,27 @@ integrate(const S& sys, const Method& method, detail::identity_t<typename Method
         }
         if (!(abs(h) >= T(16) * eps * abs(t)) || h == T(0)) {
             res.code = last_nonfinite ? status::non_finite : status::step_size_underflow;
-            res.message = (last_nonfinite ? std::string("non-finite values in the stages; ")
-                                          : std::string()) +
-                          "step size " + detail::format_time(abs(h)) +
-                          " underflows at t = " + detail::format_time(t);
+            res.message = detail::underflow_message(last_nonfinite, abs(h), t);
             break;
         }
         if (stats.steps >= max_steps) {
             res.code = status::max_steps;
-            res.message = "max_steps = " + std::to_string(max_steps) +
-                          " reached at t = " + detail::format_time(t);
+            res.message = detail::max_steps_message(max_steps, t);
             break;
         }
         ++stats.steps;
-        const auto out = st.attempt(sys, t, y, h, stats);
+        const bool need_dense = idx < ns && dir * (T(sample_times[idx]) - t_next) < T(0);
+        const auto out = st.attempt(sys, t, y_now, h, stats, need_dense);
         if (out.code == status::newton_failure) {
             res.code = status::newton_failure;
-            res.message =
-                "Newton iteration did not converge in the step from t = " + detail::format_time(t) +
-                " with h = " + detail::format_time(h);
+            res.message = detail::newton_message(t, h);
             break;
         }
         if (out.code == status::non_finite) {
             if (!controlled) {
                 res.code = status::non_finite;
                 res.message =
-                    "state became non-finite in the step from t = " + detail::format_time(t);
+                    detail::nonfinite_message("state became non-finite in the step from t = ", t);
                 break;
             }
             ++stats.rejected;
@@ -242,29 +260,29 @@ integrate(const S& sys, const Method& method, detail::identity_t<typename Method
         // ---- accepted ----
         ++stats.accepted;
         last_nonfinite = false;
-        const bool need_dense = idx < ns && dir * (T(sample_times[idx]) - t_next) < T(0);
         const bool f_ok = st.accept(sys, stats, need_dense);
         while (idx < ns && dir * (T(sample_times[idx]) - t_next) < T(0)) {
             st.dense((T(sample_times[idx]) - t) / h, ys);
             observer(T(sample_times[idx]), static_cast<const vector&>(ys));
             ++idx;
         }
-        y = st.y_new();
+        detail::assign(y_now, st.y_new());
         t = t_next;
         res.last_step = h;
         while (idx < ns && T(sample_times[idx]) == t) {
-            observer(t, static_cast<const vector&>(y));
+            observer(t, static_cast<const vector&>(y_now));
             ++idx;
         }
         if (last) break;
         if (!f_ok) {
             res.code = status::non_finite;
-            res.message = "f(t, y) is not finite at t = " + detail::format_time(t);
+            res.message = detail::nonfinite_message("f(t, y) is not finite at t = ", t);
             break;
         }
         ++k;
         if (controlled) h = controller.accepted(h, out.err);
     }
+    y = y_now;
     res.t = t;
     res.stats = stats;
     return res;

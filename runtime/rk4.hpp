@@ -16,6 +16,7 @@
 #include <cstddef>
 #include <string>
 
+#include "combine.hpp"
 #include "derivatives.hpp"
 #include "integrate.hpp"
 #include "system.hpp"
@@ -43,19 +44,21 @@ template <class T> struct rk4 {
 template <class T, class S> class rk4_stepper {
   public:
     using vector = state_vector<T, S>;
+    using work = detail::work_vector<T, S>; // see combine.hpp
 
     rk4_stepper(const rk4<T>&, std::size_t n)
-        : m_y0(vector::Zero(n)), m_y1(m_y0), m_tmp(m_y0), m_k1(m_y0), m_k2(m_y0), m_k3(m_y0),
-          m_k4(m_y0), m_f1(m_y0) {}
+        : m_y0(detail::make_work_vector<work>(n)), m_y1(m_y0), m_k1(m_y0), m_f1(m_y0) {}
 
     int order() const { return 4; }
-    const vector& f_start() const { return m_k1; }
-    const vector& y_new() const { return m_y1; }
+    const work& f_start() const { return m_f1; }
+    const work& y_new() const { return m_y1; }
 
     bool start(const S& sys, T t0, const vector& y0, step_stats& stats) {
-        detail::eval_rhs(sys, t0, y0, m_f1, stats); // becomes k1 of the first step
+        work y = m_y0;
+        detail::assign(y, y0);
+        detail::eval_rhs(sys, t0, y, m_f1, stats); // becomes k1 of the first step
         m_f1_valid = true;
-        return m_f1.allFinite();
+        return detail::all_finite(m_f1);
     }
 
     struct outcome {
@@ -63,31 +66,39 @@ template <class T, class S> class rk4_stepper {
         T err;
     };
 
-    outcome attempt(const S& sys, T t, const vector& y, T h, step_stats& stats) {
-        m_y0 = y;
+    ROTGEN_ALWAYS_INLINE outcome attempt(const S& sys, T t, const vector& y, T h, step_stats& stats,
+                                         bool) {
+        using detail::make_term;
+        using detail::stage;
+        work y0 = m_y0, k1 = m_y0, k2 = m_y0, k3 = m_y0, k4 = m_y0, arg = m_y0;
+        detail::assign(y0, y);
         m_h = h;
         const T h2 = h / T(2);
         if (m_f1_valid)
-            m_k1.swap(m_f1); // f at the end of the previous step = f(t, y)
+            k1 = m_f1; // f at the end of the previous step = f(t, y)
         else
-            detail::eval_rhs(sys, t, y, m_k1, stats);
+            detail::eval_rhs(sys, t, y0, k1, stats);
         m_f1_valid = false;
-        m_tmp = y + h2 * m_k1; // y + h/2 k1
-        detail::eval_rhs(sys, t + h2, m_tmp, m_k2, stats);
-        m_tmp = y + h2 * m_k2; // y + h/2 k2
-        detail::eval_rhs(sys, t + h2, m_tmp, m_k3, stats);
-        m_tmp = y + h * m_k3; // y + h k3
-        detail::eval_rhs(sys, t + h, m_tmp, m_k4, stats);
-        m_y1 = y + (h / T(6)) * (m_k1 + T(2) * m_k2 + T(2) * m_k3 + m_k4);
+        stage(arg, y0, h, make_term<T>(0.5L, k1));
+        detail::eval_rhs(sys, t + h2, arg, k2, stats);
+        stage(arg, y0, h, make_term<T>(0.5L, k2));
+        detail::eval_rhs(sys, t + h2, arg, k3, stats);
+        stage(arg, y0, h, make_term<T>(1.0L, k3));
+        detail::eval_rhs(sys, t + h, arg, k4, stats);
+        const T h6 = h / T(6);
+        for (std::size_t i = 0; i < detail::size_of(y0); ++i)
+            m_y1[i] = y0[i] + h6 * (k1[i] + T(2) * k2[i] + T(2) * k3[i] + k4[i]);
+        m_y0 = y0;
+        m_k1 = k1;
         m_t1 = t + h;
-        return {m_y1.allFinite() ? status::ok : status::non_finite, T(0)};
+        return {detail::all_finite(m_y1) ? status::ok : status::non_finite, T(0)};
     }
 
-    bool accept(const S& sys, step_stats& stats, bool need_dense) {
+    ROTGEN_ALWAYS_INLINE bool accept(const S& sys, step_stats& stats, bool need_dense) {
         if (need_dense) { // f(t + h, y1) for the Hermite interpolant; reused as the next k1
             detail::eval_rhs(sys, m_t1, m_y1, m_f1, stats);
             m_f1_valid = true;
-            return m_f1.allFinite();
+            return detail::all_finite(m_f1);
         }
         return true;
     }
@@ -99,7 +110,7 @@ template <class T, class S> class rk4_stepper {
   private:
     T m_h = T(0), m_t1 = T(0);
     bool m_f1_valid = false;
-    vector m_y0, m_y1, m_tmp, m_k1, m_k2, m_k3, m_k4, m_f1;
+    work m_y0, m_y1, m_k1, m_f1;
 };
 
 } // namespace rotgen

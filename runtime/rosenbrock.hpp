@@ -125,7 +125,7 @@ template <class T, class S> class rodas4_stepper {
         T err;
     };
 
-    outcome attempt(const S& sys, T t, const vector& y, T h, step_stats& stats) {
+    outcome attempt(const S& sys, T t, const vector& y, T h, step_stats& stats, bool) {
         m_y0 = y;
         m_t = t;
         m_h = h;

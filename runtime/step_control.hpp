@@ -7,6 +7,7 @@
 #include <limits>
 #include <string>
 
+#include "combine.hpp"
 #include "derivatives.hpp"
 #include "result.hpp"
 
@@ -71,16 +72,16 @@ template <class T> class pi_controller {
   public:
     pi_controller(const adaptive_options<T>& o, int q)
         : m_safety(o.safety), m_facmin(o.facmin), m_facmax(o.facmax), m_beta(o.beta),
-          m_alpha(T(1) / T(q) - T(0.75) * o.beta) {}
+          m_alpha(T(1) / T(q) - T(0.75) * o.beta), m_eighth_root(o.beta == T(0) && q == 8) {}
 
     // New step after an accepted step of size h with error err (<= 1).
     T accepted(T h, T err) {
-        using std::abs;
         using std::max;
         using std::min;
         using std::pow;
-        const T fac11 = pow(err, m_alpha);
-        T ratio = m_safety / (fac11 / pow(m_err_old, m_beta)); // = 1/fac of the Fortran code
+        const T fac11 = power_alpha(err);
+        // = 1/fac of the Fortran code; err_old^beta is 1 for the I controller (beta = 0)
+        T ratio = m_safety / (m_beta == T(0) ? fac11 : fac11 / pow(m_err_old, m_beta));
         if (!(ratio == ratio) || fac11 == T(0)) ratio = m_facmax;
         ratio = min(m_facmax, max(m_facmin, ratio));
         if (m_rejected) ratio = min(ratio, T(1));
@@ -91,16 +92,25 @@ template <class T> class pi_controller {
 
     // New step after a rejected step of size h with error err (> 1, or non-finite).
     T rejected(T h, T err) {
-        using std::max;
-        using std::pow;
-        m_rejected = true;
         using std::isfinite;
+        using std::max;
+        m_rejected = true;
         if (!isfinite(err)) return h * T(0.25);
-        return h * max(m_facmin, m_safety / pow(err, m_alpha));
+        return h * max(m_facmin, m_safety / power_alpha(err));
     }
 
   private:
+    // err^alpha. The next step waits for this on every step, so DOP853's exponent 1/8 is taken as
+    // three square roots (within 2 ulp of pow, at about half its latency; measured: 2 µs of 40 on
+    // the free top at tol 1e-10).
+    T power_alpha(T err) const {
+        using std::pow;
+        using std::sqrt;
+        return m_eighth_root ? sqrt(sqrt(sqrt(err))) : pow(err, m_alpha);
+    }
+
     T m_safety, m_facmin, m_facmax, m_beta, m_alpha;
+    bool m_eighth_root;
     T m_err_old = T(1e-4);
     bool m_rejected = false;
 };
@@ -128,8 +138,8 @@ template <class Method> auto make_controller(const Method& m, int q) {
 //   explicit Euler step to y1, d2 = ‖f(t0 + h, y1) − f0‖ / h
 //   h1 = (0.01 / max(d1, d2))^(1/order)  (or max(1e-6, 1e-3·h) if both are tiny)
 //   h  = min(100·h, h1, hmax)
-template <class S, class T, class V>
-T initial_step(const S& sys, T t0, const V& y0, const V& f0, T dir, T hmax, T atol, T rtol,
+template <class S, class T, class V, class F>
+T initial_step(const S& sys, T t0, const V& y0, const F& f0, T dir, T hmax, T atol, T rtol,
                int order, step_stats& stats) {
     using std::abs;
     using std::max;
@@ -139,21 +149,23 @@ T initial_step(const S& sys, T t0, const V& y0, const V& f0, T dir, T hmax, T at
     const T tiny = std::numeric_limits<T>::min();
     const T n = T(y0.size());
     T dnf = T(0), dny = T(0);
-    for (Eigen::Index i = 0; i < y0.size(); ++i) {
-        const T sk = max(atol + rtol * abs(y0[i]), tiny);
+    for (std::size_t i = 0; i < size_of(f0); ++i) {
+        const T y0i = y0[static_cast<Eigen::Index>(i)];
+        const T sk = max(atol + rtol * abs(y0i), tiny);
         dnf += (f0[i] / sk) * (f0[i] / sk);
-        dny += (y0[i] / sk) * (y0[i] / sk);
+        dny += (y0i / sk) * (y0i / sk);
     }
     dnf /= n;
     dny /= n;
     T h = (dnf <= T(1e-10) || dny <= T(1e-10)) ? T(1e-6) : sqrt(dny / dnf) * T(0.01);
     h = min(h, hmax);
-    V y1 = y0 + (dir * h) * f0;
-    V f1 = f0;
+    F y1 = f0, f1 = f0;
+    for (std::size_t i = 0; i < size_of(f0); ++i)
+        y1[i] = y0[static_cast<Eigen::Index>(i)] + (dir * h) * f0[i];
     eval_rhs(sys, t0 + dir * h, y1, f1, stats);
     T der2 = T(0);
-    for (Eigen::Index i = 0; i < y0.size(); ++i) {
-        const T sk = max(atol + rtol * abs(y0[i]), tiny);
+    for (std::size_t i = 0; i < size_of(f0); ++i) {
+        const T sk = max(atol + rtol * abs(y0[static_cast<Eigen::Index>(i)]), tiny);
         der2 += ((f1[i] - f0[i]) / sk) * ((f1[i] - f0[i]) / sk);
     }
     der2 = sqrt(der2 / n) / h;

@@ -69,6 +69,14 @@ template <class S> constexpr int state_dim() {
         return Eigen::Dynamic;
 }
 
+// The state size when it is a compile-time constant, else 0.
+template <class S> constexpr std::size_t static_state_size() {
+    if constexpr (detail::has_static_size<S>::value)
+        return S::state_size;
+    else
+        return 0;
+}
+
 template <class T, class S> using state_vector = Eigen::Matrix<T, state_dim<S>(), 1>;
 
 // Row-major so that `.data()` matches the row-major layout of `jacobian(t, y, J)`.
