@@ -539,9 +539,15 @@ std::string csv_number(double x) {
     return std::isfinite(x) ? short_number(x, 6) : "";
 }
 
+// The method of a configuration as the tables and plots name it: an adaptive method run with a
+// fixed step (rotgen's DOP853, Odeint's Fehlberg 7(8)) is a curve of its own, "dop853 fixed".
+std::string method_key(const result_row& r) {
+    const bool adaptive = r.method == "dop853" || r.method == "dopri5" || r.method == "rkf78";
+    return adaptive && r.step > 0 ? r.method + " fixed" : r.method;
+}
+
 std::string method_title(const result_row& r) {
-    std::string s = r.peer == "rotgen" ? r.method : r.peer + " " + r.method;
-    return s;
+    return r.peer == "rotgen" ? method_key(r) : r.peer + " " + method_key(r);
 }
 
 // "1e-09" -> "1e-9"
@@ -607,7 +613,7 @@ const result_row* fewest(const std::vector<result_row>& rows, const std::string&
                          const std::string& method, double level) {
     const result_row* b = nullptr;
     for (const auto& r : rows)
-        if (r.ok() && r.peer == peer && r.method == method && r.scalar == "double" &&
+        if (r.ok() && r.peer == peer && method_key(r) == method && r.scalar == "double" &&
             r.variant == 0 && r.error <= level && (!b || r.rhs < b->rhs))
             b = &r;
     return b;
@@ -839,6 +845,8 @@ void bench_run::make_plan() {
     std::vector<double> rk4_alt = steps_for({0.1, 0.01, 0.001});
     std::vector<double> mid_steps = steps_for({0.3, 0.1, 0.03, 0.01, 0.003});
     std::vector<double> mid_alt = steps_for({0.1, 0.01});
+    // DOP853 (and Odeint's Fehlberg 7(8)) with fixed steps: what error control costs
+    std::vector<double> high_steps = steps_for({1.5, 1, 0.7, 0.5, 0.35, 0.25, 0.18, 0.12});
     target = 0.02; // seconds per timed loop
     if (opt.quick) {
         tols_all = {1e-5, 1e-8};
@@ -848,6 +856,7 @@ void bench_run::make_plan() {
         tols_float = {1e-4};
         tols_long = {1e-12};
         rk4_steps = mid_steps = steps_for({0.03});
+        high_steps = steps_for({0.5});
         rk4_alt.clear();
         mid_alt.clear();
         target = 0.002;
@@ -925,6 +934,10 @@ void bench_run::make_plan() {
                 plan.run(i, "odeint", "rkf78", "double", tols_all[j], 0);
             for (std::size_t j = 0; j < rk4_steps.size() && !opt.quick; ++j)
                 plan.run(i, "odeint", "rk4", "double", 0, rk4_steps[j]);
+            for (double h : high_steps) {
+                plan.run(i, "rotgen", "dop853", "double", 0, h);
+                if (!opt.quick) plan.run(i, "odeint", "rkf78", "double", 0, h);
+            }
             for (double tol : tols_all)
                 plan.run(i, "cvode", "adams", "double", tol, 0);
             for (double tol : tols_bdf)
@@ -1192,7 +1205,7 @@ void bench_run::summarise() {
     std::map<std::string, std::vector<const result_row*>> curves_by_name;
     for (const auto& r : rows)
         if (r.ok() && std::isfinite(r.median) && r.error > 0)
-            curves_by_name[(r.peer == "rotgen" ? "rotgen " : r.peer + " ") + r.method + " " +
+            curves_by_name[(r.peer == "rotgen" ? "rotgen " : r.peer + " ") + method_key(r) + " " +
                            r.scalar + " " + r.form]
                 .push_back(&r);
     reached.assign(levels.size(), {}); // (rotgen, peer)
@@ -1263,8 +1276,8 @@ void bench_run::write_markdown() {
        << " / " << load_after
        << " — other processes share the cores, so compare medians with their min.\n"
        << "- **tolerance**: rtol = atol = tol for every adaptive method and peer; fixed-step "
-          "methods "
-          "list their step.\n"
+          "methods list their step. `dop853 fixed` and `odeint rkf78 fixed` are DOP853 and "
+          "Fehlberg 7(8) with a fixed step and no error control (what the control costs).\n"
        << "- **forms**: every variant is specialised (parameters folded) and lowered (CSE) unless "
           "labelled `+runtime` or `+unlowered`.\n"
        << "- **energy_drift**: |E(t_end) - E(t0)| / |E(t0)|; momentum drift (results.md only): the "
@@ -1379,24 +1392,25 @@ void bench_run::draw_plots() {
             {"rotgen dop853", 3}, {"rotgen implicit_midpoint", 4},
             {"rotgen rodas4", 5}, {"odeint dopri5", 6},
             {"odeint rkf78", 7},  {"odeint rk4", 8},
-            {"cvode adams", 9},   {"cvode bdf", 10}};
+            {"cvode adams", 9},   {"cvode bdf", 10},
+            {"rotgen dop853 fixed", 11}, {"odeint rkf78 fixed", 12}};
         const auto it = colors.find(peer + " " + method);
-        return it == colors.end() ? 11 : it->second;
+        return it == colors.end() ? 13 : it->second;
     };
     for (const auto& r : rows) {
         if (!r.ok() || !(r.error > 0) || !std::isfinite(r.median)) continue;
         std::vector<std::string> panels;
         const bool main_double = r.variant == 0 && r.scalar == "double";
+        const std::string m = method_key(r);
         if (main_double) panels.push_back("a");
         if (r.peer == "rotgen" && r.scalar == "double" &&
-            (r.method == "dop853" || r.method == "rk4" || r.method == "implicit_midpoint"))
+            (m == "dop853" || m == "rk4" || m == "implicit_midpoint"))
             panels.push_back("b");
-        if (r.peer == "rotgen" && r.variant == 0 &&
-            (r.method == "dop853" || r.method == "dopri5" || r.method == "rk4"))
+        if (r.peer == "rotgen" && r.variant == 0 && (m == "dop853" || m == "dopri5" || m == "rk4"))
             panels.push_back("c");
         for (const auto& panel : panels) {
             const std::string key =
-                panel + "|" + r.peer + "|" + r.method + "|" + r.form + "|" + r.scalar;
+                panel + "|" + r.peer + "|" + m + "|" + r.form + "|" + r.scalar;
             auto it = std::find_if(curves.begin(), curves.end(),
                                    [&](const curve& c) { return c.key == key; });
             if (it == curves.end()) {
@@ -1405,9 +1419,9 @@ void bench_run::draw_plots() {
                 c.panel = panel;
                 c.title = method_title(r) + (panel == "b" ? " " + r.form : "") +
                           (panel == "c" ? " " + r.scalar : "");
-                c.color = panel == "a" ? color_of(r.peer, r.method) : 0;
+                c.color = panel == "a" ? color_of(r.peer, m) : 0;
                 c.dash = r.peer == "rotgen" ? 1 : r.peer == "odeint" ? 2 : 3;
-                c.point = panel == "a" ? color_of(r.peer, r.method) : 1;
+                c.point = panel == "a" ? color_of(r.peer, m) : 1;
                 curves.push_back(c);
                 it = curves.end() - 1;
             }

@@ -221,7 +221,8 @@ template <class T, class S> class dop853_stepper {
     using work = detail::work_vector<T, S>;
     using tab = dop853_tableau;
 
-    dop853_stepper(const dop853<T>& m, std::size_t n) : m_atol(m.atol), m_rtol(m.rtol) {
+    dop853_stepper(const dop853<T>& m, std::size_t n)
+        : m_atol(m.atol), m_rtol(m.rtol), m_fixed(m.fixed_step > T(0)) {
         const auto zero = detail::make_work_vector<work>(n);
         m_y0 = m_y1 = m_k1 = zero;
         m_k.fill(zero);
@@ -328,8 +329,17 @@ template <class T, class S> class dop853_stepper {
         using std::abs;
         using std::max;
         using std::sqrt;
-        const T tiny = std::numeric_limits<T>::min();
         const std::size_t n = detail::size_of(y0);
+        m_y0 = y0;
+        if (m_fixed) { // no error control: y1 only
+            for (std::size_t i = 0; i < n; ++i)
+                m_y1[i] = y0[i] + h * (T(tab::b1) * k[0][i] + T(tab::b6) * k[5][i] +
+                                       T(tab::b7) * k[6][i] + T(tab::b8) * k[7][i] +
+                                       T(tab::b9) * k[8][i] + T(tab::b10) * k[9][i] +
+                                       T(tab::b11) * k[10][i] + T(tab::b12) * k[11][i]);
+            return {detail::all_finite(m_y1) ? status::ok : status::non_finite, T(0)};
+        }
+        const T tiny = std::numeric_limits<T>::min();
         T err5 = T(0), err3 = T(0);
         for (std::size_t i = 0; i < n; ++i) {
             const T bk = T(tab::b1) * k[0][i] + T(tab::b6) * k[5][i] + T(tab::b7) * k[6][i] +
@@ -346,7 +356,6 @@ template <class T, class S> class dop853_stepper {
             err3 += (e3 * inv_sk) * (e3 * inv_sk);
             err5 += (e5 * inv_sk) * (e5 * inv_sk);
         }
-        m_y0 = y0;
         T deno = err5 + T(0.01) * err3;
         if (deno <= T(0)) deno = T(1);
         const T err = abs(h) * err5 * sqrt(T(1) / (T(n) * deno));
@@ -421,6 +430,7 @@ template <class T, class S> class dop853_stepper {
     const work& r(int i) const { return m_r[static_cast<std::size_t>(i - 2)]; }
 
     T m_atol, m_rtol;
+    bool m_fixed; // fixed steps: no error estimate
     T m_t = T(0), m_h = T(0);
     work m_y0, m_y1, m_k1; // start and end of the step, f at the start
     stages m_k;            // the stages of the last step (with a static size: steps with samples)

@@ -151,6 +151,7 @@ run_record run_rotgen(const run_spec& spec, const driver_settings& s) {
     if constexpr ((Mask & dop853_bit) != 0)
         if (spec.method == "dop853") {
             dop853<T> m(tol, tol);
+            m.fixed_step = step; // > 0: fixed steps, no error control
             m.max_steps = budget;
             return run_method<V, T>(m, spec, s);
         }
@@ -199,8 +200,8 @@ template <class V> run_record run_one(const run_spec& spec, const driver_setting
                                                     odeint_initial_step<V>(spec, s));
         if constexpr ((V::peers & odeint_rkf78) != 0)
             if (spec.method == "rkf78")
-                return run_odeint<V, odeint_rkf78>(spec, s.t0, s.t1,
-                                                   odeint_initial_step<V>(spec, s));
+                return run_odeint<V, odeint_rkf78>(
+                    spec, s.t0, s.t1, spec.step > 0 ? 0.0 : odeint_initial_step<V>(spec, s));
         if constexpr ((V::peers & odeint_rk4) != 0)
             if (spec.method == "rk4") return run_odeint<V, odeint_rk4>(spec, s.t0, s.t1, spec.step);
     }

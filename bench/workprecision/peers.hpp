@@ -5,7 +5,8 @@
 //   fixed-size systems):
 //     dopri5  make_dense_output(tol, tol, runge_kutta_dopri5) with integrate_adaptive
 //     rkf78   make_controlled(tol, tol, runge_kutta_fehlberg78) with integrate_adaptive (no dense
-//             output: Fehlberg 7(8) has none)
+//             output: Fehlberg 7(8) has none); with a step: runge_kutta_fehlberg78 alone with
+//             integrate_n_steps (fixed steps, like rotgen's DOP853 with a fixed step)
 //     rk4     runge_kutta4 with integrate_n_steps, the same grid as rotgen's rk4
 //     Odeint needs an initial step; it gets the one rotgen's starting-step heuristic (HNW I, II.4)
 //     picks for the same tolerance and order, computed outside the timed region.
@@ -71,16 +72,23 @@ run_record run_odeint(const run_spec& spec, double t0, double t1, double dt0) {
         c->x0[i] = static_cast<double>(y0l[i]);
     const double tol = spec.tol;
     const long n_steps = spec.step > 0 ? std::lround((t1 - t0) / spec.step) : 1;
-    auto once = [c, tol, n_steps, t0, t1, dt0]() -> double {
+    const bool fixed = spec.step > 0;
+    auto once = [c, tol, n_steps, fixed, t0, t1, dt0]() -> double {
         const odeint_rhs<V> f{&c->p, &c->count};
         c->x = c->x0;
         if constexpr (Method == odeint_dopri5)
             oi::integrate_adaptive(oi::make_dense_output(tol, tol, oi::runge_kutta_dopri5<state>()),
                                    f, c->x, t0, t1, dt0);
-        else if constexpr (Method == odeint_rkf78)
-            oi::integrate_adaptive(
-                oi::make_controlled(tol, tol, oi::runge_kutta_fehlberg78<state>()), f, c->x, t0, t1,
-                dt0);
+        else if constexpr (Method == odeint_rkf78) {
+            if (fixed)
+                oi::integrate_n_steps(oi::runge_kutta_fehlberg78<state>(), f, c->x, t0,
+                                      (t1 - t0) / double(n_steps),
+                                      static_cast<std::size_t>(n_steps));
+            else
+                oi::integrate_adaptive(
+                    oi::make_controlled(tol, tol, oi::runge_kutta_fehlberg78<state>()), f, c->x,
+                    t0, t1, dt0);
+        }
         else
             oi::integrate_n_steps(oi::runge_kutta4<state>(), f, c->x, t0,
                                   (t1 - t0) / double(n_steps), static_cast<std::size_t>(n_steps));
