@@ -110,21 +110,37 @@ bench_options parse_arguments(const std::vector<std::string>& args) {
 
 // ---- where the harness and the runtime are ---------------------------------------------------
 
-// The source tree: $ROTGEN_SOURCE_DIR, else the tree this file was compiled from.
-fs::path source_dir() {
-    std::vector<fs::path> candidates;
-    if (const char* d = std::getenv("ROTGEN_SOURCE_DIR"); d && *d) candidates.push_back(d);
-    candidates.push_back(fs::path(__FILE__).parent_path().parent_path());
-    for (const auto& c : candidates) {
-        std::error_code ec;
-        if (fs::exists(c / "bench/workprecision/harness.hpp", ec) &&
-            fs::exists(c / "runtime/rotgen.hpp", ec))
-            return c;
+// Where the harness (bench/workprecision) and the runtime headers are, in this order:
+// $ROTGEN_SOURCE_DIR (a source tree); the installed layout next to this executable
+// (<prefix>/share/rotgen/bench/workprecision and <prefix>/include/rotgen/runtime); the source tree
+// this file was compiled from (a build tree).
+struct bench_sources {
+    fs::path harness, runtime;
+};
+
+bench_sources find_bench_sources() {
+    std::vector<bench_sources> candidates;
+    if (const char* d = std::getenv("ROTGEN_SOURCE_DIR"); d && *d)
+        candidates.push_back({fs::path(d) / "bench/workprecision", fs::path(d) / "runtime"});
+    std::error_code ec;
+    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    if (!ec) {
+        const fs::path prefix = exe.parent_path().parent_path();
+        candidates.push_back(
+            {prefix / "share/rotgen/bench/workprecision", prefix / "include/rotgen/runtime"});
     }
-    throw user_error({"rotgen bench"},
-                     "cannot find bench/workprecision/harness.hpp and runtime/ (looked in " +
-                         candidates.back().string() +
-                         "); set ROTGEN_SOURCE_DIR to the rotgen source tree");
+    const fs::path tree = fs::path(__FILE__).parent_path().parent_path();
+    candidates.push_back({tree / "bench/workprecision", tree / "runtime"});
+    std::string looked;
+    for (const auto& c : candidates) {
+        if (fs::exists(c.harness / "harness.hpp", ec) && fs::exists(c.runtime / "rotgen.hpp", ec))
+            return c;
+        looked += (looked.empty() ? "" : ", ") + c.harness.string();
+    }
+    throw user_error({"rotgen bench"}, "cannot find the harness (bench/workprecision/harness.hpp) "
+                                       "and the runtime headers; looked in " +
+                                           looked +
+                                           "; set ROTGEN_SOURCE_DIR to the rotgen source tree");
 }
 
 std::string read_file(const fs::path& p) {
@@ -659,7 +675,8 @@ struct bench_run {
     bench_options opt;
     scene_spec scene;
     model_spec spec; // the scene's model, with the scene's parameter values
-    fs::path src, dir;
+    bench_sources src;
+    fs::path dir;
     bool euler_ok = true, orientation = false, conservative = true;
     derivation d;
     GiNaC::exmap parameter_values;
@@ -700,7 +717,7 @@ void bench_run::prepare() {
     spec = scene.model; // with the scene's parameter values
     for (std::size_t i = 0; i < spec.parameters.size(); ++i)
         spec.parameters[i].value = scene.parameters[i];
-    src = source_dir();
+    src = find_bench_sources();
     dir = opt.dir;
     {
         std::error_code ec;
@@ -991,7 +1008,7 @@ void bench_run::write_driver_source() {
         structs += variant_struct(variants[i], i, scene, k0, d) + "\n";
         list += (i ? ", " : "") + std::string("variant_") + std::to_string(i);
     }
-    std::string driver_template = read_file(src / "bench/workprecision/driver.cpp.in");
+    std::string driver_template = read_file(src.harness / "driver.cpp.in");
     const std::map<std::string, std::string> fills{
         {"title", "work-precision driver for " + opt.scene},
         {"command", "rotgen bench " + opt.scene + (opt.quick ? " --quick" : "")},
@@ -1022,14 +1039,19 @@ void bench_run::write_driver_source() {
 
 void bench_run::compile_driver() {
     const auto t_compile = clock::now();
-    const std::string include = "-I" + shell_quote((src / "bench/workprecision").string()) + " -I" +
-                                shell_quote((src / "runtime").string()) + " " + eigen_flags();
+    const std::string include = "-I" + shell_quote(src.harness.string()) + " -I" +
+                                shell_quote(src.runtime.string()) + " " + eigen_flags();
     const std::string libs = "-lsundials_cvode -lsundials_nvecserial -lsundials_sunmatrixdense "
                              "-lsundials_sunlinsoldense -lsundials_sunnonlinsolfixedpoint";
-    std::string harness_text;
-    for (const auto* sub : {"bench/workprecision", "runtime"})
-        for (const auto& e : fs::directory_iterator(src / sub))
-            if (e.path().extension() == ".hpp") harness_text += read_file(e.path());
+    std::string harness_text; // the headers the driver includes, in name order (the cache key)
+    for (const auto& d : {src.harness, src.runtime}) {
+        std::vector<fs::path> headers;
+        for (const auto& e : fs::directory_iterator(d))
+            if (e.path().extension() == ".hpp") headers.push_back(e.path());
+        std::sort(headers.begin(), headers.end());
+        for (const auto& h : headers)
+            harness_text += read_file(h);
+    }
     int status = 0;
     const std::string compiler_id = run_capture(shell_quote(compiler()) + " --version", &status);
     if (status != 0)
@@ -1564,7 +1586,9 @@ void bench_run::finish() {
               << (cached ? std::string("cached driver")
                          : short_number(compile_seconds) + " s compiling")
               << ", " << short_number(run_seconds) << " s sweeping, " << short_number(wall_seconds)
-              << " s in all\n";
+              << " s in all\n"
+              << "  harness   " << src.harness.string() << ", runtime " << src.runtime.string()
+              << "\n";
     std::cout << "  fastest to reach an error (interpolated along each curve; median times):\n";
     for (std::size_t l = 0; l < levels.size(); ++l) {
         const reach& a = reached[l].first;

@@ -19,4 +19,10 @@ grep -q "T M = T(rg_scalar(1)/rg_scalar(2)); // mass" "$header" || { echo "unexp
 sed -i 's/M: {value: 0.5,/M: {value: 0.7,/' "$work/embed/gyroscope.yaml"
 cmake --build "$work/build" >/dev/null
 grep -q "T M = T(rg_scalar(7)/rg_scalar(10)); // mass" "$header" || { echo "the header was not regenerated after the model changed"; exit 1; }
-echo "example project: built, ran, and regenerated after a model change"
+# The installed `rotgen bench` finds its harness and runtime in the prefix, not in the source tree.
+out=$(cd "$work" && "$work/prefix/bin/rotgen" bench "$src/models/scenes/free_top_workprecision.yaml" \
+      -o "$work/bench" --quick --long-steps 0)
+grep -q "harness   $work/prefix/share/rotgen/bench/workprecision, runtime $work/prefix/include/rotgen/runtime" \
+    <<<"$out" || { echo "the installed rotgen bench did not use the installed harness:"; echo "$out"; exit 1; }
+test -s "$work/bench/results.csv" || { echo "the installed rotgen bench wrote no results.csv"; exit 1; }
+echo "example project: built, ran, and regenerated after a model change; installed bench ran"
