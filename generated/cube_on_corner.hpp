@@ -20,8 +20,8 @@
 //
 // Operations (+ - * / and calls), before lowering -> after:
 //   rhs: 2161 -> 113 (21 temporaries)
-//   jacobian: 15321 -> 472 (79 temporaries)
-//   rhs_and_jacobian: 17482 -> 491 (81 temporaries)
+//   jacobian: 15321 -> 469 (71 temporaries)
+//   rhs_and_jacobian: 17482 -> 488 (75 temporaries)
 //   energy: 140 -> 45 (9 temporaries)
 //   momenta: 208 -> 54 (11 temporaries)
 //   mass_matrix: 182 -> 45 (13 temporaries)
@@ -146,7 +146,7 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   J     output, dim 6 x 6 (row-major); structural zeros in jacobian_pattern
 //   p     parameters
-// Operations (+ - * / and calls): 15321 before lowering, 472 after (162 +-, 304 *, 2 /, 4 calls).
+// Operations (+ - * / and calls): 15321 before lowering, 469 after (159 +-, 303 *, 3 /, 4 calls).
 template <class T>
 void jacobian(T t, const T* y, T* J, const params<T>& p) {
     using std::cos;
@@ -181,62 +181,54 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T t016 = (t006*t012 - t009*t014)*p.L + S(6)*p.g*sin_theta*t015;
     const T t017 = t006*t010;
     const T t018 = (t003*t014 + t017)*p.L + S(6)*(cos_theta - sin_psi*sin_theta)*p.g;
-    const T t019 = cos_psi*phi_dot*psi_dot*sin_theta;
+    const T t019 = S(5)*t013 - S(3)*t016 - S(3)*t018;
     const T t020 = t002 - psi_dot;
-    const T t021 = sin_psi*t020*theta_dot;
-    const T t022 = (S(5)*t013 - S(3)*t016 - S(3)*t018)*t001 + S(22)*t019 + S(22)*t021;
-    const T t023 = sin_psi*t022;
-    const T t024 = cos_psi*t020*theta_dot;
-    const T t025 = phi_dot*psi_dot*sin_psi*sin_theta;
-    const T t026 = (S(3)*t013 - S(3)*t016 - S(5)*t018)*t001 + S(22)*t024 - S(22)*t025;
-    const T t027 = cos_psi*t026;
-    const T t028 = cos_psi + sin_psi;
-    const T t029 = S(3)*cos_theta*t028 + S(8)*sin_theta;
-    const T t030 = S(3)*sin_psi - S(8)*cos_psi;
-    const T t031 = S(3)*sin_theta - cos_theta*t030;
-    const T t032 = cos_psi*cos_theta*t010 - sin_theta*t012 - t003*t031 - t009*t029;
-    const T t033 = p.L*phi_dot*t032 - S(6)*(cos_psi*cos_theta + sin_theta)*p.g;
-    const T t034 = cos_psi*t014 - sin_psi*t012;
-    const T t035 = S(8)*sin_psi - S(3)*cos_psi;
-    const T t036 = S(3)*sin_theta + cos_theta*t035;
-    const T t037 = S(6)*cos_theta*p.g*t015 - (cos_theta*t034 + t006*t031 - t009*t036)*p.L*phi_dot;
-    const T t038 = cos_theta*sin_psi*t010 - sin_theta*t014 - t003*t036 - t006*t029;
-    const T t039 = p.L*phi_dot*t038 - S(6)*(cos_theta*sin_psi + sin_theta)*p.g;
-    const T t040 = S(22)*(cos_psi*sin_theta*theta_dot + cos_theta*psi_dot*sin_psi)*phi_dot - (S(3)*t033 - S(3)*t037 - S(5)*t039)*t001;
-    const T t041 = S(22)*(sin_psi*sin_theta*theta_dot - cos_psi*cos_theta*psi_dot)*phi_dot - (S(5)*t033 - S(3)*t037 - S(3)*t039)*t001;
-    const T t042 = ((t023 + t027)*cos_theta*t000 + cos_psi*t040 + sin_psi*t041)*t000;
-    const T t043 = t006 - t009;
-    const T t044 = S(3)*t009 + S(8)*t006;
-    const T t045 = S(6)*p.g*sin_psi*sin_theta - (t017 - S(3)*t009*t043 - t003*t044)*p.L;
-    const T t046 = S(3)*t006 + S(8)*t009;
-    const T t047 = ((t012 + t046)*t009 + (t014 + t044)*t006)*p.L + S(6)*p.g*sin_theta*t028;
-    const T t048 = S(6)*cos_psi*p.g*sin_theta - (S(3)*t006*t043 + t011 - t003*t046)*p.L;
-    const T t049 = ((S(3)*t045 + S(5)*t048 - S(3)*t047)*t001 - S(22)*t019 - S(22)*t021) + t022;
-    const T t050 = t026 - ((S(3)*t048 + S(5)*t045 - S(3)*t047)*t001 + S(22)*t024 - S(22)*t025);
-    const T t051 = cos_psi*t049 - sin_psi*t050;
-    const T t052 = S(3)*cos_theta - sin_theta*t035;
-    const T t053 = S(8)*cos_theta - S(3)*sin_theta*t028;
-    const T t054 = cos_theta*t014 + sin_psi*sin_theta*t010 + t003*t052 + t006*t053;
-    const T t055 = S(3)*cos_theta + sin_theta*t030;
-    const T t056 = cos_psi*sin_theta*t010 + cos_theta*t012 + t003*t055 + t009*t053;
-    const T t057 = t006*t055 - sin_theta*t034 - t009*t052;
-    const T t058 = S(22)*psi_dot*sin_psi*sin_theta + S(3)*t057 + S(5)*t054 - S(22)*cos_psi*cos_theta*theta_dot - S(3)*t056;
-    const T t059 = S(3)*t054 + S(3)*t057 - S(22)*cos_psi*psi_dot*sin_theta - S(22)*cos_theta*sin_psi*theta_dot - S(5)*t056;
-    const T t060 = cos_psi*t058 + sin_psi*t059;
-    const T t061 = S(3)*cos_psi + S(8)*sin_psi;
-    const T t062 = S(3)*t009*t015 + t003*t061 - sin_psi*t010;
-    const T t063 = S(3)*sin_psi + S(8)*cos_psi;
-    const T t064 = t003*t063 - S(3)*t006*t015 - cos_psi*t010;
-    const T t065 = cos_psi*t012 + sin_psi*t014 + t006*t061 + t009*t063;
-    const T t066 = S(22)*cos_psi*t020 + S(3)*t062 + S(5)*t064 - S(3)*t065;
-    const T t067 = S(22)*sin_psi*t020 + S(3)*t064 + S(5)*t062 - S(3)*t065;
-    const T t068 = cos_psi*t066 + sin_psi*t067;
-    const T t069 = S(2)*t003 + t006;
-    const T t070 = S(2)*t003 + t009;
-    const T t071 = S(9)*t069 - S(15)*t070 - S(22)*t004 - S(22)*t005 - S(9)*t043;
-    const T t072 = S(15)*t069 + S(22)*t007 - S(22)*t008 - S(9)*t043 - S(9)*t070;
-    const T t073 = cos_psi*t071 + sin_psi*t072;
-    const T t074 = (S(3)/S(22)*t033 - S(3)/S(22)*t039 - S(5)/S(22)*t037)*t001 + S(1)/S(22)*t023 + S(1)/S(22)*t027 - (phi_dot*theta_dot - S(1)/S(22)*t042)*cos_theta;
+    const T t021 = (S(22)*cos_psi*phi_dot*psi_dot*sin_theta + S(22)*sin_psi*t020*theta_dot + t001*t019)*sin_psi;
+    const T t022 = S(3)*t013 - S(3)*t016 - S(5)*t018;
+    const T t023 = (S(22)*cos_psi*t020*theta_dot + t001*t022 - S(22)*phi_dot*psi_dot*sin_psi*sin_theta)*cos_psi;
+    const T t024 = cos_psi + sin_psi;
+    const T t025 = S(3)*cos_theta*t024 + S(8)*sin_theta;
+    const T t026 = S(3)*sin_psi - S(8)*cos_psi;
+    const T t027 = S(3)*sin_theta - cos_theta*t026;
+    const T t028 = cos_psi*cos_theta*t010 - sin_theta*t012 - t003*t027 - t009*t025;
+    const T t029 = p.L*phi_dot*t028 - S(6)*(cos_psi*cos_theta + sin_theta)*p.g;
+    const T t030 = cos_psi*t014 - sin_psi*t012;
+    const T t031 = S(8)*sin_psi - S(3)*cos_psi;
+    const T t032 = S(3)*sin_theta + cos_theta*t031;
+    const T t033 = S(6)*cos_theta*p.g*t015 - (cos_theta*t030 + t006*t027 - t009*t032)*p.L*phi_dot;
+    const T t034 = cos_theta*sin_psi*t010 - sin_theta*t014 - t003*t032 - t006*t025;
+    const T t035 = p.L*phi_dot*t034 - S(6)*(cos_theta*sin_psi + sin_theta)*p.g;
+    const T t036 = S(22)*(cos_psi*sin_theta*theta_dot + cos_theta*psi_dot*sin_psi)*phi_dot - (S(3)*t029 - S(3)*t033 - S(5)*t035)*t001;
+    const T t037 = S(22)*(sin_psi*sin_theta*theta_dot - cos_psi*cos_theta*psi_dot)*phi_dot - (S(5)*t029 - S(3)*t033 - S(3)*t035)*t001;
+    const T t038 = ((t021 + t023)*cos_theta*t000 + cos_psi*t036 + sin_psi*t037)*t000;
+    const T t039 = t006 - t009;
+    const T t040 = S(6)*p.g*sin_psi*sin_theta - (t017 - (S(3)*t009 + S(8)*t006)*t003 - S(3)*t009*t039)*p.L;
+    const T t041 = S(6)*cos_psi*p.g*sin_theta - (S(3)*t006*t039 + t011 - (S(3)*t006 + S(8)*t009)*t003)*p.L;
+    const T t042 = ((S(3)*t003 + S(6)*t006)*t009 + (S(3)*t003 + S(6)*t009)*t006)*p.L + S(6)*p.g*sin_theta*t024;
+    const T t043 = (S(3)*t041 + S(5)*t040 - S(3)*t042) - t022;
+    const T t044 = (S(3)*t040 + S(5)*t041 - S(3)*t042) + t019;
+    const T t045 = cos_psi*t044 + sin_psi*t043;
+    const T t046 = S(3)*cos_theta - sin_theta*t031;
+    const T t047 = S(8)*cos_theta - S(3)*sin_theta*t024;
+    const T t048 = cos_theta*t014 + sin_psi*sin_theta*t010 + t003*t046 + t006*t047;
+    const T t049 = S(3)*cos_theta + sin_theta*t026;
+    const T t050 = cos_psi*sin_theta*t010 + cos_theta*t012 + t003*t049 + t009*t047;
+    const T t051 = t006*t049 - sin_theta*t030 - t009*t046;
+    const T t052 = S(22)*psi_dot*sin_psi*sin_theta + S(3)*t051 + S(5)*t048 - S(22)*cos_psi*cos_theta*theta_dot - S(3)*t050;
+    const T t053 = S(3)*t048 + S(3)*t051 - S(22)*cos_psi*psi_dot*sin_theta - S(22)*cos_theta*sin_psi*theta_dot - S(5)*t050;
+    const T t054 = cos_psi*t052 + sin_psi*t053;
+    const T t055 = S(3)*cos_psi + S(8)*sin_psi;
+    const T t056 = S(3)*t009*t015 + t003*t055 - sin_psi*t010;
+    const T t057 = S(3)*sin_psi + S(8)*cos_psi;
+    const T t058 = t003*t057 - S(3)*t006*t015 - cos_psi*t010;
+    const T t059 = cos_psi*t012 + sin_psi*t014 + t006*t055 + t009*t057;
+    const T t060 = S(22)*cos_psi*t020 + S(3)*t056 + S(5)*t058 - S(3)*t059;
+    const T t061 = S(22)*sin_psi*t020 + S(3)*t058 + S(5)*t056 - S(3)*t059;
+    const T t062 = cos_psi*t060 + sin_psi*t061;
+    const T t063 = S(18)*t003 + S(9)*t009 - S(15)*(S(2)*t003 + t009) - S(22)*t004 - S(22)*t005;
+    const T t064 = S(18)*t003 + S(22)*t008 + S(9)*t006 - S(15)*(S(2)*t003 + t006) - S(22)*t007;
+    const T t065 = cos_psi*t063 - sin_psi*t064;
+    const T t066 = (S(3)/S(22)*t029 - S(3)/S(22)*t035 - S(5)/S(22)*t033)*t001 + S(1)/S(22)*t021 + S(1)/S(22)*t023 - (phi_dot*theta_dot - S(1)/S(22)*t038)*cos_theta;
     J[0] = T(S(0));
     J[1] = T(S(0));
     J[2] = T(S(0));
@@ -256,23 +248,23 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     J[16] = T(S(0));
     J[17] = T(S(1));
     J[18] = T(S(0));
-    J[19] = S(1)/S(22)*t042;
-    J[20] = -S(1)/S(22)*t000*t051;
-    J[21] = S(1)/S(22)*t000*t060;
-    J[22] = -S(1)/S(22)*t000*t068;
-    J[23] = -S(1)/S(22)*t000*t073;
+    J[19] = S(1)/S(22)*t038;
+    J[20] = -S(1)/S(22)*t045/(p.L*sin_theta);
+    J[21] = S(1)/S(22)*t000*t054;
+    J[22] = -S(1)/S(22)*t000*t062;
+    J[23] = -S(1)/S(22)*t000*t065;
     J[24] = T(S(0));
-    J[25] = -S(1)/S(22)*(sin_psi*t040 - cos_psi*t041);
-    J[26] = S(1)/S(22)*(cos_psi*t050 + sin_psi*t049);
-    J[27] = -S(1)/S(22)*(sin_psi*t058 - cos_psi*t059);
-    J[28] = S(1)/S(22)*(sin_psi*t066 - cos_psi*t067);
-    J[29] = S(1)/S(22)*(sin_psi*t071 - cos_psi*t072);
+    J[25] = -S(1)/S(22)*(sin_psi*t036 - cos_psi*t037);
+    J[26] = S(1)/S(22)*(sin_psi*t044 - cos_psi*t043)*t001;
+    J[27] = -S(1)/S(22)*(sin_psi*t052 - cos_psi*t053);
+    J[28] = S(1)/S(22)*(sin_psi*t060 - cos_psi*t061);
+    J[29] = S(1)/S(22)*(cos_psi*t064 + sin_psi*t063);
     J[30] = T(S(0));
-    J[31] = -t074;
-    J[32] = S(1)/S(22)*cos_theta*t000*t051 - (S(3)/S(22)*t045 + S(3)/S(22)*t048 - S(5)/S(22)*t047)*t001;
-    J[33] = S(3)/S(22)*t054 + S(5)/S(22)*t057 + sin_theta*theta_dot - S(1)/S(22)*cos_theta*t000*t060 - S(3)/S(22)*t056;
-    J[34] = -(S(3)/S(22)*t062 + S(3)/S(22)*t064 - S(1)/S(22)*cos_theta*t000*t068 - S(5)/S(22)*t065 - phi_dot*sin_theta);
-    J[35] = -(S(9)/S(22)*t069 - S(1)/S(22)*cos_theta*t000*t073 - S(15)/S(22)*t043 - S(9)/S(22)*t070);
+    J[31] = -t066;
+    J[32] = -(S(3)/S(22)*t040 + S(3)/S(22)*t041 - S(1)/S(22)*cos_theta*t000*t045 - S(5)/S(22)*t042)*t001;
+    J[33] = S(3)/S(22)*t048 + S(5)/S(22)*t051 + sin_theta*theta_dot - S(1)/S(22)*cos_theta*t000*t054 - S(3)/S(22)*t050;
+    J[34] = -(S(3)/S(22)*t056 + S(3)/S(22)*t058 - S(1)/S(22)*cos_theta*t000*t062 - S(5)/S(22)*t059 - phi_dot*sin_theta);
+    J[35] = -(S(9)/S(22)*t006 - S(1)/S(22)*cos_theta*t000*t065 - S(15)/S(22)*t039 - S(9)/S(22)*t009);
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -281,7 +273,7 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, phi_ddot, theta_ddot, psi_ddot
 //   J     output, dim 6 x 6 (row-major)
 //   p     parameters
-// Operations (+ - * / and calls): 17482 before lowering, 491 after (169 +-, 316 *, 2 /, 4 calls).
+// Operations (+ - * / and calls): 17482 before lowering, 488 after (166 +-, 315 *, 3 /, 4 calls).
 template <class T>
 void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     using std::cos;
@@ -316,70 +308,64 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T t016 = (t006*t012 - t009*t014)*p.L + S(6)*p.g*sin_theta*t015;
     const T t017 = t006*t010;
     const T t018 = (t003*t014 + t017)*p.L + S(6)*(cos_theta - sin_psi*sin_theta)*p.g;
-    const T t019 = cos_psi*phi_dot*psi_dot*sin_theta;
+    const T t019 = S(5)*t013 - S(3)*t016 - S(3)*t018;
     const T t020 = t002 - psi_dot;
-    const T t021 = sin_psi*t020*theta_dot;
-    const T t022 = (S(5)*t013 - S(3)*t016 - S(3)*t018)*t001 + S(22)*t019 + S(22)*t021;
-    const T t023 = sin_psi*t022;
-    const T t024 = cos_psi*t020*theta_dot;
-    const T t025 = phi_dot*psi_dot*sin_psi*sin_theta;
-    const T t026 = (S(3)*t013 - S(3)*t016 - S(5)*t018)*t001 + S(22)*t024 - S(22)*t025;
-    const T t027 = cos_psi*t026;
-    const T t028 = t023 + t027;
-    const T t029 = cos_theta*t000*t028;
-    const T t030 = cos_psi + sin_psi;
-    const T t031 = S(3)*cos_theta*t030 + S(8)*sin_theta;
-    const T t032 = S(3)*sin_psi - S(8)*cos_psi;
-    const T t033 = S(3)*sin_theta - cos_theta*t032;
-    const T t034 = cos_psi*cos_theta*t010 - sin_theta*t012 - t003*t033 - t009*t031;
-    const T t035 = p.L*phi_dot*t034 - S(6)*(cos_psi*cos_theta + sin_theta)*p.g;
-    const T t036 = cos_psi*t014 - sin_psi*t012;
-    const T t037 = S(8)*sin_psi - S(3)*cos_psi;
-    const T t038 = S(3)*sin_theta + cos_theta*t037;
-    const T t039 = S(6)*cos_theta*p.g*t015 - (cos_theta*t036 + t006*t033 - t009*t038)*p.L*phi_dot;
-    const T t040 = cos_theta*sin_psi*t010 - sin_theta*t014 - t003*t038 - t006*t031;
-    const T t041 = p.L*phi_dot*t040 - S(6)*(cos_theta*sin_psi + sin_theta)*p.g;
-    const T t042 = S(22)*(cos_psi*sin_theta*theta_dot + cos_theta*psi_dot*sin_psi)*phi_dot - (S(3)*t035 - S(3)*t039 - S(5)*t041)*t001;
-    const T t043 = S(22)*(sin_psi*sin_theta*theta_dot - cos_psi*cos_theta*psi_dot)*phi_dot - (S(5)*t035 - S(3)*t039 - S(3)*t041)*t001;
-    const T t044 = (cos_psi*t042 + sin_psi*t043 + t029)*t000;
-    const T t045 = t006 - t009;
-    const T t046 = S(3)*t009 + S(8)*t006;
-    const T t047 = S(6)*p.g*sin_psi*sin_theta - (t017 - S(3)*t009*t045 - t003*t046)*p.L;
-    const T t048 = S(3)*t006 + S(8)*t009;
-    const T t049 = ((t012 + t048)*t009 + (t014 + t046)*t006)*p.L + S(6)*p.g*sin_theta*t030;
-    const T t050 = S(6)*cos_psi*p.g*sin_theta - (S(3)*t006*t045 + t011 - t003*t048)*p.L;
-    const T t051 = ((S(3)*t047 + S(5)*t050 - S(3)*t049)*t001 - S(22)*t019 - S(22)*t021) + t022;
-    const T t052 = t026 - ((S(3)*t050 + S(5)*t047 - S(3)*t049)*t001 + S(22)*t024 - S(22)*t025);
-    const T t053 = cos_psi*t051 - sin_psi*t052;
-    const T t054 = S(3)*cos_theta - sin_theta*t037;
-    const T t055 = S(8)*cos_theta - S(3)*sin_theta*t030;
-    const T t056 = cos_theta*t014 + sin_psi*sin_theta*t010 + t003*t054 + t006*t055;
-    const T t057 = S(3)*cos_theta + sin_theta*t032;
-    const T t058 = cos_psi*sin_theta*t010 + cos_theta*t012 + t003*t057 + t009*t055;
-    const T t059 = t006*t057 - sin_theta*t036 - t009*t054;
-    const T t060 = S(22)*psi_dot*sin_psi*sin_theta + S(3)*t059 + S(5)*t056 - S(22)*cos_psi*cos_theta*theta_dot - S(3)*t058;
-    const T t061 = S(3)*t056 + S(3)*t059 - S(22)*cos_psi*psi_dot*sin_theta - S(22)*cos_theta*sin_psi*theta_dot - S(5)*t058;
-    const T t062 = cos_psi*t060 + sin_psi*t061;
-    const T t063 = S(3)*cos_psi + S(8)*sin_psi;
-    const T t064 = S(3)*t009*t015 + t003*t063 - sin_psi*t010;
-    const T t065 = S(3)*sin_psi + S(8)*cos_psi;
-    const T t066 = t003*t065 - S(3)*t006*t015 - cos_psi*t010;
-    const T t067 = cos_psi*t012 + sin_psi*t014 + t006*t063 + t009*t065;
-    const T t068 = S(22)*cos_psi*t020 + S(3)*t064 + S(5)*t066 - S(3)*t067;
-    const T t069 = S(22)*sin_psi*t020 + S(3)*t066 + S(5)*t064 - S(3)*t067;
-    const T t070 = cos_psi*t068 + sin_psi*t069;
-    const T t071 = S(2)*t003 + t006;
-    const T t072 = S(2)*t003 + t009;
-    const T t073 = S(9)*t071 - S(15)*t072 - S(22)*t004 - S(22)*t005 - S(9)*t045;
-    const T t074 = S(15)*t071 + S(22)*t007 - S(22)*t008 - S(9)*t045 - S(9)*t072;
-    const T t075 = cos_psi*t073 + sin_psi*t074;
-    const T t076 = (S(3)/S(22)*t035 - S(3)/S(22)*t041 - S(5)/S(22)*t039)*t001 + S(1)/S(22)*t023 + S(1)/S(22)*t027 - (phi_dot*theta_dot - S(1)/S(22)*t044)*cos_theta;
+    const T t021 = S(22)*cos_psi*phi_dot*psi_dot*sin_theta + S(22)*sin_psi*t020*theta_dot + t001*t019;
+    const T t022 = sin_psi*t021;
+    const T t023 = S(3)*t013 - S(3)*t016 - S(5)*t018;
+    const T t024 = S(22)*cos_psi*t020*theta_dot + t001*t023 - S(22)*phi_dot*psi_dot*sin_psi*sin_theta;
+    const T t025 = cos_psi*t024;
+    const T t026 = t022 + t025;
+    const T t027 = cos_theta*t000*t026;
+    const T t028 = cos_psi + sin_psi;
+    const T t029 = S(3)*cos_theta*t028 + S(8)*sin_theta;
+    const T t030 = S(3)*sin_psi - S(8)*cos_psi;
+    const T t031 = S(3)*sin_theta - cos_theta*t030;
+    const T t032 = cos_psi*cos_theta*t010 - sin_theta*t012 - t003*t031 - t009*t029;
+    const T t033 = p.L*phi_dot*t032 - S(6)*(cos_psi*cos_theta + sin_theta)*p.g;
+    const T t034 = cos_psi*t014 - sin_psi*t012;
+    const T t035 = S(8)*sin_psi - S(3)*cos_psi;
+    const T t036 = S(3)*sin_theta + cos_theta*t035;
+    const T t037 = S(6)*cos_theta*p.g*t015 - (cos_theta*t034 + t006*t031 - t009*t036)*p.L*phi_dot;
+    const T t038 = cos_theta*sin_psi*t010 - sin_theta*t014 - t003*t036 - t006*t029;
+    const T t039 = p.L*phi_dot*t038 - S(6)*(cos_theta*sin_psi + sin_theta)*p.g;
+    const T t040 = S(22)*(cos_psi*sin_theta*theta_dot + cos_theta*psi_dot*sin_psi)*phi_dot - (S(3)*t033 - S(3)*t037 - S(5)*t039)*t001;
+    const T t041 = S(22)*(sin_psi*sin_theta*theta_dot - cos_psi*cos_theta*psi_dot)*phi_dot - (S(5)*t033 - S(3)*t037 - S(3)*t039)*t001;
+    const T t042 = (cos_psi*t040 + sin_psi*t041 + t027)*t000;
+    const T t043 = t006 - t009;
+    const T t044 = S(6)*p.g*sin_psi*sin_theta - (t017 - (S(3)*t009 + S(8)*t006)*t003 - S(3)*t009*t043)*p.L;
+    const T t045 = S(6)*cos_psi*p.g*sin_theta - (S(3)*t006*t043 + t011 - (S(3)*t006 + S(8)*t009)*t003)*p.L;
+    const T t046 = ((S(3)*t003 + S(6)*t006)*t009 + (S(3)*t003 + S(6)*t009)*t006)*p.L + S(6)*p.g*sin_theta*t028;
+    const T t047 = (S(3)*t045 + S(5)*t044 - S(3)*t046) - t023;
+    const T t048 = (S(3)*t044 + S(5)*t045 - S(3)*t046) + t019;
+    const T t049 = cos_psi*t048 + sin_psi*t047;
+    const T t050 = S(3)*cos_theta - sin_theta*t035;
+    const T t051 = S(8)*cos_theta - S(3)*sin_theta*t028;
+    const T t052 = cos_theta*t014 + sin_psi*sin_theta*t010 + t003*t050 + t006*t051;
+    const T t053 = S(3)*cos_theta + sin_theta*t030;
+    const T t054 = cos_psi*sin_theta*t010 + cos_theta*t012 + t003*t053 + t009*t051;
+    const T t055 = t006*t053 - sin_theta*t034 - t009*t050;
+    const T t056 = S(22)*psi_dot*sin_psi*sin_theta + S(3)*t055 + S(5)*t052 - S(22)*cos_psi*cos_theta*theta_dot - S(3)*t054;
+    const T t057 = S(3)*t052 + S(3)*t055 - S(22)*cos_psi*psi_dot*sin_theta - S(22)*cos_theta*sin_psi*theta_dot - S(5)*t054;
+    const T t058 = cos_psi*t056 + sin_psi*t057;
+    const T t059 = S(3)*cos_psi + S(8)*sin_psi;
+    const T t060 = S(3)*t009*t015 + t003*t059 - sin_psi*t010;
+    const T t061 = S(3)*sin_psi + S(8)*cos_psi;
+    const T t062 = t003*t061 - S(3)*t006*t015 - cos_psi*t010;
+    const T t063 = cos_psi*t012 + sin_psi*t014 + t006*t059 + t009*t061;
+    const T t064 = S(22)*cos_psi*t020 + S(3)*t060 + S(5)*t062 - S(3)*t063;
+    const T t065 = S(22)*sin_psi*t020 + S(3)*t062 + S(5)*t060 - S(3)*t063;
+    const T t066 = cos_psi*t064 + sin_psi*t065;
+    const T t067 = S(18)*t003 + S(9)*t009 - S(15)*(S(2)*t003 + t009) - S(22)*t004 - S(22)*t005;
+    const T t068 = S(18)*t003 + S(22)*t008 + S(9)*t006 - S(15)*(S(2)*t003 + t006) - S(22)*t007;
+    const T t069 = cos_psi*t067 - sin_psi*t068;
+    const T t070 = (S(3)/S(22)*t033 - S(3)/S(22)*t039 - S(5)/S(22)*t037)*t001 + S(1)/S(22)*t022 + S(1)/S(22)*t025 - (phi_dot*theta_dot - S(1)/S(22)*t042)*cos_theta;
     dydt[0] = phi_dot;
     dydt[1] = theta_dot;
     dydt[2] = psi_dot;
-    dydt[3] = -S(1)/S(22)*t000*t028;
-    dydt[4] = -S(1)/S(22)*(cos_psi*t022 - sin_psi*t026);
-    dydt[5] = S(1)/S(22)*t029 + phi_dot*sin_theta*theta_dot - (S(3)/S(22)*t013 - S(3)/S(22)*t018 - S(5)/S(22)*t016)*t001;
+    dydt[3] = -S(1)/S(22)*t000*t026;
+    dydt[4] = -S(1)/S(22)*(cos_psi*t021 - sin_psi*t024);
+    dydt[5] = S(1)/S(22)*t027 + phi_dot*sin_theta*theta_dot - (S(3)/S(22)*t013 - S(3)/S(22)*t018 - S(5)/S(22)*t016)*t001;
     J[0] = T(S(0));
     J[1] = T(S(0));
     J[2] = T(S(0));
@@ -399,23 +385,23 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     J[16] = T(S(0));
     J[17] = T(S(1));
     J[18] = T(S(0));
-    J[19] = S(1)/S(22)*t044;
-    J[20] = -S(1)/S(22)*t000*t053;
-    J[21] = S(1)/S(22)*t000*t062;
-    J[22] = -S(1)/S(22)*t000*t070;
-    J[23] = -S(1)/S(22)*t000*t075;
+    J[19] = S(1)/S(22)*t042;
+    J[20] = -S(1)/S(22)*t049/(p.L*sin_theta);
+    J[21] = S(1)/S(22)*t000*t058;
+    J[22] = -S(1)/S(22)*t000*t066;
+    J[23] = -S(1)/S(22)*t000*t069;
     J[24] = T(S(0));
-    J[25] = -S(1)/S(22)*(sin_psi*t042 - cos_psi*t043);
-    J[26] = S(1)/S(22)*(cos_psi*t052 + sin_psi*t051);
-    J[27] = -S(1)/S(22)*(sin_psi*t060 - cos_psi*t061);
-    J[28] = S(1)/S(22)*(sin_psi*t068 - cos_psi*t069);
-    J[29] = S(1)/S(22)*(sin_psi*t073 - cos_psi*t074);
+    J[25] = -S(1)/S(22)*(sin_psi*t040 - cos_psi*t041);
+    J[26] = S(1)/S(22)*(sin_psi*t048 - cos_psi*t047)*t001;
+    J[27] = -S(1)/S(22)*(sin_psi*t056 - cos_psi*t057);
+    J[28] = S(1)/S(22)*(sin_psi*t064 - cos_psi*t065);
+    J[29] = S(1)/S(22)*(cos_psi*t068 + sin_psi*t067);
     J[30] = T(S(0));
-    J[31] = -t076;
-    J[32] = S(1)/S(22)*cos_theta*t000*t053 - (S(3)/S(22)*t047 + S(3)/S(22)*t050 - S(5)/S(22)*t049)*t001;
-    J[33] = S(3)/S(22)*t056 + S(5)/S(22)*t059 + sin_theta*theta_dot - S(1)/S(22)*cos_theta*t000*t062 - S(3)/S(22)*t058;
-    J[34] = -(S(3)/S(22)*t064 + S(3)/S(22)*t066 - S(1)/S(22)*cos_theta*t000*t070 - S(5)/S(22)*t067 - phi_dot*sin_theta);
-    J[35] = -(S(9)/S(22)*t071 - S(1)/S(22)*cos_theta*t000*t075 - S(15)/S(22)*t045 - S(9)/S(22)*t072);
+    J[31] = -t070;
+    J[32] = -(S(3)/S(22)*t044 + S(3)/S(22)*t045 - S(1)/S(22)*cos_theta*t000*t049 - S(5)/S(22)*t046)*t001;
+    J[33] = S(3)/S(22)*t052 + S(5)/S(22)*t055 + sin_theta*theta_dot - S(1)/S(22)*cos_theta*t000*t058 - S(3)/S(22)*t054;
+    J[34] = -(S(3)/S(22)*t060 + S(3)/S(22)*t062 - S(1)/S(22)*cos_theta*t000*t066 - S(5)/S(22)*t063 - phi_dot*sin_theta);
+    J[35] = -(S(9)/S(22)*t006 - S(1)/S(22)*cos_theta*t000*t069 - S(15)/S(22)*t043 - S(9)/S(22)*t009);
 }
 
 // The energy T + V (conserved without damping and driving torques).

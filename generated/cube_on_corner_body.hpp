@@ -22,8 +22,8 @@
 //
 // Operations (+ - * / and calls), before lowering -> after:
 //   rhs: 644 -> 105 (15 temporaries)
-//   jacobian: 2433 -> 241 (48 temporaries)
-//   rhs_and_jacobian: 3077 -> 324 (57 temporaries)
+//   jacobian: 2433 -> 255 (42 temporaries)
+//   rhs_and_jacobian: 3077 -> 338 (51 temporaries)
 //   energy: 98 -> 49 (7 temporaries)
 //   momenta: 42 -> 24 (1 temporaries)
 //   mass_matrix: 27 -> 5 (3 temporaries)
@@ -144,7 +144,7 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
 //   y     state, dim 7: (qw, qx, qy, qz, omega1, omega2, omega3)
 //   J     output, dim 7 x 7 (row-major); structural zeros in jacobian_pattern
 //   p     parameters
-// Operations (+ - * / and calls): 2433 before lowering, 241 after (100 +-, 139 *, 2 /, 0 calls).
+// Operations (+ - * / and calls): 2433 before lowering, 255 after (105 +-, 148 *, 2 /, 0 calls).
 template <class T>
 void jacobian(T t, const T* y, T* J, const params<T>& p) {
     using S = typename detail::scalar_of<T>::type;
@@ -172,38 +172,32 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T t013 = qw*qw;
     const T t014 = t010 + t011 + t012 + t013;
     const T t015 = S(1)/t014;
-    const T t016 = qw*qx + qy*qz;
+    const T t016 = t010 + t012 - t011 - t013;
     const T t017 = qw*qy - qx*qz;
-    const T t018 = t016 + t017;
-    const T t019 = S(2)*qw*t015*t018 - qx - qy;
-    const T t020 = t010 + t012 - t011 - t013;
-    const T t021 = (t020 - S(2)*t017)*t015;
-    const T t022 = S(1) + t021;
-    const T t023 = qw*t022 + qy;
-    const T t024 = (S(2)*t016 + t020)*t015;
+    const T t018 = (t016 - S(2)*t017)*t015;
+    const T t019 = S(1) + t018;
+    const T t020 = qw*qx + qy*qz;
+    const T t021 = t017 + t020;
+    const T t022 = t015*t021;
+    const T t023 = S(18)/S(11)*t019 + S(36)/S(11)*t022;
+    const T t024 = (S(2)*t020 + t016)*t015;
     const T t025 = S(1) + t024;
     const T t026 = qx - qw*t025;
     const T t027 = S(1)/(p.L*t014);
-    const T t028 = qw - S(2)*qx*t015*t018 - qz;
-    const T t029 = t024 - S(1);
-    const T t030 = qx*t029 - qw;
-    const T t031 = t021 - S(1);
-    const T t032 = qx*t031 - qz;
-    const T t033 = qw + qy*t031;
-    const T t034 = S(2)*qy*t015*t018 - qw - qz;
-    const T t035 = qy*t029 - qz;
-    const T t036 = qx - qz*t022;
-    const T t037 = qz*t025 - qy;
-    const T t038 = qy - S(2)*qz*t015*t018 - qx;
-    const T t039 = S(2)*omega1 + omega2;
-    const T t040 = omega3 - omega2;
-    const T t041 = S(2)*omega1 + omega3;
-    const T t042 = omega1 - omega3;
-    const T t043 = S(2)*omega2 + omega1;
-    const T t044 = S(2)*omega2 + omega3;
-    const T t045 = S(2)*omega3 + omega2;
-    const T t046 = S(2)*omega3 + omega1;
-    const T t047 = omega1 - omega2;
+    const T t028 = t024 - S(1);
+    const T t029 = qx*t028 - qw;
+    const T t030 = t018 - S(1);
+    const T t031 = S(18)/S(11)*t030 + S(36)/S(11)*t022;
+    const T t032 = qy*t028 - qz;
+    const T t033 = qz*t025 - qy;
+    const T t034 = S(18)/S(11)*t025 - S(36)/S(11)*t022;
+    const T t035 = qw*t019 + qy;
+    const T t036 = S(18)/S(11)*t028 - S(36)/S(11)*t022;
+    const T t037 = qx*t030 - qz;
+    const T t038 = qw + qy*t030;
+    const T t039 = qx - qz*t019;
+    const T t040 = -(S(18)/S(11)*t029 + S(30)/S(11)*(qw - S(2)*qx*t015*t021 - qz) - S(18)/S(11)*t037)*p.g*t027;
+    const T t041 = -(S(18)/S(11)*t033 + S(18)/S(11)*t039 + S(30)/S(11)*(qy - S(2)*qz*t015*t021 - qx))*p.g*t027;
     J[0] = T(S(0));
     J[1] = t000;
     J[2] = t001;
@@ -232,27 +226,27 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     J[25] = t004;
     J[26] = S(1)/S(2)*qx;
     J[27] = t008;
-    J[28] = (S(18)/S(11)*t019 + S(18)/S(11)*t023 + S(30)/S(11)*t026)*p.g*t027;
-    J[29] = -(S(18)/S(11)*t028 + S(30)/S(11)*t030 - S(18)/S(11)*t032)*p.g*t027;
-    J[30] = (S(18)/S(11)*t033 + S(18)/S(11)*t034 - S(30)/S(11)*t035)*p.g*t027;
-    J[31] = -(S(18)/S(11)*t036 + S(18)/S(11)*t038 + S(30)/S(11)*t037)*p.g*t027;
-    J[32] = -(S(15)/S(22)*t040 + S(9)/S(22)*t039 - S(9)/S(22)*t041);
-    J[33] = -(S(9)/S(22)*t042 + S(9)/S(22)*t044 - S(15)/S(22)*t043);
-    J[34] = S(9)/S(22)*t045 + S(9)/S(22)*t047 - S(15)/S(22)*t046;
-    J[35] = (S(18)/S(11)*t019 + S(18)/S(11)*t026 + S(30)/S(11)*t023)*p.g*t027;
-    J[36] = -(S(18)/S(11)*t028 + S(18)/S(11)*t030 - S(30)/S(11)*t032)*p.g*t027;
-    J[37] = (S(18)/S(11)*t034 + S(30)/S(11)*t033 - S(18)/S(11)*t035)*p.g*t027;
-    J[38] = -(S(18)/S(11)*t037 + S(18)/S(11)*t038 + S(30)/S(11)*t036)*p.g*t027;
-    J[39] = -(S(15)/S(22)*t039 + S(9)/S(22)*t040 - S(9)/S(22)*t041);
-    J[40] = -(S(15)/S(22)*t042 + S(9)/S(22)*t044 - S(9)/S(22)*t043);
-    J[41] = S(15)/S(22)*t045 + S(9)/S(22)*t047 - S(9)/S(22)*t046;
-    J[42] = (S(18)/S(11)*t023 + S(18)/S(11)*t026 + S(30)/S(11)*t019)*p.g*t027;
-    J[43] = -(S(18)/S(11)*t030 + S(30)/S(11)*t028 - S(18)/S(11)*t032)*p.g*t027;
-    J[44] = (S(18)/S(11)*t033 + S(30)/S(11)*t034 - S(18)/S(11)*t035)*p.g*t027;
-    J[45] = -(S(18)/S(11)*t036 + S(18)/S(11)*t037 + S(30)/S(11)*t038)*p.g*t027;
-    J[46] = -(S(9)/S(22)*t039 + S(9)/S(22)*t040 - S(15)/S(22)*t041);
-    J[47] = -(S(15)/S(22)*t044 + S(9)/S(22)*t042 - S(9)/S(22)*t043);
-    J[48] = S(15)/S(22)*t047 + S(9)/S(22)*t045 - S(9)/S(22)*t046;
+    J[28] = -(S(18)/S(11)*qx - S(30)/S(11)*t026 - qw*t023)*p.g*t027;
+    J[29] = -(S(18)/S(11)*qw + S(30)/S(11)*t029 - qx*t031)*p.g*t027;
+    J[30] = -(S(18)/S(11)*qz + S(30)/S(11)*t032 - qy*t031)*p.g*t027;
+    J[31] = -(S(18)/S(11)*qy + S(30)/S(11)*t033 - qz*t023)*p.g*t027;
+    J[32] = S(9)/S(22)*omega3 - S(15)/S(22)*(omega3 - omega2) - S(9)/S(22)*omega2;
+    J[33] = -(S(9)/S(11)*omega2 + S(9)/S(22)*omega1 - S(15)/S(22)*(S(2)*omega2 + omega1));
+    J[34] = S(9)/S(11)*omega3 + S(9)/S(22)*omega1 - S(15)/S(22)*(S(2)*omega3 + omega1);
+    J[35] = -(S(18)/S(11)*qy + qw*t034 - S(30)/S(11)*t035)*p.g*t027;
+    J[36] = -(qx*t036 - S(18)/S(11)*qz - S(30)/S(11)*t037)*p.g*t027;
+    J[37] = (S(30)/S(11)*t038 - S(18)/S(11)*qw - qy*t036)*p.g*t027;
+    J[38] = -(S(30)/S(11)*t039 + qz*t034 - S(18)/S(11)*qx)*p.g*t027;
+    J[39] = S(9)/S(11)*omega1 + S(9)/S(22)*omega2 - S(15)/S(22)*(S(2)*omega1 + omega2);
+    J[40] = S(9)/S(22)*omega1 - S(15)/S(22)*(omega1 - omega3) - S(9)/S(22)*omega3;
+    J[41] = -(S(9)/S(11)*omega3 + S(9)/S(22)*omega2 - S(15)/S(22)*(S(2)*omega3 + omega2));
+    J[42] = (S(18)/S(11)*t026 + S(18)/S(11)*t035 + S(30)/S(11)*(S(2)*qw*t015*t021 - qx - qy))*p.g*t027;
+    J[43] = t040;
+    J[44] = (S(18)/S(11)*t038 + S(30)/S(11)*(S(2)*qy*t015*t021 - qw - qz) - S(18)/S(11)*t032)*p.g*t027;
+    J[45] = t041;
+    J[46] = -(S(9)/S(11)*omega1 + S(9)/S(22)*omega3 - S(15)/S(22)*(S(2)*omega1 + omega3));
+    J[47] = S(9)/S(11)*omega2 + S(9)/S(22)*omega3 - S(15)/S(22)*(S(2)*omega2 + omega3);
+    J[48] = -(S(9)/S(22)*omega1 - S(15)/S(22)*(omega1 - omega2) - S(9)/S(22)*omega2);
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -261,7 +255,7 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   dydt  output, dim 7: qw_dot, qx_dot, qy_dot, qz_dot, omega1_dot, omega2_dot, omega3_dot
 //   J     output, dim 7 x 7 (row-major)
 //   p     parameters
-// Operations (+ - * / and calls): 3077 before lowering, 324 after (127 +-, 194 *, 3 /, 0 calls).
+// Operations (+ - * / and calls): 3077 before lowering, 338 after (132 +-, 203 *, 3 /, 0 calls).
 template <class T>
 void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     using S = typename detail::scalar_of<T>::type;
@@ -302,34 +296,28 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T t026 = S(1)/S(2)*omega3;
     const T t027 = S(1)/S(2)*qw;
     const T t028 = S(1)/S(2)*omega2;
-    const T t029 = S(2)*qw*t007*t010 - qx - qy;
-    const T t030 = t007*t014;
-    const T t031 = S(1) + t030;
-    const T t032 = qw*t031 + qy;
+    const T t029 = t007*t014;
+    const T t030 = S(1) + t029;
+    const T t031 = t007*t010;
+    const T t032 = S(18)/S(11)*t030 + S(36)/S(11)*t031;
     const T t033 = t007*t016;
     const T t034 = S(1) + t033;
     const T t035 = qx - qw*t034;
     const T t036 = S(1)/(p.L*t006);
-    const T t037 = qw - S(2)*qx*t007*t010 - qz;
-    const T t038 = t033 - S(1);
-    const T t039 = qx*t038 - qw;
-    const T t040 = t030 - S(1);
-    const T t041 = qx*t040 - qz;
-    const T t042 = qw + qy*t040;
-    const T t043 = S(2)*qy*t007*t010 - qw - qz;
-    const T t044 = qy*t038 - qz;
-    const T t045 = qx - qz*t031;
-    const T t046 = qz*t034 - qy;
-    const T t047 = qy - S(2)*qz*t007*t010 - qx;
-    const T t048 = S(2)*omega1 + omega2;
-    const T t049 = omega3 - omega2;
-    const T t050 = S(2)*omega1 + omega3;
-    const T t051 = omega1 - omega3;
-    const T t052 = S(2)*omega2 + omega1;
-    const T t053 = S(2)*omega2 + omega3;
-    const T t054 = S(2)*omega3 + omega2;
-    const T t055 = S(2)*omega3 + omega1;
-    const T t056 = omega1 - omega2;
+    const T t037 = t033 - S(1);
+    const T t038 = qx*t037 - qw;
+    const T t039 = t029 - S(1);
+    const T t040 = S(18)/S(11)*t039 + S(36)/S(11)*t031;
+    const T t041 = qy*t037 - qz;
+    const T t042 = qz*t034 - qy;
+    const T t043 = S(18)/S(11)*t034 - S(36)/S(11)*t031;
+    const T t044 = qw*t030 + qy;
+    const T t045 = S(18)/S(11)*t037 - S(36)/S(11)*t031;
+    const T t046 = qx*t039 - qz;
+    const T t047 = qw + qy*t039;
+    const T t048 = qx - qz*t030;
+    const T t049 = -(S(18)/S(11)*t038 + S(30)/S(11)*(qw - S(2)*qx*t007*t010 - qz) - S(18)/S(11)*t046)*p.g*t036;
+    const T t050 = -(S(18)/S(11)*t042 + S(18)/S(11)*t048 + S(30)/S(11)*(qy - S(2)*qz*t007*t010 - qx))*p.g*t036;
     dydt[0] = -S(1)/S(2)*(omega1*qx + omega2*qy + omega3*qz);
     dydt[1] = S(1)/S(2)*(omega1*qw + omega3*qy - omega2*qz);
     dydt[2] = S(1)/S(2)*(omega1*qz + omega2*qw - omega3*qx);
@@ -365,27 +353,27 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     J[25] = t023;
     J[26] = S(1)/S(2)*qx;
     J[27] = t027;
-    J[28] = (S(18)/S(11)*t029 + S(18)/S(11)*t032 + S(30)/S(11)*t035)*p.g*t036;
-    J[29] = -(S(18)/S(11)*t037 + S(30)/S(11)*t039 - S(18)/S(11)*t041)*p.g*t036;
-    J[30] = (S(18)/S(11)*t042 + S(18)/S(11)*t043 - S(30)/S(11)*t044)*p.g*t036;
-    J[31] = -(S(18)/S(11)*t045 + S(18)/S(11)*t047 + S(30)/S(11)*t046)*p.g*t036;
-    J[32] = -(S(15)/S(22)*t049 + S(9)/S(22)*t048 - S(9)/S(22)*t050);
-    J[33] = -(S(9)/S(22)*t051 + S(9)/S(22)*t053 - S(15)/S(22)*t052);
-    J[34] = S(9)/S(22)*t054 + S(9)/S(22)*t056 - S(15)/S(22)*t055;
-    J[35] = (S(18)/S(11)*t029 + S(18)/S(11)*t035 + S(30)/S(11)*t032)*p.g*t036;
-    J[36] = -(S(18)/S(11)*t037 + S(18)/S(11)*t039 - S(30)/S(11)*t041)*p.g*t036;
-    J[37] = (S(18)/S(11)*t043 + S(30)/S(11)*t042 - S(18)/S(11)*t044)*p.g*t036;
-    J[38] = -(S(18)/S(11)*t046 + S(18)/S(11)*t047 + S(30)/S(11)*t045)*p.g*t036;
-    J[39] = -(S(15)/S(22)*t048 + S(9)/S(22)*t049 - S(9)/S(22)*t050);
-    J[40] = -(S(15)/S(22)*t051 + S(9)/S(22)*t053 - S(9)/S(22)*t052);
-    J[41] = S(15)/S(22)*t054 + S(9)/S(22)*t056 - S(9)/S(22)*t055;
-    J[42] = (S(18)/S(11)*t032 + S(18)/S(11)*t035 + S(30)/S(11)*t029)*p.g*t036;
-    J[43] = -(S(18)/S(11)*t039 + S(30)/S(11)*t037 - S(18)/S(11)*t041)*p.g*t036;
-    J[44] = (S(18)/S(11)*t042 + S(30)/S(11)*t043 - S(18)/S(11)*t044)*p.g*t036;
-    J[45] = -(S(18)/S(11)*t045 + S(18)/S(11)*t046 + S(30)/S(11)*t047)*p.g*t036;
-    J[46] = -(S(9)/S(22)*t048 + S(9)/S(22)*t049 - S(15)/S(22)*t050);
-    J[47] = -(S(15)/S(22)*t053 + S(9)/S(22)*t051 - S(9)/S(22)*t052);
-    J[48] = S(15)/S(22)*t056 + S(9)/S(22)*t054 - S(9)/S(22)*t055;
+    J[28] = -(S(18)/S(11)*qx - S(30)/S(11)*t035 - qw*t032)*p.g*t036;
+    J[29] = -(S(18)/S(11)*qw + S(30)/S(11)*t038 - qx*t040)*p.g*t036;
+    J[30] = -(S(18)/S(11)*qz + S(30)/S(11)*t041 - qy*t040)*p.g*t036;
+    J[31] = -(S(18)/S(11)*qy + S(30)/S(11)*t042 - qz*t032)*p.g*t036;
+    J[32] = S(9)/S(22)*omega3 - S(15)/S(22)*(omega3 - omega2) - S(9)/S(22)*omega2;
+    J[33] = -(S(9)/S(11)*omega2 + S(9)/S(22)*omega1 - S(15)/S(22)*(S(2)*omega2 + omega1));
+    J[34] = S(9)/S(11)*omega3 + S(9)/S(22)*omega1 - S(15)/S(22)*(S(2)*omega3 + omega1);
+    J[35] = -(S(18)/S(11)*qy + qw*t043 - S(30)/S(11)*t044)*p.g*t036;
+    J[36] = -(qx*t045 - S(18)/S(11)*qz - S(30)/S(11)*t046)*p.g*t036;
+    J[37] = (S(30)/S(11)*t047 - S(18)/S(11)*qw - qy*t045)*p.g*t036;
+    J[38] = -(S(30)/S(11)*t048 + qz*t043 - S(18)/S(11)*qx)*p.g*t036;
+    J[39] = S(9)/S(11)*omega1 + S(9)/S(22)*omega2 - S(15)/S(22)*(S(2)*omega1 + omega2);
+    J[40] = S(9)/S(22)*omega1 - S(15)/S(22)*(omega1 - omega3) - S(9)/S(22)*omega3;
+    J[41] = -(S(9)/S(11)*omega3 + S(9)/S(22)*omega2 - S(15)/S(22)*(S(2)*omega3 + omega2));
+    J[42] = (S(18)/S(11)*t035 + S(18)/S(11)*t044 + S(30)/S(11)*(S(2)*qw*t007*t010 - qx - qy))*p.g*t036;
+    J[43] = t049;
+    J[44] = (S(18)/S(11)*t047 + S(30)/S(11)*(S(2)*qy*t007*t010 - qw - qz) - S(18)/S(11)*t041)*p.g*t036;
+    J[45] = t050;
+    J[46] = -(S(9)/S(11)*omega1 + S(9)/S(22)*omega3 - S(15)/S(22)*(S(2)*omega1 + omega3));
+    J[47] = S(9)/S(11)*omega2 + S(9)/S(22)*omega3 - S(15)/S(22)*(S(2)*omega2 + omega3);
+    J[48] = -(S(9)/S(22)*omega1 - S(15)/S(22)*(omega1 - omega2) - S(9)/S(22)*omega2);
 }
 
 // The energy T + V (conserved without damping and driving torques).

@@ -20,8 +20,8 @@
 //
 // Operations (+ - * / and calls), before lowering -> after:
 //   rhs: 610 -> 78 (15 temporaries)
-//   jacobian: 3701 -> 257 (45 temporaries)
-//   rhs_and_jacobian: 4311 -> 291 (50 temporaries)
+//   jacobian: 3701 -> 252 (45 temporaries)
+//   rhs_and_jacobian: 4311 -> 286 (50 temporaries)
 //   energy: 184 -> 48 (10 temporaries)
 //   momenta: 0 -> 0 (0 temporaries)
 //   mass_matrix: 182 -> 45 (13 temporaries)
@@ -140,7 +140,7 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   J     output, dim 6 x 6 (row-major); structural zeros in jacobian_pattern
 //   p     parameters
-// Operations (+ - * / and calls): 3701 before lowering, 257 after (74 +-, 174 *, 5 /, 4 calls).
+// Operations (+ - * / and calls): 3701 before lowering, 252 after (74 +-, 169 *, 5 /, 4 calls).
 template <class T>
 void jacobian(T t, const T* y, T* J, const params<T>& p) {
     using std::cos;
@@ -175,9 +175,9 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T t016 = p.L*p.L;
     const T t017 = S(1)/(p.M*sin_theta*t016);
     const T t018 = t015*t017;
-    const T t019 = (S(3)*t002 + S(5)*t003) + t004;
-    const T t020 = (S(3)*t003 + S(5)*t002) - t006;
-    const T t021 = cos_psi*t019 + sin_psi*t020;
+    const T t019 = S(18)/S(11)*p_psi + S(36)/S(11)*t003;
+    const T t020 = S(36)/S(11)*t002 - S(18)/S(11)*p_psi;
+    const T t021 = cos_psi*t020 + sin_psi*t019;
     const T t022 = S(3)*sin_psi - S(5)*cos_psi;
     const T t023 = S(5)*sin_psi - S(3)*cos_psi;
     const T t024 = cos_psi*t023 + sin_psi*t022;
@@ -195,23 +195,23 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T t036 = sin_psi*t006;
     const T t037 = cos_psi*t004;
     const T t038 = t002*t010 + t003*t009 + t037 - t036;
-    const T t039 = S(1)/S(2)*p.L*p.M*p.g*sin_theta*t032 - S(6)/S(11)*(t002*t020 + t003*t019)*t029;
+    const T t039 = S(1)/S(2)*p.L*p.M*p.g*sin_theta*t032 - (t002*t019 + t003*t020)*t029;
     const T t040 = (t002*t026 + t003*t025 - (t036 - t037)*cos_theta*t000)*t029;
     J[0] = T(S(0));
     J[1] = S(6)/S(11)*t018;
-    J[2] = -S(6)/S(11)*t017*t021;
+    J[2] = -t017*t021;
     J[3] = S(6)/S(11)*t011/(p.M*t012*t016);
     J[4] = -S(6)/S(11)*t017*t024;
     J[5] = -S(6)/S(11)*t017*t027;
     J[6] = T(S(0));
     J[7] = -S(6)/S(11)*t014*t028*t029;
-    J[8] = S(6)/S(11)*(sin_psi*t019 - cos_psi*t020)*t029;
+    J[8] = -(cos_psi*t019 - sin_psi*t020)*t029;
     J[9] = -S(6)/S(11)*t017*t028;
     J[10] = -S(6)/S(11)*(cos_psi*t022 - sin_psi*t023)*t029;
     J[11] = -S(6)/S(11)*(cos_psi*t026 - sin_psi*t025)*t029;
     J[12] = T(S(0));
     J[13] = t029*t030;
-    J[14] = (S(6)/S(11)*cos_theta*t000*t021 - S(18)/S(11)*t002 - S(18)/S(11)*t003)*t029;
+    J[14] = -(S(18)/S(11)*t002 + S(18)/S(11)*t003 - cos_theta*t000*t021)*t029;
     J[15] = (S(18)/S(11)*cos_psi + S(18)/S(11)*sin_psi - S(6)/S(11)*cos_theta*t000*t011)*t017;
     J[16] = -(S(18)/S(11)*sin_psi - S(18)/S(11)*cos_psi - S(6)/S(11)*cos_theta*t000*t024)*t029;
     J[17] = (S(30)/S(11) + t031)*t029;
@@ -223,7 +223,7 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     J[23] = T(S(0));
     J[24] = T(S(0));
     J[25] = S(1)/S(2)*(cos_theta + sin_theta*t032)*p.L*p.M*p.g - S(6)/S(11)*t029*t033;
-    J[26] = S(1)/S(2)*t034 + S(6)/S(11)*t014*t021*t029;
+    J[26] = S(1)/S(2)*t034 + t014*t021*t029;
     J[27] = -S(6)/S(11)*t018;
     J[28] = S(6)/S(11)*t014*t024*t029;
     J[29] = S(6)/S(11)*t035;
@@ -241,7 +241,7 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, p_phi_dot, p_theta_dot, p_psi_dot
 //   J     output, dim 6 x 6 (row-major)
 //   p     parameters
-// Operations (+ - * / and calls): 4311 before lowering, 291 after (82 +-, 200 *, 5 /, 4 calls).
+// Operations (+ - * / and calls): 4311 before lowering, 286 after (82 +-, 195 *, 5 /, 4 calls).
 template <class T>
 void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     using std::cos;
@@ -285,9 +285,9 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T t025 = cos_psi*t023 + sin_psi*t024;
     const T t026 = t015 + t018*t025;
     const T t027 = t001*t026;
-    const T t028 = (S(3)*t004 + S(5)*t005) + t006;
-    const T t029 = (S(3)*t005 + S(5)*t004) - t008;
-    const T t030 = cos_psi*t028 + sin_psi*t029;
+    const T t028 = S(18)/S(11)*p_psi + S(36)/S(11)*t005;
+    const T t029 = S(36)/S(11)*t004 - S(18)/S(11)*p_psi;
+    const T t030 = cos_psi*t029 + sin_psi*t028;
     const T t031 = S(3)*sin_psi - S(5)*cos_psi;
     const T t032 = S(5)*sin_psi - S(3)*cos_psi;
     const T t033 = cos_psi*t032 + sin_psi*t031;
@@ -301,7 +301,7 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T t041 = cos_theta*p.L*p.M*p.g*t021;
     const T t042 = ((S(1) + cos_theta*cos_theta*t017)*t010 + t018*t036)*t014;
     const T t043 = t004*t024 + t005*t023 + t012 - t011;
-    const T t044 = S(1)/S(2)*p.L*p.M*p.g*sin_theta*t019 - S(6)/S(11)*(t004*t029 + t005*t028)*t014;
+    const T t044 = S(1)/S(2)*p.L*p.M*p.g*sin_theta*t019 - (t004*t028 + t005*t029)*t014;
     const T t045 = -S(6)/S(11)*(t004*t035 + t005*t034 - cos_theta*t002*t013)*t014;
     dydt[0] = -S(6)/S(11)*t001*t010;
     dydt[1] = S(6)/S(11)*t013*t014;
@@ -311,19 +311,19 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     dydt[5] = t022;
     J[0] = T(S(0));
     J[1] = S(6)/S(11)*t027;
-    J[2] = -S(6)/S(11)*t001*t030;
+    J[2] = -t001*t030;
     J[3] = S(6)/S(11)*t025/(p.M*t000*t016);
     J[4] = -S(6)/S(11)*t001*t033;
     J[5] = -S(6)/S(11)*t001*t036;
     J[6] = T(S(0));
     J[7] = -S(6)/S(11)*t014*t018*t037;
-    J[8] = S(6)/S(11)*(sin_psi*t028 - cos_psi*t029)*t014;
+    J[8] = -(cos_psi*t028 - sin_psi*t029)*t014;
     J[9] = -S(6)/S(11)*t001*t037;
     J[10] = -S(6)/S(11)*(cos_psi*t031 - sin_psi*t032)*t014;
     J[11] = -S(6)/S(11)*(cos_psi*t035 - sin_psi*t034)*t014;
     J[12] = T(S(0));
     J[13] = t014*t038;
-    J[14] = (S(6)/S(11)*cos_theta*t002*t030 - S(18)/S(11)*t004 - S(18)/S(11)*t005)*t014;
+    J[14] = -(S(18)/S(11)*t004 + S(18)/S(11)*t005 - cos_theta*t002*t030)*t014;
     J[15] = (S(18)/S(11)*cos_psi + S(18)/S(11)*sin_psi - S(6)/S(11)*cos_theta*t002*t025)*t001;
     J[16] = -(S(18)/S(11)*sin_psi - S(18)/S(11)*cos_psi - S(6)/S(11)*cos_theta*t002*t033)*t014;
     J[17] = (S(30)/S(11) + t039)*t014;
@@ -335,7 +335,7 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     J[23] = T(S(0));
     J[24] = T(S(0));
     J[25] = S(1)/S(2)*(cos_theta + sin_theta*t019)*p.L*p.M*p.g - S(6)/S(11)*t014*t040;
-    J[26] = S(1)/S(2)*t041 + S(6)/S(11)*t014*t018*t030;
+    J[26] = S(1)/S(2)*t041 + t014*t018*t030;
     J[27] = -S(6)/S(11)*t027;
     J[28] = S(6)/S(11)*t014*t018*t033;
     J[29] = S(6)/S(11)*t042;

@@ -21,8 +21,8 @@
 //
 // Operations (+ - * / and calls), before lowering -> after:
 //   rhs: 515 -> 74 (14 temporaries)
-//   jacobian: 2750 -> 225 (38 temporaries)
-//   rhs_and_jacobian: 3265 -> 257 (43 temporaries)
+//   jacobian: 2750 -> 220 (38 temporaries)
+//   rhs_and_jacobian: 3265 -> 252 (43 temporaries)
 //   energy: 184 -> 47 (10 temporaries)
 //   momenta: 0 -> 0 (0 temporaries)
 //   mass_matrix: 182 -> 45 (13 temporaries)
@@ -136,7 +136,7 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
 //   y     state, dim 4: (theta, psi, p_theta, p_psi)
 //   J     output, dim 4 x 4 (row-major); structural zeros in jacobian_pattern
 //   p     parameters
-// Operations (+ - * / and calls): 2750 before lowering, 225 after (68 +-, 150 *, 3 /, 4 calls).
+// Operations (+ - * / and calls): 2750 before lowering, 220 after (67 +-, 146 *, 3 /, 4 calls).
 template <class T>
 void jacobian(T t, const T* y, T* J, const params<T>& p) {
     using std::cos;
@@ -158,48 +158,48 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T t004 = S(3)*cos_psi + S(5)*sin_psi;
     const T t005 = S(1)/(p.L*p.L*p.M);
     const T t006 = S(1)/sin_theta;
-    const T t007 = cos_psi*t001*t006 + p_theta*sin_psi;
-    const T t008 = cos_psi*p_theta - sin_psi*t001*t006;
-    const T t009 = S(5)*t007 - S(3)*p_psi - S(3)*t008;
-    const T t010 = t009 - (S(3)*t008 + S(5)*t007);
-    const T t011 = S(3)*t007 - S(3)*p_psi - S(5)*t008;
-    const T t012 = (S(3)*t007 + S(5)*t008) + t011;
-    const T t013 = S(3)*sin_psi - S(5)*cos_psi;
-    const T t014 = S(5)*sin_psi - S(3)*cos_psi;
-    const T t015 = cos_theta*t004*t006 - S(3);
-    const T t016 = cos_theta*t003*t006 - S(3);
+    const T t007 = cos_psi*p_theta - sin_psi*t001*t006;
+    const T t008 = S(18)/S(11)*p_psi + S(36)/S(11)*t007;
+    const T t009 = cos_psi*t001*t006 + p_theta*sin_psi;
+    const T t010 = S(36)/S(11)*t009 - S(18)/S(11)*p_psi;
+    const T t011 = S(3)*sin_psi - S(5)*cos_psi;
+    const T t012 = S(5)*sin_psi - S(3)*cos_psi;
+    const T t013 = cos_theta*t004*t006 - S(3);
+    const T t014 = cos_theta*t003*t006 - S(3);
+    const T t015 = S(5)*t009 - S(3)*p_psi - S(3)*t007;
+    const T t016 = S(3)*t009 - S(3)*p_psi - S(5)*t007;
     const T t017 = cos_psi*t003 + sin_psi*t004;
-    const T t018 = cos_psi*t009;
-    const T t019 = sin_psi*t011;
+    const T t018 = cos_psi*t015;
+    const T t019 = sin_psi*t016;
     const T t020 = t018 + t019;
-    const T t021 = (S(18)/S(11)*t002 - S(6)/S(11)*t009)*cos_psi - (S(6)/S(11)*t011 - S(18)/S(11)*t002)*sin_psi - S(6)/S(11)*(cos_theta*t006*t020 + t002*t017)*cos_theta*t006;
-    const T t022 = cos_psi*t012 - sin_psi*t010;
-    const T t023 = cos_psi*t014 + sin_psi*t013;
-    const T t024 = ((S(6)/S(11)*t015 - S(18)/S(11))*sin_psi + (S(6)/S(11)*t016 - S(18)/S(11))*cos_psi)*cos_theta*t006;
+    const T t021 = (S(18)/S(11)*t002 - S(6)/S(11)*t015)*cos_psi - (S(6)/S(11)*t016 - S(18)/S(11)*t002)*sin_psi - S(6)/S(11)*(cos_theta*t006*t020 + t002*t017)*cos_theta*t006;
+    const T t022 = cos_psi*t010 + sin_psi*t008;
+    const T t023 = cos_psi*t012 + sin_psi*t011;
+    const T t024 = ((S(6)/S(11)*t013 - S(18)/S(11))*sin_psi + (S(6)/S(11)*t014 - S(18)/S(11))*cos_psi)*cos_theta*t006;
     const T t025 = cos_psi + sin_psi;
     const T t026 = (p.p_phi - S(2)*cos_theta*t002)*t006*t020 - t002*t002*t017;
     const T t027 = (sin_psi - cos_psi)*cos_theta*p.L*p.M*p.g;
-    const T t028 = (S(1) + cos_theta*cos_theta*t000)*t020 + (cos_psi*t016 + sin_psi*t015)*t002;
-    const T t029 = sin_psi*t009;
-    const T t030 = cos_psi*t011;
-    const T t031 = S(1)/S(2)*t027 - S(6)/S(11)*(t029 - t003*t008 - t004*t007 - t030)*t002*t005;
-    const T t032 = S(1)/S(2)*p.L*p.M*p.g*sin_theta*t025 - S(6)/S(11)*(t008*t012 - t007*t010)*t005;
-    const T t033 = (t007*t015 + t008*t016 - (t029 - t030)*cos_theta*t006)*t005;
+    const T t028 = (S(1) + cos_theta*cos_theta*t000)*t020 + (cos_psi*t014 + sin_psi*t013)*t002;
+    const T t029 = sin_psi*t015;
+    const T t030 = cos_psi*t016;
+    const T t031 = S(1)/S(2)*t027 - S(6)/S(11)*(t029 - t003*t007 - t004*t009 - t030)*t002*t005;
+    const T t032 = S(1)/S(2)*p.L*p.M*p.g*sin_theta*t025 - (t007*t010 + t008*t009)*t005;
+    const T t033 = (t007*t014 + t009*t013 - (t029 - t030)*cos_theta*t006)*t005;
     J[0] = -S(6)/S(11)*(sin_psi*t003 - cos_psi*t004)*t002*t005;
-    J[1] = S(6)/S(11)*(cos_psi*t010 + sin_psi*t012)*t005;
-    J[2] = -S(6)/S(11)*(cos_psi*t013 - sin_psi*t014)*t005;
-    J[3] = -S(6)/S(11)*(cos_psi*t015 - sin_psi*t016)*t005;
+    J[1] = -(cos_psi*t008 - sin_psi*t010)*t005;
+    J[2] = -S(6)/S(11)*(cos_psi*t011 - sin_psi*t012)*t005;
+    J[3] = -S(6)/S(11)*(cos_psi*t013 - sin_psi*t014)*t005;
     J[4] = t005*t021;
-    J[5] = -(S(18)/S(11)*t007 + S(18)/S(11)*t008 - S(6)/S(11)*cos_theta*t006*t022)*t005;
+    J[5] = -(S(18)/S(11)*t007 + S(18)/S(11)*t009 - cos_theta*t006*t022)*t005;
     J[6] = -(S(18)/S(11)*sin_psi - S(18)/S(11)*cos_psi - S(6)/S(11)*cos_theta*t006*t023)*t005;
     J[7] = (S(30)/S(11) + t024)*t005;
     J[8] = S(1)/S(2)*(cos_theta + sin_theta*t025)*p.L*p.M*p.g + S(6)/S(11)*t005*t026;
-    J[9] = S(1)/S(2)*t027 + S(6)/S(11)*t002*t005*t022;
+    J[9] = S(1)/S(2)*t027 + t002*t005*t022;
     J[10] = S(6)/S(11)*t002*t005*t023;
     J[11] = S(6)/S(11)*t005*t028;
     J[12] = t031;
     J[13] = t032;
-    J[14] = -S(6)/S(11)*(t007*t013 + t008*t014 + t018 + t019)*t005;
+    J[14] = -S(6)/S(11)*(t007*t012 + t009*t011 + t018 + t019)*t005;
     J[15] = -S(6)/S(11)*t033;
 }
 
@@ -209,7 +209,7 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   dydt  output, dim 4: theta_dot, psi_dot, p_theta_dot, p_psi_dot
 //   J     output, dim 4 x 4 (row-major)
 //   p     parameters
-// Operations (+ - * / and calls): 3265 before lowering, 257 after (76 +-, 174 *, 3 /, 4 calls).
+// Operations (+ - * / and calls): 3265 before lowering, 252 after (75 +-, 170 *, 3 /, 4 calls).
 template <class T>
 void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     using std::cos;
@@ -246,37 +246,37 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T t019 = S(1)/S(2)*p.L*p.M*p.g*sin_theta*t018 - S(6)/S(11)*(t002*t006 + t003*t004)*t009;
     const T t020 = S(3)*sin_psi + S(5)*cos_psi;
     const T t021 = S(3)*cos_psi + S(5)*sin_psi;
-    const T t022 = t004 - (S(3)*t003 + S(5)*t002);
-    const T t023 = (S(3)*t002 + S(5)*t003) + t006;
+    const T t022 = S(18)/S(11)*p_psi + S(36)/S(11)*t003;
+    const T t023 = S(36)/S(11)*t002 - S(18)/S(11)*p_psi;
     const T t024 = S(3)*sin_psi - S(5)*cos_psi;
     const T t025 = S(5)*sin_psi - S(3)*cos_psi;
     const T t026 = cos_theta*t001*t021 - S(3);
     const T t027 = cos_theta*t001*t020 - S(3);
     const T t028 = cos_psi*t020 + sin_psi*t021;
     const T t029 = (S(18)/S(11)*t016 - S(6)/S(11)*t004)*cos_psi - (S(6)/S(11)*t006 - S(18)/S(11)*t016)*sin_psi - S(6)/S(11)*(t013 + t016*t028)*cos_theta*t001;
-    const T t030 = cos_psi*t023 - sin_psi*t022;
+    const T t030 = cos_psi*t023 + sin_psi*t022;
     const T t031 = cos_psi*t025 + sin_psi*t024;
     const T t032 = ((S(6)/S(11)*t026 - S(18)/S(11))*sin_psi + (S(6)/S(11)*t027 - S(18)/S(11))*cos_psi)*cos_theta*t001;
     const T t033 = (p.p_phi - S(2)*cos_theta*t016)*t001*t012 - t016*t016*t028;
     const T t034 = cos_theta*p.L*p.M*p.g*t018;
     const T t035 = (S(1) + cos_theta*cos_theta*t015)*t012 + (cos_psi*t027 + sin_psi*t026)*t016;
     const T t036 = S(1)/S(2)*t034 - S(6)/S(11)*(t005 - t002*t021 - t003*t020 - t007)*t009*t016;
-    const T t037 = S(1)/S(2)*p.L*p.M*p.g*sin_theta*t014 - S(6)/S(11)*(t003*t023 - t002*t022)*t009;
+    const T t037 = S(1)/S(2)*p.L*p.M*p.g*sin_theta*t014 - (t002*t022 + t003*t023)*t009;
     const T t038 = -S(6)/S(11)*(t002*t026 + t003*t027 - cos_theta*t001*t008)*t009;
     dydt[0] = S(6)/S(11)*t008*t009;
     dydt[1] = -(S(18)/S(11)*t002 - S(18)/S(11)*t003 - S(30)/S(11)*p_psi - S(6)/S(11)*t013)*t009;
     dydt[2] = t017;
     dydt[3] = t019;
     J[0] = -S(6)/S(11)*(sin_psi*t020 - cos_psi*t021)*t009*t016;
-    J[1] = S(6)/S(11)*(cos_psi*t022 + sin_psi*t023)*t009;
+    J[1] = -(cos_psi*t022 - sin_psi*t023)*t009;
     J[2] = -S(6)/S(11)*(cos_psi*t024 - sin_psi*t025)*t009;
     J[3] = -S(6)/S(11)*(cos_psi*t026 - sin_psi*t027)*t009;
     J[4] = t009*t029;
-    J[5] = -(S(18)/S(11)*t002 + S(18)/S(11)*t003 - S(6)/S(11)*cos_theta*t001*t030)*t009;
+    J[5] = -(S(18)/S(11)*t002 + S(18)/S(11)*t003 - cos_theta*t001*t030)*t009;
     J[6] = -(S(18)/S(11)*sin_psi - S(18)/S(11)*cos_psi - S(6)/S(11)*cos_theta*t001*t031)*t009;
     J[7] = (S(30)/S(11) + t032)*t009;
     J[8] = S(1)/S(2)*(cos_theta + sin_theta*t014)*p.L*p.M*p.g + S(6)/S(11)*t009*t033;
-    J[9] = S(1)/S(2)*t034 + S(6)/S(11)*t009*t016*t030;
+    J[9] = S(1)/S(2)*t034 + t009*t016*t030;
     J[10] = S(6)/S(11)*t009*t016*t031;
     J[11] = S(6)/S(11)*t009*t035;
     J[12] = t036;

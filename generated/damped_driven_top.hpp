@@ -21,8 +21,8 @@
 //
 // Operations (+ - * / and calls), before lowering -> after:
 //   rhs: 129 -> 49 (10 temporaries)
-//   jacobian: 483 -> 133 (21 temporaries)
-//   rhs_and_jacobian: 612 -> 149 (25 temporaries)
+//   jacobian: 483 -> 137 (22 temporaries)
+//   rhs_and_jacobian: 612 -> 148 (23 temporaries)
 //   energy: 31 -> 23 (4 temporaries)
 //   momenta: 19 -> 12 (3 temporaries)
 //   mass_matrix: 11 -> 8 (3 temporaries)
@@ -139,7 +139,7 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   J     output, dim 6 x 6 (row-major); structural zeros in jacobian_pattern
 //   p     parameters
-// Operations (+ - * / and calls): 483 before lowering, 133 after (35 +-, 89 *, 6 /, 3 calls).
+// Operations (+ - * / and calls): 483 before lowering, 137 after (36 +-, 92 *, 6 /, 3 calls).
 template <class T>
 void jacobian(T t, const T* y, T* J, const params<T>& p) {
     using std::cos;
@@ -152,24 +152,25 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T sin_theta = sin(theta);
     const T cos_theta = cos(theta);
     const T t000 = S(1)/(p.I1*sin_theta);
-    const T t001 = sin(p.w*t);
-    const T t002 = p.c*psi_dot - p.A*t001 - p.I3*phi_dot*sin_theta*theta_dot;
-    const T t003 = S(1)/sin_theta;
-    const T t004 = sin_theta*sin_theta;
-    const T t005 = cos_theta*cos_theta;
-    const T t006 = p.I3 - p.I1;
-    const T t007 = (t004 - t005)*phi_dot*t006;
-    const T t008 = cos_theta*p.I3*psi_dot;
-    const T t009 = (S(2)*t007 - t008)*theta_dot + p.A*sin_theta*t001;
-    const T t010 = S(2)*cos_theta*phi_dot*t006 + p.I3*psi_dot;
-    const T t011 = cos_theta*p.A*t001 + sin_theta*t010*theta_dot - p.c*phi_dot;
-    const T t012 = (S(2)*(cos_theta*t002 + t011)*t003 + cos_theta*p.I3*phi_dot*theta_dot)*cos_theta;
-    const T t013 = S(2)*cos_theta*sin_theta*t006*theta_dot - p.c;
-    const T t014 = S(1)/p.I1;
-    const T t015 = S(1)/(p.I1*t004);
-    const T t016 = S(1)/p.I3 + t005*t015;
-    const T t017 = (S(2)*cos_theta*t003*t011 + t009)*t003 + S(2)*(S(1) + t005/t004)*t002;
-    const T t018 = (cos_theta*t017 + t011)*t000 + cos_theta*p.I3*phi_dot*t016*theta_dot;
+    const T t001 = S(1)/sin_theta;
+    const T t002 = sin(p.w*t);
+    const T t003 = p.c*psi_dot - p.A*t002 - p.I3*phi_dot*sin_theta*theta_dot;
+    const T t004 = p.I3*psi_dot;
+    const T t005 = p.I3 - p.I1;
+    const T t006 = cos_theta*phi_dot*t005;
+    const T t007 = S(2)*t006 + t004;
+    const T t008 = cos_theta*p.A*t002 + sin_theta*t007*theta_dot - p.c*phi_dot;
+    const T t009 = (S(2)*(cos_theta*t003 + t008)*t001 + cos_theta*p.I3*phi_dot*theta_dot)*cos_theta;
+    const T t010 = sin_theta*sin_theta;
+    const T t011 = p.A*sin_theta*t002 - (cos_theta*t007 - S(2)*phi_dot*t005*t010)*theta_dot;
+    const T t012 = S(2)*cos_theta*sin_theta*t005*theta_dot - p.c;
+    const T t013 = S(1)/p.I1;
+    const T t014 = ((t004 + t006)*phi_dot - p.M*p.g*p.h)*cos_theta - phi_dot*phi_dot*t005*t010;
+    const T t015 = cos_theta*cos_theta;
+    const T t016 = S(1)/(p.I1*t010);
+    const T t017 = S(1)/p.I3 + t015*t016;
+    const T t018 = (S(2)*cos_theta*t001*t008 + t011)*t001 + S(2)*(S(1) + t015/t010)*t003;
+    const T t019 = (cos_theta*t018 + t008)*t000 + cos_theta*p.I3*phi_dot*t017*theta_dot;
     J[0] = T(S(0));
     J[1] = T(S(0));
     J[2] = T(S(0));
@@ -189,23 +190,23 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     J[16] = T(S(0));
     J[17] = T(S(1));
     J[18] = T(S(0));
-    J[19] = -((t009 + t012)*t003 + t002)*t000;
+    J[19] = -((t009 + t011)*t001 + t003)*t000;
     J[20] = T(S(0));
-    J[21] = -(cos_theta*p.I3*theta_dot - t003*t013)*t000;
-    J[22] = -(cos_theta*p.I3*phi_dot - t010)*t000;
-    J[23] = (cos_theta*p.c*t003 + p.I3*theta_dot)*t000;
+    J[21] = -(cos_theta*p.I3*theta_dot - t001*t012)*t000;
+    J[22] = ((p.I3 - S(2)*p.I1)*cos_theta*phi_dot + t004)*t000;
+    J[23] = (cos_theta*p.c*t001 + p.I3*theta_dot)*t000;
     J[24] = T(S(0));
-    J[25] = ((t007 - t008)*phi_dot + cos_theta*p.M*p.g*p.h)*t014;
+    J[25] = -t013*t014;
     J[26] = T(S(0));
-    J[27] = -sin_theta*t010*t014;
-    J[28] = -p.c*t014;
-    J[29] = -p.I3*phi_dot*sin_theta*t014;
+    J[27] = -sin_theta*t007*t013;
+    J[28] = -p.c*t013;
+    J[29] = -p.I3*phi_dot*sin_theta*t013;
     J[30] = T(S(0));
-    J[31] = t018;
+    J[31] = t019;
     J[32] = T(S(0));
-    J[33] = p.I3*sin_theta*t016*theta_dot - cos_theta*t013*t015;
-    J[34] = p.I3*phi_dot*sin_theta*t016 - cos_theta*t000*t010;
-    J[35] = -(cos_theta*p.I3*t000*theta_dot + p.c*t016);
+    J[33] = p.I3*sin_theta*t017*theta_dot - cos_theta*t012*t016;
+    J[34] = p.I3*phi_dot*sin_theta*t017 - cos_theta*t000*t007;
+    J[35] = -(cos_theta*p.I3*t000*theta_dot + p.c*t017);
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -214,7 +215,7 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, phi_ddot, theta_ddot, psi_ddot
 //   J     output, dim 6 x 6 (row-major)
 //   p     parameters
-// Operations (+ - * / and calls): 612 before lowering, 149 after (41 +-, 99 *, 6 /, 3 calls).
+// Operations (+ - * / and calls): 612 before lowering, 148 after (40 +-, 99 *, 6 /, 3 calls).
 template <class T>
 void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     using std::cos;
@@ -237,23 +238,21 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T t008 = sin_theta*sin_theta;
     const T t009 = S(1)/(p.I1*t008);
     const T t010 = S(1)/p.I1;
-    const T t011 = ((t002 + t004)*phi_dot - p.M*p.g*p.h)*sin_theta + p.c*theta_dot;
+    const T t011 = (t002 + t004)*phi_dot - p.M*p.g*p.h;
     const T t012 = cos_theta*cos_theta;
     const T t013 = S(1)/p.I3 + t009*t012;
     const T t014 = S(1)/(p.I1*sin_theta);
     const T t015 = S(1)/sin_theta;
-    const T t016 = (t008 - t012)*phi_dot*t003;
-    const T t017 = cos_theta*p.I3*psi_dot;
-    const T t018 = (S(2)*t016 - t017)*theta_dot + p.A*sin_theta*t000;
-    const T t019 = ((S(2)*t007*t015 + cos_theta*p.I3*phi_dot*theta_dot)*cos_theta + t018)*t015;
-    const T t020 = S(2)*cos_theta*sin_theta*t003*theta_dot - p.c;
-    const T t021 = (S(2)*cos_theta*t006*t015 + t018)*t015 + S(2)*(S(1) + t012/t008)*t001;
-    const T t022 = (cos_theta*t021 + t006)*t014 + cos_theta*p.I3*phi_dot*t013*theta_dot;
+    const T t016 = p.A*sin_theta*t000 - (cos_theta*t005 - S(2)*phi_dot*t003*t008)*theta_dot;
+    const T t017 = ((S(2)*t007*t015 + cos_theta*p.I3*phi_dot*theta_dot)*cos_theta + t016)*t015;
+    const T t018 = S(2)*cos_theta*sin_theta*t003*theta_dot - p.c;
+    const T t019 = (S(2)*cos_theta*t006*t015 + t016)*t015 + S(2)*(S(1) + t012/t008)*t001;
+    const T t020 = (cos_theta*t019 + t006)*t014 + cos_theta*p.I3*phi_dot*t013*theta_dot;
     dydt[0] = phi_dot;
     dydt[1] = theta_dot;
     dydt[2] = psi_dot;
     dydt[3] = t007*t009;
-    dydt[4] = -t010*t011;
+    dydt[4] = -(p.c*theta_dot + sin_theta*t011)*t010;
     dydt[5] = -(cos_theta*t006*t009 + t001*t013);
     J[0] = T(S(0));
     J[1] = T(S(0));
@@ -274,21 +273,21 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     J[16] = T(S(0));
     J[17] = T(S(1));
     J[18] = T(S(0));
-    J[19] = -(t001 + t019)*t014;
+    J[19] = -(t001 + t017)*t014;
     J[20] = T(S(0));
-    J[21] = -(cos_theta*p.I3*theta_dot - t015*t020)*t014;
-    J[22] = -(cos_theta*p.I3*phi_dot - t005)*t014;
+    J[21] = -(cos_theta*p.I3*theta_dot - t015*t018)*t014;
+    J[22] = ((p.I3 - S(2)*p.I1)*cos_theta*phi_dot + t002)*t014;
     J[23] = (cos_theta*p.c*t015 + p.I3*theta_dot)*t014;
     J[24] = T(S(0));
-    J[25] = ((t016 - t017)*phi_dot + cos_theta*p.M*p.g*p.h)*t010;
+    J[25] = -(cos_theta*t011 - phi_dot*phi_dot*t003*t008)*t010;
     J[26] = T(S(0));
     J[27] = -sin_theta*t005*t010;
     J[28] = -p.c*t010;
     J[29] = -p.I3*phi_dot*sin_theta*t010;
     J[30] = T(S(0));
-    J[31] = t022;
+    J[31] = t020;
     J[32] = T(S(0));
-    J[33] = p.I3*sin_theta*t013*theta_dot - cos_theta*t009*t020;
+    J[33] = p.I3*sin_theta*t013*theta_dot - cos_theta*t009*t018;
     J[34] = p.I3*phi_dot*sin_theta*t013 - cos_theta*t005*t014;
     J[35] = -(cos_theta*p.I3*t014*theta_dot + p.c*t013);
 }

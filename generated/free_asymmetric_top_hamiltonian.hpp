@@ -19,12 +19,12 @@
 // Parameters (params<T>, defaults from the model file): I1 = 1.0, I2 = 2.0, I3 = 3.0.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 251 -> 42 (11 temporaries)
-//   jacobian: 1631 -> 105 (32 temporaries)
-//   rhs_and_jacobian: 1882 -> 118 (34 temporaries)
+//   rhs: 251 -> 43 (11 temporaries)
+//   jacobian: 1631 -> 116 (34 temporaries)
+//   rhs_and_jacobian: 1882 -> 129 (36 temporaries)
 //   energy: 39 -> 24 (9 temporaries)
 //   momenta: 0 -> 0 (0 temporaries)
-//   mass_matrix: 59 -> 25 (9 temporaries)
+//   mass_matrix: 59 -> 19 (8 temporaries)
 //   omega: 31 -> 19 (6 temporaries)
 //   rotation: 49 -> 29 (6 temporaries)
 //
@@ -100,7 +100,7 @@ constexpr std::array<unsigned char, 36> jacobian_pattern{{
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, p_phi_dot, p_theta_dot, p_psi_dot
 //   p     parameters
-// Operations (+ - * / and calls): 251 before lowering, 42 after (10 +-, 23 *, 5 /, 4 calls).
+// Operations (+ - * / and calls): 251 before lowering, 43 after (9 +-, 24 *, 6 /, 4 calls).
 template <class T>
 void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     using std::cos;
@@ -128,7 +128,7 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     dydt[2] = cos_theta*t000*t006 + p_psi/p.I3;
     dydt[3] = T(S(0));
     dydt[4] = (cos_theta*t002/(sin_theta*sin_theta) + p_psi)*t006;
-    dydt[5] = -(t001 - t004)*t003*t005;
+    dydt[5] = (p.I2 - p.I1)*t003*t005/(p.I1*p.I2);
 }
 
 // The analytic Jacobian J = d(dy/dt)/dy, dense, row-major: J[i * state_size + k] = d dydt[i] / d y[k].
@@ -136,7 +136,7 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   J     output, dim 6 x 6 (row-major); structural zeros in jacobian_pattern
 //   p     parameters
-// Operations (+ - * / and calls): 1631 before lowering, 105 after (28 +-, 68 *, 5 /, 4 calls).
+// Operations (+ - * / and calls): 1631 before lowering, 116 after (30 +-, 75 *, 7 /, 4 calls).
 template <class T>
 void jacobian(T t, const T* y, T* J, const params<T>& p) {
     using std::cos;
@@ -168,36 +168,38 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T t013 = cos_theta*t002*t012 + p_psi;
     const T t014 = cos_theta*t000*t008 + t011*t013;
     const T t015 = t000*t014;
-    const T t016 = t001 - t005;
+    const T t016 = p.I2 - p.I1;
     const T t017 = cos_psi*t006 - sin_psi*t003;
-    const T t018 = t000*t016*t017;
-    const T t019 = -cos_psi*sin_psi*t000*t016;
-    const T t020 = -cos_theta*t011*t012;
-    const T t021 = cos_psi*sin_psi*t013*t016;
-    const T t022 = (cos_psi*t003 + sin_psi*t006)*t016;
-    const T t023 = cos_psi*cos_theta*sin_psi*t000*t016;
-    const T t024 = cos_theta*t000*t016*t017;
-    const T t025 = cos_theta*cos_theta;
-    const T t026 = (S(2)*cos_theta*t013 - p_phi)*t000*t008 + t011*t013*t013;
-    const T t027 = t013*t016*t017;
+    const T t018 = S(1)/(p.I1*p.I2*sin_theta);
+    const T t019 = t016*t017*t018;
+    const T t020 = cos_psi*sin_psi*t016*t018;
+    const T t021 = -cos_theta*t011*t012;
+    const T t022 = S(1)/(p.I1*p.I2);
+    const T t023 = cos_psi*sin_psi*t013*t016*t022;
+    const T t024 = (cos_psi*t003 + sin_psi*t006)*t016*t022;
+    const T t025 = -cos_psi*cos_theta*sin_psi*t016*t018;
+    const T t026 = cos_theta*t016*t017*t018;
+    const T t027 = cos_theta*cos_theta;
+    const T t028 = (S(2)*cos_theta*t013 - p_phi)*t000*t008 + t011*t013*t013;
+    const T t029 = -t013*t016*t017*t022;
     J[0] = T(S(0));
     J[1] = t015;
-    J[2] = -t018;
+    J[2] = t019;
     J[3] = t011*t012;
-    J[4] = t019;
-    J[5] = t020;
+    J[4] = t020;
+    J[5] = t021;
     J[6] = T(S(0));
-    J[7] = -t021;
-    J[8] = t022;
-    J[9] = t019;
+    J[7] = t023;
+    J[8] = -t024;
+    J[9] = t020;
     J[10] = t001*t009 + t005*t010;
-    J[11] = t023;
+    J[11] = t025;
     J[12] = T(S(0));
     J[13] = -(cos_theta*t000*t014 + t004 - t007);
-    J[14] = t024;
-    J[15] = t020;
-    J[16] = t023;
-    J[17] = S(1)/p.I3 + t011*t012*t025;
+    J[14] = -t026;
+    J[15] = t021;
+    J[16] = t025;
+    J[17] = S(1)/p.I3 + t011*t012*t027;
     J[18] = T(S(0));
     J[19] = T(S(0));
     J[20] = T(S(0));
@@ -205,17 +207,17 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     J[22] = T(S(0));
     J[23] = T(S(0));
     J[24] = T(S(0));
-    J[25] = -t026;
-    J[26] = t027;
+    J[25] = -t028;
+    J[26] = t029;
     J[27] = -t015;
-    J[28] = t021;
-    J[29] = (S(1) + t012*t025)*t008 + cos_theta*t000*t011*t013;
+    J[28] = -t023;
+    J[29] = (S(1) + t012*t027)*t008 + cos_theta*t000*t011*t013;
     J[30] = T(S(0));
-    J[31] = t027;
-    J[32] = (t003*t003 - t006*t006)*t016;
-    J[33] = t018;
-    J[34] = -t022;
-    J[35] = -t024;
+    J[31] = t029;
+    J[32] = -(t003*t003 - t006*t006)*t016*t022;
+    J[33] = -t019;
+    J[34] = t024;
+    J[35] = t026;
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -224,7 +226,7 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, p_phi_dot, p_theta_dot, p_psi_dot
 //   J     output, dim 6 x 6 (row-major)
 //   p     parameters
-// Operations (+ - * / and calls): 1882 before lowering, 118 after (32 +-, 77 *, 5 /, 4 calls).
+// Operations (+ - * / and calls): 1882 before lowering, 129 after (33 +-, 85 *, 7 /, 4 calls).
 template <class T>
 void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     using std::cos;
@@ -253,47 +255,49 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T t010 = cos_theta*t000*t008;
     const T t011 = S(1)/(sin_theta*sin_theta);
     const T t012 = cos_theta*t002*t011 + p_psi;
-    const T t013 = t001 - t005;
-    const T t014 = sin_psi*sin_psi;
-    const T t015 = cos_psi*cos_psi;
-    const T t016 = t001*t015 + t005*t014;
-    const T t017 = t010 + t012*t016;
-    const T t018 = t000*t017;
-    const T t019 = cos_psi*t006 - sin_psi*t003;
-    const T t020 = t000*t013*t019;
-    const T t021 = -cos_psi*sin_psi*t000*t013;
-    const T t022 = -cos_theta*t011*t016;
-    const T t023 = cos_psi*sin_psi*t012*t013;
-    const T t024 = (cos_psi*t003 + sin_psi*t006)*t013;
-    const T t025 = cos_psi*cos_theta*sin_psi*t000*t013;
-    const T t026 = cos_theta*t000*t013*t019;
-    const T t027 = cos_theta*cos_theta;
-    const T t028 = (S(2)*cos_theta*t012 - p_phi)*t000*t008 + t012*t012*t016;
-    const T t029 = t012*t013*t019;
+    const T t013 = p.I2 - p.I1;
+    const T t014 = S(1)/(p.I1*p.I2);
+    const T t015 = sin_psi*sin_psi;
+    const T t016 = cos_psi*cos_psi;
+    const T t017 = t001*t016 + t005*t015;
+    const T t018 = t010 + t012*t017;
+    const T t019 = t000*t018;
+    const T t020 = cos_psi*t006 - sin_psi*t003;
+    const T t021 = S(1)/(p.I1*p.I2*sin_theta);
+    const T t022 = t013*t020*t021;
+    const T t023 = cos_psi*sin_psi*t013*t021;
+    const T t024 = -cos_theta*t011*t017;
+    const T t025 = cos_psi*sin_psi*t012*t013*t014;
+    const T t026 = (cos_psi*t003 + sin_psi*t006)*t013*t014;
+    const T t027 = -cos_psi*cos_theta*sin_psi*t013*t021;
+    const T t028 = cos_theta*t013*t020*t021;
+    const T t029 = cos_theta*cos_theta;
+    const T t030 = (S(2)*cos_theta*t012 - p_phi)*t000*t008 + t012*t012*t017;
+    const T t031 = -t012*t013*t014*t020;
     dydt[0] = -t000*t008;
     dydt[1] = cos_psi*t005*t006 + sin_psi*t001*t003;
     dydt[2] = p_psi*t009 + t010;
     dydt[3] = T(S(0));
     dydt[4] = t008*t012;
-    dydt[5] = -t003*t006*t013;
+    dydt[5] = t003*t006*t013*t014;
     J[0] = T(S(0));
-    J[1] = t018;
-    J[2] = -t020;
-    J[3] = t011*t016;
-    J[4] = t021;
-    J[5] = t022;
+    J[1] = t019;
+    J[2] = t022;
+    J[3] = t011*t017;
+    J[4] = t023;
+    J[5] = t024;
     J[6] = T(S(0));
-    J[7] = -t023;
-    J[8] = t024;
-    J[9] = t021;
-    J[10] = t001*t014 + t005*t015;
-    J[11] = t025;
+    J[7] = t025;
+    J[8] = -t026;
+    J[9] = t023;
+    J[10] = t001*t015 + t005*t016;
+    J[11] = t027;
     J[12] = T(S(0));
-    J[13] = -(cos_theta*t000*t017 + t004 - t007);
-    J[14] = t026;
-    J[15] = t022;
-    J[16] = t025;
-    J[17] = t009 + t011*t016*t027;
+    J[13] = -(cos_theta*t000*t018 + t004 - t007);
+    J[14] = -t028;
+    J[15] = t024;
+    J[16] = t027;
+    J[17] = t009 + t011*t017*t029;
     J[18] = T(S(0));
     J[19] = T(S(0));
     J[20] = T(S(0));
@@ -301,17 +305,17 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     J[22] = T(S(0));
     J[23] = T(S(0));
     J[24] = T(S(0));
-    J[25] = -t028;
-    J[26] = t029;
-    J[27] = -t018;
-    J[28] = t023;
-    J[29] = (S(1) + t011*t027)*t008 + cos_theta*t000*t012*t016;
+    J[25] = -t030;
+    J[26] = t031;
+    J[27] = -t019;
+    J[28] = -t025;
+    J[29] = (S(1) + t011*t029)*t008 + cos_theta*t000*t012*t017;
     J[30] = T(S(0));
-    J[31] = t029;
-    J[32] = (t003*t003 - t006*t006)*t013;
-    J[33] = t020;
-    J[34] = -t024;
-    J[35] = -t026;
+    J[31] = t031;
+    J[32] = -(t003*t003 - t006*t006)*t013*t014;
+    J[33] = -t022;
+    J[34] = t026;
+    J[35] = t028;
 }
 
 // The energy, the Hamiltonian H = T + V (conserved without damping and driving torques).
@@ -360,7 +364,7 @@ void momenta(const T* y, T* momentum, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   M     output, dim 3 x 3 (row-major): M11, M12, M13, M21, M22, M23, M31, M32, M33
 //   p     parameters
-// Operations (+ - * / and calls): 59 before lowering, 25 after (8 +-, 13 *, 0 /, 4 calls).
+// Operations (+ - * / and calls): 59 before lowering, 19 after (5 +-, 10 *, 0 /, 4 calls).
 template <class T>
 void mass_matrix(const T* y, T* M, const params<T>& p) {
     using std::cos;
@@ -372,18 +376,17 @@ void mass_matrix(const T* y, T* M, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    const T t000 = cos_psi*cos_psi;
-    const T t001 = t000 - S(1);
-    const T t002 = (p.I1*t001 - p.I2*t000)*sin_theta*sin_theta - cos_theta*cos_theta*p.I3;
-    const T t003 = -(p.I2 - p.I1)*cos_psi*sin_psi*sin_theta;
-    const T t004 = cos_theta*p.I3;
-    M[0] = -t002;
-    M[1] = t003;
-    M[2] = t004;
-    M[3] = t003;
-    M[4] = -(p.I2*t001 - p.I1*t000);
+    const T t000 = p.I2 - p.I1;
+    const T t001 = cos_psi*cos_psi*t000;
+    const T t002 = -cos_psi*sin_psi*sin_theta*t000;
+    const T t003 = cos_theta*p.I3;
+    M[0] = (p.I1 + t001)*sin_theta*sin_theta + cos_theta*cos_theta*p.I3;
+    M[1] = t002;
+    M[2] = t003;
+    M[3] = t002;
+    M[4] = p.I2 - t001;
     M[5] = T(S(0));
-    M[6] = t004;
+    M[6] = t003;
     M[7] = T(S(0));
     M[8] = p.I3;
 }

@@ -20,14 +20,14 @@
 // Parameters (params<T>, defaults from the model file): I1 = 1.0, I2 = 2.0, I3 = 3.0, p_phi = 0.0.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 212 -> 40 (11 temporaries)
-//   jacobian: 1210 -> 91 (28 temporaries)
-//   rhs_and_jacobian: 1422 -> 102 (29 temporaries)
+//   rhs: 212 -> 41 (11 temporaries)
+//   jacobian: 1210 -> 103 (30 temporaries)
+//   rhs_and_jacobian: 1422 -> 114 (31 temporaries)
 //   energy: 39 -> 24 (9 temporaries)
 //   momenta: 0 -> 0 (0 temporaries)
-//   mass_matrix: 59 -> 25 (9 temporaries)
+//   mass_matrix: 59 -> 19 (8 temporaries)
 //   omega: 31 -> 19 (6 temporaries)
-//   ignored_rates: 63 -> 22 (9 temporaries)
+//   ignored_rates: 63 -> 21 (7 temporaries)
 //
 // Self-contained: includes <array>, <cmath> and <cstddef> only. Every function is a template on the
 // scalar type T (float, double, long double, Eigen array batches such as Eigen::Array<double, 4, 1>,
@@ -100,7 +100,7 @@ constexpr std::array<unsigned char, 16> jacobian_pattern{{
 //   y     state, dim 4: (theta, psi, p_theta, p_psi)
 //   dydt  output, dim 4: theta_dot, psi_dot, p_theta_dot, p_psi_dot
 //   p     parameters
-// Operations (+ - * / and calls): 212 before lowering, 40 after (9 +-, 22 *, 5 /, 4 calls).
+// Operations (+ - * / and calls): 212 before lowering, 41 after (8 +-, 23 *, 6 /, 4 calls).
 template <class T>
 void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     using std::cos;
@@ -125,7 +125,7 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     dydt[0] = cos_psi*t004*t005 + sin_psi*t002*t003;
     dydt[1] = cos_theta*t001*t006 + p_psi/p.I3;
     dydt[2] = (cos_theta*t000/(sin_theta*sin_theta) + p_psi)*t006;
-    dydt[3] = -(t003 - t004)*t002*t005;
+    dydt[3] = (p.I2 - p.I1)*t002*t005/(p.I1*p.I2);
 }
 
 // The analytic Jacobian J = d(dy/dt)/dy, dense, row-major: J[i * state_size + k] = d dydt[i] / d y[k].
@@ -133,7 +133,7 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
 //   y     state, dim 4: (theta, psi, p_theta, p_psi)
 //   J     output, dim 4 x 4 (row-major); structural zeros in jacobian_pattern
 //   p     parameters
-// Operations (+ - * / and calls): 1210 before lowering, 91 after (23 +-, 59 *, 5 /, 4 calls).
+// Operations (+ - * / and calls): 1210 before lowering, 103 after (26 +-, 66 *, 7 /, 4 calls).
 template <class T>
 void jacobian(T t, const T* y, T* J, const params<T>& p) {
     using std::cos;
@@ -148,46 +148,48 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    const T t000 = S(1)/p.I2;
-    const T t001 = S(1)/p.I1;
-    const T t002 = t000 - t001;
-    const T t003 = S(1)/(sin_theta*sin_theta);
-    const T t004 = cos_theta*p_psi - p.p_phi;
-    const T t005 = cos_theta*t003*t004 + p_psi;
-    const T t006 = cos_psi*sin_psi*t002*t005;
-    const T t007 = S(1)/sin_theta;
-    const T t008 = cos_psi*p_theta - sin_psi*t004*t007;
-    const T t009 = cos_psi*t004*t007 + p_theta*sin_psi;
-    const T t010 = (cos_psi*t009 + sin_psi*t008)*t002;
+    const T t000 = p.I2 - p.I1;
+    const T t001 = S(1)/(sin_theta*sin_theta);
+    const T t002 = cos_theta*p_psi - p.p_phi;
+    const T t003 = cos_theta*t001*t002 + p_psi;
+    const T t004 = S(1)/(p.I1*p.I2);
+    const T t005 = cos_psi*sin_psi*t000*t003*t004;
+    const T t006 = S(1)/sin_theta;
+    const T t007 = cos_psi*p_theta - sin_psi*t002*t006;
+    const T t008 = cos_psi*t002*t006 + p_theta*sin_psi;
+    const T t009 = (cos_psi*t008 + sin_psi*t007)*t000*t004;
+    const T t010 = S(1)/p.I1;
     const T t011 = cos_psi*cos_psi;
     const T t012 = sin_psi*sin_psi;
-    const T t013 = cos_psi*cos_theta*sin_psi*t002*t007;
-    const T t014 = cos_psi*t000*t009;
-    const T t015 = sin_psi*t001*t008;
-    const T t016 = t014 - t015;
-    const T t017 = t000*t011 + t001*t012;
-    const T t018 = (cos_theta*t007*t016 + t005*t017)*cos_theta*t007 + t014 - t015;
-    const T t019 = cos_psi*t008 - sin_psi*t009;
-    const T t020 = cos_theta*t002*t007*t019;
-    const T t021 = cos_theta*cos_theta;
-    const T t022 = (p.p_phi - S(2)*cos_theta*t005)*t007*t016 - t005*t005*t017;
-    const T t023 = t002*t005*t019;
-    J[0] = -t006;
-    J[1] = t010;
-    J[2] = t000*t012 + t001*t011;
-    J[3] = t013;
-    J[4] = -t018;
-    J[5] = t020;
-    J[6] = t013;
-    J[7] = S(1)/p.I3 + t003*t017*t021;
-    J[8] = t022;
-    J[9] = t023;
-    J[10] = t006;
-    J[11] = (S(1) + t003*t021)*t016 + cos_theta*t005*t007*t017;
-    J[12] = t023;
-    J[13] = (t009*t009 - t008*t008)*t002;
-    J[14] = -t010;
-    J[15] = -t020;
+    const T t013 = S(1)/p.I2;
+    const T t014 = S(1)/(p.I1*p.I2*sin_theta);
+    const T t015 = -cos_psi*cos_theta*sin_psi*t000*t014;
+    const T t016 = cos_psi*t008*t013;
+    const T t017 = sin_psi*t007*t010;
+    const T t018 = t016 - t017;
+    const T t019 = t010*t012 + t011*t013;
+    const T t020 = (cos_theta*t006*t018 + t003*t019)*cos_theta*t006 + t016 - t017;
+    const T t021 = cos_psi*t007 - sin_psi*t008;
+    const T t022 = cos_theta*t000*t014*t021;
+    const T t023 = cos_theta*cos_theta;
+    const T t024 = (p.p_phi - S(2)*cos_theta*t003)*t006*t018 - t003*t003*t019;
+    const T t025 = -t000*t003*t004*t021;
+    J[0] = t005;
+    J[1] = -t009;
+    J[2] = t010*t011 + t012*t013;
+    J[3] = t015;
+    J[4] = -t020;
+    J[5] = -t022;
+    J[6] = t015;
+    J[7] = S(1)/p.I3 + t001*t019*t023;
+    J[8] = t024;
+    J[9] = t025;
+    J[10] = -t005;
+    J[11] = (S(1) + t001*t023)*t018 + cos_theta*t003*t006*t019;
+    J[12] = t025;
+    J[13] = -(t008*t008 - t007*t007)*t000*t004;
+    J[14] = t009;
+    J[15] = t022;
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -196,7 +198,7 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   dydt  output, dim 4: theta_dot, psi_dot, p_theta_dot, p_psi_dot
 //   J     output, dim 4 x 4 (row-major)
 //   p     parameters
-// Operations (+ - * / and calls): 1422 before lowering, 102 after (26 +-, 67 *, 5 /, 4 calls).
+// Operations (+ - * / and calls): 1422 before lowering, 114 after (28 +-, 75 *, 7 /, 4 calls).
 template <class T>
 void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     using std::cos;
@@ -224,38 +226,40 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T t010 = S(1)/p.I3;
     const T t011 = S(1)/(sin_theta*sin_theta);
     const T t012 = cos_theta*t000*t011 + p_psi;
-    const T t013 = t003 - t004;
-    const T t014 = cos_psi*sin_psi*t012*t013;
-    const T t015 = (cos_psi*t002 + sin_psi*t005)*t013;
-    const T t016 = cos_psi*cos_psi;
-    const T t017 = sin_psi*sin_psi;
-    const T t018 = cos_psi*cos_theta*sin_psi*t001*t013;
-    const T t019 = t003*t016 + t004*t017;
-    const T t020 = cos_psi*t005 - sin_psi*t002;
-    const T t021 = cos_theta*t001*t013*t020;
-    const T t022 = cos_theta*cos_theta;
-    const T t023 = (p.p_phi - S(2)*cos_theta*t012)*t001*t008 - t012*t012*t019;
-    const T t024 = t012*t013*t020;
+    const T t013 = p.I2 - p.I1;
+    const T t014 = S(1)/(p.I1*p.I2);
+    const T t015 = cos_psi*sin_psi*t012*t013*t014;
+    const T t016 = (cos_psi*t002 + sin_psi*t005)*t013*t014;
+    const T t017 = cos_psi*cos_psi;
+    const T t018 = sin_psi*sin_psi;
+    const T t019 = S(1)/(p.I1*p.I2*sin_theta);
+    const T t020 = -cos_psi*cos_theta*sin_psi*t013*t019;
+    const T t021 = t003*t017 + t004*t018;
+    const T t022 = cos_psi*t005 - sin_psi*t002;
+    const T t023 = cos_theta*t013*t019*t022;
+    const T t024 = cos_theta*cos_theta;
+    const T t025 = (p.p_phi - S(2)*cos_theta*t012)*t001*t008 - t012*t012*t021;
+    const T t026 = -t012*t013*t014*t022;
     dydt[0] = cos_psi*t004*t005 + sin_psi*t002*t003;
     dydt[1] = p_psi*t010 + t009;
     dydt[2] = t008*t012;
-    dydt[3] = -t002*t005*t013;
-    J[0] = -t014;
-    J[1] = t015;
-    J[2] = t003*t017 + t004*t016;
-    J[3] = t018;
-    J[4] = -((t009 + t012*t019)*cos_theta*t001 + t006 - t007);
-    J[5] = t021;
-    J[6] = t018;
-    J[7] = t010 + t011*t019*t022;
-    J[8] = t023;
-    J[9] = t024;
-    J[10] = t014;
-    J[11] = (S(1) + t011*t022)*t008 + cos_theta*t001*t012*t019;
-    J[12] = t024;
-    J[13] = (t002*t002 - t005*t005)*t013;
-    J[14] = -t015;
-    J[15] = -t021;
+    dydt[3] = t002*t005*t013*t014;
+    J[0] = t015;
+    J[1] = -t016;
+    J[2] = t003*t018 + t004*t017;
+    J[3] = t020;
+    J[4] = -((t009 + t012*t021)*cos_theta*t001 + t006 - t007);
+    J[5] = -t023;
+    J[6] = t020;
+    J[7] = t010 + t011*t021*t024;
+    J[8] = t025;
+    J[9] = t026;
+    J[10] = -t015;
+    J[11] = (S(1) + t011*t024)*t008 + cos_theta*t001*t012*t021;
+    J[12] = t026;
+    J[13] = -(t002*t002 - t005*t005)*t013*t014;
+    J[14] = t016;
+    J[15] = t023;
 }
 
 // The energy, the Hamiltonian H = T + V (conserved without damping and driving torques).
@@ -301,7 +305,7 @@ void momenta(const T* y, T* momentum, const params<T>& p) {
 //   y     state, dim 4: (theta, psi, p_theta, p_psi)
 //   M     output, dim 3 x 3 (row-major): M11, M12, M13, M21, M22, M23, M31, M32, M33
 //   p     parameters
-// Operations (+ - * / and calls): 59 before lowering, 25 after (8 +-, 13 *, 0 /, 4 calls).
+// Operations (+ - * / and calls): 59 before lowering, 19 after (5 +-, 10 *, 0 /, 4 calls).
 template <class T>
 void mass_matrix(const T* y, T* M, const params<T>& p) {
     using std::cos;
@@ -313,18 +317,17 @@ void mass_matrix(const T* y, T* M, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    const T t000 = cos_psi*cos_psi;
-    const T t001 = t000 - S(1);
-    const T t002 = (p.I1*t001 - p.I2*t000)*sin_theta*sin_theta - cos_theta*cos_theta*p.I3;
-    const T t003 = -(p.I2 - p.I1)*cos_psi*sin_psi*sin_theta;
-    const T t004 = cos_theta*p.I3;
-    M[0] = -t002;
-    M[1] = t003;
-    M[2] = t004;
-    M[3] = t003;
-    M[4] = -(p.I2*t001 - p.I1*t000);
+    const T t000 = p.I2 - p.I1;
+    const T t001 = cos_psi*cos_psi*t000;
+    const T t002 = -cos_psi*sin_psi*sin_theta*t000;
+    const T t003 = cos_theta*p.I3;
+    M[0] = (p.I1 + t001)*sin_theta*sin_theta + cos_theta*cos_theta*p.I3;
+    M[1] = t002;
+    M[2] = t003;
+    M[3] = t002;
+    M[4] = p.I2 - t001;
     M[5] = T(S(0));
-    M[6] = t004;
+    M[6] = t003;
     M[7] = T(S(0));
     M[8] = p.I3;
 }
@@ -358,7 +361,7 @@ void omega(const T* y, T* w, const params<T>& p) {
 //   y     state, dim 4: (theta, psi, p_theta, p_psi)
 //   rates output, dim 1: phi_dot
 //   p     parameters
-// Operations (+ - * / and calls): 63 before lowering, 22 after (5 +-, 10 *, 3 /, 4 calls).
+// Operations (+ - * / and calls): 63 before lowering, 21 after (4 +-, 10 *, 3 /, 4 calls).
 template <class T>
 void ignored_rates(const T* y, T* rates, const params<T>& p) {
     using std::cos;
@@ -372,12 +375,10 @@ void ignored_rates(const T* y, T* rates, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    const T t000 = S(1)/sin_theta;
-    const T t001 = cos_psi*cos_psi;
-    const T t002 = S(1)/p.I1;
-    const T t003 = S(1)/p.I2;
-    const T t004 = ((t001 - S(1))*t002 - t001*t003)*(cos_theta*p_psi - p.p_phi)*t000;
-    rates[0] = (t004 - (t003 - t002)*cos_psi*p_theta*sin_psi)*t000;
+    const T t000 = S(1)/p.I2;
+    const T t001 = p.I2 - p.I1;
+    const T t002 = (cos_psi*cos_psi*t000*t001 - S(1))*(cos_theta*p_psi - p.p_phi)/sin_theta;
+    rates[0] = (cos_psi*p_theta*sin_psi*t000*t001 + t002)/(p.I1*sin_theta);
 }
 
 } // namespace free_asymmetric_top_reduced

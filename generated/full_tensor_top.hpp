@@ -21,11 +21,11 @@
 //
 // Operations (+ - * / and calls), before lowering -> after:
 //   rhs: 2053 -> 133 (30 temporaries)
-//   jacobian: 14319 -> 475 (101 temporaries)
-//   rhs_and_jacobian: 16372 -> 490 (104 temporaries)
+//   jacobian: 14319 -> 480 (95 temporaries)
+//   rhs_and_jacobian: 16372 -> 495 (100 temporaries)
 //   energy: 110 -> 45 (9 temporaries)
 //   momenta: 149 -> 38 (10 temporaries)
-//   mass_matrix: 160 -> 40 (13 temporaries)
+//   mass_matrix: 160 -> 41 (13 temporaries)
 //   omega: 17 -> 14 (4 temporaries)
 //   rotation: 49 -> 29 (6 temporaries)
 //
@@ -164,7 +164,7 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   J     output, dim 6 x 6 (row-major); structural zeros in jacobian_pattern
 //   p     parameters
-// Operations (+ - * / and calls): 14319 before lowering, 475 after (174 +-, 295 *, 2 /, 4 calls).
+// Operations (+ - * / and calls): 14319 before lowering, 480 after (175 +-, 298 *, 3 /, 4 calls).
 template <class T>
 void jacobian(T t, const T* y, T* J, const params<T>& p) {
     using std::cos;
@@ -185,98 +185,92 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T t002 = p.Ixx*p.Iyz;
     const T t003 = p.Ixy*p.Ixz;
     const T t004 = p.Ixz*p.Ixz;
-    const T t005 = S(1)/((t002 - S(2)*t003)*p.Iyz + p.Iyy*t004 + p.Izz*t001);
-    const T t006 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
-    const T t007 = phi_dot*sin_psi*sin_theta;
-    const T t008 = cos_psi*theta_dot;
-    const T t009 = t007 + t008;
-    const T t010 = p.Ixy*t009;
-    const T t011 = cos_theta*phi_dot;
-    const T t012 = psi_dot + t011;
-    const T t013 = p.Iyz*t012;
-    const T t014 = cos_psi*phi_dot*sin_theta;
-    const T t015 = sin_psi*theta_dot;
-    const T t016 = t014 - t015;
-    const T t017 = p.Iyy*t016 + t010 + t013;
-    const T t018 = p.Ixz*t009 + p.Iyz*t016 + p.Izz*t012;
-    const T t019 = p.Ixy*sin_psi;
-    const T t020 = cos_psi*p.Iyy + t019;
-    const T t021 = p.Iyz*sin_theta - cos_theta*t020;
-    const T t022 = cos_psi*p.Iyz + p.Ixz*sin_psi;
-    const T t023 = cos_theta*t022 - p.Izz*sin_theta;
-    const T t024 = cos_psi*cos_theta*t018 + sin_theta*t017 + t012*t021 + t016*t023;
-    const T t025 = (cos_psi*cos_theta*p.cz + p.cy*sin_theta)*p.M*p.g - phi_dot*t024;
-    const T t026 = t004 - p.Ixx*p.Izz;
-    const T t027 = cos_psi*p.Ixy;
-    const T t028 = p.Ixx*sin_psi + t027;
-    const T t029 = cos_theta*t028 - p.Ixz*sin_theta;
-    const T t030 = p.Ixy*t016;
-    const T t031 = p.Ixz*t012;
-    const T t032 = p.Ixx*t009 + t030 + t031;
-    const T t033 = t012*t029 - cos_theta*sin_psi*t018 - sin_theta*t032 - t009*t023;
-    const T t034 = (cos_theta*p.cz*sin_psi + p.cx*sin_theta)*p.M*p.g + phi_dot*t033;
-    const T t035 = t002 - t003;
-    const T t036 = p.cy*sin_psi - cos_psi*p.cx;
-    const T t037 = cos_psi*t032 - sin_psi*t017;
-    const T t038 = (p.M*p.g*t036 + phi_dot*t037)*cos_theta + (t009*t021 + t016*t029)*phi_dot;
-    const T t039 = (cos_psi*sin_theta*theta_dot + cos_theta*psi_dot*sin_psi)*phi_dot - (t006*t025 + t026*t034 - t035*t038)*t005;
-    const T t040 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
-    const T t041 = p.Iyy*p.Izz - p.Iyz*p.Iyz;
-    const T t042 = (sin_psi*sin_theta*theta_dot - cos_psi*cos_theta*psi_dot)*phi_dot - (t025*t041 + t038*t040 - t006*t034)*t005;
-    const T t043 = t011 - psi_dot;
-    const T t044 = cos_psi*t043*theta_dot;
-    const T t045 = t009*t018;
-    const T t046 = (cos_theta*p.cx - p.cz*sin_psi*sin_theta)*p.M*p.g + t045 - t012*t032;
-    const T t047 = t016*t018;
-    const T t048 = (cos_psi*p.cz*sin_theta - cos_theta*p.cy)*p.M*p.g + t012*t017 - t047;
-    const T t049 = t009*t017 - p.M*p.g*sin_theta*t036 - t016*t032;
-    const T t050 = phi_dot*psi_dot*sin_psi*sin_theta;
-    const T t051 = t044 - (t026*t046 - t006*t048 - t035*t049)*t005 - t050;
-    const T t052 = cos_psi*t051;
-    const T t053 = cos_psi*phi_dot*psi_dot*sin_theta;
-    const T t054 = sin_psi*t043*theta_dot;
-    const T t055 = (t006*t046 + t041*t048 - t040*t049)*t005 + t053 + t054;
-    const T t056 = sin_psi*t055;
-    const T t057 = ((t052 + t056)*cos_theta*t000 + cos_psi*t039 + sin_psi*t042)*t000;
-    const T t058 = p.Ixx*t016 - t010;
-    const T t059 = t030 - p.Iyy*t009;
-    const T t060 = (t017 - t058)*t016 + (t032 + t059)*t009 - (cos_psi*p.cy + p.cx*sin_psi)*p.M*p.g*sin_theta;
-    const T t061 = p.Iyz*t009 - p.Ixz*t016;
-    const T t062 = t012*t059 + t016*t061 + t045 - p.M*p.cz*p.g*sin_psi*sin_theta;
-    const T t063 = cos_psi*p.M*p.cz*p.g*sin_theta + t009*t061 + t012*t058 - t047;
-    const T t064 = (t006*t063 + t040*t060 - t041*t062)*t005 + t050 - t044;
-    const T t065 = t051 + t064;
-    const T t066 = (t006*t062 + t026*t063 + t035*t060)*t005 - t053 - t054;
-    const T t067 = t055 + t066;
-    const T t068 = sin_psi*t065 - cos_psi*t067;
-    const T t069 = cos_theta*p.Ixz + sin_theta*t028;
-    const T t070 = cos_theta*p.Izz + sin_theta*t022;
-    const T t071 = cos_theta*t032 + t012*t069 - sin_psi*sin_theta*t018 - t009*t070;
-    const T t072 = cos_theta*p.Iyz + sin_theta*t020;
-    const T t073 = t009*t072 - sin_theta*t037 - t016*t069;
-    const T t074 = cos_theta*t017 + t012*t072 - cos_psi*sin_theta*t018 - t016*t070;
-    const T t075 = psi_dot*sin_psi*sin_theta - (t006*t074 + t026*t071 + t035*t073)*t005 - cos_psi*cos_theta*theta_dot;
-    const T t076 = cos_psi*psi_dot*sin_theta + cos_theta*sin_psi*theta_dot - (t006*t071 + t040*t073 - t041*t074)*t005;
-    const T t077 = cos_psi*t075 - sin_psi*t076;
-    const T t078 = t019 - cos_psi*p.Ixx;
-    const T t079 = p.Iyz*sin_psi - cos_psi*p.Ixz;
-    const T t080 = cos_psi*t018 + t012*t078 - t009*t079;
-    const T t081 = t027 - p.Iyy*sin_psi;
-    const T t082 = sin_psi*t018 + t012*t081 + t016*t079;
-    const T t083 = cos_psi*t017 + sin_psi*t032 + t009*t081 + t016*t078;
-    const T t084 = (t006*t080 + t041*t082 - t040*t083)*t005 + sin_psi*t043;
-    const T t085 = (t006*t082 + t035*t083 - t026*t080)*t005 + cos_psi*t043;
-    const T t086 = cos_psi*t085 + sin_psi*t084;
-    const T t087 = S(2)*t013 + t010 - (p.Izz - p.Iyy)*t016;
-    const T t088 = S(2)*t031 + t030 - (p.Izz - p.Ixx)*t009;
-    const T t089 = t007 + t008 - (t006*t087 + t026*t088 + t035*t061)*t005;
-    const T t090 = t014 - (t006*t088 + t040*t061 - t041*t087)*t005 - t015;
-    const T t091 = cos_psi*t089 - sin_psi*t090;
-    const T t092 = (phi_dot*theta_dot - t057)*cos_theta + (t001*t038 - t025*t040 - t034*t035)*t005 - t052 - t056;
-    const T t093 = (t001*t060 + t035*t063 + t040*t062)*t005 + cos_theta*t000*t068;
-    const T t094 = sin_theta*theta_dot - (t001*t073 + t035*t071 + t040*t074)*t005 - cos_theta*t000*t077;
-    const T t095 = cos_theta*t000*t086 + phi_dot*sin_theta - (t001*t083 + t040*t082 - t035*t080)*t005;
-    const T t096 = (t001*t061 + t035*t088 + t040*t087)*t005 + cos_theta*t000*t091;
+    const T t005 = (t002 - S(2)*t003)*p.Iyz + p.Iyy*t004 + p.Izz*t001;
+    const T t006 = S(1)/t005;
+    const T t007 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
+    const T t008 = phi_dot*sin_psi*sin_theta;
+    const T t009 = cos_psi*theta_dot;
+    const T t010 = t008 + t009;
+    const T t011 = p.Ixy*t010;
+    const T t012 = cos_theta*phi_dot;
+    const T t013 = psi_dot + t012;
+    const T t014 = p.Iyz*t013;
+    const T t015 = cos_psi*phi_dot*sin_theta;
+    const T t016 = sin_psi*theta_dot;
+    const T t017 = t015 - t016;
+    const T t018 = p.Iyy*t017 + t011 + t014;
+    const T t019 = p.Ixz*t010 + p.Iyz*t017 + p.Izz*t013;
+    const T t020 = p.Ixy*sin_psi;
+    const T t021 = cos_psi*p.Iyy + t020;
+    const T t022 = p.Iyz*sin_theta - cos_theta*t021;
+    const T t023 = cos_psi*p.Iyz + p.Ixz*sin_psi;
+    const T t024 = cos_theta*t023 - p.Izz*sin_theta;
+    const T t025 = cos_psi*cos_theta*t019 + sin_theta*t018 + t013*t022 + t017*t024;
+    const T t026 = (cos_psi*cos_theta*p.cz + p.cy*sin_theta)*p.M*p.g - phi_dot*t025;
+    const T t027 = t004 - p.Ixx*p.Izz;
+    const T t028 = cos_psi*p.Ixy;
+    const T t029 = p.Ixx*sin_psi + t028;
+    const T t030 = cos_theta*t029 - p.Ixz*sin_theta;
+    const T t031 = p.Ixy*t017;
+    const T t032 = p.Ixz*t013;
+    const T t033 = p.Ixx*t010 + t031 + t032;
+    const T t034 = t013*t030 - cos_theta*sin_psi*t019 - sin_theta*t033 - t010*t024;
+    const T t035 = (cos_theta*p.cz*sin_psi + p.cx*sin_theta)*p.M*p.g + phi_dot*t034;
+    const T t036 = t002 - t003;
+    const T t037 = p.cy*sin_psi - cos_psi*p.cx;
+    const T t038 = cos_psi*t033 - sin_psi*t018;
+    const T t039 = (p.M*p.g*t037 + phi_dot*t038)*cos_theta + (t010*t022 + t017*t030)*phi_dot;
+    const T t040 = (cos_psi*sin_theta*theta_dot + cos_theta*psi_dot*sin_psi)*phi_dot - (t007*t026 + t027*t035 - t036*t039)*t006;
+    const T t041 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
+    const T t042 = p.Iyy*p.Izz - p.Iyz*p.Iyz;
+    const T t043 = (sin_psi*sin_theta*theta_dot - cos_psi*cos_theta*psi_dot)*phi_dot - (t026*t042 + t039*t041 - t007*t035)*t006;
+    const T t044 = t012 - psi_dot;
+    const T t045 = t010*t019;
+    const T t046 = (cos_theta*p.cx - p.cz*sin_psi*sin_theta)*p.M*p.g + t045 - t013*t033;
+    const T t047 = t017*t019;
+    const T t048 = (cos_psi*p.cz*sin_theta - cos_theta*p.cy)*p.M*p.g + t013*t018 - t047;
+    const T t049 = t010*t018 - p.M*p.g*sin_theta*t037 - t017*t033;
+    const T t050 = t027*t046 - t007*t048 - t036*t049;
+    const T t051 = (cos_psi*t044*theta_dot - phi_dot*psi_dot*sin_psi*sin_theta - t006*t050)*cos_psi;
+    const T t052 = t007*t046 + t042*t048 - t041*t049;
+    const T t053 = (cos_psi*phi_dot*psi_dot*sin_theta + sin_psi*t044*theta_dot + t006*t052)*sin_psi;
+    const T t054 = ((t051 + t053)*cos_theta*t000 + cos_psi*t040 + sin_psi*t043)*t000;
+    const T t055 = p.Iyy - p.Ixx;
+    const T t056 = (S(2)*t011 + t014 + t017*t055)*t017 + (S(2)*t031 + t032 - t010*t055)*t010 - (cos_psi*p.cy + p.cx*sin_psi)*p.M*p.g*sin_theta;
+    const T t057 = p.Iyz*t010 - p.Ixz*t017;
+    const T t058 = (p.Ixx*t017 - t011)*t013 + cos_psi*p.M*p.cz*p.g*sin_theta + t010*t057 - t047;
+    const T t059 = (t031 - p.Iyy*t010)*t013 + t017*t057 + t045 - p.M*p.cz*p.g*sin_psi*sin_theta;
+    const T t060 = (t007*t059 + t027*t058 + t036*t056) + t052;
+    const T t061 = t050 - (t007*t058 + t041*t056 - t042*t059);
+    const T t062 = cos_psi*t060 + sin_psi*t061;
+    const T t063 = cos_theta*p.Ixz + sin_theta*t029;
+    const T t064 = cos_theta*p.Izz + sin_theta*t023;
+    const T t065 = cos_theta*t033 + t013*t063 - sin_psi*sin_theta*t019 - t010*t064;
+    const T t066 = cos_theta*p.Iyz + sin_theta*t021;
+    const T t067 = t010*t066 - sin_theta*t038 - t017*t063;
+    const T t068 = cos_theta*t018 + t013*t066 - cos_psi*sin_theta*t019 - t017*t064;
+    const T t069 = psi_dot*sin_psi*sin_theta - (t007*t068 + t027*t065 + t036*t067)*t006 - cos_psi*cos_theta*theta_dot;
+    const T t070 = cos_psi*psi_dot*sin_theta + cos_theta*sin_psi*theta_dot - (t007*t065 + t041*t067 - t042*t068)*t006;
+    const T t071 = cos_psi*t069 - sin_psi*t070;
+    const T t072 = t020 - cos_psi*p.Ixx;
+    const T t073 = p.Iyz*sin_psi - cos_psi*p.Ixz;
+    const T t074 = cos_psi*t019 + t013*t072 - t010*t073;
+    const T t075 = t028 - p.Iyy*sin_psi;
+    const T t076 = sin_psi*t019 + t013*t075 + t017*t073;
+    const T t077 = cos_psi*t018 + sin_psi*t033 + t010*t075 + t017*t072;
+    const T t078 = (t007*t074 + t042*t076 - t041*t077)*t006 + sin_psi*t044;
+    const T t079 = (t007*t076 + t036*t077 - t027*t074)*t006 + cos_psi*t044;
+    const T t080 = cos_psi*t079 + sin_psi*t078;
+    const T t081 = S(2)*t014 + t011 - (p.Izz - p.Iyy)*t017;
+    const T t082 = S(2)*t032 + t031 - (p.Izz - p.Ixx)*t010;
+    const T t083 = t008 + t009 - (t007*t081 + t027*t082 + t036*t057)*t006;
+    const T t084 = t015 - (t007*t082 + t041*t057 - t042*t081)*t006 - t016;
+    const T t085 = cos_psi*t083 - sin_psi*t084;
+    const T t086 = (phi_dot*theta_dot - t054)*cos_theta + (t001*t039 - t026*t041 - t035*t036)*t006 - t051 - t053;
+    const T t087 = t001*t056 + t036*t058 + t041*t059 - cos_theta*t000*t062;
+    const T t088 = sin_theta*theta_dot - (t001*t067 + t036*t065 + t041*t068)*t006 - cos_theta*t000*t071;
+    const T t089 = cos_theta*t000*t080 + phi_dot*sin_theta - (t001*t077 + t041*t076 - t036*t074)*t006;
+    const T t090 = (t001*t057 + t036*t082 + t041*t081)*t006 + cos_theta*t000*t085;
     J[0] = T(S(0));
     J[1] = T(S(0));
     J[2] = T(S(0));
@@ -296,23 +290,23 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     J[16] = T(S(0));
     J[17] = T(S(1));
     J[18] = T(S(0));
-    J[19] = t057;
-    J[20] = t000*t068;
-    J[21] = t000*t077;
-    J[22] = -t000*t086;
-    J[23] = t000*t091;
+    J[19] = t054;
+    J[20] = -t062/(sin_theta*t005);
+    J[21] = t000*t071;
+    J[22] = -t000*t080;
+    J[23] = t000*t085;
     J[24] = T(S(0));
-    J[25] = cos_psi*t042 - sin_psi*t039;
-    J[26] = cos_psi*t065 + sin_psi*t067;
-    J[27] = -(cos_psi*t076 + sin_psi*t075);
-    J[28] = sin_psi*t085 - cos_psi*t084;
-    J[29] = -(cos_psi*t090 + sin_psi*t089);
+    J[25] = cos_psi*t043 - sin_psi*t040;
+    J[26] = -(cos_psi*t061 - sin_psi*t060)*t006;
+    J[27] = -(cos_psi*t070 + sin_psi*t069);
+    J[28] = sin_psi*t079 - cos_psi*t078;
+    J[29] = -(cos_psi*t084 + sin_psi*t083);
     J[30] = T(S(0));
-    J[31] = t092;
-    J[32] = -t093;
-    J[33] = t094;
-    J[34] = t095;
-    J[35] = -t096;
+    J[31] = t086;
+    J[32] = -t006*t087;
+    J[33] = t088;
+    J[34] = t089;
+    J[35] = -t090;
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -321,7 +315,7 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, phi_ddot, theta_ddot, psi_ddot
 //   J     output, dim 6 x 6 (row-major)
 //   p     parameters
-// Operations (+ - * / and calls): 16372 before lowering, 490 after (180 +-, 304 *, 2 /, 4 calls).
+// Operations (+ - * / and calls): 16372 before lowering, 495 after (181 +-, 307 *, 3 /, 4 calls).
 template <class T>
 void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     using std::cos;
@@ -340,13 +334,13 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T t000 = S(1)/sin_theta;
     const T t001 = cos_theta*phi_dot;
     const T t002 = t001 - psi_dot;
-    const T t003 = cos_psi*t002*theta_dot;
-    const T t004 = p.Ixy*p.Ixy - p.Ixx*p.Iyy;
-    const T t005 = p.Ixx*p.Iyz;
-    const T t006 = p.Ixy*p.Ixz;
-    const T t007 = p.Ixz*p.Ixz;
-    const T t008 = S(1)/((t005 - S(2)*t006)*p.Iyz + p.Iyy*t007 + p.Izz*t004);
-    const T t009 = t007 - p.Ixx*p.Izz;
+    const T t003 = p.Ixy*p.Ixy - p.Ixx*p.Iyy;
+    const T t004 = p.Ixx*p.Iyz;
+    const T t005 = p.Ixy*p.Ixz;
+    const T t006 = p.Ixz*p.Ixz;
+    const T t007 = (t004 - S(2)*t005)*p.Iyz + p.Iyy*t006 + p.Izz*t003;
+    const T t008 = S(1)/t007;
+    const T t009 = t006 - p.Ixx*p.Izz;
     const T t010 = phi_dot*sin_psi*sin_theta;
     const T t011 = cos_psi*theta_dot;
     const T t012 = t010 + t011;
@@ -366,83 +360,79 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T t026 = p.Iyz*t013;
     const T t027 = p.Iyy*t016 + t025 + t026;
     const T t028 = (cos_psi*p.cz*sin_theta - cos_theta*p.cy)*p.M*p.g + t013*t027 - t024;
-    const T t029 = t005 - t006;
+    const T t029 = t004 - t005;
     const T t030 = p.cy*sin_psi - cos_psi*p.cx;
     const T t031 = t012*t027 - p.M*p.g*sin_theta*t030 - t016*t021;
-    const T t032 = phi_dot*psi_dot*sin_psi*sin_theta;
-    const T t033 = t003 - (t009*t022 - t023*t028 - t029*t031)*t008 - t032;
+    const T t032 = t009*t022 - t023*t028 - t029*t031;
+    const T t033 = cos_psi*t002*theta_dot - phi_dot*psi_dot*sin_psi*sin_theta - t008*t032;
     const T t034 = cos_psi*t033;
-    const T t035 = cos_psi*phi_dot*psi_dot*sin_theta;
-    const T t036 = p.Iyy*p.Izz - p.Iyz*p.Iyz;
-    const T t037 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
-    const T t038 = sin_psi*t002*theta_dot;
-    const T t039 = (t022*t023 + t028*t036 - t031*t037)*t008 + t035 + t038;
-    const T t040 = sin_psi*t039;
-    const T t041 = t034 + t040;
-    const T t042 = cos_theta*t000*t041;
-    const T t043 = (t022*t029 - t004*t031 - t028*t037)*t008 + phi_dot*sin_theta*theta_dot + t042;
-    const T t044 = p.Ixy*sin_psi;
-    const T t045 = cos_psi*p.Iyy + t044;
-    const T t046 = p.Iyz*sin_theta - cos_theta*t045;
-    const T t047 = cos_psi*p.Iyz + p.Ixz*sin_psi;
-    const T t048 = cos_theta*t047 - p.Izz*sin_theta;
-    const T t049 = cos_psi*cos_theta*t017 + sin_theta*t027 + t013*t046 + t016*t048;
-    const T t050 = (cos_psi*cos_theta*p.cz + p.cy*sin_theta)*p.M*p.g - phi_dot*t049;
-    const T t051 = cos_psi*p.Ixy;
-    const T t052 = p.Ixx*sin_psi + t051;
-    const T t053 = cos_theta*t052 - p.Ixz*sin_theta;
-    const T t054 = t013*t053 - cos_theta*sin_psi*t017 - sin_theta*t021 - t012*t048;
-    const T t055 = (cos_theta*p.cz*sin_psi + p.cx*sin_theta)*p.M*p.g + phi_dot*t054;
-    const T t056 = cos_psi*t021 - sin_psi*t027;
-    const T t057 = (p.M*p.g*t030 + phi_dot*t056)*cos_theta + (t012*t046 + t016*t053)*phi_dot;
-    const T t058 = (cos_psi*sin_theta*theta_dot + cos_theta*psi_dot*sin_psi)*phi_dot - (t009*t055 + t023*t050 - t029*t057)*t008;
-    const T t059 = (sin_psi*sin_theta*theta_dot - cos_psi*cos_theta*psi_dot)*phi_dot - (t036*t050 + t037*t057 - t023*t055)*t008;
-    const T t060 = (cos_psi*t058 + sin_psi*t059 + t042)*t000;
-    const T t061 = p.Ixx*t016 - t025;
-    const T t062 = t019 - p.Iyy*t012;
-    const T t063 = (t021 + t062)*t012 + (t027 - t061)*t016 - (cos_psi*p.cy + p.cx*sin_psi)*p.M*p.g*sin_theta;
-    const T t064 = p.Iyz*t012 - p.Ixz*t016;
-    const T t065 = t013*t062 + t016*t064 + t018 - p.M*p.cz*p.g*sin_psi*sin_theta;
-    const T t066 = cos_psi*p.M*p.cz*p.g*sin_theta + t012*t064 + t013*t061 - t024;
-    const T t067 = (t023*t066 + t037*t063 - t036*t065)*t008 + t032 - t003;
-    const T t068 = t033 + t067;
-    const T t069 = (t009*t066 + t023*t065 + t029*t063)*t008 - t035 - t038;
-    const T t070 = t039 + t069;
-    const T t071 = sin_psi*t068 - cos_psi*t070;
-    const T t072 = cos_theta*p.Ixz + sin_theta*t052;
-    const T t073 = cos_theta*p.Izz + sin_theta*t047;
-    const T t074 = cos_theta*t021 + t013*t072 - sin_psi*sin_theta*t017 - t012*t073;
-    const T t075 = cos_theta*p.Iyz + sin_theta*t045;
-    const T t076 = t012*t075 - sin_theta*t056 - t016*t072;
-    const T t077 = cos_theta*t027 + t013*t075 - cos_psi*sin_theta*t017 - t016*t073;
-    const T t078 = psi_dot*sin_psi*sin_theta - (t009*t074 + t023*t077 + t029*t076)*t008 - cos_psi*cos_theta*theta_dot;
-    const T t079 = cos_psi*psi_dot*sin_theta + cos_theta*sin_psi*theta_dot - (t023*t074 + t037*t076 - t036*t077)*t008;
-    const T t080 = cos_psi*t078 - sin_psi*t079;
-    const T t081 = t044 - cos_psi*p.Ixx;
-    const T t082 = p.Iyz*sin_psi - cos_psi*p.Ixz;
-    const T t083 = cos_psi*t017 + t013*t081 - t012*t082;
-    const T t084 = t051 - p.Iyy*sin_psi;
-    const T t085 = sin_psi*t017 + t013*t084 + t016*t082;
-    const T t086 = cos_psi*t027 + sin_psi*t021 + t012*t084 + t016*t081;
-    const T t087 = (t023*t083 + t036*t085 - t037*t086)*t008 + sin_psi*t002;
-    const T t088 = (t023*t085 + t029*t086 - t009*t083)*t008 + cos_psi*t002;
-    const T t089 = cos_psi*t088 + sin_psi*t087;
-    const T t090 = S(2)*t026 + t025 - (p.Izz - p.Iyy)*t016;
-    const T t091 = S(2)*t020 + t019 - (p.Izz - p.Ixx)*t012;
-    const T t092 = t010 + t011 - (t009*t091 + t023*t090 + t029*t064)*t008;
-    const T t093 = t014 - (t023*t091 + t037*t064 - t036*t090)*t008 - t015;
-    const T t094 = cos_psi*t092 - sin_psi*t093;
-    const T t095 = (phi_dot*theta_dot - t060)*cos_theta + (t004*t057 - t029*t055 - t037*t050)*t008 - t034 - t040;
-    const T t096 = (t004*t063 + t029*t066 + t037*t065)*t008 + cos_theta*t000*t071;
-    const T t097 = sin_theta*theta_dot - (t004*t076 + t029*t074 + t037*t077)*t008 - cos_theta*t000*t080;
-    const T t098 = cos_theta*t000*t089 + phi_dot*sin_theta - (t004*t086 + t037*t085 - t029*t083)*t008;
-    const T t099 = (t004*t064 + t029*t091 + t037*t090)*t008 + cos_theta*t000*t094;
+    const T t035 = p.Iyy*p.Izz - p.Iyz*p.Iyz;
+    const T t036 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
+    const T t037 = t022*t023 + t028*t035 - t031*t036;
+    const T t038 = cos_psi*phi_dot*psi_dot*sin_theta + sin_psi*t002*theta_dot + t008*t037;
+    const T t039 = sin_psi*t038;
+    const T t040 = t034 + t039;
+    const T t041 = cos_theta*t000*t040;
+    const T t042 = (t022*t029 - t003*t031 - t028*t036)*t008 + phi_dot*sin_theta*theta_dot + t041;
+    const T t043 = p.Ixy*sin_psi;
+    const T t044 = cos_psi*p.Iyy + t043;
+    const T t045 = p.Iyz*sin_theta - cos_theta*t044;
+    const T t046 = cos_psi*p.Iyz + p.Ixz*sin_psi;
+    const T t047 = cos_theta*t046 - p.Izz*sin_theta;
+    const T t048 = cos_psi*cos_theta*t017 + sin_theta*t027 + t013*t045 + t016*t047;
+    const T t049 = (cos_psi*cos_theta*p.cz + p.cy*sin_theta)*p.M*p.g - phi_dot*t048;
+    const T t050 = cos_psi*p.Ixy;
+    const T t051 = p.Ixx*sin_psi + t050;
+    const T t052 = cos_theta*t051 - p.Ixz*sin_theta;
+    const T t053 = t013*t052 - cos_theta*sin_psi*t017 - sin_theta*t021 - t012*t047;
+    const T t054 = (cos_theta*p.cz*sin_psi + p.cx*sin_theta)*p.M*p.g + phi_dot*t053;
+    const T t055 = cos_psi*t021 - sin_psi*t027;
+    const T t056 = (p.M*p.g*t030 + phi_dot*t055)*cos_theta + (t012*t045 + t016*t052)*phi_dot;
+    const T t057 = (cos_psi*sin_theta*theta_dot + cos_theta*psi_dot*sin_psi)*phi_dot - (t009*t054 + t023*t049 - t029*t056)*t008;
+    const T t058 = (sin_psi*sin_theta*theta_dot - cos_psi*cos_theta*psi_dot)*phi_dot - (t035*t049 + t036*t056 - t023*t054)*t008;
+    const T t059 = (cos_psi*t057 + sin_psi*t058 + t041)*t000;
+    const T t060 = p.Iyy - p.Ixx;
+    const T t061 = (S(2)*t019 + t020 - t012*t060)*t012 + (S(2)*t025 + t016*t060 + t026)*t016 - (cos_psi*p.cy + p.cx*sin_psi)*p.M*p.g*sin_theta;
+    const T t062 = p.Iyz*t012 - p.Ixz*t016;
+    const T t063 = (p.Ixx*t016 - t025)*t013 + cos_psi*p.M*p.cz*p.g*sin_theta + t012*t062 - t024;
+    const T t064 = (t019 - p.Iyy*t012)*t013 + t016*t062 + t018 - p.M*p.cz*p.g*sin_psi*sin_theta;
+    const T t065 = (t009*t063 + t023*t064 + t029*t061) + t037;
+    const T t066 = t032 - (t023*t063 + t036*t061 - t035*t064);
+    const T t067 = cos_psi*t065 + sin_psi*t066;
+    const T t068 = cos_theta*p.Ixz + sin_theta*t051;
+    const T t069 = cos_theta*p.Izz + sin_theta*t046;
+    const T t070 = cos_theta*t021 + t013*t068 - sin_psi*sin_theta*t017 - t012*t069;
+    const T t071 = cos_theta*p.Iyz + sin_theta*t044;
+    const T t072 = t012*t071 - sin_theta*t055 - t016*t068;
+    const T t073 = cos_theta*t027 + t013*t071 - cos_psi*sin_theta*t017 - t016*t069;
+    const T t074 = psi_dot*sin_psi*sin_theta - (t009*t070 + t023*t073 + t029*t072)*t008 - cos_psi*cos_theta*theta_dot;
+    const T t075 = cos_psi*psi_dot*sin_theta + cos_theta*sin_psi*theta_dot - (t023*t070 + t036*t072 - t035*t073)*t008;
+    const T t076 = cos_psi*t074 - sin_psi*t075;
+    const T t077 = t043 - cos_psi*p.Ixx;
+    const T t078 = p.Iyz*sin_psi - cos_psi*p.Ixz;
+    const T t079 = cos_psi*t017 + t013*t077 - t012*t078;
+    const T t080 = t050 - p.Iyy*sin_psi;
+    const T t081 = sin_psi*t017 + t013*t080 + t016*t078;
+    const T t082 = cos_psi*t027 + sin_psi*t021 + t012*t080 + t016*t077;
+    const T t083 = (t023*t079 + t035*t081 - t036*t082)*t008 + sin_psi*t002;
+    const T t084 = (t023*t081 + t029*t082 - t009*t079)*t008 + cos_psi*t002;
+    const T t085 = cos_psi*t084 + sin_psi*t083;
+    const T t086 = S(2)*t026 + t025 - (p.Izz - p.Iyy)*t016;
+    const T t087 = S(2)*t020 + t019 - (p.Izz - p.Ixx)*t012;
+    const T t088 = t010 + t011 - (t009*t087 + t023*t086 + t029*t062)*t008;
+    const T t089 = t014 - (t023*t087 + t036*t062 - t035*t086)*t008 - t015;
+    const T t090 = cos_psi*t088 - sin_psi*t089;
+    const T t091 = (phi_dot*theta_dot - t059)*cos_theta + (t003*t056 - t029*t054 - t036*t049)*t008 - t034 - t039;
+    const T t092 = t003*t061 + t029*t063 + t036*t064 - cos_theta*t000*t067;
+    const T t093 = sin_theta*theta_dot - (t003*t072 + t029*t070 + t036*t073)*t008 - cos_theta*t000*t076;
+    const T t094 = cos_theta*t000*t085 + phi_dot*sin_theta - (t003*t082 + t036*t081 - t029*t079)*t008;
+    const T t095 = (t003*t062 + t029*t087 + t036*t086)*t008 + cos_theta*t000*t090;
     dydt[0] = phi_dot;
     dydt[1] = theta_dot;
     dydt[2] = psi_dot;
-    dydt[3] = -t000*t041;
-    dydt[4] = sin_psi*t033 - cos_psi*t039;
-    dydt[5] = t043;
+    dydt[3] = -t000*t040;
+    dydt[4] = sin_psi*t033 - cos_psi*t038;
+    dydt[5] = t042;
     J[0] = T(S(0));
     J[1] = T(S(0));
     J[2] = T(S(0));
@@ -462,23 +452,23 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     J[16] = T(S(0));
     J[17] = T(S(1));
     J[18] = T(S(0));
-    J[19] = t060;
-    J[20] = t000*t071;
-    J[21] = t000*t080;
-    J[22] = -t000*t089;
-    J[23] = t000*t094;
+    J[19] = t059;
+    J[20] = -t067/(sin_theta*t007);
+    J[21] = t000*t076;
+    J[22] = -t000*t085;
+    J[23] = t000*t090;
     J[24] = T(S(0));
-    J[25] = cos_psi*t059 - sin_psi*t058;
-    J[26] = cos_psi*t068 + sin_psi*t070;
-    J[27] = -(cos_psi*t079 + sin_psi*t078);
-    J[28] = sin_psi*t088 - cos_psi*t087;
-    J[29] = -(cos_psi*t093 + sin_psi*t092);
+    J[25] = cos_psi*t058 - sin_psi*t057;
+    J[26] = -(cos_psi*t066 - sin_psi*t065)*t008;
+    J[27] = -(cos_psi*t075 + sin_psi*t074);
+    J[28] = sin_psi*t084 - cos_psi*t083;
+    J[29] = -(cos_psi*t089 + sin_psi*t088);
     J[30] = T(S(0));
-    J[31] = t095;
-    J[32] = -t096;
-    J[33] = t097;
-    J[34] = t098;
-    J[35] = -t099;
+    J[31] = t091;
+    J[32] = -t008*t092;
+    J[33] = t093;
+    J[34] = t094;
+    J[35] = -t095;
 }
 
 // The energy T + V (conserved without damping and driving torques).
@@ -540,7 +530,7 @@ void momenta(const T* y, T* momentum, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   M     output, dim 3 x 3 (row-major): M11, M12, M13, M21, M22, M23, M31, M32, M33
 //   p     parameters
-// Operations (+ - * / and calls): 160 before lowering, 40 after (14 +-, 22 *, 0 /, 4 calls).
+// Operations (+ - * / and calls): 160 before lowering, 41 after (14 +-, 23 *, 0 /, 4 calls).
 template <class T>
 void mass_matrix(const T* y, T* M, const params<T>& p) {
     using std::cos;
@@ -556,11 +546,11 @@ void mass_matrix(const T* y, T* M, const params<T>& p) {
     const T t001 = p.Iyy - p.Ixx;
     const T t002 = (S(2)*p.Ixy*sin_psi + cos_psi*t001)*cos_psi;
     const T t003 = ((p.Ixx + t002)*sin_theta + S(2)*cos_theta*t000)*sin_theta + cos_theta*cos_theta*p.Izz;
-    const T t004 = p.Iyz*sin_psi - cos_psi*p.Ixz;
-    const T t005 = (p.Ixy - (S(2)*cos_psi*p.Ixy - sin_psi*t001)*cos_psi)*sin_theta + cos_theta*t004;
-    const T t006 = -t005;
+    const T t004 = (cos_psi*sin_psi*t001 - (S(2)*cos_psi*cos_psi - S(1))*p.Ixy)*sin_theta;
+    const T t005 = p.Iyz*sin_psi - cos_psi*p.Ixz;
+    const T t006 = -(cos_theta*t005 + t004);
     const T t007 = cos_theta*p.Izz + sin_theta*t000;
-    const T t008 = -t004;
+    const T t008 = -t005;
     M[0] = t003;
     M[1] = t006;
     M[2] = t007;

@@ -21,11 +21,11 @@
 //
 // Operations (+ - * / and calls), before lowering -> after:
 //   rhs: 1123 -> 98 (24 temporaries)
-//   jacobian: 6988 -> 245 (60 temporaries)
-//   rhs_and_jacobian: 8111 -> 273 (65 temporaries)
+//   jacobian: 6988 -> 253 (66 temporaries)
+//   rhs_and_jacobian: 8111 -> 281 (71 temporaries)
 //   energy: 325 -> 71 (20 temporaries)
 //   momenta: 0 -> 0 (0 temporaries)
-//   mass_matrix: 160 -> 40 (13 temporaries)
+//   mass_matrix: 160 -> 41 (13 temporaries)
 //   omega: 270 -> 60 (18 temporaries)
 //   rotation: 49 -> 29 (6 temporaries)
 //
@@ -158,7 +158,7 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   J     output, dim 6 x 6 (row-major); structural zeros in jacobian_pattern
 //   p     parameters
-// Operations (+ - * / and calls): 6988 before lowering, 245 after (84 +-, 152 *, 5 /, 4 calls).
+// Operations (+ - * / and calls): 6988 before lowering, 253 after (87 +-, 157 *, 5 /, 4 calls).
 template <class T>
 void jacobian(T t, const T* y, T* J, const params<T>& p) {
     using std::cos;
@@ -179,75 +179,81 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T t002 = p.Ixz*p.Ixz;
     const T t003 = t002 - p.Ixx*p.Izz;
     const T t004 = t001 - cos_psi*t003;
-    const T t005 = p.Iyy*p.Izz - p.Iyz*p.Iyz;
-    const T t006 = cos_psi*t000;
-    const T t007 = sin_psi*t005 + t006;
-    const T t008 = cos_psi*t004 + sin_psi*t007;
-    const T t009 = sin_theta*sin_theta;
-    const T t010 = S(1)/t009;
-    const T t011 = cos_theta*p_psi - p_phi;
-    const T t012 = cos_theta*t010*t011 + p_psi;
-    const T t013 = S(1)/sin_theta;
-    const T t014 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
-    const T t015 = cos_psi*t011*t013 + p_theta*sin_psi;
-    const T t016 = t000*t015;
-    const T t017 = cos_psi*p_theta - sin_psi*t011*t013;
-    const T t018 = p_psi*t014 + t005*t017 - t016;
-    const T t019 = sin_psi*t018;
-    const T t020 = p.Ixx*p.Iyz;
-    const T t021 = p.Ixy*p.Ixz;
-    const T t022 = t020 - t021;
-    const T t023 = t000*t017;
-    const T t024 = p_psi*t022 - t003*t015 - t023;
-    const T t025 = cos_psi*t024;
-    const T t026 = t019 - t025;
-    const T t027 = t008*t012 - cos_theta*t013*t026;
-    const T t028 = p.Ixy*p.Ixy - p.Ixx*p.Iyy;
-    const T t029 = (t020 - S(2)*t021)*p.Iyz + p.Iyy*t002 + p.Izz*t028;
-    const T t030 = S(1)/(sin_theta*t029);
-    const T t031 = t027*t030;
-    const T t032 = (t016 - t003*t017) - t018;
-    const T t033 = (t005*t015 + t023) - t024;
-    const T t034 = cos_psi*t032 + sin_psi*t033;
-    const T t035 = sin_psi*t003 + t006;
-    const T t036 = t001 - cos_psi*t005;
-    const T t037 = cos_psi*t035 - sin_psi*t036;
-    const T t038 = cos_theta*t004*t013 + t022;
-    const T t039 = cos_theta*t007*t013 - t014;
-    const T t040 = cos_psi*t038 + sin_psi*t039;
-    const T t041 = S(1)/t029;
-    const T t042 = cos_psi*t007 - sin_psi*t004;
-    const T t043 = (t012*t022 + t024)*cos_psi + cos_theta*t013*t027 - (t012*t014 + t018)*sin_psi;
-    const T t044 = -(cos_psi*t014 + sin_psi*t022 - cos_theta*t013*t037)*t041;
-    const T t045 = ((t022 + t038)*cos_psi + (t039 - t014)*sin_psi)*cos_theta*t013;
-    const T t046 = cos_psi*p.cy + p.cx*sin_psi;
-    const T t047 = (S(2)*cos_theta*t012 - p_phi)*t013*t026 - t008*t012*t012;
-    const T t048 = (cos_theta*p.cz + sin_theta*t046)*p.M*p.g - t041*t047;
-    const T t049 = (p.cy*sin_psi - cos_psi*p.cx)*cos_theta*p.M*p.g;
-    const T t050 = ((S(1) + cos_theta*cos_theta*t010)*t026 - t012*t040)*t041;
-    const T t051 = cos_psi*t018;
-    const T t052 = sin_psi*t024;
-    const T t053 = t004*t017 + t007*t015 - t051 - t052;
-    const T t054 = (t015*t033 + t017*t032)*t041 + p.M*p.g*sin_theta*t046;
-    const T t055 = ((t051 + t052)*cos_theta*t013 - t015*t039 - t017*t038)*t041;
+    const T t005 = p.Iyz*p.Iyz;
+    const T t006 = p.Iyy*p.Izz - t005;
+    const T t007 = cos_psi*t000;
+    const T t008 = sin_psi*t006 + t007;
+    const T t009 = cos_psi*t004 + sin_psi*t008;
+    const T t010 = sin_theta*sin_theta;
+    const T t011 = S(1)/t010;
+    const T t012 = cos_theta*p_psi - p_phi;
+    const T t013 = cos_theta*t011*t012 + p_psi;
+    const T t014 = S(1)/sin_theta;
+    const T t015 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
+    const T t016 = p_psi*t015;
+    const T t017 = cos_psi*t012*t014 + p_theta*sin_psi;
+    const T t018 = t000*t017;
+    const T t019 = cos_psi*p_theta - sin_psi*t012*t014;
+    const T t020 = t006*t019 + t016 - t018;
+    const T t021 = sin_psi*t020;
+    const T t022 = p.Ixx*p.Iyz;
+    const T t023 = p.Ixy*p.Ixz;
+    const T t024 = t022 - t023;
+    const T t025 = p_psi*t024;
+    const T t026 = t000*t019;
+    const T t027 = t025 - t003*t017 - t026;
+    const T t028 = cos_psi*t027;
+    const T t029 = t021 - t028;
+    const T t030 = t009*t013 - cos_theta*t014*t029;
+    const T t031 = p.Ixy*p.Ixy - p.Ixx*p.Iyy;
+    const T t032 = (t022 - S(2)*t023)*p.Iyz + p.Iyy*t002 + p.Izz*t031;
+    const T t033 = S(1)/(sin_theta*t032);
+    const T t034 = t030*t033;
+    const T t035 = (p.Iyy - p.Ixx)*p.Izz + t002 - t005;
+    const T t036 = t016 + t019*t035 - S(2)*t018;
+    const T t037 = S(2)*t026 + t017*t035 - t025;
+    const T t038 = cos_psi*t036 - sin_psi*t037;
+    const T t039 = sin_psi*t003 + t007;
+    const T t040 = t001 - cos_psi*t006;
+    const T t041 = cos_psi*t039 - sin_psi*t040;
+    const T t042 = cos_theta*t004*t014;
+    const T t043 = t024 + t042;
+    const T t044 = cos_theta*t008*t014;
+    const T t045 = t044 - t015;
+    const T t046 = cos_psi*t043 + sin_psi*t045;
+    const T t047 = S(1)/t032;
+    const T t048 = cos_psi*t008 - sin_psi*t004;
+    const T t049 = (t013*t024 + t027)*cos_psi + cos_theta*t014*t030 - (t013*t015 + t020)*sin_psi;
+    const T t050 = -(cos_psi*t015 + sin_psi*t024 - cos_theta*t014*t041)*t047;
+    const T t051 = ((S(2)*t024 + t042)*cos_psi + (t044 - S(2)*t015)*sin_psi)*cos_theta*t014;
+    const T t052 = cos_psi*p.cy + p.cx*sin_psi;
+    const T t053 = (S(2)*cos_theta*t013 - p_phi)*t014*t029 - t009*t013*t013;
+    const T t054 = (cos_theta*p.cz + sin_theta*t052)*p.M*p.g - t047*t053;
+    const T t055 = (p.cy*sin_psi - cos_psi*p.cx)*cos_theta*p.M*p.g;
+    const T t056 = ((S(1) + cos_theta*cos_theta*t011)*t029 - t013*t046)*t047;
+    const T t057 = cos_psi*t020;
+    const T t058 = sin_psi*t027;
+    const T t059 = t004*t019 + t008*t017 - t057 - t058;
+    const T t060 = (t019*t036 - t017*t037)*t047 - p.M*p.g*sin_theta*t052;
+    const T t061 = ((t057 + t058)*cos_theta*t014 - t017*t045 - t019*t043)*t047;
     J[0] = T(S(0));
-    J[1] = -t031;
-    J[2] = t030*t034;
-    J[3] = -t008/(t009*t029);
-    J[4] = -t030*t037;
-    J[5] = t030*t040;
+    J[1] = -t034;
+    J[2] = -t033*t038;
+    J[3] = -t009/(t010*t032);
+    J[4] = -t033*t041;
+    J[5] = t033*t046;
     J[6] = T(S(0));
-    J[7] = -t012*t041*t042;
-    J[8] = -(sin_psi*t032 - cos_psi*t033)*t041;
-    J[9] = -t030*t042;
-    J[10] = (cos_psi*t036 + sin_psi*t035)*t041;
-    J[11] = -(sin_psi*t038 - cos_psi*t039)*t041;
+    J[7] = -t013*t047*t048;
+    J[8] = (cos_psi*t037 + sin_psi*t036)*t047;
+    J[9] = -t033*t048;
+    J[10] = (cos_psi*t040 + sin_psi*t039)*t047;
+    J[11] = -(sin_psi*t043 - cos_psi*t045)*t047;
     J[12] = T(S(0));
-    J[13] = t041*t043;
-    J[14] = (t014*t015 - cos_theta*t013*t034 - t017*t022)*t041;
-    J[15] = (cos_psi*t022 + cos_theta*t008*t013 - sin_psi*t014)*t030;
-    J[16] = t044;
-    J[17] = -(t045 - t028)*t041;
+    J[13] = t047*t049;
+    J[14] = (cos_theta*t014*t038 + t015*t017 - t019*t024)*t047;
+    J[15] = (cos_psi*t024 + cos_theta*t009*t014 - sin_psi*t015)*t033;
+    J[16] = t050;
+    J[17] = (t031 - t051)*t047;
     J[18] = T(S(0));
     J[19] = T(S(0));
     J[20] = T(S(0));
@@ -255,17 +261,17 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     J[22] = T(S(0));
     J[23] = T(S(0));
     J[24] = T(S(0));
-    J[25] = t048;
-    J[26] = t049 - t012*t034*t041;
-    J[27] = t031;
-    J[28] = t012*t037*t041;
-    J[29] = t050;
+    J[25] = t054;
+    J[26] = t013*t038*t047 + t055;
+    J[27] = t034;
+    J[28] = t013*t041*t047;
+    J[29] = t056;
     J[30] = T(S(0));
-    J[31] = t049 - t012*t041*t053;
-    J[32] = t054;
-    J[33] = -t030*t053;
-    J[34] = -(t017*t035 + t019 - t015*t036 - t025)*t041;
-    J[35] = -t055;
+    J[31] = t055 - t013*t047*t059;
+    J[32] = -t060;
+    J[33] = -t033*t059;
+    J[34] = -(t019*t039 + t021 - t017*t040 - t028)*t047;
+    J[35] = -t061;
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -274,7 +280,7 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, p_phi_dot, p_theta_dot, p_psi_dot
 //   J     output, dim 6 x 6 (row-major)
 //   p     parameters
-// Operations (+ - * / and calls): 8111 before lowering, 273 after (94 +-, 170 *, 5 /, 4 calls).
+// Operations (+ - * / and calls): 8111 before lowering, 281 after (97 +-, 175 *, 5 /, 4 calls).
 template <class T>
 void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     using std::cos;
@@ -291,90 +297,96 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
     const T t000 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
-    const T t001 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
-    const T t002 = S(1)/sin_theta;
-    const T t003 = cos_theta*p_psi - p_phi;
-    const T t004 = cos_psi*t002*t003 + p_theta*sin_psi;
-    const T t005 = t001*t004;
-    const T t006 = p.Iyy*p.Izz - p.Iyz*p.Iyz;
-    const T t007 = cos_psi*p_theta - sin_psi*t002*t003;
-    const T t008 = p_psi*t000 + t006*t007 - t005;
-    const T t009 = sin_psi*t008;
-    const T t010 = p.Ixx*p.Iyz;
-    const T t011 = p.Ixy*p.Ixz;
-    const T t012 = t010 - t011;
-    const T t013 = t001*t007;
-    const T t014 = p.Ixz*p.Ixz;
-    const T t015 = t014 - p.Ixx*p.Izz;
-    const T t016 = p_psi*t012 - t004*t015 - t013;
-    const T t017 = cos_psi*t016;
-    const T t018 = t009 - t017;
-    const T t019 = p.Ixy*p.Ixy - p.Ixx*p.Iyy;
-    const T t020 = (t010 - S(2)*t011)*p.Iyz + p.Iyy*t014 + p.Izz*t019;
-    const T t021 = S(1)/(sin_theta*t020);
-    const T t022 = S(1)/t020;
-    const T t023 = cos_psi*t008;
-    const T t024 = sin_psi*t016;
-    const T t025 = t023 + t024;
-    const T t026 = cos_theta*t002*t018;
-    const T t027 = cos_psi*p.cy + p.cx*sin_psi;
-    const T t028 = sin_theta*sin_theta;
-    const T t029 = S(1)/t028;
-    const T t030 = cos_theta*t003*t029 + p_psi;
-    const T t031 = (cos_theta*t027 - p.cz*sin_theta)*p.M*p.g - t018*t022*t030;
-    const T t032 = p.cy*sin_psi - cos_psi*p.cx;
-    const T t033 = (t007*t016 - t004*t008)*t022 + p.M*p.g*sin_theta*t032;
-    const T t034 = sin_psi*t001;
-    const T t035 = t034 - cos_psi*t015;
-    const T t036 = cos_psi*t001;
-    const T t037 = sin_psi*t006 + t036;
-    const T t038 = cos_psi*t035 + sin_psi*t037;
-    const T t039 = t030*t038 - t026;
-    const T t040 = t021*t039;
-    const T t041 = (t005 - t007*t015) - t008;
-    const T t042 = (t004*t006 + t013) - t016;
-    const T t043 = cos_psi*t041 + sin_psi*t042;
-    const T t044 = sin_psi*t015 + t036;
-    const T t045 = t034 - cos_psi*t006;
-    const T t046 = cos_psi*t044 - sin_psi*t045;
-    const T t047 = cos_theta*t002*t035 + t012;
-    const T t048 = cos_theta*t002*t037 - t000;
-    const T t049 = cos_psi*t047 + sin_psi*t048;
-    const T t050 = cos_psi*t037 - sin_psi*t035;
-    const T t051 = (t012*t030 + t016)*cos_psi + cos_theta*t002*t039 - (t000*t030 + t008)*sin_psi;
-    const T t052 = -(cos_psi*t000 + sin_psi*t012 - cos_theta*t002*t046)*t022;
-    const T t053 = ((t012 + t047)*cos_psi + (t048 - t000)*sin_psi)*cos_theta*t002;
-    const T t054 = (S(2)*cos_theta*t030 - p_phi)*t002*t018 - t030*t030*t038;
-    const T t055 = (cos_theta*p.cz + sin_theta*t027)*p.M*p.g - t022*t054;
-    const T t056 = cos_theta*p.M*p.g*t032;
-    const T t057 = ((S(1) + cos_theta*cos_theta*t029)*t018 - t030*t049)*t022;
-    const T t058 = t004*t037 + t007*t035 - t023 - t024;
-    const T t059 = (t004*t042 + t007*t041)*t022 + p.M*p.g*sin_theta*t027;
-    const T t060 = -(cos_theta*t002*t025 - t004*t048 - t007*t047)*t022;
-    dydt[0] = -t018*t021;
-    dydt[1] = -t022*t025;
-    dydt[2] = (p_psi*t019 + t026 - t000*t007 - t004*t012)*t022;
+    const T t001 = p_psi*t000;
+    const T t002 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
+    const T t003 = S(1)/sin_theta;
+    const T t004 = cos_theta*p_psi - p_phi;
+    const T t005 = cos_psi*t003*t004 + p_theta*sin_psi;
+    const T t006 = t002*t005;
+    const T t007 = p.Iyz*p.Iyz;
+    const T t008 = p.Iyy*p.Izz - t007;
+    const T t009 = cos_psi*p_theta - sin_psi*t003*t004;
+    const T t010 = t001 + t008*t009 - t006;
+    const T t011 = sin_psi*t010;
+    const T t012 = p.Ixx*p.Iyz;
+    const T t013 = p.Ixy*p.Ixz;
+    const T t014 = t012 - t013;
+    const T t015 = p_psi*t014;
+    const T t016 = t002*t009;
+    const T t017 = p.Ixz*p.Ixz;
+    const T t018 = t017 - p.Ixx*p.Izz;
+    const T t019 = t015 - t005*t018 - t016;
+    const T t020 = cos_psi*t019;
+    const T t021 = t011 - t020;
+    const T t022 = p.Ixy*p.Ixy - p.Ixx*p.Iyy;
+    const T t023 = (t012 - S(2)*t013)*p.Iyz + p.Iyy*t017 + p.Izz*t022;
+    const T t024 = S(1)/(sin_theta*t023);
+    const T t025 = S(1)/t023;
+    const T t026 = cos_psi*t010;
+    const T t027 = sin_psi*t019;
+    const T t028 = t026 + t027;
+    const T t029 = cos_theta*t003*t021;
+    const T t030 = cos_psi*p.cy + p.cx*sin_psi;
+    const T t031 = sin_theta*sin_theta;
+    const T t032 = S(1)/t031;
+    const T t033 = cos_theta*t004*t032 + p_psi;
+    const T t034 = (cos_theta*t030 - p.cz*sin_theta)*p.M*p.g - t021*t025*t033;
+    const T t035 = p.cy*sin_psi - cos_psi*p.cx;
+    const T t036 = (t009*t019 - t005*t010)*t025 + p.M*p.g*sin_theta*t035;
+    const T t037 = sin_psi*t002;
+    const T t038 = t037 - cos_psi*t018;
+    const T t039 = cos_psi*t002;
+    const T t040 = sin_psi*t008 + t039;
+    const T t041 = cos_psi*t038 + sin_psi*t040;
+    const T t042 = t033*t041 - t029;
+    const T t043 = t024*t042;
+    const T t044 = (p.Iyy - p.Ixx)*p.Izz + t017 - t007;
+    const T t045 = t001 + t009*t044 - S(2)*t006;
+    const T t046 = S(2)*t016 + t005*t044 - t015;
+    const T t047 = cos_psi*t045 - sin_psi*t046;
+    const T t048 = sin_psi*t018 + t039;
+    const T t049 = t037 - cos_psi*t008;
+    const T t050 = cos_psi*t048 - sin_psi*t049;
+    const T t051 = cos_theta*t003*t038;
+    const T t052 = t014 + t051;
+    const T t053 = cos_theta*t003*t040;
+    const T t054 = t053 - t000;
+    const T t055 = cos_psi*t052 + sin_psi*t054;
+    const T t056 = cos_psi*t040 - sin_psi*t038;
+    const T t057 = (t014*t033 + t019)*cos_psi + cos_theta*t003*t042 - (t000*t033 + t010)*sin_psi;
+    const T t058 = -(cos_psi*t000 + sin_psi*t014 - cos_theta*t003*t050)*t025;
+    const T t059 = ((S(2)*t014 + t051)*cos_psi + (t053 - S(2)*t000)*sin_psi)*cos_theta*t003;
+    const T t060 = (S(2)*cos_theta*t033 - p_phi)*t003*t021 - t033*t033*t041;
+    const T t061 = (cos_theta*p.cz + sin_theta*t030)*p.M*p.g - t025*t060;
+    const T t062 = cos_theta*p.M*p.g*t035;
+    const T t063 = ((S(1) + cos_theta*cos_theta*t032)*t021 - t033*t055)*t025;
+    const T t064 = t005*t040 + t009*t038 - t026 - t027;
+    const T t065 = (t009*t045 - t005*t046)*t025 - p.M*p.g*sin_theta*t030;
+    const T t066 = -(cos_theta*t003*t028 - t005*t054 - t009*t052)*t025;
+    dydt[0] = -t021*t024;
+    dydt[1] = -t025*t028;
+    dydt[2] = (p_psi*t022 + t029 - t000*t009 - t005*t014)*t025;
     dydt[3] = T(S(0));
-    dydt[4] = -t031;
-    dydt[5] = t033;
+    dydt[4] = -t034;
+    dydt[5] = t036;
     J[0] = T(S(0));
-    J[1] = -t040;
-    J[2] = t021*t043;
-    J[3] = -t038/(t020*t028);
-    J[4] = -t021*t046;
-    J[5] = t021*t049;
+    J[1] = -t043;
+    J[2] = -t024*t047;
+    J[3] = -t041/(t023*t031);
+    J[4] = -t024*t050;
+    J[5] = t024*t055;
     J[6] = T(S(0));
-    J[7] = -t022*t030*t050;
-    J[8] = -(sin_psi*t041 - cos_psi*t042)*t022;
-    J[9] = -t021*t050;
-    J[10] = (cos_psi*t045 + sin_psi*t044)*t022;
-    J[11] = -(sin_psi*t047 - cos_psi*t048)*t022;
+    J[7] = -t025*t033*t056;
+    J[8] = (cos_psi*t046 + sin_psi*t045)*t025;
+    J[9] = -t024*t056;
+    J[10] = (cos_psi*t049 + sin_psi*t048)*t025;
+    J[11] = -(sin_psi*t052 - cos_psi*t054)*t025;
     J[12] = T(S(0));
-    J[13] = t022*t051;
-    J[14] = (t000*t004 - cos_theta*t002*t043 - t007*t012)*t022;
-    J[15] = (cos_psi*t012 + cos_theta*t002*t038 - sin_psi*t000)*t021;
-    J[16] = t052;
-    J[17] = -(t053 - t019)*t022;
+    J[13] = t025*t057;
+    J[14] = (cos_theta*t003*t047 + t000*t005 - t009*t014)*t025;
+    J[15] = (cos_psi*t014 + cos_theta*t003*t041 - sin_psi*t000)*t024;
+    J[16] = t058;
+    J[17] = (t022 - t059)*t025;
     J[18] = T(S(0));
     J[19] = T(S(0));
     J[20] = T(S(0));
@@ -382,17 +394,17 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     J[22] = T(S(0));
     J[23] = T(S(0));
     J[24] = T(S(0));
-    J[25] = t055;
-    J[26] = t056 - t022*t030*t043;
-    J[27] = t040;
-    J[28] = t022*t030*t046;
-    J[29] = t057;
+    J[25] = t061;
+    J[26] = t025*t033*t047 + t062;
+    J[27] = t043;
+    J[28] = t025*t033*t050;
+    J[29] = t063;
     J[30] = T(S(0));
-    J[31] = t056 - t022*t030*t058;
-    J[32] = t059;
-    J[33] = -t021*t058;
-    J[34] = -(t007*t044 + t009 - t004*t045 - t017)*t022;
-    J[35] = t060;
+    J[31] = t062 - t025*t033*t064;
+    J[32] = -t065;
+    J[33] = -t024*t064;
+    J[34] = -(t009*t048 + t011 - t005*t049 - t020)*t025;
+    J[35] = t066;
 }
 
 // The energy, the Hamiltonian H = T + V (conserved without damping and driving torques).
@@ -452,7 +464,7 @@ void momenta(const T* y, T* momentum, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   M     output, dim 3 x 3 (row-major): M11, M12, M13, M21, M22, M23, M31, M32, M33
 //   p     parameters
-// Operations (+ - * / and calls): 160 before lowering, 40 after (14 +-, 22 *, 0 /, 4 calls).
+// Operations (+ - * / and calls): 160 before lowering, 41 after (14 +-, 23 *, 0 /, 4 calls).
 template <class T>
 void mass_matrix(const T* y, T* M, const params<T>& p) {
     using std::cos;
@@ -468,11 +480,11 @@ void mass_matrix(const T* y, T* M, const params<T>& p) {
     const T t001 = p.Iyy - p.Ixx;
     const T t002 = (S(2)*p.Ixy*sin_psi + cos_psi*t001)*cos_psi;
     const T t003 = ((p.Ixx + t002)*sin_theta + S(2)*cos_theta*t000)*sin_theta + cos_theta*cos_theta*p.Izz;
-    const T t004 = p.Iyz*sin_psi - cos_psi*p.Ixz;
-    const T t005 = (p.Ixy - (S(2)*cos_psi*p.Ixy - sin_psi*t001)*cos_psi)*sin_theta + cos_theta*t004;
-    const T t006 = -t005;
+    const T t004 = (cos_psi*sin_psi*t001 - (S(2)*cos_psi*cos_psi - S(1))*p.Ixy)*sin_theta;
+    const T t005 = p.Iyz*sin_psi - cos_psi*p.Ixz;
+    const T t006 = -(cos_theta*t005 + t004);
     const T t007 = cos_theta*p.Izz + sin_theta*t000;
-    const T t008 = -t004;
+    const T t008 = -t005;
     M[0] = t003;
     M[1] = t006;
     M[2] = t007;

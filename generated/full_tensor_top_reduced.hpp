@@ -22,11 +22,11 @@
 //
 // Operations (+ - * / and calls), before lowering -> after:
 //   rhs: 934 -> 95 (23 temporaries)
-//   jacobian: 5039 -> 224 (53 temporaries)
-//   rhs_and_jacobian: 5973 -> 250 (57 temporaries)
+//   jacobian: 5039 -> 230 (59 temporaries)
+//   rhs_and_jacobian: 5973 -> 256 (63 temporaries)
 //   energy: 325 -> 71 (20 temporaries)
 //   momenta: 0 -> 0 (0 temporaries)
-//   mass_matrix: 160 -> 40 (13 temporaries)
+//   mass_matrix: 160 -> 41 (13 temporaries)
 //   omega: 270 -> 60 (18 temporaries)
 //   ignored_rates: 695 -> 60 (15 temporaries)
 //
@@ -154,7 +154,7 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
 //   y     state, dim 4: (theta, psi, p_theta, p_psi)
 //   J     output, dim 4 x 4 (row-major); structural zeros in jacobian_pattern
 //   p     parameters
-// Operations (+ - * / and calls): 5039 before lowering, 224 after (78 +-, 139 *, 3 /, 4 calls).
+// Operations (+ - * / and calls): 5039 before lowering, 230 after (79 +-, 144 *, 3 /, 4 calls).
 template <class T>
 void jacobian(T t, const T* y, T* J, const params<T>& p) {
     using std::cos;
@@ -177,63 +177,69 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T t005 = S(1)/(sin_theta*sin_theta);
     const T t006 = cos_theta*p_psi - p.p_phi;
     const T t007 = cos_theta*t005*t006 + p_psi;
-    const T t008 = p.Iyy*p.Izz - p.Iyz*p.Iyz;
-    const T t009 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
-    const T t010 = cos_psi*t009;
-    const T t011 = sin_psi*t008 + t010;
-    const T t012 = sin_psi*t009;
-    const T t013 = t003 - p.Ixx*p.Izz;
-    const T t014 = t012 - cos_psi*t013;
-    const T t015 = t001 - t002;
-    const T t016 = S(1)/sin_theta;
-    const T t017 = cos_psi*p_theta - sin_psi*t006*t016;
-    const T t018 = t009*t017;
-    const T t019 = cos_psi*t006*t016 + p_theta*sin_psi;
-    const T t020 = p_psi*t015 - t013*t019 - t018;
-    const T t021 = t020 - (t008*t019 + t018);
-    const T t022 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
-    const T t023 = t009*t019;
-    const T t024 = p_psi*t022 + t008*t017 - t023;
-    const T t025 = (t013*t017 - t023) + t024;
-    const T t026 = sin_psi*t013 + t010;
-    const T t027 = t012 - cos_psi*t008;
-    const T t028 = cos_theta*t014*t016 + t015;
-    const T t029 = cos_theta*t011*t016 - t022;
-    const T t030 = sin_psi*t024;
-    const T t031 = cos_psi*t020;
-    const T t032 = t030 - t031;
-    const T t033 = cos_psi*t014 + sin_psi*t011;
-    const T t034 = (cos_theta*t016*t032 - t007*t033)*cos_theta*t016 + (t007*t022 + t024)*sin_psi - (t007*t015 + t020)*cos_psi;
-    const T t035 = cos_psi*t025 + sin_psi*t021;
-    const T t036 = cos_psi*t026 - sin_psi*t027;
-    const T t037 = -(cos_psi*t022 + sin_psi*t015 - cos_theta*t016*t036)*t004;
-    const T t038 = ((t015 + t028)*cos_psi + (t029 - t022)*sin_psi)*cos_theta*t016;
-    const T t039 = cos_psi*p.cy + p.cx*sin_psi;
-    const T t040 = (p.p_phi - S(2)*cos_theta*t007)*t016*t032 + t007*t007*t033;
-    const T t041 = (cos_theta*p.cz + sin_theta*t039)*p.M*p.g + t004*t040;
-    const T t042 = (p.cy*sin_psi - cos_psi*p.cx)*cos_theta*p.M*p.g;
-    const T t043 = (S(1) + cos_theta*cos_theta*t005)*t032 - (cos_psi*t028 + sin_psi*t029)*t007;
-    const T t044 = sin_psi*t020;
-    const T t045 = cos_psi*t024;
-    const T t046 = t042 - (t011*t019 + t014*t017 - t044 - t045)*t004*t007;
-    const T t047 = (t017*t025 + t019*t021)*t004 - p.M*p.g*sin_theta*t039;
-    const T t048 = (t017*t028 + t019*t029 - (t044 + t045)*cos_theta*t016)*t004;
-    J[0] = -(cos_psi*t011 - sin_psi*t014)*t004*t007;
-    J[1] = -(cos_psi*t021 - sin_psi*t025)*t004;
-    J[2] = (cos_psi*t027 + sin_psi*t026)*t004;
-    J[3] = -(sin_psi*t028 - cos_psi*t029)*t004;
-    J[4] = -t004*t034;
-    J[5] = (cos_theta*t016*t035 + t019*t022 - t015*t017)*t004;
-    J[6] = t037;
-    J[7] = -(t038 - t000)*t004;
-    J[8] = t041;
-    J[9] = t004*t007*t035 + t042;
-    J[10] = t004*t007*t036;
-    J[11] = t004*t043;
-    J[12] = t046;
-    J[13] = -t047;
-    J[14] = -(t017*t026 + t030 - t019*t027 - t031)*t004;
-    J[15] = t048;
+    const T t008 = p.Iyz*p.Iyz;
+    const T t009 = p.Iyy*p.Izz - t008;
+    const T t010 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
+    const T t011 = cos_psi*t010;
+    const T t012 = sin_psi*t009 + t011;
+    const T t013 = sin_psi*t010;
+    const T t014 = t003 - p.Ixx*p.Izz;
+    const T t015 = t013 - cos_psi*t014;
+    const T t016 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
+    const T t017 = p_psi*t016;
+    const T t018 = S(1)/sin_theta;
+    const T t019 = cos_psi*t006*t018 + p_theta*sin_psi;
+    const T t020 = t010*t019;
+    const T t021 = cos_psi*p_theta - sin_psi*t006*t018;
+    const T t022 = (p.Iyy - p.Ixx)*p.Izz + t003 - t008;
+    const T t023 = t017 + t021*t022 - S(2)*t020;
+    const T t024 = t001 - t002;
+    const T t025 = p_psi*t024;
+    const T t026 = t010*t021;
+    const T t027 = t025 - S(2)*t026 - t019*t022;
+    const T t028 = sin_psi*t014 + t011;
+    const T t029 = t013 - cos_psi*t009;
+    const T t030 = cos_theta*t015*t018;
+    const T t031 = t024 + t030;
+    const T t032 = cos_theta*t012*t018;
+    const T t033 = t032 - t016;
+    const T t034 = t009*t021 + t017 - t020;
+    const T t035 = sin_psi*t034;
+    const T t036 = t025 - t014*t019 - t026;
+    const T t037 = cos_psi*t036;
+    const T t038 = t035 - t037;
+    const T t039 = cos_psi*t015 + sin_psi*t012;
+    const T t040 = (cos_theta*t018*t038 - t007*t039)*cos_theta*t018 + (t007*t016 + t034)*sin_psi - (t007*t024 + t036)*cos_psi;
+    const T t041 = cos_psi*t023 + sin_psi*t027;
+    const T t042 = cos_psi*t028 - sin_psi*t029;
+    const T t043 = -(cos_psi*t016 + sin_psi*t024 - cos_theta*t018*t042)*t004;
+    const T t044 = ((S(2)*t024 + t030)*cos_psi + (t032 - S(2)*t016)*sin_psi)*cos_theta*t018;
+    const T t045 = cos_psi*p.cy + p.cx*sin_psi;
+    const T t046 = (p.p_phi - S(2)*cos_theta*t007)*t018*t038 + t007*t007*t039;
+    const T t047 = (cos_theta*p.cz + sin_theta*t045)*p.M*p.g + t004*t046;
+    const T t048 = (p.cy*sin_psi - cos_psi*p.cx)*cos_theta*p.M*p.g;
+    const T t049 = (S(1) + cos_theta*cos_theta*t005)*t038 - (cos_psi*t031 + sin_psi*t033)*t007;
+    const T t050 = sin_psi*t036;
+    const T t051 = cos_psi*t034;
+    const T t052 = t048 - (t012*t019 + t015*t021 - t050 - t051)*t004*t007;
+    const T t053 = (t019*t027 + t021*t023)*t004 - p.M*p.g*sin_theta*t045;
+    const T t054 = (t019*t033 + t021*t031 - (t050 + t051)*cos_theta*t018)*t004;
+    J[0] = -(cos_psi*t012 - sin_psi*t015)*t004*t007;
+    J[1] = (sin_psi*t023 - cos_psi*t027)*t004;
+    J[2] = (cos_psi*t029 + sin_psi*t028)*t004;
+    J[3] = -(sin_psi*t031 - cos_psi*t033)*t004;
+    J[4] = -t004*t040;
+    J[5] = (cos_theta*t018*t041 + t016*t019 - t021*t024)*t004;
+    J[6] = t043;
+    J[7] = (t000 - t044)*t004;
+    J[8] = t047;
+    J[9] = t004*t007*t041 + t048;
+    J[10] = t004*t007*t042;
+    J[11] = t004*t049;
+    J[12] = t052;
+    J[13] = -t053;
+    J[14] = -(t021*t028 + t035 - t019*t029 - t037)*t004;
+    J[15] = t054;
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -242,7 +248,7 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   dydt  output, dim 4: theta_dot, psi_dot, p_theta_dot, p_psi_dot
 //   J     output, dim 4 x 4 (row-major)
 //   p     parameters
-// Operations (+ - * / and calls): 5973 before lowering, 250 after (87 +-, 156 *, 3 /, 4 calls).
+// Operations (+ - * / and calls): 5973 before lowering, 256 after (88 +-, 161 *, 3 /, 4 calls).
 template <class T>
 void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     using std::cos;
@@ -263,73 +269,79 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T t003 = p.Ixz*p.Ixz;
     const T t004 = S(1)/((t001 - S(2)*t002)*p.Iyz + p.Iyy*t003 + p.Izz*t000);
     const T t005 = t001 - t002;
-    const T t006 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
-    const T t007 = cos_theta*p_psi - p.p_phi;
-    const T t008 = S(1)/sin_theta;
-    const T t009 = cos_psi*p_theta - sin_psi*t007*t008;
-    const T t010 = t006*t009;
-    const T t011 = t003 - p.Ixx*p.Izz;
-    const T t012 = cos_psi*t007*t008 + p_theta*sin_psi;
-    const T t013 = p_psi*t005 - t010 - t011*t012;
-    const T t014 = sin_psi*t013;
-    const T t015 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
-    const T t016 = t006*t012;
-    const T t017 = p.Iyy*p.Izz - p.Iyz*p.Iyz;
-    const T t018 = p_psi*t015 + t009*t017 - t016;
-    const T t019 = cos_psi*t018;
-    const T t020 = t014 + t019;
-    const T t021 = sin_psi*t018;
-    const T t022 = cos_psi*t013;
-    const T t023 = t021 - t022;
-    const T t024 = cos_theta*t008*t023;
-    const T t025 = cos_psi*p.cy + p.cx*sin_psi;
-    const T t026 = S(1)/(sin_theta*sin_theta);
-    const T t027 = cos_theta*t007*t026 + p_psi;
-    const T t028 = (cos_theta*t025 - p.cz*sin_theta)*p.M*p.g - t004*t023*t027;
-    const T t029 = p.cy*sin_psi - cos_psi*p.cx;
-    const T t030 = (t009*t013 - t012*t018)*t004 + p.M*p.g*sin_theta*t029;
-    const T t031 = cos_psi*t006;
-    const T t032 = sin_psi*t017 + t031;
-    const T t033 = sin_psi*t006;
-    const T t034 = t033 - cos_psi*t011;
-    const T t035 = t013 - (t010 + t012*t017);
-    const T t036 = (t009*t011 - t016) + t018;
-    const T t037 = sin_psi*t011 + t031;
-    const T t038 = t033 - cos_psi*t017;
-    const T t039 = cos_theta*t008*t034 + t005;
-    const T t040 = cos_theta*t008*t032 - t015;
-    const T t041 = cos_psi*t034 + sin_psi*t032;
-    const T t042 = (t015*t027 + t018)*sin_psi + (t024 - t027*t041)*cos_theta*t008 - (t005*t027 + t013)*cos_psi;
-    const T t043 = cos_psi*t036 + sin_psi*t035;
-    const T t044 = cos_psi*t037 - sin_psi*t038;
-    const T t045 = -(cos_psi*t015 + sin_psi*t005 - cos_theta*t008*t044)*t004;
-    const T t046 = ((t005 + t039)*cos_psi + (t040 - t015)*sin_psi)*cos_theta*t008;
-    const T t047 = (p.p_phi - S(2)*cos_theta*t027)*t008*t023 + t027*t027*t041;
-    const T t048 = (cos_theta*p.cz + sin_theta*t025)*p.M*p.g + t004*t047;
-    const T t049 = cos_theta*p.M*p.g*t029;
-    const T t050 = (S(1) + cos_theta*cos_theta*t026)*t023 - (cos_psi*t039 + sin_psi*t040)*t027;
-    const T t051 = t049 - (t009*t034 + t012*t032 - t014 - t019)*t004*t027;
-    const T t052 = (t009*t036 + t012*t035)*t004 - p.M*p.g*sin_theta*t025;
-    dydt[0] = -t004*t020;
-    dydt[1] = (p_psi*t000 + t024 - t005*t012 - t009*t015)*t004;
-    dydt[2] = -t028;
-    dydt[3] = t030;
-    J[0] = -(cos_psi*t032 - sin_psi*t034)*t004*t027;
-    J[1] = -(cos_psi*t035 - sin_psi*t036)*t004;
-    J[2] = (cos_psi*t038 + sin_psi*t037)*t004;
-    J[3] = -(sin_psi*t039 - cos_psi*t040)*t004;
-    J[4] = -t004*t042;
-    J[5] = (cos_theta*t008*t043 + t012*t015 - t005*t009)*t004;
-    J[6] = t045;
-    J[7] = -(t046 - t000)*t004;
-    J[8] = t048;
-    J[9] = t004*t027*t043 + t049;
-    J[10] = t004*t027*t044;
-    J[11] = t004*t050;
-    J[12] = t051;
-    J[13] = -t052;
-    J[14] = -(t009*t037 + t021 - t012*t038 - t022)*t004;
-    J[15] = (t009*t039 + t012*t040 - cos_theta*t008*t020)*t004;
+    const T t006 = p_psi*t005;
+    const T t007 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
+    const T t008 = cos_theta*p_psi - p.p_phi;
+    const T t009 = S(1)/sin_theta;
+    const T t010 = cos_psi*p_theta - sin_psi*t008*t009;
+    const T t011 = t007*t010;
+    const T t012 = t003 - p.Ixx*p.Izz;
+    const T t013 = cos_psi*t008*t009 + p_theta*sin_psi;
+    const T t014 = t006 - t011 - t012*t013;
+    const T t015 = sin_psi*t014;
+    const T t016 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
+    const T t017 = p_psi*t016;
+    const T t018 = t007*t013;
+    const T t019 = p.Iyz*p.Iyz;
+    const T t020 = p.Iyy*p.Izz - t019;
+    const T t021 = t010*t020 + t017 - t018;
+    const T t022 = cos_psi*t021;
+    const T t023 = t015 + t022;
+    const T t024 = sin_psi*t021;
+    const T t025 = cos_psi*t014;
+    const T t026 = t024 - t025;
+    const T t027 = cos_theta*t009*t026;
+    const T t028 = cos_psi*p.cy + p.cx*sin_psi;
+    const T t029 = S(1)/(sin_theta*sin_theta);
+    const T t030 = cos_theta*t008*t029 + p_psi;
+    const T t031 = (cos_theta*t028 - p.cz*sin_theta)*p.M*p.g - t004*t026*t030;
+    const T t032 = p.cy*sin_psi - cos_psi*p.cx;
+    const T t033 = (t010*t014 - t013*t021)*t004 + p.M*p.g*sin_theta*t032;
+    const T t034 = cos_psi*t007;
+    const T t035 = sin_psi*t020 + t034;
+    const T t036 = sin_psi*t007;
+    const T t037 = t036 - cos_psi*t012;
+    const T t038 = (p.Iyy - p.Ixx)*p.Izz + t003 - t019;
+    const T t039 = t010*t038 + t017 - S(2)*t018;
+    const T t040 = t006 - S(2)*t011 - t013*t038;
+    const T t041 = sin_psi*t012 + t034;
+    const T t042 = t036 - cos_psi*t020;
+    const T t043 = cos_theta*t009*t037;
+    const T t044 = t005 + t043;
+    const T t045 = cos_theta*t009*t035;
+    const T t046 = t045 - t016;
+    const T t047 = cos_psi*t037 + sin_psi*t035;
+    const T t048 = (t016*t030 + t021)*sin_psi + (t027 - t030*t047)*cos_theta*t009 - (t005*t030 + t014)*cos_psi;
+    const T t049 = cos_psi*t039 + sin_psi*t040;
+    const T t050 = cos_psi*t041 - sin_psi*t042;
+    const T t051 = -(cos_psi*t016 + sin_psi*t005 - cos_theta*t009*t050)*t004;
+    const T t052 = ((S(2)*t005 + t043)*cos_psi + (t045 - S(2)*t016)*sin_psi)*cos_theta*t009;
+    const T t053 = (p.p_phi - S(2)*cos_theta*t030)*t009*t026 + t030*t030*t047;
+    const T t054 = (cos_theta*p.cz + sin_theta*t028)*p.M*p.g + t004*t053;
+    const T t055 = cos_theta*p.M*p.g*t032;
+    const T t056 = (S(1) + cos_theta*cos_theta*t029)*t026 - (cos_psi*t044 + sin_psi*t046)*t030;
+    const T t057 = t055 - (t010*t037 + t013*t035 - t015 - t022)*t004*t030;
+    const T t058 = (t010*t039 + t013*t040)*t004 - p.M*p.g*sin_theta*t028;
+    dydt[0] = -t004*t023;
+    dydt[1] = (p_psi*t000 + t027 - t005*t013 - t010*t016)*t004;
+    dydt[2] = -t031;
+    dydt[3] = t033;
+    J[0] = -(cos_psi*t035 - sin_psi*t037)*t004*t030;
+    J[1] = (sin_psi*t039 - cos_psi*t040)*t004;
+    J[2] = (cos_psi*t042 + sin_psi*t041)*t004;
+    J[3] = -(sin_psi*t044 - cos_psi*t046)*t004;
+    J[4] = -t004*t048;
+    J[5] = (cos_theta*t009*t049 + t013*t016 - t005*t010)*t004;
+    J[6] = t051;
+    J[7] = (t000 - t052)*t004;
+    J[8] = t054;
+    J[9] = t004*t030*t049 + t055;
+    J[10] = t004*t030*t050;
+    J[11] = t004*t056;
+    J[12] = t057;
+    J[13] = -t058;
+    J[14] = -(t010*t041 + t024 - t013*t042 - t025)*t004;
+    J[15] = (t010*t044 + t013*t046 - cos_theta*t009*t023)*t004;
 }
 
 // The energy, the Hamiltonian H = T + V (conserved without damping and driving torques).
@@ -386,7 +398,7 @@ void momenta(const T* y, T* momentum, const params<T>& p) {
 //   y     state, dim 4: (theta, psi, p_theta, p_psi)
 //   M     output, dim 3 x 3 (row-major): M11, M12, M13, M21, M22, M23, M31, M32, M33
 //   p     parameters
-// Operations (+ - * / and calls): 160 before lowering, 40 after (14 +-, 22 *, 0 /, 4 calls).
+// Operations (+ - * / and calls): 160 before lowering, 41 after (14 +-, 23 *, 0 /, 4 calls).
 template <class T>
 void mass_matrix(const T* y, T* M, const params<T>& p) {
     using std::cos;
@@ -402,11 +414,11 @@ void mass_matrix(const T* y, T* M, const params<T>& p) {
     const T t001 = p.Iyy - p.Ixx;
     const T t002 = (S(2)*p.Ixy*sin_psi + cos_psi*t001)*cos_psi;
     const T t003 = ((p.Ixx + t002)*sin_theta + S(2)*cos_theta*t000)*sin_theta + cos_theta*cos_theta*p.Izz;
-    const T t004 = p.Iyz*sin_psi - cos_psi*p.Ixz;
-    const T t005 = (p.Ixy - (S(2)*cos_psi*p.Ixy - sin_psi*t001)*cos_psi)*sin_theta + cos_theta*t004;
-    const T t006 = -t005;
+    const T t004 = (cos_psi*sin_psi*t001 - (S(2)*cos_psi*cos_psi - S(1))*p.Ixy)*sin_theta;
+    const T t005 = p.Iyz*sin_psi - cos_psi*p.Ixz;
+    const T t006 = -(cos_theta*t005 + t004);
     const T t007 = cos_theta*p.Izz + sin_theta*t000;
-    const T t008 = -t004;
+    const T t008 = -t005;
     M[0] = t003;
     M[1] = t006;
     M[2] = t007;

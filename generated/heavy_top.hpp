@@ -20,9 +20,9 @@
 // 0.1.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 96 -> 37 (8 temporaries)
-//   jacobian: 389 -> 96 (17 temporaries)
-//   rhs_and_jacobian: 485 -> 108 (22 temporaries)
+//   rhs: 96 -> 38 (7 temporaries)
+//   jacobian: 389 -> 102 (19 temporaries)
+//   rhs_and_jacobian: 485 -> 108 (21 temporaries)
 //   energy: 31 -> 23 (4 temporaries)
 //   momenta: 19 -> 12 (3 temporaries)
 //   mass_matrix: 11 -> 8 (3 temporaries)
@@ -103,7 +103,7 @@ constexpr std::array<unsigned char, 36> jacobian_pattern{{
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, phi_ddot, theta_ddot, psi_ddot
 //   p     parameters
-// Operations (+ - * / and calls): 96 before lowering, 37 after (9 +-, 22 *, 4 /, 2 calls).
+// Operations (+ - * / and calls): 96 before lowering, 38 after (9 +-, 23 *, 4 /, 2 calls).
 template <class T>
 void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     using std::cos;
@@ -119,15 +119,14 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     const T t000 = S(1)/(p.I1*sin_theta);
     const T t001 = p.I3*psi_dot;
     const T t002 = (p.I3 - p.I1)*cos_theta*phi_dot;
-    const T t003 = S(2)*t002 + t001;
-    const T t004 = ((t001 + t002)*phi_dot - p.M*p.g*p.h)*sin_theta/p.I1;
-    const T t005 = (S(1)/p.I3 + cos_theta*cos_theta/(p.I1*sin_theta*sin_theta))*p.I3*phi_dot*sin_theta;
+    const T t003 = ((t001 + t002)*phi_dot - p.M*p.g*p.h)*sin_theta/p.I1;
+    const T t004 = (S(1)/p.I3 + cos_theta*cos_theta/(p.I1*sin_theta*sin_theta))*p.I3*phi_dot*sin_theta;
     dydt[0] = phi_dot;
     dydt[1] = theta_dot;
     dydt[2] = psi_dot;
-    dydt[3] = -(cos_theta*p.I3*phi_dot - t003)*t000*theta_dot;
-    dydt[4] = -t004;
-    dydt[5] = (t005 - cos_theta*t000*t003)*theta_dot;
+    dydt[3] = ((p.I3 - S(2)*p.I1)*cos_theta*phi_dot + t001)*t000*theta_dot;
+    dydt[4] = -t003;
+    dydt[5] = (t004 - (S(2)*t002 + t001)*cos_theta*t000)*theta_dot;
 }
 
 // The analytic Jacobian J = d(dy/dt)/dy, dense, row-major: J[i * state_size + k] = d dydt[i] / d y[k].
@@ -135,7 +134,7 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   J     output, dim 6 x 6 (row-major); structural zeros in jacobian_pattern
 //   p     parameters
-// Operations (+ - * / and calls): 389 before lowering, 96 after (24 +-, 65 *, 5 /, 2 calls).
+// Operations (+ - * / and calls): 389 before lowering, 102 after (25 +-, 70 *, 5 /, 2 calls).
 template <class T>
 void jacobian(T t, const T* y, T* J, const params<T>& p) {
     using std::cos;
@@ -150,19 +149,21 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T t000 = sin_theta*sin_theta;
     const T t001 = S(1)/t000;
-    const T t002 = cos_theta*p.I3*phi_dot;
+    const T t002 = p.I3*psi_dot;
     const T t003 = p.I3 - p.I1;
-    const T t004 = S(2)*cos_theta*phi_dot*t003 + p.I3*psi_dot;
-    const T t005 = cos_theta*cos_theta;
-    const T t006 = (t000 - t005)*phi_dot*t003;
-    const T t007 = cos_theta*p.I3*psi_dot;
-    const T t008 = S(2)*t006 - t007;
+    const T t004 = cos_theta*phi_dot*t003;
+    const T t005 = S(2)*t004 + t002;
+    const T t006 = cos_theta*t005;
+    const T t007 = t006 - S(2)*phi_dot*t000*t003;
+    const T t008 = (t007 - ((S(3)*p.I3 - S(4)*p.I1)*cos_theta*phi_dot + S(2)*t002)*cos_theta)*t001;
     const T t009 = S(1)/p.I1;
-    const T t010 = (((t002 - S(2)*t004)*cos_theta - t008)*t001 + p.I3*phi_dot)*t009*theta_dot;
-    const T t011 = S(1)/(p.I1*sin_theta);
-    const T t012 = (S(2)*cos_theta*t004 + t008)*t001 - S(2)*(S(1) + t001*t005)*p.I3*phi_dot;
-    const T t013 = S(1)/p.I3 + t005/(p.I1*t000);
-    const T t014 = (p.I3*phi_dot*t013 + t009*t012)*cos_theta + t004*t009;
+    const T t010 = S(1)/(p.I1*sin_theta);
+    const T t011 = p.I3 - S(2)*p.I1;
+    const T t012 = ((t002 + t004)*phi_dot - p.M*p.g*p.h)*cos_theta - phi_dot*phi_dot*t000*t003;
+    const T t013 = cos_theta*cos_theta;
+    const T t014 = S(1)/p.I3 + t013/(p.I1*t000);
+    const T t015 = (t007 - S(2)*t006)*t001 + S(2)*(S(1) + t001*t013)*p.I3*phi_dot;
+    const T t016 = (p.I3*phi_dot*t014 - t009*t015)*cos_theta + t005*t009;
     J[0] = T(S(0));
     J[1] = T(S(0));
     J[2] = T(S(0));
@@ -182,23 +183,23 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     J[16] = T(S(0));
     J[17] = T(S(1));
     J[18] = T(S(0));
-    J[19] = t010;
+    J[19] = (p.I3*phi_dot + t008)*t009*theta_dot;
     J[20] = T(S(0));
-    J[21] = (S(2)*t003 - p.I3)*cos_theta*t011*theta_dot;
-    J[22] = -(t002 - t004)*t011;
-    J[23] = p.I3*t011*theta_dot;
+    J[21] = cos_theta*t010*t011*theta_dot;
+    J[22] = (cos_theta*phi_dot*t011 + t002)*t010;
+    J[23] = p.I3*t010*theta_dot;
     J[24] = T(S(0));
-    J[25] = ((t006 - t007)*phi_dot + cos_theta*p.M*p.g*p.h)*t009;
+    J[25] = -t009*t012;
     J[26] = T(S(0));
-    J[27] = -sin_theta*t004*t009;
+    J[27] = -sin_theta*t005*t009;
     J[28] = T(S(0));
     J[29] = -p.I3*phi_dot*sin_theta*t009;
     J[30] = T(S(0));
-    J[31] = t014*theta_dot;
+    J[31] = t016*theta_dot;
     J[32] = T(S(0));
-    J[33] = -(S(2)*t003*t005*t011 - p.I3*sin_theta*t013)*theta_dot;
-    J[34] = p.I3*phi_dot*sin_theta*t013 - cos_theta*t004*t011;
-    J[35] = -cos_theta*p.I3*t011*theta_dot;
+    J[33] = -(S(2)*t003*t010*t013 - p.I3*sin_theta*t014)*theta_dot;
+    J[34] = p.I3*phi_dot*sin_theta*t014 - cos_theta*t005*t010;
+    J[35] = -cos_theta*p.I3*t010*theta_dot;
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -207,7 +208,7 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, phi_ddot, theta_ddot, psi_ddot
 //   J     output, dim 6 x 6 (row-major)
 //   p     parameters
-// Operations (+ - * / and calls): 485 before lowering, 108 after (28 +-, 73 *, 5 /, 2 calls).
+// Operations (+ - * / and calls): 485 before lowering, 108 after (26 +-, 75 *, 5 /, 2 calls).
 template <class T>
 void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     using std::cos;
@@ -221,30 +222,29 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T sin_theta = sin(theta);
     const T cos_theta = cos(theta);
     const T t000 = S(1)/(p.I1*sin_theta);
-    const T t001 = cos_theta*p.I3*phi_dot;
+    const T t001 = p.I3 - S(2)*p.I1;
     const T t002 = p.I3*psi_dot;
-    const T t003 = p.I3 - p.I1;
-    const T t004 = cos_theta*phi_dot*t003;
-    const T t005 = S(2)*t004 + t002;
-    const T t006 = t001 - t005;
-    const T t007 = S(1)/p.I1;
-    const T t008 = -((t002 + t004)*phi_dot - p.M*p.g*p.h)*sin_theta*t007;
-    const T t009 = cos_theta*cos_theta;
-    const T t010 = sin_theta*sin_theta;
-    const T t011 = S(1)/p.I3 + t009/(p.I1*t010);
-    const T t012 = p.I3*phi_dot*sin_theta*t011 - cos_theta*t000*t005;
-    const T t013 = S(1)/t010;
-    const T t014 = (t010 - t009)*phi_dot*t003;
-    const T t015 = cos_theta*p.I3*psi_dot;
-    const T t016 = S(2)*t014 - t015;
-    const T t017 = (((t001 - S(2)*t005)*cos_theta - t016)*t013 + p.I3*phi_dot)*t007*theta_dot;
-    const T t018 = (S(2)*cos_theta*t005 + t016)*t013 - S(2)*(S(1) + t009*t013)*p.I3*phi_dot;
-    const T t019 = (p.I3*phi_dot*t011 + t007*t018)*cos_theta + t005*t007;
+    const T t003 = cos_theta*phi_dot*t001 + t002;
+    const T t004 = S(1)/p.I1;
+    const T t005 = p.I3 - p.I1;
+    const T t006 = cos_theta*phi_dot*t005;
+    const T t007 = (t002 + t006)*phi_dot - p.M*p.g*p.h;
+    const T t008 = cos_theta*cos_theta;
+    const T t009 = sin_theta*sin_theta;
+    const T t010 = S(1)/p.I3 + t008/(p.I1*t009);
+    const T t011 = S(2)*t006 + t002;
+    const T t012 = p.I3*phi_dot*sin_theta*t010 - cos_theta*t000*t011;
+    const T t013 = S(1)/t009;
+    const T t014 = cos_theta*t011;
+    const T t015 = t014 - S(2)*phi_dot*t005*t009;
+    const T t016 = (t015 - ((S(3)*p.I3 - S(4)*p.I1)*cos_theta*phi_dot + S(2)*t002)*cos_theta)*t013;
+    const T t017 = (t015 - S(2)*t014)*t013 + S(2)*(S(1) + t008*t013)*p.I3*phi_dot;
+    const T t018 = (p.I3*phi_dot*t010 - t004*t017)*cos_theta + t004*t011;
     dydt[0] = phi_dot;
     dydt[1] = theta_dot;
     dydt[2] = psi_dot;
-    dydt[3] = -t000*t006*theta_dot;
-    dydt[4] = t008;
+    dydt[3] = t000*t003*theta_dot;
+    dydt[4] = -sin_theta*t004*t007;
     dydt[5] = t012*theta_dot;
     J[0] = T(S(0));
     J[1] = T(S(0));
@@ -265,21 +265,21 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     J[16] = T(S(0));
     J[17] = T(S(1));
     J[18] = T(S(0));
-    J[19] = t017;
+    J[19] = (p.I3*phi_dot + t016)*t004*theta_dot;
     J[20] = T(S(0));
-    J[21] = (S(2)*t003 - p.I3)*cos_theta*t000*theta_dot;
-    J[22] = -t000*t006;
+    J[21] = cos_theta*t000*t001*theta_dot;
+    J[22] = t000*t003;
     J[23] = p.I3*t000*theta_dot;
     J[24] = T(S(0));
-    J[25] = ((t014 - t015)*phi_dot + cos_theta*p.M*p.g*p.h)*t007;
+    J[25] = -(cos_theta*t007 - phi_dot*phi_dot*t005*t009)*t004;
     J[26] = T(S(0));
-    J[27] = -sin_theta*t005*t007;
+    J[27] = -sin_theta*t004*t011;
     J[28] = T(S(0));
-    J[29] = -p.I3*phi_dot*sin_theta*t007;
+    J[29] = -p.I3*phi_dot*sin_theta*t004;
     J[30] = T(S(0));
-    J[31] = t019*theta_dot;
+    J[31] = t018*theta_dot;
     J[32] = T(S(0));
-    J[33] = -(S(2)*t000*t003*t009 - p.I3*sin_theta*t011)*theta_dot;
+    J[33] = -(S(2)*t000*t005*t008 - p.I3*sin_theta*t010)*theta_dot;
     J[34] = t012;
     J[35] = -cos_theta*p.I3*t000*theta_dot;
 }

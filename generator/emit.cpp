@@ -390,8 +390,10 @@ emitted_header emit_header(const model_spec& spec, const derivation& d, const em
     std::vector<program_input> inputs;
     for (std::size_t i = 0; i < f.state.size(); ++i)
         inputs.push_back({f.state[i].symbol, f.state[i].name, "y[" + std::to_string(i) + "]"});
+    // Model constants are parameters of the lowering (their coefficients become single
+    // fractions); the reduced form's conserved momenta are initial data, like the state.
     for (const auto& p : runtime)
-        inputs.push_back({p.symbol, "p." + p.name, ""});
+        inputs.push_back({p.symbol, "p." + p.name, "", p.specialisable});
     inputs.push_back({f.time, "t", ""});
 
     const std::size_t n = f.state.size();

@@ -1,5 +1,7 @@
 #include "inertia.hpp"
 
+#include "numbers.hpp"
+
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
@@ -423,9 +425,9 @@ principal_axes numeric_axes(const Eigen::Matrix3d& tn) {
         for (double& x : r.axis_values[2])
             x = -x;
     for (int k = 0; k < 3; ++k) {
-        r.moments[k] = numeric(r.moment_values[k]);
-        for (int j = 0; j < 3; ++j)
-            r.axes[k][j] = numeric(r.axis_values[k][j]);
+        r.moments[k] = float_numeric(r.moment_values[k]);
+        for (int j = 0; j < 3; ++j) // an eigenvector component may be subnormal
+            r.axes[k][j] = float_numeric(r.axis_values[k][j]);
     }
     return r;
 }
@@ -815,7 +817,7 @@ std::array<axis_stability, 3> stability_report(const principal_axes& principal,
                 else
                     s.rate = exact_sqrt(radicand);
             } else {
-                s.rate = numeric(s.rate_value);
+                s.rate = float_numeric(s.rate_value);
             }
         }
         s.stable = s.kind == stability_kind::stable;

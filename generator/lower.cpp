@@ -68,6 +68,76 @@ bool is_identifier(const std::string& s) {
     return std::regex_match(s, id);
 }
 
+// A call as lowering names it (sqrt and pow included), applied to GiNaC arguments.
+ex apply_call(const std::string& name, const std::vector<ex>& a) {
+    if (name == "sin") return GiNaC::sin(a.at(0));
+    if (name == "cos") return GiNaC::cos(a.at(0));
+    if (name == "tan") return GiNaC::tan(a.at(0));
+    if (name == "asin") return GiNaC::asin(a.at(0));
+    if (name == "acos") return GiNaC::acos(a.at(0));
+    if (name == "atan") return GiNaC::atan(a.at(0));
+    if (name == "atan2") return GiNaC::atan2(a.at(0), a.at(1));
+    if (name == "sinh") return GiNaC::sinh(a.at(0));
+    if (name == "cosh") return GiNaC::cosh(a.at(0));
+    if (name == "tanh") return GiNaC::tanh(a.at(0));
+    if (name == "exp") return GiNaC::exp(a.at(0));
+    if (name == "log") return GiNaC::log(a.at(0));
+    if (name == "abs") return GiNaC::abs(a.at(0));
+    if (name == "sqrt") return GiNaC::sqrt(a.at(0));
+    if (name == "pow") return GiNaC::pow(a.at(0), a.at(1));
+    throw std::logic_error("lower: cannot evaluate " + name);
+}
+
+// The GiNaC expression a node stands for: `input` for an input node, `child(id)` for each child.
+template <class Child> ex node_expression(const lowered_node& n, const ex& input, Child child) {
+    ex r;
+    switch (n.k) {
+    case lowered_node::kind::input:
+        return input;
+    case lowered_node::kind::number:
+        return n.value;
+    case lowered_node::kind::constant:
+        return GiNaC::Pi;
+    case lowered_node::kind::sum:
+        r = n.value;
+        for (const auto& [c, id] : n.terms)
+            r += c * child(id);
+        return r;
+    case lowered_node::kind::product:
+        r = 1;
+        for (int id : n.numerator)
+            r *= child(id);
+        for (int id : n.denominator)
+            r /= child(id);
+        return r;
+    case lowered_node::kind::call: {
+        std::vector<ex> args;
+        for (int id : n.args)
+            args.push_back(child(id));
+        return apply_call(n.name, args);
+    }
+    }
+    throw std::logic_error("lower: unknown node kind");
+}
+
+// True if every number in e is an exact rational (no float that GiNaC did not parse from text).
+bool is_exact(const ex& e) {
+    if (is_a<numeric>(e)) return ex_to<numeric>(e).is_rational();
+    for (std::size_t i = 0; i < e.nops(); ++i)
+        if (!is_exact(e.op(i))) return false;
+    return true;
+}
+
+std::vector<int> children(const lowered_node& n) {
+    std::vector<int> c;
+    for (const auto& t : n.terms)
+        c.push_back(t.second);
+    c.insert(c.end(), n.numerator.begin(), n.numerator.end());
+    c.insert(c.end(), n.denominator.begin(), n.denominator.end());
+    c.insert(c.end(), n.args.begin(), n.args.end());
+    return c;
+}
+
 // Builds the hash-consed DAG.
 class dag_builder {
   public:
@@ -82,6 +152,8 @@ class dag_builder {
             const int id = intern(std::move(n), "I|" + in.name);
             if (!m_input_of.emplace(in.symbol, id).second)
                 throw std::logic_error("lower: input '" + in.name + "' given twice");
+            m_parametric[static_cast<std::size_t>(id)] = in.parameter;
+            m_ex_of.emplace(id, in.symbol);
         }
     }
 
@@ -140,7 +212,8 @@ class dag_builder {
         throw std::logic_error("lower: cannot lower expression '" + os.str() + "'");
     }
 
-    linear convert_sum(const ex& e) {
+    // `combine`: false for the numerator or denominator of a fraction normal() has just made.
+    linear convert_sum(const ex& e, bool combine = true) {
         std::map<int, numeric> acc;
         numeric k = 0;
         for (std::size_t i = 0; i < e.nops(); ++i) {
@@ -153,14 +226,111 @@ class dag_builder {
         std::vector<poly_term> terms;
         for (const auto& [node, c] : acc)
             if (!c.is_zero()) terms.push_back({c, monomial_of(node)});
+        if (combine) combine_parameters(terms, k);
         sort_poly(terms);
         return horner(std::move(terms), k);
+    }
+
+    // Terms with the same state-dependent factors become one term, the sum of their parameter
+    // coefficients brought to a single fraction by normal(): x y/I1 - x y/I2 -> x y (I2 - I1)/(I1
+    // I2). A difference of rounded reciprocals has no accurate digits left when I1 ~ I2; I2 - I1
+    // of two inputs is exact. The constant k joins the terms with no state-dependent factor.
+    // (Horner's factoring below never makes such a sum again: it divides terms by common
+    // factors, which keeps their state-dependent parts distinct.)
+    void combine_parameters(std::vector<poly_term>& terms, numeric& k) {
+        std::map<monomial, std::vector<std::size_t>> groups; // state part -> terms
+        for (std::size_t i = 0; i < terms.size(); ++i)
+            groups[state_part(terms[i].m)].push_back(i);
+        if (groups.size() == terms.size() && (k.is_zero() || !groups.count({}))) return;
+        std::vector<poly_term> combined;
+        numeric constant = k;
+        for (const auto& [state, members] : groups) {
+            const bool with_k = state.empty() && !k.is_zero();
+            ex coefficient = with_k ? ex(k) : ex(0);
+            for (std::size_t i : members)
+                coefficient += terms[i].c * parameter_part(terms[i].m);
+            if (members.size() + (with_k ? 1 : 0) < 2 || !is_exact(coefficient)) {
+                for (std::size_t i : members)
+                    combined.push_back(terms[i]);
+                continue;
+            }
+            if (with_k) constant -= k;
+            const auto [n, d] = single_fraction(coefficient);
+            const linear num = convert_normal(n);
+            const linear den = convert_normal(d);
+            if (num.node < 0 && num.c.is_zero()) continue; // the terms cancel
+            poly_term t{num.c / den.c, state};
+            if (num.node >= 0) merge(t.m, num.node, 1);
+            if (den.node >= 0) merge(t.m, den.node, -1);
+            if (t.m.empty())
+                constant += t.c;
+            else
+                combined.push_back(std::move(t));
+        }
+        terms = std::move(combined);
+        k = constant;
+    }
+
+    // c = n/d, expanded, with common factors cancelled by normal(). n and d are unique up to a
+    // constant factor, fixed here (d has integer coefficients with no common divisor), and up to
+    // the sign, which the DAG fixes (every sum has its leading term positive): the same program
+    // every run, though normal()'s own output changes from run to run. Memoised for the process:
+    // the same few coefficients recur in every sum, output and candidate of a model, and normal()
+    // is the dearest step of lowering.
+    static std::pair<ex, ex> single_fraction(const ex& c) {
+        static std::map<ex, std::pair<ex, ex>, GiNaC::ex_is_less> memo;
+        const auto it = memo.find(c);
+        if (it != memo.end()) return it->second;
+        const ex nd = GiNaC::normal(c).numer_denom();
+        const numeric content = nd.op(1).expand().integer_content();
+        const std::pair<ex, ex> r{(nd.op(0) / content).expand(), (nd.op(1) / content).expand()};
+        memo.emplace(c, r);
+        return r;
+    }
+
+    // A numerator or denominator from normal(): a sum is converted as it is (it is in normal
+    // form already; combining it again would call normal() on it again, for ever).
+    linear convert_normal(const ex& e) {
+        if (!is_a<GiNaC::add>(e)) return convert(e);
+        const auto it = m_memo.find(e);
+        if (it != m_memo.end()) return it->second;
+        const linear r = convert_sum(e, false);
+        m_memo.emplace(e, r);
+        return r;
+    }
+
+    monomial state_part(const monomial& m) const {
+        monomial s;
+        for (const auto& [b, x] : m)
+            if (!m_parametric[static_cast<std::size_t>(b)]) s.emplace(b, x);
+        return s;
+    }
+
+    ex parameter_part(const monomial& m) {
+        ex r = 1;
+        for (const auto& [b, x] : m)
+            if (m_parametric[static_cast<std::size_t>(b)]) r *= GiNaC::pow(expression(b), x);
+        return r;
+    }
+
+    // The GiNaC expression a parameter-only node stands for (inputs are in m_ex_of from the
+    // start).
+    ex expression(int id) {
+        const auto it = m_ex_of.find(id);
+        if (it != m_ex_of.end()) return it->second;
+        const lowered_node n = m_p.nodes[static_cast<std::size_t>(id)];
+        if (n.k == lowered_node::kind::input)
+            throw std::logic_error("lower: input '" + n.name + "' without a symbol");
+        const ex r = node_expression(n, ex(), [&](int child) { return expression(child); });
+        m_ex_of.emplace(id, r);
+        return r;
     }
 
     // Greedy multivariate Horner scheme: pull the factor shared by the most terms out of them,
     // recursively (x y + x z + w -> x (y + z) + w). Denominator factors count as factors too
     // (a/s + b/s -> (a + b)/s). Ties go to the smaller digest, so the result is deterministic.
-    linear horner(std::vector<poly_term> terms, const numeric& k) {
+    linear horner(std::vector<poly_term> terms, numeric k) {
+        flatten_overlapping_sums(terms, k);
         std::map<std::pair<int, int>, int> count; // (factor, sign of its exponent) -> terms
         for (const poly_term& t : terms)
             for (const auto& [b, x] : t.m)
@@ -198,6 +368,80 @@ class dag_builder {
         without.push_back({inner.c, std::move(m)});
         sort_poly(without);
         return horner(std::move(without), k);
+    }
+
+    // A linear combination of sums that have like terms whose coefficients involve parameters,
+    // or the same term with coefficients that cancel, as one sum: (x + a y) - (x + b y) -> (a - b)
+    // y, with the coefficients combined as in combine_parameters (not the difference of two nearly
+    // equal products when a ~ b) and x cancelled exactly. (The factoring above leaves such
+    // combinations where the expression multiplied sums out: c A - c B -> c (A - B).) Other sums
+    // stay nodes, computed once for all their uses: flattening sums whose like terms have numeric
+    // coefficients only (specialised kernels) costs more operations than it saves (+20% on the
+    // full tensor's).
+    void flatten_overlapping_sums(std::vector<poly_term>& terms, numeric& k) {
+        const auto sum_of = [&](const poly_term& t) -> const lowered_node* {
+            if (t.m.size() != 1 || t.m.begin()->second != 1) return nullptr;
+            const lowered_node& n = m_p.nodes[static_cast<std::size_t>(t.m.begin()->first)];
+            return n.k == lowered_node::kind::sum ? &n : nullptr;
+        };
+        // Every term the sums would contribute, grouped by its state-dependent part (like terms)
+        // and by its whole monomial (the same term): which of `terms` it comes from, whether a
+        // parameter is involved, the total coefficient.
+        struct group {
+            std::set<std::size_t> from;
+            bool parametric = false;
+            numeric total = 0;
+        };
+        std::map<monomial, group> like, same;
+        const auto add = [&](const monomial& m, const numeric& c, std::size_t i) {
+            const monomial state = state_part(m);
+            group& l = like[state];
+            l.from.insert(i);
+            l.parametric = l.parametric || state.size() != m.size();
+            group& s = same[m];
+            s.from.insert(i);
+            s.total += c;
+        };
+        bool any = false;
+        for (std::size_t i = 0; i < terms.size(); ++i) {
+            const lowered_node* s = sum_of(terms[i]);
+            if (!s) {
+                add(terms[i].m, terms[i].c, i);
+                continue;
+            }
+            any = true;
+            if (!s->value.is_zero()) add({}, terms[i].c * s->value, i);
+            for (const auto& [c, id] : s->terms)
+                add(monomial_of(id), terms[i].c * c, i);
+        }
+        if (!any) return;
+        if (!k.is_zero()) add({}, k, terms.size());
+        std::set<std::size_t> flatten;
+        const auto mark = [&](const group& g) {
+            for (std::size_t i : g.from)
+                if (i < terms.size() && sum_of(terms[i])) flatten.insert(i);
+        };
+        for (const auto& [state, g] : like)
+            if (g.from.size() > 1 && g.parametric) mark(g);
+        for (const auto& [m, g] : same)
+            if (g.from.size() > 1 && g.total.is_zero()) mark(g);
+        if (flatten.empty()) return;
+        std::map<monomial, numeric> acc;
+        for (std::size_t i = 0; i < terms.size(); ++i) {
+            if (!flatten.count(i)) {
+                acc[terms[i].m] += terms[i].c;
+                continue;
+            }
+            const lowered_node s = *sum_of(terms[i]);
+            k += terms[i].c * s.value;
+            for (const auto& [c, id] : s.terms)
+                acc[monomial_of(id)] += terms[i].c * c;
+        }
+        terms.clear();
+        for (const auto& [m, c] : acc)
+            if (!c.is_zero()) terms.push_back({c, m});
+        combine_parameters(terms, k);
+        sort_poly(terms);
     }
 
     // A sum with no factor to pull out: leading term positive, a common numeric factor outside
@@ -464,8 +708,12 @@ class dag_builder {
             break;
         }
         n.digest = h;
+        bool parametric = n.k != lowered_node::kind::input; // inputs: set by the constructor
+        for (int c : children(n))
+            parametric = parametric && m_parametric[static_cast<std::size_t>(c)];
         const int id = static_cast<int>(m_p.nodes.size());
         m_p.nodes.push_back(std::move(n));
+        m_parametric.push_back(parametric);
         m_table.emplace(key, id);
         return id;
     }
@@ -475,17 +723,9 @@ class dag_builder {
     std::map<ex, linear, GiNaC::ex_is_less> m_memo;
     std::map<ex, int, GiNaC::ex_is_less> m_input_of;
     std::map<int, monomial> m_monomial; // product nodes as monomials, for factoring sums
+    std::vector<char> m_parametric;     // node -> depends on parameters and numbers only
+    std::map<int, ex> m_ex_of;          // parameter-only node (or input) -> its expression
 };
-
-std::vector<int> children(const lowered_node& n) {
-    std::vector<int> c;
-    for (const auto& t : n.terms)
-        c.push_back(t.second);
-    c.insert(c.end(), n.numerator.begin(), n.numerator.end());
-    c.insert(c.end(), n.denominator.begin(), n.denominator.end());
-    c.insert(c.end(), n.args.begin(), n.args.end());
-    return c;
-}
 
 bool is_hoisted_trig(const lowered_program& p, const lowered_node& n) {
     if (n.k != lowered_node::kind::call || (n.name != "sin" && n.name != "cos") ||
@@ -888,66 +1128,8 @@ std::vector<numeric> evaluate(const lowered_program& program, const GiNaC::exmap
     for (std::size_t i = 0; i < program.nodes.size(); ++i) {
         const lowered_node& n = program.nodes[i];
         const auto at = [&](int id) { return v[static_cast<std::size_t>(id)]; };
-        ex r;
-        switch (n.k) {
-        case lowered_node::kind::input:
-            r = input_value.at(n.name);
-            break;
-        case lowered_node::kind::number:
-            r = n.value;
-            break;
-        case lowered_node::kind::constant:
-            r = GiNaC::Pi;
-            break;
-        case lowered_node::kind::sum:
-            r = n.value;
-            for (const auto& [c, id] : n.terms)
-                r += c * at(id);
-            break;
-        case lowered_node::kind::product:
-            r = 1;
-            for (int id : n.numerator)
-                r *= at(id);
-            for (int id : n.denominator)
-                r /= at(id);
-            break;
-        case lowered_node::kind::call: {
-            const ex a = at(n.args[0]);
-            if (n.name == "sin")
-                r = GiNaC::sin(a);
-            else if (n.name == "cos")
-                r = GiNaC::cos(a);
-            else if (n.name == "tan")
-                r = GiNaC::tan(a);
-            else if (n.name == "asin")
-                r = GiNaC::asin(a);
-            else if (n.name == "acos")
-                r = GiNaC::acos(a);
-            else if (n.name == "atan")
-                r = GiNaC::atan(a);
-            else if (n.name == "atan2")
-                r = GiNaC::atan2(a, at(n.args.at(1)));
-            else if (n.name == "sinh")
-                r = GiNaC::sinh(a);
-            else if (n.name == "cosh")
-                r = GiNaC::cosh(a);
-            else if (n.name == "tanh")
-                r = GiNaC::tanh(a);
-            else if (n.name == "exp")
-                r = GiNaC::exp(a);
-            else if (n.name == "log")
-                r = GiNaC::log(a);
-            else if (n.name == "abs")
-                r = GiNaC::abs(a);
-            else if (n.name == "sqrt")
-                r = GiNaC::sqrt(a);
-            else if (n.name == "pow")
-                r = GiNaC::pow(a, at(n.args.at(1)));
-            else
-                throw std::logic_error("lower: cannot evaluate " + n.name);
-            break;
-        }
-        }
+        const ex input = n.k == lowered_node::kind::input ? input_value.at(n.name) : ex();
+        const ex r = node_expression(n, input, at);
         v[i] = GiNaC::evalf(r);
     }
     std::vector<numeric> out;

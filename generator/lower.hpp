@@ -11,6 +11,14 @@
 //     negative ones a division, so x^2 is shared by x^2, x^3 and 1/x^2;
 //   * sums are factored by a greedy Horner scheme (x y + x z -> x (y + z), a/s + b/s -> (a + b)/s),
 //     and a common numeric factor goes outside when that saves multiplications;
+//   * terms of a sum that differ only in their parameter factors are one term whose coefficient
+//     is a single fraction, made by GiNaC's normal(): x y / I1 - x y / I2 -> (I2 - I1) x y /
+//     (I1 I2). A difference of rounded reciprocals loses its accuracy when I1 ~ I2 (relative
+//     error 4e-3 for I1 = 3, I2 = 3 (1 + 2^-45)); I2 - I1 of two inputs is exact (Sterbenz), so
+//     the single fraction is accurate to a few roundings. Coefficients that cancel vanish.
+//     A linear combination of sums with like terms that involve parameters, or with terms that
+//     cancel, z (x + a y) - z (x + b y), becomes one sum first (x cancels exactly, a y - b y is
+//     (a - b) y); other sums stay nodes;
 //   * a denominator is one node (a reciprocal), shared by every product that divides by it;
 //   * sin and cos of each input (an angle) are computed once, named sin_<input>, cos_<input>;
 //   * numbers stay exact rationals; GiNaC folds numeric arithmetic as it builds expressions.
@@ -27,6 +35,9 @@
 // traversal from the outputs in that order, and the printer sorts the terms of sums and factors of
 // products by their printed text. Same expressions in, same program (and same bytes) out. (Two
 // different nodes with one digest would be a collision: lowering throws rather than guess.)
+// normal()'s output also changes from run to run, but only by a constant factor of numerator and
+// denominator, which lowering fixes (expanded, the denominator's integer content 1, the sign by
+// the DAG's leading-term rule).
 #pragma once
 
 #include <ginac/ginac.h>
@@ -45,6 +56,9 @@ struct program_input {
     GiNaC::ex symbol;       // a GiNaC symbol
     std::string name;       // what the code writes for it: "theta", "p.I1", "t"
     std::string definition; // if not empty, `const T name = definition;` is emitted when used
+    // A model constant (I1, M, ...), not state or time: terms that differ only in parameters are
+    // combined into one fraction (see above).
+    bool parameter = false;
 };
 
 // Arithmetic as printed: + and - (binary or unary), *, /, and calls (sin, cos, sqrt, pow, ...).

@@ -10,6 +10,7 @@
 #include "forms.hpp"
 #include "jit.hpp"
 #include "lower.hpp"
+#include "numbers.hpp"
 #include "print.hpp"
 #include "scene.hpp"
 #include "symbols.hpp"
@@ -119,7 +120,7 @@ initial_state initial_kinematics(const scene_spec& scene, const derivation& d,
     initial_state k;
     k.q = scene.angles;
     GiNaC::exmap at = parameters;
-    for (int i = 0; i < 3; ++i) at[s.q[i]] = k.q[i];
+    for (int i = 0; i < 3; ++i) at[s.q[i]] = float_numeric(k.q[i]);
     const double sin_theta = std::sin(k.q[1]);
     const bool singular = std::abs(sin_theta) < 1e-12;
     switch (scene.initial) {
@@ -154,7 +155,8 @@ initial_state initial_kinematics(const scene_spec& scene, const derivation& d,
         break;
     }
     if (k.have_rates) {
-        for (int i = 0; i < 3; ++i) at[s.qd[i]] = k.qd[i];
+        // a rate from omega may be subnormal (omega1 sin(psi) / sin(theta) with tiny omega1, psi)
+        for (int i = 0; i < 3; ++i) at[s.qd[i]] = float_numeric(k.qd[i]);
         for (int i = 0; i < 3; ++i) {
             k.p[i] = number(d.momenta[i], at);
             if (scene.initial != initial_kind::omega) k.omega[i] = number(d.omega[i], at);
@@ -329,7 +331,8 @@ compiled_form compile_form(const scene_spec& scene, const derivation& d, form_ki
     std::vector<program_input> inputs;
     for (std::size_t i = 0; i < f.state.size(); ++i)
         inputs.push_back({f.state[i].symbol, f.state[i].name, "y[" + std::to_string(i) + "]"});
-    for (const auto& fp : f.parameters) inputs.push_back({fp.symbol, fp.name, "rg_p." + fp.name});
+    for (const auto& fp : f.parameters)
+        inputs.push_back({fp.symbol, fp.name, "rg_p." + fp.name, fp.specialisable});
     inputs.push_back({f.time, "t", ""});
     const lowered_program lowered = lower(program, inputs);
     const std::vector<bool> used = used_inputs(lowered);
@@ -417,6 +420,76 @@ Eigen::VectorXd form_state(const scene_spec& scene, const form_expressions& f, c
 // Thrown by the observer to leave an Euler-angle run near the singularity.
 struct leave_chart {};
 
+// A recorded column or monitored invariant at a sample (t, y) of a form: an output `out` of its
+// record program, or in the body form from the quaternion and omega: the Euler angles, their
+// rates q_dot = J^{-1} omega (5.30, undefined at theta = 0, pi), p = J^T I omega. `e` caches the
+// angles between calls at one sample.
+double source_value(const value_source& src, const Eigen::VectorXd& y,
+                    const std::vector<double>& out, const Eigen::Matrix3d& inertia,
+                    std::optional<euler_angles<double>>& e) {
+    if (src.kind == value_source::compiled) return out[static_cast<std::size_t>(src.index)];
+    if (!e) e = euler_from_quaternion(Eigen::Quaterniond(y[0], y[1], y[2], y[3]));
+    const Eigen::Vector3d w(y[4], y[5], y[6]);
+    const double st = std::sin(e->theta), ct = std::cos(e->theta), sp = std::sin(e->psi),
+                 cp = std::cos(e->psi);
+    if (src.kind == value_source::angle)
+        return src.index == 0 ? e->phi : src.index == 1 ? e->theta : e->psi;
+    if (src.kind == value_source::euler_rate) {
+        const double phi_dot = (w[0] * sp + w[1] * cp) / st; // undefined at theta = 0, pi
+        return src.index == 0   ? phi_dot
+               : src.index == 1 ? w[0] * cp - w[1] * sp
+                                : w[2] - phi_dot * ct;
+    }
+    const Eigen::Vector3d l = inertia * w; // p = J^T l, J of (5.30)
+    return src.index == 0   ? st * sp * l[0] + st * cp * l[1] + ct * l[2]
+           : src.index == 1 ? cp * l[0] - sp * l[1]
+                            : l[2];
+}
+
+void set_parameters(const compiled_form& cf, const std::vector<double>& values) {
+    using set_fn = void (*)(const double*);
+    reinterpret_cast<set_fn>(cf.lib.symbol("rotgen_set_parameters"))(values.data());
+}
+
+// Initial values the parser accepts (each finite) may still overflow double precision in what
+// the run computes from them: a rate of 1e300 squares to inf in the energy. Before the run, and
+// before any output: the initial kinematics (rates, momenta, omega), the form's state and
+// parameters, f(t0, y0), and the energy and conserved momenta at t0 must be finite — as the
+// kernels compute them — or the scene's `initial` is the error.
+void check_finite_start(const scene_spec& scene, const initial_state& k0, const compiled_form& cf,
+                        const Eigen::VectorXd& y, const std::vector<double>& parameters,
+                        const std::vector<invariant>& invariants, const Eigen::Matrix3d& inertia) {
+    const auto check = [&](const std::string& what, double v, const std::string& in = "") {
+        if (std::isfinite(v)) return;
+        throw user_error(
+            scene.initial_where,
+            "initial values too large for double precision: " + what + " = " + format_number(v) +
+                in + " at t = " + format_double(scene.t_start) +
+                "; give smaller initial rates or momenta, or rescale the model's units");
+    };
+    const auto& q = coordinate_names();
+    if (k0.have_rates)
+        for (int i = 0; i < 3; ++i) {
+            check(q[i] + "_dot", k0.qd[i]);
+            check("p_" + q[i], k0.p[i]);
+            check("omega" + std::to_string(i + 1), k0.omega[i]);
+        }
+    const form_expressions& f = cf.f;
+    for (std::size_t i = 0; i < f.state.size(); ++i)
+        check(f.state[i].name, y[static_cast<Eigen::Index>(i)]);
+    for (std::size_t i = 0; i < f.parameters.size(); ++i)
+        check(f.parameters[i].name, parameters[i]);
+    Eigen::VectorXd dydt(y.size());
+    cf.sys.rhs(scene.t_start, y.data(), dydt.data());
+    for (std::size_t i = 0; i < f.rate_names.size(); ++i)
+        check(f.rate_names[i], dydt[static_cast<Eigen::Index>(i)], " in f(t0, y0)");
+    std::vector<double> out(cf.outputs);
+    cf.record(scene.t_start, y.data(), out.data());
+    std::optional<euler_angles<double>> e;
+    for (std::size_t i = 0; i < invariants.size(); ++i)
+        check(invariants[i].name, source_value(cf.invariants[i], y, out, inertia, e));
+}
+
 } // namespace
 
 int cmd_simulate(const std::vector<std::string>& args) {
@@ -433,7 +506,7 @@ int cmd_simulate(const std::vector<std::string>& args) {
     const derivation d = derive(spec);
     GiNaC::exmap parameter_values;
     for (std::size_t i = 0; i < spec.parameters.size(); ++i)
-        parameter_values[spec.parameters[i].symbol] = scene.parameters[i];
+        parameter_values[spec.parameters[i].symbol] = float_numeric(scene.parameters[i]);
     Eigen::Matrix3d inertia;
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) inertia(i, j) = number(spec.inertia[i][j], parameter_values);
@@ -513,12 +586,13 @@ int cmd_simulate(const std::vector<std::string>& args) {
                                            : "";
     Eigen::VectorXd y = form_state(scene, forms[0].f, k0);
     std::vector<double> parameters = form_parameter_values(scene, forms[0].f, k0);
+    set_parameters(forms[0], parameters);
+    check_finite_start(scene, k0, forms[0], y, parameters, invariants, inertia);
     double t_from = scene.t_start;
     std::size_t next_sample = 0;
     while (true) {
         compiled_form& cf = forms.back();
-        using set_fn = void (*)(const double*);
-        reinterpret_cast<set_fn>(cf.lib.symbol("rotgen_set_parameters"))(parameters.data());
+        set_parameters(cf, parameters);
         const bool in_euler_chart = cf.form == form_kind::lagrangian || cf.form == form_kind::hamiltonian;
         const std::vector<double> segment_times(times.begin() + static_cast<std::ptrdiff_t>(next_sample), times.end());
         bool leaving = false;
@@ -571,22 +645,9 @@ int cmd_simulate(const std::vector<std::string>& args) {
         const Eigen::VectorXd& ys = samples[k].y;
         std::vector<double> out(cf.outputs);
         cf.record(samples[k].t, ys.data(), out.data());
-        // Body form: Euler angles from the quaternion, q_dot = J^{-1} omega, p = J^T I omega.
         std::optional<euler_angles<double>> e;
-        const auto value = [&](const value_source& src) -> double {
-            if (src.kind == value_source::compiled) return out[static_cast<std::size_t>(src.index)];
-            if (!e) e = euler_from_quaternion(Eigen::Quaterniond(ys[0], ys[1], ys[2], ys[3]));
-            const Eigen::Vector3d w(ys[4], ys[5], ys[6]);
-            const double st = std::sin(e->theta), ct = std::cos(e->theta), sp = std::sin(e->psi),
-                         cp = std::cos(e->psi);
-            if (src.kind == value_source::angle) return src.index == 0 ? e->phi : src.index == 1 ? e->theta : e->psi;
-            if (src.kind == value_source::euler_rate) {
-                const double phi_dot = (w[0] * sp + w[1] * cp) / st; // undefined at theta = 0, pi
-                return src.index == 0 ? phi_dot : src.index == 1 ? w[0] * cp - w[1] * sp : w[2] - phi_dot * ct;
-            }
-            const Eigen::Vector3d l = inertia * w; // p = J^T l, J of (5.30)
-            return src.index == 0 ? st * sp * l[0] + st * cp * l[1] + ct * l[2]
-                                  : src.index == 1 ? cp * l[0] - sp * l[1] : l[2];
+        const auto value = [&](const value_source& src) {
+            return source_value(src, ys, out, inertia, e);
         };
         std::vector<double> row{samples[k].t};
         for (const auto& src : cf.columns) row.push_back(value(src));

@@ -1,5 +1,6 @@
 #include "spec.hpp"
 
+#include "numbers.hpp"
 #include "symbols.hpp"
 
 #include <Eigen/Eigenvalues>
@@ -226,10 +227,10 @@ class model_reader {
         GiNaC::exmap generic = m_spec.parameter_defaults();
         const double values[3] = {0.3, 0.7, 1.1};
         for (int i = 0; i < 3; ++i) {
-            generic[s.q[i]] = values[i];
-            generic[s.qd[i]] = values[i] / 2;
+            generic[s.q[i]] = float_numeric(values[i]);
+            generic[s.qd[i]] = float_numeric(values[i] / 2);
         }
-        generic[s.t] = 0.5;
+        generic[s.t] = float_numeric(0.5);
         try {
             return std::isfinite(double_value(e, generic));
         } catch (const std::exception&) {
@@ -605,7 +606,7 @@ name_table model_spec::parameter_names() const {
 
 GiNaC::exmap model_spec::parameter_defaults() const {
     GiNaC::exmap m;
-    for (const auto& p : parameters) m[p.symbol] = GiNaC::numeric(p.value);
+    for (const auto& p : parameters) m[p.symbol] = float_numeric(p.value);
     return m;
 }
 

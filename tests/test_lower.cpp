@@ -97,6 +97,52 @@ TEST_CASE("sums are factored: a common factor is taken out once", "[lower]") {
     CHECK(p.after.mul <= 3);
 }
 
+// Two parameters a, b (model constants) beside the state x, y, z.
+struct parameter_fixture : fixture {
+    GiNaC::realsymbol a{"a"}, b{"b"};
+    parameter_fixture() {
+        inputs.push_back({a, "p.a", "", true});
+        inputs.push_back({b, "p.b", "", true});
+    }
+};
+
+TEST_CASE("terms that differ only in parameters become one term over one fraction",
+          "[lower][precision]") {
+    // x y/a - x y/b as a difference of two rounded reciprocals loses every digit when a ~ b;
+    // (b - a)/(a b) has a difference of two inputs, exact when a ~ b.
+    parameter_fixture f;
+    const lowered_program p = lower({f.x * f.y / f.a - f.x * f.y / f.b}, f.inputs);
+    CHECK(program_text(p) == "out0 = -(p.a - p.b)*x*y/(p.a*p.b)\n");
+    // The constant joins the terms without a state factor: 1 - a/b -> (b - a)/b.
+    const lowered_program q = lower({1 - f.a / f.b + f.x}, f.inputs);
+    CHECK(program_text(q) == "out0 = x - (p.a - p.b)/p.b\n");
+    // The same sums with a, b taken for state are left as they are.
+    parameter_fixture g;
+    for (auto& in : g.inputs)
+        in.parameter = false;
+    CHECK(program_text(lower({g.x * g.y / g.a - g.x * g.y / g.b}, g.inputs)) ==
+          "out0 = (S(1)/p.a - S(1)/p.b)*x*y\n");
+}
+
+TEST_CASE("parameter coefficients that cancel leave no term", "[lower][precision]") {
+    parameter_fixture f;
+    const lowered_program p =
+        lower({f.x / f.a + f.x / f.b - f.x * (f.a + f.b) / (f.a * f.b) + f.y}, f.inputs);
+    CHECK(program_text(p) == "out0 = y\n");
+}
+
+TEST_CASE("a combination of sums that share terms is one sum, like terms combined",
+          "[lower][precision]") {
+    // z (x + a y) - z (x + b y): x cancels, and a y - b y is (a - b) y, not the difference of two
+    // nearly equal products when a ~ b.
+    parameter_fixture f;
+    const lowered_program p = lower({f.z * (f.x + f.a * f.y) - f.z * (f.x + f.b * f.y)}, f.inputs);
+    CHECK(program_text(p) == "out0 = (p.a - p.b)*y*z\n");
+    // Sums that share no like terms stay apart (each may be shared with other outputs).
+    const lowered_program q = lower({f.z * (f.x + f.y) - f.z * (f.a * f.x * f.y + f.b)}, f.inputs);
+    CHECK(program_text(q) == "out0 = ((x + y) - (p.a*x*y + p.b))*z\n");
+}
+
 TEST_CASE("a symbol that is not an input is an internal error", "[lower]") {
     fixture f;
     GiNaC::realsymbol w("w");

@@ -43,6 +43,9 @@ P make_params_long(const std::vector<double>& v, std::index_sequence<I...>) {
                 ns::rhs(t, y, f, pl);                                                              \
             };                                                                                     \
             k.jacobian = [p](double t, const double* y, double* J) { ns::jacobian(t, y, J, p); };  \
+            k.jacobian_long = [pl](long double t, const long double* y, long double* J) {          \
+                ns::jacobian(t, y, J, pl);                                                         \
+            };                                                                                     \
             k.rhs_and_jacobian = [p](double t, const double* y, double* f, double* J) {            \
                 ns::rhs_and_jacobian(t, y, f, J, p);                                               \
             };                                                                                     \

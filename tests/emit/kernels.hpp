@@ -1,4 +1,5 @@
-// The generated kernels under test, behind one interface (double; rhs also in long double).
+// The generated kernels under test, behind one interface (double; rhs and jacobian also in long
+// double).
 // kernels.cpp fills the table from generated/units.hpp (written by tests/emit/CMakeLists.txt).
 #pragma once
 
@@ -20,7 +21,7 @@ struct kernel {
     std::vector<unsigned char> pattern; // jacobian_pattern
     std::function<void(double, const double*, double*)> rhs, jacobian;
     std::function<void(double, const double*, double*, double*)> rhs_and_jacobian;
-    std::function<void(long double, const long double*, long double*)> rhs_long;
+    std::function<void(long double, const long double*, long double*)> rhs_long, jacobian_long;
     std::function<double(const double*)> energy;
     // empty where the unit has no such function
     std::function<void(const double*, double*)> momenta, omega, rotation, mass_matrix,
