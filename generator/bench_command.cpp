@@ -281,6 +281,30 @@ kinematics initial_kinematics(const scene_spec& scene, const derivation& d,
     return k;
 }
 
+// The runs are in double (and float): initial values whose rates, momenta or kinetic energy
+// (1/2 p . q_dot) overflow double are refused up front, as `simulate` does, rather than reported as
+// a sweep of non-finite runs.
+void check_double_range(const scene_spec& scene, const kinematics& k) {
+    const long double big = std::numeric_limits<double>::max();
+    const auto check = [&](const std::string& what, long double v) {
+        if (std::isfinite(v) && std::abs(v) <= big) return;
+        throw user_error(scene.initial_where,
+                         "initial values too large for double precision: " + what + " = " +
+                             std::to_string(static_cast<double>(v)) +
+                             "; give smaller initial rates or momenta, or rescale the model's units");
+    };
+    const std::array<const char*, 3> q{"phi", "theta", "psi"};
+    long double twice_kinetic = 0;
+    for (std::size_t i = 0; i < 3; ++i) {
+        check("omega" + std::to_string(i + 1), k.omega[i]);
+        if (!k.have_rates) continue;
+        check(std::string(q[i]) + "_dot", k.qd[i]);
+        check(std::string("p_") + q[i], k.p[i]);
+        twice_kinetic += k.p[i] * k.qd[i];
+    }
+    check("the kinetic energy", twice_kinetic / 2);
+}
+
 // ---- the variants -------------------------------------------------------------------------------
 
 enum class role { main, runtime, unlowered, alternative };
@@ -745,6 +769,7 @@ void bench_run::choose_variants() {
     for (std::size_t i = 0; i < spec.parameters.size(); ++i)
         parameter_values[spec.parameters[i].symbol] = exact_decimal(scene.parameters[i]);
     k0 = initial_kinematics(scene, d, parameter_values);
+    check_double_range(scene, k0);
 
     orientation = false; // as `simulate`: the body form keeps the quaternion if recorded
     for (const auto& name : scene.record)

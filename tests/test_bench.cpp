@@ -21,9 +21,11 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <sstream>
 
@@ -219,4 +221,20 @@ TEST_CASE("rotgen bench refuses bad arguments with a one-line message", "[bench]
     CHECK(r.err.find("/proc/no/such/dir") != std::string::npos);
     r = run_rotgen("bench /no/such/scene.yaml");
     CHECK(r.status == 2);
+    // rates whose kinetic energy overflows double: refused at the `initial` key, nothing written
+    const std::string dir = std::string(ROTGEN_BINARY_DIR) + "/bench_huge";
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    const std::string huge = dir + "/huge.yaml";
+    std::ofstream(huge) << ("model: " + std::string(ROTGEN_SOURCE_DIR) +
+                         "/models/heavy_top.yaml\n"
+                         "initial: {phi: 0, theta: 0.5, psi: 0, phi_dot: 0, theta_dot: 0, "
+                         "psi_dot: 1e200}\n"
+                         "time: {start: 0, end: 1}\n");
+    r = run_rotgen("bench '" + huge + "' -o '" + dir + "/out'");
+    CHECK(r.status == 2);
+    CHECK(r.err.find(huge + ":2:10: initial values too large for double precision: the kinetic "
+                            "energy") != std::string::npos);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    CHECK_FALSE(std::filesystem::exists(dir + "/out/results.csv"));
 }
