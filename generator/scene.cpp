@@ -223,7 +223,9 @@ class scene_reader {
     }
 
     void read_integrator(const YAML::Node& n) {
-        if (!n.IsMap()) throw user_error(at(n), "'integrator' must be {method, rtol, atol} or {method, step}");
+        if (!n.IsMap())
+            throw user_error(at(n), "'integrator' must be {method, rtol, atol} or {method, step} "
+                                    "(a step: fixed steps, no error control)");
         check_keys(n, {"method", "rtol", "atol", "step", "max_steps"}, m_file, "integrator");
         m_scene.integrator_where = at(n);
         integrator_spec& ig = m_scene.integrator;
@@ -256,6 +258,12 @@ class scene_reader {
         }
         if (ig.fixed_step() && !n["step"])
             throw user_error(at(n), "integrator " + ig.method + " is fixed-step and needs 'step'");
+        if (n["step"])
+            for (const char* key : {"rtol", "atol"})
+                if (n[key])
+                    throw user_error(at(n[key]), "integrator " + ig.method +
+                                                     " with a fixed step has no error control: "
+                                                     "give 'step' or '" + key + "', not both");
         if (ig.rtol < 1e-15 && !ig.fixed_step())
             throw user_error(at(n["rtol"]), "integrator rtol below 1e-15 cannot be met in double precision");
         if (ig.step > 0 && ig.step > m_scene.t_end - m_scene.t_start)

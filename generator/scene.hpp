@@ -30,9 +30,10 @@ const char* to_string(form_kind f);
 struct integrator_spec {
     std::string method = "dop853"; // rk4 | dopri5 | dop853 | implicit_midpoint | rosenbrock
     double rtol = 1e-8, atol = 1e-10;
-    double step = 0; // fixed-step methods (rk4, implicit_midpoint); initial step hint otherwise
+    double step = 0; // the step of rk4 and implicit_midpoint; an adaptive method given a step
+                     // takes fixed steps of that size without error control (and no rtol, atol)
     long max_steps = 10'000'000;
-    bool fixed_step() const { return method == "rk4" || method == "implicit_midpoint"; }
+    bool fixed_step() const { return method == "rk4" || method == "implicit_midpoint" || step > 0; }
 };
 
 struct scene_spec {

@@ -213,6 +213,7 @@ TEST_CASE("bad scenes: exit 2, one line naming file and place, no output file", 
         row{"non-positive rtol", "initial: {theta: 1}\ntime: {end: 1}\nintegrator: {method: dopri5, rtol: 0}\n", "bad_scene.yaml:4:36: integrator rtol must be positive"},
         row{"negative step", "initial: {theta: 1}\ntime: {end: 1}\nintegrator: {method: rk4, step: -0.1}\n", "bad_scene.yaml:4:33: integrator step must be positive"},
         row{"fixed step without a step", "initial: {theta: 1}\ntime: {end: 1}\nintegrator: {method: rk4}\n", "bad_scene.yaml:4:13: integrator rk4 is fixed-step and needs 'step'"},
+        row{"a step and a tolerance", "initial: {theta: 1}\ntime: {end: 1}\nintegrator: {method: dop853, step: 0.1, rtol: 1e-8}\n", "bad_scene.yaml:4:47: integrator dop853 with a fixed step has no error control: give 'step' or 'rtol', not both"},
         row{"unknown method", "initial: {theta: 1}\ntime: {end: 1}\nintegrator: {method: dopri}\n", "did you mean 'dopri5'?"},
         row{"unknown record", "initial: {theta: 1}\ntime: {end: 1}\nrecord: [thetta]\n", "bad_scene.yaml:4:10: cannot record 'thetta'; did you mean 'theta'?"},
         row{"rates given two ways", "initial: {theta: 1, psi_dot: 1, omega1: 2}\ntime: {end: 1}\n", "give the initial rates one way only"},
@@ -288,15 +289,18 @@ namespace {
 
 // Runs a free-top scene (body form, omega only) and returns the CSV.
 csv_table run_free_top(const std::string& model, const std::string& initial, double end,
-                       long samples, const std::string& name) {
+                       long samples, const std::string& name,
+                       const std::string& integrator = "{method: dop853, rtol: 1e-12, atol: 1e-14}",
+                       std::string* summary = nullptr) {
     const scratch_file scene(name + ".yaml",
                              model + "form: body\ninitial: {" + initial + "}\ntime: {end: " +
                                  std::to_string(end) + ", samples: " + std::to_string(samples) +
-                                 "}\nintegrator: {method: dop853, rtol: 1e-12, atol: 1e-14}\n"
+                                 "}\nintegrator: " + integrator + "\n"
                                  "record: [omega1, omega2, omega3]\n");
     const run_result r = run_rotgen("simulate '" + scene.path + "' -o '" + scratch(name + ".csv") + "'");
     INFO(r.out << r.err);
     REQUIRE(r.status == 0);
+    if (summary) *summary = r.out;
     return read_csv(scratch(name + ".csv"));
 }
 
@@ -373,6 +377,35 @@ TEST_CASE("free symmetric top: omega precesses about the symmetry axis at (I3 - 
         CHECK(w2[i] == Approx(w_perp * std::sin(Omega * ts[i])).margin(1e-10));
         CHECK(w3s[i] == Approx(w3).margin(1e-12));
     }
+}
+
+TEST_CASE("an adaptive method given a step takes fixed steps: no rejections, error falls as h^8",
+          "[simulate]") {
+    // The symmetric top of the test above, integrated by DOP853 with fixed steps h and h/2.
+    const std::string model = "model:\n  name: symmetric\n  inertia: [2, 2, 1]\n";
+    const double I1 = 2, I3 = 1, w3 = 3, w_perp = 0.4, Omega = (I3 - I1) / I1 * w3;
+    std::array<double, 2> error{};
+    for (int k = 0; k < 2; ++k) {
+        const double h = k == 0 ? 0.5 : 0.25;
+        std::string summary;
+        const csv_table t = run_free_top(model, "theta: 0.7, omega1: 0.4, omega2: 0, omega3: 3", 10,
+                                         11, "fixed_dop853", "{method: dop853, step: " +
+                                         std::to_string(h) + "}", &summary);
+        INFO(summary);
+        CHECK(summary.find(std::to_string(static_cast<int>(10 / h)) + " accepted, 0 rejected") !=
+              std::string::npos);
+        const auto ts = t.values("t"), w1 = t.values("omega1"), w2 = t.values("omega2");
+        for (std::size_t i = 0; i < ts.size(); ++i)
+            error[static_cast<std::size_t>(k)] =
+                std::max({error[static_cast<std::size_t>(k)],
+                          std::abs(w1[i] - w_perp * std::cos(Omega * ts[i])),
+                          std::abs(w2[i] - w_perp * std::sin(Omega * ts[i]))});
+    }
+    INFO("errors " << error[0] << " " << error[1]);
+    CHECK(error[0] < 1e-6);
+    // order 8: halving the step divides the error by 2^8 = 256 (asymptotically)
+    CHECK(error[0] / error[1] > 128);
+    CHECK(error[0] / error[1] < 512);
 }
 
 TEST_CASE("near gimbal lock the Hamiltonian chart loses accuracy; the switch keeps it",
