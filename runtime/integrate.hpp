@@ -218,7 +218,7 @@ integrate(const S& sys, const Method& method, detail::identity_t<typename Method
             t_next = last ? t_end : t + h;
         } else {
             last = k + 1 == nsteps;
-            t_next = last ? t_end : t0 + dir * (T(k + 1) * hn);
+            t_next = last ? t_end : t0 + dir * (T(static_cast<long long>(k + 1)) * hn);
             h = t_next - t;
         }
         if (!(abs(h) >= T(16) * eps * abs(t)) || h == T(0)) {

@@ -66,8 +66,9 @@ template <class T, class S> class rk4_stepper {
         T err;
     };
 
+    // One step; y0 and k1 are kept for the Hermite interpolant only when the step holds samples.
     ROTGEN_ALWAYS_INLINE outcome attempt(const S& sys, T t, const vector& y, T h, step_stats& stats,
-                                         bool) {
+                                         bool need_dense) {
         using detail::make_term;
         using detail::stage;
         work y0 = m_y0, k1 = m_y0, k2 = m_y0, k3 = m_y0, k4 = m_y0, arg = m_y0;
@@ -88,8 +89,10 @@ template <class T, class S> class rk4_stepper {
         const T h6 = h / T(6);
         for (std::size_t i = 0; i < detail::size_of(y0); ++i)
             m_y1[i] = y0[i] + h6 * (k1[i] + T(2) * k2[i] + T(2) * k3[i] + k4[i]);
-        m_y0 = y0;
-        m_k1 = k1;
+        if (need_dense) {
+            m_y0 = y0;
+            m_k1 = k1;
+        }
         m_t1 = t + h;
         return {detail::all_finite(m_y1) ? status::ok : status::non_finite, T(0)};
     }
