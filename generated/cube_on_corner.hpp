@@ -19,14 +19,14 @@
 // Parameters (params<T>, defaults from the model file): M = 1.0, L = 0.2, g = 9.81.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 2161 -> 113 (21 temporaries)
-//   jacobian: 15321 -> 469 (71 temporaries)
-//   rhs_and_jacobian: 17482 -> 488 (75 temporaries)
-//   energy: 140 -> 45 (9 temporaries)
-//   momenta: 208 -> 54 (11 temporaries)
-//   mass_matrix: 182 -> 45 (13 temporaries)
-//   omega: 17 -> 14 (4 temporaries)
-//   rotation: 49 -> 29 (6 temporaries)
+//   rhs: 2161 -> 104 (22 temporaries)
+//   jacobian: 15321 -> 437 (80 temporaries)
+//   rhs_and_jacobian: 17482 -> 455 (85 temporaries)
+//   energy: 140 -> 44 (10 temporaries)
+//   momenta: 208 -> 50 (12 temporaries)
+//   mass_matrix: 182 -> 39 (12 temporaries)
+//   omega: 17 -> 13 (5 temporaries)
+//   rotation: 49 -> 26 (8 temporaries)
 //
 // Self-contained: includes <array>, <cmath> and <cstddef> only. Every function is a template on the
 // scalar type T (float, double, long double, Eigen array batches such as Eigen::Array<double, 4, 1>,
@@ -100,7 +100,7 @@ constexpr std::array<unsigned char, 36> jacobian_pattern{{
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, phi_ddot, theta_ddot, psi_ddot
 //   p     parameters
-// Operations (+ - * / and calls): 2161 before lowering, 113 after (35 +-, 72 *, 2 /, 4 calls).
+// Operations (+ - * / and calls): 2161 before lowering, 104 after (35 +-, 63 *, 2 /, 4 calls).
 template <class T>
 void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     using std::cos;
@@ -116,29 +116,30 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    const T t000 = S(1)/sin_theta;
-    const T t001 = S(1)/p.L;
-    const T t002 = cos_theta*phi_dot;
-    const T t003 = psi_dot + t002;
-    const T t004 = cos_psi*theta_dot + phi_dot*sin_psi*sin_theta;
-    const T t005 = cos_psi*phi_dot*sin_theta - sin_psi*theta_dot;
-    const T t006 = S(8)*t003 - S(3)*t004 - S(3)*t005;
-    const T t007 = S(3)*t003 + S(3)*t004 - S(8)*t005;
-    const T t008 = (t003*t007 + t005*t006)*p.L + S(6)*(cos_theta - cos_psi*sin_theta)*p.g;
-    const T t009 = S(3)*t003 + S(3)*t005 - S(8)*t004;
-    const T t010 = (t004*t007 - t005*t009)*p.L + S(6)*(sin_psi - cos_psi)*p.g*sin_theta;
-    const T t011 = (t003*t009 + t004*t006)*p.L + S(6)*(cos_theta - sin_psi*sin_theta)*p.g;
-    const T t012 = t002 - psi_dot;
-    const T t013 = (S(5)*t008 - S(3)*t010 - S(3)*t011)*t001 + S(22)*cos_psi*phi_dot*psi_dot*sin_theta + S(22)*sin_psi*t012*theta_dot;
-    const T t014 = (S(3)*t008 - S(3)*t010 - S(5)*t011)*t001 + S(22)*cos_psi*t012*theta_dot - S(22)*phi_dot*psi_dot*sin_psi*sin_theta;
-    const T t015 = cos_psi*t014 + sin_psi*t013;
-    const T t016 = S(1)/S(22)*cos_theta*t000*t015 + phi_dot*sin_theta*theta_dot - (S(3)/S(22)*t008 - S(3)/S(22)*t011 - S(5)/S(22)*t010)*t001;
+    const T t000 = S(1)/p.L;
+    const T t001 = cos_theta*phi_dot;
+    const T t002 = psi_dot + t001;
+    const T t003 = phi_dot*sin_theta;
+    const T t004 = sin_psi*t003;
+    const T t005 = cos_psi*theta_dot + t004;
+    const T t006 = cos_psi*t003;
+    const T t007 = t006 - sin_psi*theta_dot;
+    const T t008 = S(8)*t002 - S(3)*t005 - S(3)*t007;
+    const T t009 = S(3)*t002 + S(3)*t005 - S(8)*t007;
+    const T t010 = (t002*t009 + t007*t008)*p.L + S(6)*(cos_theta - cos_psi*sin_theta)*p.g;
+    const T t011 = S(3)*t002 + S(3)*t007 - S(8)*t005;
+    const T t012 = (t005*t009 - t007*t011)*p.L + S(6)*(sin_psi - cos_psi)*p.g*sin_theta;
+    const T t013 = (t002*t011 + t005*t008)*p.L + S(6)*(cos_theta - sin_psi*sin_theta)*p.g;
+    const T t014 = (t001 - psi_dot)*theta_dot;
+    const T t015 = (S(5)*t010 - S(3)*t012 - S(3)*t013)*t000 + S(22)*psi_dot*t006 + S(22)*sin_psi*t014;
+    const T t016 = (S(3)*t010 - S(3)*t012 - S(5)*t013)*t000 + S(22)*cos_psi*t014 - S(22)*psi_dot*t004;
+    const T t017 = (cos_psi*t016 + sin_psi*t015)/sin_theta;
     dydt[0] = phi_dot;
     dydt[1] = theta_dot;
     dydt[2] = psi_dot;
-    dydt[3] = -S(1)/S(22)*t000*t015;
-    dydt[4] = -S(1)/S(22)*(cos_psi*t013 - sin_psi*t014);
-    dydt[5] = t016;
+    dydt[3] = -S(1)/S(22)*t017;
+    dydt[4] = -S(1)/S(22)*(cos_psi*t015 - sin_psi*t016);
+    dydt[5] = S(1)/S(22)*cos_theta*t017 + t003*theta_dot - (S(3)/S(22)*t010 - S(3)/S(22)*t013 - S(5)/S(22)*t012)*t000;
 }
 
 // The analytic Jacobian J = d(dy/dt)/dy, dense, row-major: J[i * state_size + k] = d dydt[i] / d y[k].
@@ -146,7 +147,7 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   J     output, dim 6 x 6 (row-major); structural zeros in jacobian_pattern
 //   p     parameters
-// Operations (+ - * / and calls): 15321 before lowering, 469 after (159 +-, 303 *, 3 /, 4 calls).
+// Operations (+ - * / and calls): 15321 before lowering, 437 after (156 +-, 274 *, 3 /, 4 calls).
 template <class T>
 void jacobian(T t, const T* y, T* J, const params<T>& p) {
     using std::cos;
@@ -163,72 +164,81 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
     const T t000 = S(1)/sin_theta;
-    const T t001 = S(1)/p.L;
-    const T t002 = cos_theta*phi_dot;
-    const T t003 = psi_dot + t002;
-    const T t004 = phi_dot*sin_psi*sin_theta;
-    const T t005 = cos_psi*theta_dot;
-    const T t006 = t004 + t005;
-    const T t007 = cos_psi*phi_dot*sin_theta;
-    const T t008 = sin_psi*theta_dot;
-    const T t009 = t007 - t008;
-    const T t010 = S(8)*t003 - S(3)*t006 - S(3)*t009;
-    const T t011 = t009*t010;
-    const T t012 = S(3)*t003 + S(3)*t006 - S(8)*t009;
-    const T t013 = (t003*t012 + t011)*p.L + S(6)*(cos_theta - cos_psi*sin_theta)*p.g;
-    const T t014 = S(3)*t003 + S(3)*t009 - S(8)*t006;
-    const T t015 = sin_psi - cos_psi;
-    const T t016 = (t006*t012 - t009*t014)*p.L + S(6)*p.g*sin_theta*t015;
-    const T t017 = t006*t010;
-    const T t018 = (t003*t014 + t017)*p.L + S(6)*(cos_theta - sin_psi*sin_theta)*p.g;
-    const T t019 = S(5)*t013 - S(3)*t016 - S(3)*t018;
-    const T t020 = t002 - psi_dot;
-    const T t021 = (S(22)*cos_psi*phi_dot*psi_dot*sin_theta + S(22)*sin_psi*t020*theta_dot + t001*t019)*sin_psi;
-    const T t022 = S(3)*t013 - S(3)*t016 - S(5)*t018;
-    const T t023 = (S(22)*cos_psi*t020*theta_dot + t001*t022 - S(22)*phi_dot*psi_dot*sin_psi*sin_theta)*cos_psi;
-    const T t024 = cos_psi + sin_psi;
-    const T t025 = S(3)*cos_theta*t024 + S(8)*sin_theta;
-    const T t026 = S(3)*sin_psi - S(8)*cos_psi;
-    const T t027 = S(3)*sin_theta - cos_theta*t026;
-    const T t028 = cos_psi*cos_theta*t010 - sin_theta*t012 - t003*t027 - t009*t025;
-    const T t029 = p.L*phi_dot*t028 - S(6)*(cos_psi*cos_theta + sin_theta)*p.g;
-    const T t030 = cos_psi*t014 - sin_psi*t012;
-    const T t031 = S(8)*sin_psi - S(3)*cos_psi;
-    const T t032 = S(3)*sin_theta + cos_theta*t031;
-    const T t033 = S(6)*cos_theta*p.g*t015 - (cos_theta*t030 + t006*t027 - t009*t032)*p.L*phi_dot;
-    const T t034 = cos_theta*sin_psi*t010 - sin_theta*t014 - t003*t032 - t006*t025;
-    const T t035 = p.L*phi_dot*t034 - S(6)*(cos_theta*sin_psi + sin_theta)*p.g;
-    const T t036 = S(22)*(cos_psi*sin_theta*theta_dot + cos_theta*psi_dot*sin_psi)*phi_dot - (S(3)*t029 - S(3)*t033 - S(5)*t035)*t001;
-    const T t037 = S(22)*(sin_psi*sin_theta*theta_dot - cos_psi*cos_theta*psi_dot)*phi_dot - (S(5)*t029 - S(3)*t033 - S(3)*t035)*t001;
-    const T t038 = ((t021 + t023)*cos_theta*t000 + cos_psi*t036 + sin_psi*t037)*t000;
-    const T t039 = t006 - t009;
-    const T t040 = S(6)*p.g*sin_psi*sin_theta - (t017 - (S(3)*t009 + S(8)*t006)*t003 - S(3)*t009*t039)*p.L;
-    const T t041 = S(6)*cos_psi*p.g*sin_theta - (S(3)*t006*t039 + t011 - (S(3)*t006 + S(8)*t009)*t003)*p.L;
-    const T t042 = ((S(3)*t003 + S(6)*t006)*t009 + (S(3)*t003 + S(6)*t009)*t006)*p.L + S(6)*p.g*sin_theta*t024;
-    const T t043 = (S(3)*t041 + S(5)*t040 - S(3)*t042) - t022;
-    const T t044 = (S(3)*t040 + S(5)*t041 - S(3)*t042) + t019;
-    const T t045 = cos_psi*t044 + sin_psi*t043;
-    const T t046 = S(3)*cos_theta - sin_theta*t031;
-    const T t047 = S(8)*cos_theta - S(3)*sin_theta*t024;
-    const T t048 = cos_theta*t014 + sin_psi*sin_theta*t010 + t003*t046 + t006*t047;
-    const T t049 = S(3)*cos_theta + sin_theta*t026;
-    const T t050 = cos_psi*sin_theta*t010 + cos_theta*t012 + t003*t049 + t009*t047;
-    const T t051 = t006*t049 - sin_theta*t030 - t009*t046;
-    const T t052 = S(22)*psi_dot*sin_psi*sin_theta + S(3)*t051 + S(5)*t048 - S(22)*cos_psi*cos_theta*theta_dot - S(3)*t050;
-    const T t053 = S(3)*t048 + S(3)*t051 - S(22)*cos_psi*psi_dot*sin_theta - S(22)*cos_theta*sin_psi*theta_dot - S(5)*t050;
-    const T t054 = cos_psi*t052 + sin_psi*t053;
-    const T t055 = S(3)*cos_psi + S(8)*sin_psi;
-    const T t056 = S(3)*t009*t015 + t003*t055 - sin_psi*t010;
-    const T t057 = S(3)*sin_psi + S(8)*cos_psi;
-    const T t058 = t003*t057 - S(3)*t006*t015 - cos_psi*t010;
-    const T t059 = cos_psi*t012 + sin_psi*t014 + t006*t055 + t009*t057;
-    const T t060 = S(22)*cos_psi*t020 + S(3)*t056 + S(5)*t058 - S(3)*t059;
-    const T t061 = S(22)*sin_psi*t020 + S(3)*t058 + S(5)*t056 - S(3)*t059;
-    const T t062 = cos_psi*t060 + sin_psi*t061;
-    const T t063 = S(18)*t003 + S(9)*t009 - S(15)*(S(2)*t003 + t009) - S(22)*t004 - S(22)*t005;
-    const T t064 = S(18)*t003 + S(22)*t008 + S(9)*t006 - S(15)*(S(2)*t003 + t006) - S(22)*t007;
-    const T t065 = cos_psi*t063 - sin_psi*t064;
-    const T t066 = (S(3)/S(22)*t029 - S(3)/S(22)*t035 - S(5)/S(22)*t033)*t001 + S(1)/S(22)*t021 + S(1)/S(22)*t023 - (phi_dot*theta_dot - S(1)/S(22)*t038)*cos_theta;
+    const T t001 = cos_theta*t000;
+    const T t002 = S(1)/p.L;
+    const T t003 = cos_theta*phi_dot;
+    const T t004 = psi_dot + t003;
+    const T t005 = sin_psi*sin_theta;
+    const T t006 = phi_dot*t005;
+    const T t007 = cos_psi*theta_dot;
+    const T t008 = t006 + t007;
+    const T t009 = cos_psi*sin_theta;
+    const T t010 = phi_dot*t009;
+    const T t011 = sin_psi*theta_dot;
+    const T t012 = t010 - t011;
+    const T t013 = S(8)*t004 - S(3)*t008 - S(3)*t012;
+    const T t014 = t012*t013;
+    const T t015 = S(3)*t004 + S(3)*t008 - S(8)*t012;
+    const T t016 = (t004*t015 + t014)*p.L + S(6)*(cos_theta - t009)*p.g;
+    const T t017 = S(3)*t004 + S(3)*t012 - S(8)*t008;
+    const T t018 = sin_psi - cos_psi;
+    const T t019 = p.g*t018;
+    const T t020 = (t008*t015 - t012*t017)*p.L + S(6)*sin_theta*t019;
+    const T t021 = t008*t013;
+    const T t022 = (t004*t017 + t021)*p.L + S(6)*(cos_theta - t005)*p.g;
+    const T t023 = S(5)*t016 - S(3)*t020 - S(3)*t022;
+    const T t024 = t003 - psi_dot;
+    const T t025 = t024*theta_dot;
+    const T t026 = (S(22)*psi_dot*t010 + S(22)*sin_psi*t025 + t002*t023)*sin_psi;
+    const T t027 = S(3)*t016 - S(3)*t020 - S(5)*t022;
+    const T t028 = (S(22)*cos_psi*t025 + t002*t027 - S(22)*psi_dot*t006)*cos_psi;
+    const T t029 = cos_theta*sin_psi;
+    const T t030 = cos_psi*cos_theta;
+    const T t031 = cos_psi + sin_psi;
+    const T t032 = S(3)*cos_theta*t031 + S(8)*sin_theta;
+    const T t033 = S(3)*sin_psi - S(8)*cos_psi;
+    const T t034 = S(3)*sin_theta - cos_theta*t033;
+    const T t035 = p.L*phi_dot;
+    const T t036 = (t013*t030 - sin_theta*t015 - t004*t034 - t012*t032)*t035;
+    const T t037 = t036 - S(6)*(sin_theta + t030)*p.g;
+    const T t038 = cos_psi*t017 - sin_psi*t015;
+    const T t039 = S(8)*sin_psi - S(3)*cos_psi;
+    const T t040 = S(3)*sin_theta + cos_theta*t039;
+    const T t041 = S(6)*cos_theta*t019 - (cos_theta*t038 + t008*t034 - t012*t040)*t035;
+    const T t042 = (t013*t029 - sin_theta*t017 - t004*t040 - t008*t032)*t035;
+    const T t043 = t042 - S(6)*(sin_theta + t029)*p.g;
+    const T t044 = S(22)*(psi_dot*t029 + t009*theta_dot)*phi_dot - (S(3)*t037 - S(3)*t041 - S(5)*t043)*t002;
+    const T t045 = S(22)*(t005*theta_dot - psi_dot*t030)*phi_dot - (S(5)*t037 - S(3)*t041 - S(3)*t043)*t002;
+    const T t046 = ((t026 + t028)*t001 + cos_psi*t044 + sin_psi*t045)*t000;
+    const T t047 = t008 - t012;
+    const T t048 = S(6)*p.g*t005 - (t021 - (S(3)*t012 + S(8)*t008)*t004 - S(3)*t012*t047)*p.L;
+    const T t049 = S(6)*p.g*t009 - (S(3)*t008*t047 + t014 - (S(3)*t008 + S(8)*t012)*t004)*p.L;
+    const T t050 = sin_theta*t031;
+    const T t051 = ((S(3)*t004 + S(6)*t008)*t012 + (S(3)*t004 + S(6)*t012)*t008)*p.L + S(6)*p.g*t050;
+    const T t052 = S(3)*t049 + S(5)*t048 - S(3)*t051 - t027;
+    const T t053 = S(3)*t048 + S(5)*t049 + t023 - S(3)*t051;
+    const T t054 = cos_psi*t053 + sin_psi*t052;
+    const T t055 = S(3)*cos_theta - sin_theta*t039;
+    const T t056 = S(8)*cos_theta - S(3)*t050;
+    const T t057 = cos_theta*t017 + t004*t055 + t005*t013 + t008*t056;
+    const T t058 = S(3)*cos_theta + sin_theta*t033;
+    const T t059 = cos_theta*t015 + t004*t058 + t009*t013 + t012*t056;
+    const T t060 = t008*t058 - sin_theta*t038 - t012*t055;
+    const T t061 = S(22)*psi_dot*t005 + S(3)*t060 + S(5)*t057 - S(22)*t030*theta_dot - S(3)*t059;
+    const T t062 = S(3)*t057 + S(3)*t060 - S(22)*psi_dot*t009 - S(22)*t029*theta_dot - S(5)*t059;
+    const T t063 = cos_psi*t061 + sin_psi*t062;
+    const T t064 = S(3)*cos_psi + S(8)*sin_psi;
+    const T t065 = S(3)*t012*t018 + t004*t064 - sin_psi*t013;
+    const T t066 = S(3)*sin_psi + S(8)*cos_psi;
+    const T t067 = t004*t066 - S(3)*t008*t018 - cos_psi*t013;
+    const T t068 = cos_psi*t015 + sin_psi*t017 + t008*t064 + t012*t066;
+    const T t069 = S(22)*cos_psi*t024 + S(3)*t065 + S(5)*t067 - S(3)*t068;
+    const T t070 = S(22)*sin_psi*t024 + S(3)*t067 + S(5)*t065 - S(3)*t068;
+    const T t071 = cos_psi*t069 + sin_psi*t070;
+    const T t072 = S(18)*t004 + S(9)*t012 - S(15)*t012 - S(22)*t006 - S(22)*t007 - S(30)*t004;
+    const T t073 = S(18)*t004 + S(22)*t011 + S(9)*t008 - S(15)*t008 - S(22)*t010 - S(30)*t004;
+    const T t074 = cos_psi*t072 - sin_psi*t073;
+    const T t075 = (S(3)/S(22)*t037 - S(3)/S(22)*t043 - S(5)/S(22)*t041)*t002 + S(1)/S(22)*t026 + S(1)/S(22)*t028 - (phi_dot*theta_dot - S(1)/S(22)*t046)*cos_theta;
     J[0] = T(S(0));
     J[1] = T(S(0));
     J[2] = T(S(0));
@@ -248,23 +258,23 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     J[16] = T(S(0));
     J[17] = T(S(1));
     J[18] = T(S(0));
-    J[19] = S(1)/S(22)*t038;
-    J[20] = -S(1)/S(22)*t045/(p.L*sin_theta);
-    J[21] = S(1)/S(22)*t000*t054;
-    J[22] = -S(1)/S(22)*t000*t062;
-    J[23] = -S(1)/S(22)*t000*t065;
+    J[19] = S(1)/S(22)*t046;
+    J[20] = -S(1)/S(22)*t054/(p.L*sin_theta);
+    J[21] = S(1)/S(22)*t000*t063;
+    J[22] = -S(1)/S(22)*t000*t071;
+    J[23] = -S(1)/S(22)*t000*t074;
     J[24] = T(S(0));
-    J[25] = -S(1)/S(22)*(sin_psi*t036 - cos_psi*t037);
-    J[26] = S(1)/S(22)*(sin_psi*t044 - cos_psi*t043)*t001;
-    J[27] = -S(1)/S(22)*(sin_psi*t052 - cos_psi*t053);
-    J[28] = S(1)/S(22)*(sin_psi*t060 - cos_psi*t061);
-    J[29] = S(1)/S(22)*(cos_psi*t064 + sin_psi*t063);
+    J[25] = -S(1)/S(22)*(sin_psi*t044 - cos_psi*t045);
+    J[26] = S(1)/S(22)*(sin_psi*t053 - cos_psi*t052)*t002;
+    J[27] = -S(1)/S(22)*(sin_psi*t061 - cos_psi*t062);
+    J[28] = S(1)/S(22)*(sin_psi*t069 - cos_psi*t070);
+    J[29] = S(1)/S(22)*(cos_psi*t073 + sin_psi*t072);
     J[30] = T(S(0));
-    J[31] = -t066;
-    J[32] = -(S(3)/S(22)*t040 + S(3)/S(22)*t041 - S(1)/S(22)*cos_theta*t000*t045 - S(5)/S(22)*t042)*t001;
-    J[33] = S(3)/S(22)*t048 + S(5)/S(22)*t051 + sin_theta*theta_dot - S(1)/S(22)*cos_theta*t000*t054 - S(3)/S(22)*t050;
-    J[34] = -(S(3)/S(22)*t056 + S(3)/S(22)*t058 - S(1)/S(22)*cos_theta*t000*t062 - S(5)/S(22)*t059 - phi_dot*sin_theta);
-    J[35] = -(S(9)/S(22)*t006 - S(1)/S(22)*cos_theta*t000*t065 - S(15)/S(22)*t039 - S(9)/S(22)*t009);
+    J[31] = -t075;
+    J[32] = (S(1)/S(22)*t001*t054 + S(5)/S(22)*t051 - S(3)/S(22)*t048 - S(3)/S(22)*t049)*t002;
+    J[33] = S(3)/S(22)*t057 + S(5)/S(22)*t060 + sin_theta*theta_dot - S(1)/S(22)*t001*t063 - S(3)/S(22)*t059;
+    J[34] = S(1)/S(22)*t001*t071 + S(5)/S(22)*t068 + phi_dot*sin_theta - S(3)/S(22)*t065 - S(3)/S(22)*t067;
+    J[35] = S(1)/S(22)*t001*t074 + S(15)/S(22)*t047 + S(9)/S(22)*t012 - S(9)/S(22)*t008;
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -273,7 +283,7 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, phi_ddot, theta_ddot, psi_ddot
 //   J     output, dim 6 x 6 (row-major)
 //   p     parameters
-// Operations (+ - * / and calls): 17482 before lowering, 488 after (166 +-, 315 *, 3 /, 4 calls).
+// Operations (+ - * / and calls): 17482 before lowering, 455 after (163 +-, 285 *, 3 /, 4 calls).
 template <class T>
 void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     using std::cos;
@@ -293,79 +303,89 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T t001 = S(1)/p.L;
     const T t002 = cos_theta*phi_dot;
     const T t003 = psi_dot + t002;
-    const T t004 = phi_dot*sin_psi*sin_theta;
-    const T t005 = cos_psi*theta_dot;
-    const T t006 = t004 + t005;
-    const T t007 = cos_psi*phi_dot*sin_theta;
-    const T t008 = sin_psi*theta_dot;
-    const T t009 = t007 - t008;
-    const T t010 = S(8)*t003 - S(3)*t006 - S(3)*t009;
-    const T t011 = t009*t010;
-    const T t012 = S(3)*t003 + S(3)*t006 - S(8)*t009;
-    const T t013 = (t003*t012 + t011)*p.L + S(6)*(cos_theta - cos_psi*sin_theta)*p.g;
-    const T t014 = S(3)*t003 + S(3)*t009 - S(8)*t006;
-    const T t015 = sin_psi - cos_psi;
-    const T t016 = (t006*t012 - t009*t014)*p.L + S(6)*p.g*sin_theta*t015;
-    const T t017 = t006*t010;
-    const T t018 = (t003*t014 + t017)*p.L + S(6)*(cos_theta - sin_psi*sin_theta)*p.g;
-    const T t019 = S(5)*t013 - S(3)*t016 - S(3)*t018;
-    const T t020 = t002 - psi_dot;
-    const T t021 = S(22)*cos_psi*phi_dot*psi_dot*sin_theta + S(22)*sin_psi*t020*theta_dot + t001*t019;
-    const T t022 = sin_psi*t021;
-    const T t023 = S(3)*t013 - S(3)*t016 - S(5)*t018;
-    const T t024 = S(22)*cos_psi*t020*theta_dot + t001*t023 - S(22)*phi_dot*psi_dot*sin_psi*sin_theta;
-    const T t025 = cos_psi*t024;
-    const T t026 = t022 + t025;
-    const T t027 = cos_theta*t000*t026;
-    const T t028 = cos_psi + sin_psi;
-    const T t029 = S(3)*cos_theta*t028 + S(8)*sin_theta;
-    const T t030 = S(3)*sin_psi - S(8)*cos_psi;
-    const T t031 = S(3)*sin_theta - cos_theta*t030;
-    const T t032 = cos_psi*cos_theta*t010 - sin_theta*t012 - t003*t031 - t009*t029;
-    const T t033 = p.L*phi_dot*t032 - S(6)*(cos_psi*cos_theta + sin_theta)*p.g;
-    const T t034 = cos_psi*t014 - sin_psi*t012;
-    const T t035 = S(8)*sin_psi - S(3)*cos_psi;
-    const T t036 = S(3)*sin_theta + cos_theta*t035;
-    const T t037 = S(6)*cos_theta*p.g*t015 - (cos_theta*t034 + t006*t031 - t009*t036)*p.L*phi_dot;
-    const T t038 = cos_theta*sin_psi*t010 - sin_theta*t014 - t003*t036 - t006*t029;
-    const T t039 = p.L*phi_dot*t038 - S(6)*(cos_theta*sin_psi + sin_theta)*p.g;
-    const T t040 = S(22)*(cos_psi*sin_theta*theta_dot + cos_theta*psi_dot*sin_psi)*phi_dot - (S(3)*t033 - S(3)*t037 - S(5)*t039)*t001;
-    const T t041 = S(22)*(sin_psi*sin_theta*theta_dot - cos_psi*cos_theta*psi_dot)*phi_dot - (S(5)*t033 - S(3)*t037 - S(3)*t039)*t001;
-    const T t042 = (cos_psi*t040 + sin_psi*t041 + t027)*t000;
-    const T t043 = t006 - t009;
-    const T t044 = S(6)*p.g*sin_psi*sin_theta - (t017 - (S(3)*t009 + S(8)*t006)*t003 - S(3)*t009*t043)*p.L;
-    const T t045 = S(6)*cos_psi*p.g*sin_theta - (S(3)*t006*t043 + t011 - (S(3)*t006 + S(8)*t009)*t003)*p.L;
-    const T t046 = ((S(3)*t003 + S(6)*t006)*t009 + (S(3)*t003 + S(6)*t009)*t006)*p.L + S(6)*p.g*sin_theta*t028;
-    const T t047 = (S(3)*t045 + S(5)*t044 - S(3)*t046) - t023;
-    const T t048 = (S(3)*t044 + S(5)*t045 - S(3)*t046) + t019;
-    const T t049 = cos_psi*t048 + sin_psi*t047;
-    const T t050 = S(3)*cos_theta - sin_theta*t035;
-    const T t051 = S(8)*cos_theta - S(3)*sin_theta*t028;
-    const T t052 = cos_theta*t014 + sin_psi*sin_theta*t010 + t003*t050 + t006*t051;
-    const T t053 = S(3)*cos_theta + sin_theta*t030;
-    const T t054 = cos_psi*sin_theta*t010 + cos_theta*t012 + t003*t053 + t009*t051;
-    const T t055 = t006*t053 - sin_theta*t034 - t009*t050;
-    const T t056 = S(22)*psi_dot*sin_psi*sin_theta + S(3)*t055 + S(5)*t052 - S(22)*cos_psi*cos_theta*theta_dot - S(3)*t054;
-    const T t057 = S(3)*t052 + S(3)*t055 - S(22)*cos_psi*psi_dot*sin_theta - S(22)*cos_theta*sin_psi*theta_dot - S(5)*t054;
-    const T t058 = cos_psi*t056 + sin_psi*t057;
-    const T t059 = S(3)*cos_psi + S(8)*sin_psi;
-    const T t060 = S(3)*t009*t015 + t003*t059 - sin_psi*t010;
-    const T t061 = S(3)*sin_psi + S(8)*cos_psi;
-    const T t062 = t003*t061 - S(3)*t006*t015 - cos_psi*t010;
-    const T t063 = cos_psi*t012 + sin_psi*t014 + t006*t059 + t009*t061;
-    const T t064 = S(22)*cos_psi*t020 + S(3)*t060 + S(5)*t062 - S(3)*t063;
-    const T t065 = S(22)*sin_psi*t020 + S(3)*t062 + S(5)*t060 - S(3)*t063;
-    const T t066 = cos_psi*t064 + sin_psi*t065;
-    const T t067 = S(18)*t003 + S(9)*t009 - S(15)*(S(2)*t003 + t009) - S(22)*t004 - S(22)*t005;
-    const T t068 = S(18)*t003 + S(22)*t008 + S(9)*t006 - S(15)*(S(2)*t003 + t006) - S(22)*t007;
-    const T t069 = cos_psi*t067 - sin_psi*t068;
-    const T t070 = (S(3)/S(22)*t033 - S(3)/S(22)*t039 - S(5)/S(22)*t037)*t001 + S(1)/S(22)*t022 + S(1)/S(22)*t025 - (phi_dot*theta_dot - S(1)/S(22)*t042)*cos_theta;
+    const T t004 = sin_psi*sin_theta;
+    const T t005 = phi_dot*t004;
+    const T t006 = cos_psi*theta_dot;
+    const T t007 = t005 + t006;
+    const T t008 = cos_psi*sin_theta;
+    const T t009 = phi_dot*t008;
+    const T t010 = sin_psi*theta_dot;
+    const T t011 = t009 - t010;
+    const T t012 = S(8)*t003 - S(3)*t007 - S(3)*t011;
+    const T t013 = t011*t012;
+    const T t014 = S(3)*t003 + S(3)*t007 - S(8)*t011;
+    const T t015 = (t003*t014 + t013)*p.L + S(6)*(cos_theta - t008)*p.g;
+    const T t016 = S(3)*t003 + S(3)*t011 - S(8)*t007;
+    const T t017 = sin_psi - cos_psi;
+    const T t018 = p.g*t017;
+    const T t019 = (t007*t014 - t011*t016)*p.L + S(6)*sin_theta*t018;
+    const T t020 = t007*t012;
+    const T t021 = (t003*t016 + t020)*p.L + S(6)*(cos_theta - t004)*p.g;
+    const T t022 = S(5)*t015 - S(3)*t019 - S(3)*t021;
+    const T t023 = t002 - psi_dot;
+    const T t024 = t023*theta_dot;
+    const T t025 = S(22)*psi_dot*t009 + S(22)*sin_psi*t024 + t001*t022;
+    const T t026 = sin_psi*t025;
+    const T t027 = S(3)*t015 - S(3)*t019 - S(5)*t021;
+    const T t028 = S(22)*cos_psi*t024 + t001*t027 - S(22)*psi_dot*t005;
+    const T t029 = cos_psi*t028;
+    const T t030 = t026 + t029;
+    const T t031 = cos_theta*t000;
+    const T t032 = t030*t031;
+    const T t033 = sin_theta*theta_dot;
+    const T t034 = cos_theta*sin_psi;
+    const T t035 = cos_psi*cos_theta;
+    const T t036 = cos_psi + sin_psi;
+    const T t037 = S(3)*cos_theta*t036 + S(8)*sin_theta;
+    const T t038 = S(3)*sin_psi - S(8)*cos_psi;
+    const T t039 = S(3)*sin_theta - cos_theta*t038;
+    const T t040 = p.L*phi_dot;
+    const T t041 = (t012*t035 - sin_theta*t014 - t003*t039 - t011*t037)*t040;
+    const T t042 = t041 - S(6)*(sin_theta + t035)*p.g;
+    const T t043 = cos_psi*t016 - sin_psi*t014;
+    const T t044 = S(8)*sin_psi - S(3)*cos_psi;
+    const T t045 = S(3)*sin_theta + cos_theta*t044;
+    const T t046 = S(6)*cos_theta*t018 - (cos_theta*t043 + t007*t039 - t011*t045)*t040;
+    const T t047 = (t012*t034 - sin_theta*t016 - t003*t045 - t007*t037)*t040;
+    const T t048 = t047 - S(6)*(sin_theta + t034)*p.g;
+    const T t049 = S(22)*(psi_dot*t034 + t008*theta_dot)*phi_dot - (S(3)*t042 - S(3)*t046 - S(5)*t048)*t001;
+    const T t050 = S(22)*(t004*theta_dot - psi_dot*t035)*phi_dot - (S(5)*t042 - S(3)*t046 - S(3)*t048)*t001;
+    const T t051 = (cos_psi*t049 + sin_psi*t050 + t032)*t000;
+    const T t052 = t007 - t011;
+    const T t053 = S(6)*p.g*t004 - (t020 - (S(3)*t011 + S(8)*t007)*t003 - S(3)*t011*t052)*p.L;
+    const T t054 = S(6)*p.g*t008 - (S(3)*t007*t052 + t013 - (S(3)*t007 + S(8)*t011)*t003)*p.L;
+    const T t055 = sin_theta*t036;
+    const T t056 = ((S(3)*t003 + S(6)*t007)*t011 + (S(3)*t003 + S(6)*t011)*t007)*p.L + S(6)*p.g*t055;
+    const T t057 = S(3)*t054 + S(5)*t053 - S(3)*t056 - t027;
+    const T t058 = S(3)*t053 + S(5)*t054 + t022 - S(3)*t056;
+    const T t059 = cos_psi*t058 + sin_psi*t057;
+    const T t060 = S(3)*cos_theta - sin_theta*t044;
+    const T t061 = S(8)*cos_theta - S(3)*t055;
+    const T t062 = cos_theta*t016 + t003*t060 + t004*t012 + t007*t061;
+    const T t063 = S(3)*cos_theta + sin_theta*t038;
+    const T t064 = cos_theta*t014 + t003*t063 + t008*t012 + t011*t061;
+    const T t065 = t007*t063 - sin_theta*t043 - t011*t060;
+    const T t066 = S(22)*psi_dot*t004 + S(3)*t065 + S(5)*t062 - S(22)*t035*theta_dot - S(3)*t064;
+    const T t067 = S(3)*t062 + S(3)*t065 - S(22)*psi_dot*t008 - S(22)*t034*theta_dot - S(5)*t064;
+    const T t068 = cos_psi*t066 + sin_psi*t067;
+    const T t069 = S(3)*cos_psi + S(8)*sin_psi;
+    const T t070 = S(3)*t011*t017 + t003*t069 - sin_psi*t012;
+    const T t071 = S(3)*sin_psi + S(8)*cos_psi;
+    const T t072 = t003*t071 - S(3)*t007*t017 - cos_psi*t012;
+    const T t073 = cos_psi*t014 + sin_psi*t016 + t007*t069 + t011*t071;
+    const T t074 = S(22)*cos_psi*t023 + S(3)*t070 + S(5)*t072 - S(3)*t073;
+    const T t075 = S(22)*sin_psi*t023 + S(3)*t072 + S(5)*t070 - S(3)*t073;
+    const T t076 = cos_psi*t074 + sin_psi*t075;
+    const T t077 = S(18)*t003 + S(9)*t011 - S(15)*t011 - S(22)*t005 - S(22)*t006 - S(30)*t003;
+    const T t078 = S(18)*t003 + S(22)*t010 + S(9)*t007 - S(15)*t007 - S(22)*t009 - S(30)*t003;
+    const T t079 = cos_psi*t077 - sin_psi*t078;
+    const T t080 = (S(3)/S(22)*t042 - S(3)/S(22)*t048 - S(5)/S(22)*t046)*t001 + S(1)/S(22)*t026 + S(1)/S(22)*t029 - (phi_dot*theta_dot - S(1)/S(22)*t051)*cos_theta;
     dydt[0] = phi_dot;
     dydt[1] = theta_dot;
     dydt[2] = psi_dot;
-    dydt[3] = -S(1)/S(22)*t000*t026;
-    dydt[4] = -S(1)/S(22)*(cos_psi*t021 - sin_psi*t024);
-    dydt[5] = S(1)/S(22)*t027 + phi_dot*sin_theta*theta_dot - (S(3)/S(22)*t013 - S(3)/S(22)*t018 - S(5)/S(22)*t016)*t001;
+    dydt[3] = -S(1)/S(22)*t000*t030;
+    dydt[4] = -S(1)/S(22)*(cos_psi*t025 - sin_psi*t028);
+    dydt[5] = S(1)/S(22)*t032 + phi_dot*t033 - (S(3)/S(22)*t015 - S(3)/S(22)*t021 - S(5)/S(22)*t019)*t001;
     J[0] = T(S(0));
     J[1] = T(S(0));
     J[2] = T(S(0));
@@ -385,29 +405,29 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     J[16] = T(S(0));
     J[17] = T(S(1));
     J[18] = T(S(0));
-    J[19] = S(1)/S(22)*t042;
-    J[20] = -S(1)/S(22)*t049/(p.L*sin_theta);
-    J[21] = S(1)/S(22)*t000*t058;
-    J[22] = -S(1)/S(22)*t000*t066;
-    J[23] = -S(1)/S(22)*t000*t069;
+    J[19] = S(1)/S(22)*t051;
+    J[20] = -S(1)/S(22)*t059/(p.L*sin_theta);
+    J[21] = S(1)/S(22)*t000*t068;
+    J[22] = -S(1)/S(22)*t000*t076;
+    J[23] = -S(1)/S(22)*t000*t079;
     J[24] = T(S(0));
-    J[25] = -S(1)/S(22)*(sin_psi*t040 - cos_psi*t041);
-    J[26] = S(1)/S(22)*(sin_psi*t048 - cos_psi*t047)*t001;
-    J[27] = -S(1)/S(22)*(sin_psi*t056 - cos_psi*t057);
-    J[28] = S(1)/S(22)*(sin_psi*t064 - cos_psi*t065);
-    J[29] = S(1)/S(22)*(cos_psi*t068 + sin_psi*t067);
+    J[25] = -S(1)/S(22)*(sin_psi*t049 - cos_psi*t050);
+    J[26] = S(1)/S(22)*(sin_psi*t058 - cos_psi*t057)*t001;
+    J[27] = -S(1)/S(22)*(sin_psi*t066 - cos_psi*t067);
+    J[28] = S(1)/S(22)*(sin_psi*t074 - cos_psi*t075);
+    J[29] = S(1)/S(22)*(cos_psi*t078 + sin_psi*t077);
     J[30] = T(S(0));
-    J[31] = -t070;
-    J[32] = -(S(3)/S(22)*t044 + S(3)/S(22)*t045 - S(1)/S(22)*cos_theta*t000*t049 - S(5)/S(22)*t046)*t001;
-    J[33] = S(3)/S(22)*t052 + S(5)/S(22)*t055 + sin_theta*theta_dot - S(1)/S(22)*cos_theta*t000*t058 - S(3)/S(22)*t054;
-    J[34] = -(S(3)/S(22)*t060 + S(3)/S(22)*t062 - S(1)/S(22)*cos_theta*t000*t066 - S(5)/S(22)*t063 - phi_dot*sin_theta);
-    J[35] = -(S(9)/S(22)*t006 - S(1)/S(22)*cos_theta*t000*t069 - S(15)/S(22)*t043 - S(9)/S(22)*t009);
+    J[31] = -t080;
+    J[32] = (S(1)/S(22)*t031*t059 + S(5)/S(22)*t056 - S(3)/S(22)*t053 - S(3)/S(22)*t054)*t001;
+    J[33] = S(3)/S(22)*t062 + S(5)/S(22)*t065 + t033 - S(1)/S(22)*t031*t068 - S(3)/S(22)*t064;
+    J[34] = S(1)/S(22)*t031*t076 + S(5)/S(22)*t073 + phi_dot*sin_theta - S(3)/S(22)*t070 - S(3)/S(22)*t072;
+    J[35] = S(1)/S(22)*t031*t079 + S(15)/S(22)*t052 + S(9)/S(22)*t011 - S(9)/S(22)*t007;
 }
 
 // The energy T + V (conserved without damping and driving torques).
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   p     parameters
-// Operations (+ - * / and calls): 140 before lowering, 45 after (15 +-, 26 *, 0 /, 4 calls).
+// Operations (+ - * / and calls): 140 before lowering, 44 after (15 +-, 25 *, 0 /, 4 calls).
 template <class T>
 T energy(const T* y, const params<T>& p) {
     using std::cos;
@@ -423,18 +443,19 @@ T energy(const T* y, const params<T>& p) {
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
     const T t000 = cos_theta*phi_dot + psi_dot;
-    const T t001 = cos_psi*theta_dot + phi_dot*sin_psi*sin_theta;
-    const T t002 = cos_psi*phi_dot*sin_theta - sin_psi*theta_dot;
-    const T t003 = (S(3)*t000 + S(3)*t001 - S(8)*t002)*t002 + (S(3)*t000 + S(3)*t002 - S(8)*t001)*t001 - (S(8)*t000 - S(3)*t001 - S(3)*t002)*t000;
-    const T t004 = (S(1)/S(24)*p.L*t003 - S(1)/S(2)*((cos_psi + sin_psi)*sin_theta + cos_theta)*p.g)*p.L*p.M;
-    return -t004;
+    const T t001 = phi_dot*sin_theta;
+    const T t002 = cos_psi*theta_dot + sin_psi*t001;
+    const T t003 = cos_psi*t001 - sin_psi*theta_dot;
+    const T t004 = (S(3)*t000 + S(3)*t002 - S(8)*t003)*t003 + (S(3)*t000 + S(3)*t003 - S(8)*t002)*t002 - (S(8)*t000 - S(3)*t002 - S(3)*t003)*t000;
+    const T t005 = (S(1)/S(24)*p.L*t004 - S(1)/S(2)*((cos_psi + sin_psi)*sin_theta + cos_theta)*p.g)*p.L*p.M;
+    return -t005;
 }
 
 // The conjugate momenta p = dL/dq_dot (5.74)-(5.76).
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   momentum output, dim 3: p_phi, p_theta, p_psi
 //   p     parameters
-// Operations (+ - * / and calls): 208 before lowering, 54 after (16 +-, 34 *, 0 /, 4 calls).
+// Operations (+ - * / and calls): 208 before lowering, 50 after (15 +-, 31 *, 0 /, 4 calls).
 template <class T>
 void momenta(const T* y, T* momentum, const params<T>& p) {
     using std::cos;
@@ -449,23 +470,24 @@ void momenta(const T* y, T* momentum, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    const T t000 = p.L*p.L;
+    const T t000 = p.L*p.L*p.M;
     const T t001 = cos_theta*phi_dot + psi_dot;
-    const T t002 = cos_psi*theta_dot + phi_dot*sin_psi*sin_theta;
-    const T t003 = cos_psi*phi_dot*sin_theta - sin_psi*theta_dot;
-    const T t004 = S(3)*t001 + S(3)*t003 - S(8)*t002;
-    const T t005 = S(3)*t001 + S(3)*t002 - S(8)*t003;
-    const T t006 = (cos_psi*t005 + sin_psi*t004)*sin_theta - (S(8)*t001 - S(3)*t002 - S(3)*t003)*cos_theta;
-    momentum[0] = -S(1)/S(12)*p.M*t000*t006;
-    momentum[1] = -S(1)/S(12)*(cos_psi*t004 - sin_psi*t005)*p.M*t000;
-    momentum[2] = (S(2)/S(3)*t001 - S(1)/S(4)*t002 - S(1)/S(4)*t003)*p.M*t000;
+    const T t002 = phi_dot*sin_theta;
+    const T t003 = cos_psi*theta_dot + sin_psi*t002;
+    const T t004 = cos_psi*t002 - sin_psi*theta_dot;
+    const T t005 = S(3)*t001 + S(3)*t004 - S(8)*t003;
+    const T t006 = S(3)*t001 + S(3)*t003 - S(8)*t004;
+    const T t007 = (cos_psi*t006 + sin_psi*t005)*sin_theta - (S(8)*t001 - S(3)*t003 - S(3)*t004)*cos_theta;
+    momentum[0] = -S(1)/S(12)*t000*t007;
+    momentum[1] = S(1)/S(12)*(sin_psi*t006 - cos_psi*t005)*t000;
+    momentum[2] = (S(2)/S(3)*t001 - S(1)/S(4)*t003 - S(1)/S(4)*t004)*t000;
 }
 
 // The mass matrix M(q) = J^T I J of the Euler-angle rates, row-major (p = M q_dot).
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   M     output, dim 3 x 3 (row-major): M11, M12, M13, M21, M22, M23, M31, M32, M33
 //   p     parameters
-// Operations (+ - * / and calls): 182 before lowering, 45 after (10 +-, 31 *, 0 /, 4 calls).
+// Operations (+ - * / and calls): 182 before lowering, 39 after (9 +-, 26 *, 0 /, 4 calls).
 template <class T>
 void mass_matrix(const T* y, T* M, const params<T>& p) {
     using std::cos;
@@ -477,31 +499,30 @@ void mass_matrix(const T* y, T* M, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    const T t000 = p.L*p.L;
-    const T t001 = cos_psi*sin_psi;
-    const T t002 = cos_psi + sin_psi;
-    const T t003 = S(2)/S(3)*cos_theta*cos_theta - ((S(1)/S(2)*t001 - S(2)/S(3))*sin_theta + S(1)/S(2)*cos_theta*t002)*sin_theta;
+    const T t000 = cos_psi*sin_psi;
+    const T t001 = cos_psi + sin_psi;
+    const T t002 = S(2)/S(3)*cos_theta*cos_theta - ((S(1)/S(2)*t000 - S(2)/S(3))*sin_theta + S(1)/S(2)*cos_theta*t001)*sin_theta;
+    const T t003 = p.L*p.L*p.M;
     const T t004 = sin_psi - cos_psi;
-    const T t005 = ((S(1)/S(2)*cos_psi*cos_psi - S(1)/S(4))*sin_theta - S(1)/S(4)*cos_theta*t004)*p.M*t000;
-    const T t006 = -t005;
-    const T t007 = (S(2)/S(3)*cos_theta - S(1)/S(4)*sin_theta*t002)*p.M*t000;
-    const T t008 = S(1)/S(4)*p.M*t000*t004;
-    M[0] = p.M*t000*t003;
-    M[1] = t006;
-    M[2] = t007;
-    M[3] = t006;
-    M[4] = (S(1)/S(2)*t001 + S(2)/S(3))*p.M*t000;
-    M[5] = t008;
-    M[6] = t007;
-    M[7] = t008;
-    M[8] = S(2)/S(3)*p.M*t000;
+    const T t005 = (S(1)/S(4)*cos_theta*t004 - (S(1)/S(2)*cos_psi*cos_psi - S(1)/S(4))*sin_theta)*t003;
+    const T t006 = (S(2)/S(3)*cos_theta - S(1)/S(4)*sin_theta*t001)*t003;
+    const T t007 = S(1)/S(4)*t003*t004;
+    M[0] = t002*t003;
+    M[1] = t005;
+    M[2] = t006;
+    M[3] = t005;
+    M[4] = (S(1)/S(2)*t000 + S(2)/S(3))*t003;
+    M[5] = t007;
+    M[6] = t006;
+    M[7] = t007;
+    M[8] = S(2)/S(3)*t003;
 }
 
 // The body angular velocity (5.30).
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   w     output, dim 3: omega1, omega2, omega3
 //   p     parameters
-// Operations (+ - * / and calls): 17 before lowering, 14 after (3 +-, 7 *, 0 /, 4 calls).
+// Operations (+ - * / and calls): 17 before lowering, 13 after (3 +-, 6 *, 0 /, 4 calls).
 template <class T>
 void omega(const T* y, T* w, const params<T>& p) {
     using std::cos;
@@ -516,8 +537,9 @@ void omega(const T* y, T* w, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    w[0] = cos_psi*theta_dot + phi_dot*sin_psi*sin_theta;
-    w[1] = cos_psi*phi_dot*sin_theta - sin_psi*theta_dot;
+    const T t000 = phi_dot*sin_theta;
+    w[0] = cos_psi*theta_dot + sin_psi*t000;
+    w[1] = cos_psi*t000 - sin_psi*theta_dot;
     w[2] = cos_theta*phi_dot + psi_dot;
 }
 
@@ -525,7 +547,7 @@ void omega(const T* y, T* w, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   A     output, dim 3 x 3 (row-major): A11, A12, A13, A21, A22, A23, A31, A32, A33
 //   p     parameters
-// Operations (+ - * / and calls): 49 before lowering, 29 after (7 +-, 16 *, 0 /, 6 calls).
+// Operations (+ - * / and calls): 49 before lowering, 26 after (6 +-, 14 *, 0 /, 6 calls).
 template <class T>
 void rotation(const T* y, T* A, const params<T>& p) {
     using std::cos;
@@ -540,11 +562,13 @@ void rotation(const T* y, T* A, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    A[0] = cos_phi*cos_psi - cos_theta*sin_phi*sin_psi;
-    A[1] = cos_phi*cos_theta*sin_psi + cos_psi*sin_phi;
+    const T t000 = cos_theta*sin_phi;
+    const T t001 = cos_phi*cos_theta;
+    A[0] = cos_phi*cos_psi - sin_psi*t000;
+    A[1] = cos_psi*sin_phi + sin_psi*t001;
     A[2] = sin_psi*sin_theta;
-    A[3] = -(cos_phi*sin_psi + cos_psi*cos_theta*sin_phi);
-    A[4] = -(sin_phi*sin_psi - cos_phi*cos_psi*cos_theta);
+    A[3] = -cos_phi*sin_psi - cos_psi*t000;
+    A[4] = cos_psi*t001 - sin_phi*sin_psi;
     A[5] = cos_psi*sin_theta;
     A[6] = sin_phi*sin_theta;
     A[7] = -cos_phi*sin_theta;

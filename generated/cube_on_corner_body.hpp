@@ -21,14 +21,14 @@
 // Parameters (params<T>, defaults from the model file): M = 1.0, L = 0.2, g = 9.81.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 644 -> 105 (15 temporaries)
-//   jacobian: 2433 -> 255 (42 temporaries)
-//   rhs_and_jacobian: 3077 -> 338 (51 temporaries)
+//   rhs: 644 -> 102 (15 temporaries)
+//   jacobian: 2433 -> 227 (39 temporaries)
+//   rhs_and_jacobian: 3077 -> 308 (49 temporaries)
 //   energy: 98 -> 49 (7 temporaries)
-//   momenta: 42 -> 24 (1 temporaries)
+//   momenta: 42 -> 20 (1 temporaries)
 //   mass_matrix: 27 -> 5 (3 temporaries)
 //   omega: 0 -> 0 (0 temporaries)
-//   rotation: 117 -> 49 (11 temporaries)
+//   rotation: 117 -> 44 (11 temporaries)
 //
 // Self-contained: includes <array>, <cmath> and <cstddef> only. Every function is a template on the
 // scalar type T (float, double, long double, Eigen array batches such as Eigen::Array<double, 4, 1>,
@@ -103,7 +103,7 @@ constexpr std::array<unsigned char, 49> jacobian_pattern{{
 //   y     state, dim 7: (qw, qx, qy, qz, omega1, omega2, omega3)
 //   dydt  output, dim 7: qw_dot, qx_dot, qy_dot, qz_dot, omega1_dot, omega2_dot, omega3_dot
 //   p     parameters
-// Operations (+ - * / and calls): 644 before lowering, 105 after (38 +-, 65 *, 2 /, 0 calls).
+// Operations (+ - * / and calls): 644 before lowering, 102 after (38 +-, 62 *, 2 /, 0 calls).
 template <class T>
 void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     using S = typename detail::scalar_of<T>::type;
@@ -121,14 +121,14 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     const T t003 = qz*qz;
     const T t004 = qy*qy;
     const T t005 = qw*qw;
-    const T t006 = S(1)/(t002 + t003 + t004 + t005);
+    const T t006 = p.g/(t002 + t003 + t004 + t005);
     const T t007 = qw*qx + qy*qz;
     const T t008 = qw*qy - qx*qz;
-    const T t009 = (omega1*t001 + omega2*t000)*p.L - S(12)*(t007 + t008)*p.g*t006;
+    const T t009 = (omega1*t001 + omega2*t000)*p.L - S(12)*(t007 + t008)*t006;
     const T t010 = S(3)*omega1 + S(3)*omega2 - S(8)*omega3;
     const T t011 = t002 + t004 - t003 - t005;
-    const T t012 = (omega1*t010 + omega3*t000)*p.L + S(6)*(t011 - S(2)*t008)*p.g*t006;
-    const T t013 = (omega3*t001 - omega2*t010)*p.L - S(6)*(S(2)*t007 + t011)*p.g*t006;
+    const T t012 = (omega1*t010 + omega3*t000)*p.L + S(6)*(t011 - S(2)*t008)*t006;
+    const T t013 = (omega3*t001 - omega2*t010)*p.L - S(6)*(S(2)*t007 + t011)*t006;
     const T t014 = S(1)/p.L;
     dydt[0] = -S(1)/S(2)*(omega1*qx + omega2*qy + omega3*qz);
     dydt[1] = S(1)/S(2)*(omega1*qw + omega3*qy - omega2*qz);
@@ -144,7 +144,7 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
 //   y     state, dim 7: (qw, qx, qy, qz, omega1, omega2, omega3)
 //   J     output, dim 7 x 7 (row-major); structural zeros in jacobian_pattern
 //   p     parameters
-// Operations (+ - * / and calls): 2433 before lowering, 255 after (105 +-, 148 *, 2 /, 0 calls).
+// Operations (+ - * / and calls): 2433 before lowering, 227 after (93 +-, 132 *, 2 /, 0 calls).
 template <class T>
 void jacobian(T t, const T* y, T* J, const params<T>& p) {
     using S = typename detail::scalar_of<T>::type;
@@ -177,27 +177,24 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T t018 = (t016 - S(2)*t017)*t015;
     const T t019 = S(1) + t018;
     const T t020 = qw*qx + qy*qz;
-    const T t021 = t017 + t020;
-    const T t022 = t015*t021;
-    const T t023 = S(18)/S(11)*t019 + S(36)/S(11)*t022;
-    const T t024 = (S(2)*t020 + t016)*t015;
-    const T t025 = S(1) + t024;
-    const T t026 = qx - qw*t025;
-    const T t027 = S(1)/(p.L*t014);
-    const T t028 = t024 - S(1);
-    const T t029 = qx*t028 - qw;
-    const T t030 = t018 - S(1);
-    const T t031 = S(18)/S(11)*t030 + S(36)/S(11)*t022;
-    const T t032 = qy*t028 - qz;
-    const T t033 = qz*t025 - qy;
-    const T t034 = S(18)/S(11)*t025 - S(36)/S(11)*t022;
-    const T t035 = qw*t019 + qy;
-    const T t036 = S(18)/S(11)*t028 - S(36)/S(11)*t022;
-    const T t037 = qx*t030 - qz;
-    const T t038 = qw + qy*t030;
-    const T t039 = qx - qz*t019;
-    const T t040 = -(S(18)/S(11)*t029 + S(30)/S(11)*(qw - S(2)*qx*t015*t021 - qz) - S(18)/S(11)*t037)*p.g*t027;
-    const T t041 = -(S(18)/S(11)*t033 + S(18)/S(11)*t039 + S(30)/S(11)*(qy - S(2)*qz*t015*t021 - qx))*p.g*t027;
+    const T t021 = (t017 + t020)*t015;
+    const T t022 = S(18)/S(11)*t019 + S(36)/S(11)*t021;
+    const T t023 = (S(2)*t020 + t016)*t015;
+    const T t024 = S(1) + t023;
+    const T t025 = qx - qw*t024;
+    const T t026 = p.g/(p.L*t014);
+    const T t027 = t023 - S(1);
+    const T t028 = qx*t027 - qw;
+    const T t029 = t018 - S(1);
+    const T t030 = S(18)/S(11)*t029 + S(36)/S(11)*t021;
+    const T t031 = qy*t027 - qz;
+    const T t032 = qz*t024 - qy;
+    const T t033 = S(18)/S(11)*t024 - S(36)/S(11)*t021;
+    const T t034 = qw*t019 + qy;
+    const T t035 = S(18)/S(11)*t027 - S(36)/S(11)*t021;
+    const T t036 = qx*t029 - qz;
+    const T t037 = qw + qy*t029;
+    const T t038 = qx - qz*t019;
     J[0] = T(S(0));
     J[1] = t000;
     J[2] = t001;
@@ -226,27 +223,27 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     J[25] = t004;
     J[26] = S(1)/S(2)*qx;
     J[27] = t008;
-    J[28] = -(S(18)/S(11)*qx - S(30)/S(11)*t026 - qw*t023)*p.g*t027;
-    J[29] = -(S(18)/S(11)*qw + S(30)/S(11)*t029 - qx*t031)*p.g*t027;
-    J[30] = -(S(18)/S(11)*qz + S(30)/S(11)*t032 - qy*t031)*p.g*t027;
-    J[31] = -(S(18)/S(11)*qy + S(30)/S(11)*t033 - qz*t023)*p.g*t027;
+    J[28] = (S(30)/S(11)*t025 + qw*t022 - S(18)/S(11)*qx)*t026;
+    J[29] = (qx*t030 - S(18)/S(11)*qw - S(30)/S(11)*t028)*t026;
+    J[30] = (qy*t030 - S(18)/S(11)*qz - S(30)/S(11)*t031)*t026;
+    J[31] = (qz*t022 - S(18)/S(11)*qy - S(30)/S(11)*t032)*t026;
     J[32] = S(9)/S(22)*omega3 - S(15)/S(22)*(omega3 - omega2) - S(9)/S(22)*omega2;
-    J[33] = -(S(9)/S(11)*omega2 + S(9)/S(22)*omega1 - S(15)/S(22)*(S(2)*omega2 + omega1));
-    J[34] = S(9)/S(11)*omega3 + S(9)/S(22)*omega1 - S(15)/S(22)*(S(2)*omega3 + omega1);
-    J[35] = -(S(18)/S(11)*qy + qw*t034 - S(30)/S(11)*t035)*p.g*t027;
-    J[36] = -(qx*t036 - S(18)/S(11)*qz - S(30)/S(11)*t037)*p.g*t027;
-    J[37] = (S(30)/S(11)*t038 - S(18)/S(11)*qw - qy*t036)*p.g*t027;
-    J[38] = -(S(30)/S(11)*t039 + qz*t034 - S(18)/S(11)*qx)*p.g*t027;
-    J[39] = S(9)/S(11)*omega1 + S(9)/S(22)*omega2 - S(15)/S(22)*(S(2)*omega1 + omega2);
+    J[33] = S(15)/S(11)*omega2 + S(15)/S(22)*omega1 - S(9)/S(11)*omega2 - S(9)/S(22)*omega1;
+    J[34] = S(9)/S(11)*omega3 + S(9)/S(22)*omega1 - S(15)/S(11)*omega3 - S(15)/S(22)*omega1;
+    J[35] = (S(30)/S(11)*t034 - S(18)/S(11)*qy - qw*t033)*t026;
+    J[36] = (S(18)/S(11)*qz + S(30)/S(11)*t036 - qx*t035)*t026;
+    J[37] = (S(30)/S(11)*t037 - S(18)/S(11)*qw - qy*t035)*t026;
+    J[38] = (S(18)/S(11)*qx - S(30)/S(11)*t038 - qz*t033)*t026;
+    J[39] = S(9)/S(11)*omega1 + S(9)/S(22)*omega2 - S(15)/S(11)*omega1 - S(15)/S(22)*omega2;
     J[40] = S(9)/S(22)*omega1 - S(15)/S(22)*(omega1 - omega3) - S(9)/S(22)*omega3;
-    J[41] = -(S(9)/S(11)*omega3 + S(9)/S(22)*omega2 - S(15)/S(22)*(S(2)*omega3 + omega2));
-    J[42] = (S(18)/S(11)*t026 + S(18)/S(11)*t035 + S(30)/S(11)*(S(2)*qw*t015*t021 - qx - qy))*p.g*t027;
-    J[43] = t040;
-    J[44] = (S(18)/S(11)*t038 + S(30)/S(11)*(S(2)*qy*t015*t021 - qw - qz) - S(18)/S(11)*t032)*p.g*t027;
-    J[45] = t041;
-    J[46] = -(S(9)/S(11)*omega1 + S(9)/S(22)*omega3 - S(15)/S(22)*(S(2)*omega1 + omega3));
-    J[47] = S(9)/S(11)*omega2 + S(9)/S(22)*omega3 - S(15)/S(22)*(S(2)*omega2 + omega3);
-    J[48] = -(S(9)/S(22)*omega1 - S(15)/S(22)*(omega1 - omega2) - S(9)/S(22)*omega2);
+    J[41] = S(15)/S(11)*omega3 + S(15)/S(22)*omega2 - S(9)/S(11)*omega3 - S(9)/S(22)*omega2;
+    J[42] = (S(18)/S(11)*t025 + S(18)/S(11)*t034 + S(30)/S(11)*(S(2)*qw*t021 - qx - qy))*t026;
+    J[43] = (S(18)/S(11)*t036 - S(18)/S(11)*t028 - S(30)/S(11)*(qw - S(2)*qx*t021 - qz))*t026;
+    J[44] = (S(18)/S(11)*t037 + S(30)/S(11)*(S(2)*qy*t021 - qw - qz) - S(18)/S(11)*t031)*t026;
+    J[45] = (-S(18)/S(11)*t032 - S(18)/S(11)*t038 - S(30)/S(11)*(qy - S(2)*qz*t021 - qx))*t026;
+    J[46] = S(15)/S(11)*omega1 + S(15)/S(22)*omega3 - S(9)/S(11)*omega1 - S(9)/S(22)*omega3;
+    J[47] = S(9)/S(11)*omega2 + S(9)/S(22)*omega3 - S(15)/S(11)*omega2 - S(15)/S(22)*omega3;
+    J[48] = S(15)/S(22)*(omega1 - omega2) + S(9)/S(22)*omega2 - S(9)/S(22)*omega1;
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -255,7 +252,7 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   dydt  output, dim 7: qw_dot, qx_dot, qy_dot, qz_dot, omega1_dot, omega2_dot, omega3_dot
 //   J     output, dim 7 x 7 (row-major)
 //   p     parameters
-// Operations (+ - * / and calls): 3077 before lowering, 338 after (132 +-, 203 *, 3 /, 0 calls).
+// Operations (+ - * / and calls): 3077 before lowering, 308 after (120 +-, 185 *, 3 /, 0 calls).
 template <class T>
 void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     using S = typename detail::scalar_of<T>::type;
@@ -277,103 +274,101 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T t007 = S(1)/t006;
     const T t008 = qw*qx + qy*qz;
     const T t009 = qw*qy - qx*qz;
-    const T t010 = t008 + t009;
-    const T t011 = (omega1*t001 + omega2*t000)*p.L - S(12)*p.g*t007*t010;
+    const T t010 = (t008 + t009)*t007;
+    const T t011 = (omega1*t001 + omega2*t000)*p.L - S(12)*p.g*t010;
     const T t012 = S(3)*omega1 + S(3)*omega2 - S(8)*omega3;
-    const T t013 = t002 + t004 - t003 - t005;
-    const T t014 = t013 - S(2)*t009;
-    const T t015 = (omega1*t012 + omega3*t000)*p.L + S(6)*p.g*t007*t014;
-    const T t016 = S(2)*t008 + t013;
-    const T t017 = (omega3*t001 - omega2*t012)*p.L - S(6)*p.g*t007*t016;
-    const T t018 = S(1)/p.L;
-    const T t019 = -S(1)/S(2)*omega1;
-    const T t020 = -S(1)/S(2)*omega2;
-    const T t021 = -S(1)/S(2)*omega3;
-    const T t022 = -S(1)/S(2)*qx;
-    const T t023 = -S(1)/S(2)*qy;
-    const T t024 = -S(1)/S(2)*qz;
-    const T t025 = S(1)/S(2)*omega1;
-    const T t026 = S(1)/S(2)*omega3;
-    const T t027 = S(1)/S(2)*qw;
-    const T t028 = S(1)/S(2)*omega2;
-    const T t029 = t007*t014;
-    const T t030 = S(1) + t029;
-    const T t031 = t007*t010;
-    const T t032 = S(18)/S(11)*t030 + S(36)/S(11)*t031;
-    const T t033 = t007*t016;
+    const T t013 = p.g*t007;
+    const T t014 = t002 + t004 - t003 - t005;
+    const T t015 = t014 - S(2)*t009;
+    const T t016 = (omega1*t012 + omega3*t000)*p.L + S(6)*t013*t015;
+    const T t017 = S(2)*t008 + t014;
+    const T t018 = (omega3*t001 - omega2*t012)*p.L - S(6)*t013*t017;
+    const T t019 = S(1)/p.L;
+    const T t020 = -S(1)/S(2)*omega1;
+    const T t021 = -S(1)/S(2)*omega2;
+    const T t022 = -S(1)/S(2)*omega3;
+    const T t023 = -S(1)/S(2)*qx;
+    const T t024 = -S(1)/S(2)*qy;
+    const T t025 = -S(1)/S(2)*qz;
+    const T t026 = S(1)/S(2)*omega1;
+    const T t027 = S(1)/S(2)*omega3;
+    const T t028 = S(1)/S(2)*qw;
+    const T t029 = S(1)/S(2)*omega2;
+    const T t030 = t007*t015;
+    const T t031 = S(1) + t030;
+    const T t032 = S(18)/S(11)*t031 + S(36)/S(11)*t010;
+    const T t033 = t007*t017;
     const T t034 = S(1) + t033;
     const T t035 = qx - qw*t034;
-    const T t036 = S(1)/(p.L*t006);
+    const T t036 = p.g/(p.L*t006);
     const T t037 = t033 - S(1);
     const T t038 = qx*t037 - qw;
-    const T t039 = t029 - S(1);
-    const T t040 = S(18)/S(11)*t039 + S(36)/S(11)*t031;
+    const T t039 = t030 - S(1);
+    const T t040 = S(18)/S(11)*t039 + S(36)/S(11)*t010;
     const T t041 = qy*t037 - qz;
     const T t042 = qz*t034 - qy;
-    const T t043 = S(18)/S(11)*t034 - S(36)/S(11)*t031;
-    const T t044 = qw*t030 + qy;
-    const T t045 = S(18)/S(11)*t037 - S(36)/S(11)*t031;
+    const T t043 = S(18)/S(11)*t034 - S(36)/S(11)*t010;
+    const T t044 = qw*t031 + qy;
+    const T t045 = S(18)/S(11)*t037 - S(36)/S(11)*t010;
     const T t046 = qx*t039 - qz;
     const T t047 = qw + qy*t039;
-    const T t048 = qx - qz*t030;
-    const T t049 = -(S(18)/S(11)*t038 + S(30)/S(11)*(qw - S(2)*qx*t007*t010 - qz) - S(18)/S(11)*t046)*p.g*t036;
-    const T t050 = -(S(18)/S(11)*t042 + S(18)/S(11)*t048 + S(30)/S(11)*(qy - S(2)*qz*t007*t010 - qx))*p.g*t036;
+    const T t048 = qx - qz*t031;
     dydt[0] = -S(1)/S(2)*(omega1*qx + omega2*qy + omega3*qz);
     dydt[1] = S(1)/S(2)*(omega1*qw + omega3*qy - omega2*qz);
     dydt[2] = S(1)/S(2)*(omega1*qz + omega2*qw - omega3*qx);
     dydt[3] = S(1)/S(2)*(omega2*qx + omega3*qw - omega1*qy);
-    dydt[4] = (S(3)/S(22)*t011 - S(3)/S(22)*t015 - S(5)/S(22)*t017)*t018;
-    dydt[5] = (S(3)/S(22)*t011 - S(3)/S(22)*t017 - S(5)/S(22)*t015)*t018;
-    dydt[6] = (S(5)/S(22)*t011 - S(3)/S(22)*t015 - S(3)/S(22)*t017)*t018;
+    dydt[4] = (S(3)/S(22)*t011 - S(3)/S(22)*t016 - S(5)/S(22)*t018)*t019;
+    dydt[5] = (S(3)/S(22)*t011 - S(3)/S(22)*t018 - S(5)/S(22)*t016)*t019;
+    dydt[6] = (S(5)/S(22)*t011 - S(3)/S(22)*t016 - S(3)/S(22)*t018)*t019;
     J[0] = T(S(0));
-    J[1] = t019;
-    J[2] = t020;
-    J[3] = t021;
-    J[4] = t022;
-    J[5] = t023;
-    J[6] = t024;
-    J[7] = t025;
+    J[1] = t020;
+    J[2] = t021;
+    J[3] = t022;
+    J[4] = t023;
+    J[5] = t024;
+    J[6] = t025;
+    J[7] = t026;
     J[8] = T(S(0));
-    J[9] = t026;
-    J[10] = t020;
-    J[11] = t027;
-    J[12] = t024;
+    J[9] = t027;
+    J[10] = t021;
+    J[11] = t028;
+    J[12] = t025;
     J[13] = S(1)/S(2)*qy;
-    J[14] = t028;
-    J[15] = t021;
+    J[14] = t029;
+    J[15] = t022;
     J[16] = T(S(0));
-    J[17] = t025;
+    J[17] = t026;
     J[18] = S(1)/S(2)*qz;
-    J[19] = t027;
-    J[20] = t022;
-    J[21] = t026;
-    J[22] = t028;
-    J[23] = t019;
+    J[19] = t028;
+    J[20] = t023;
+    J[21] = t027;
+    J[22] = t029;
+    J[23] = t020;
     J[24] = T(S(0));
-    J[25] = t023;
+    J[25] = t024;
     J[26] = S(1)/S(2)*qx;
-    J[27] = t027;
-    J[28] = -(S(18)/S(11)*qx - S(30)/S(11)*t035 - qw*t032)*p.g*t036;
-    J[29] = -(S(18)/S(11)*qw + S(30)/S(11)*t038 - qx*t040)*p.g*t036;
-    J[30] = -(S(18)/S(11)*qz + S(30)/S(11)*t041 - qy*t040)*p.g*t036;
-    J[31] = -(S(18)/S(11)*qy + S(30)/S(11)*t042 - qz*t032)*p.g*t036;
+    J[27] = t028;
+    J[28] = (S(30)/S(11)*t035 + qw*t032 - S(18)/S(11)*qx)*t036;
+    J[29] = (qx*t040 - S(18)/S(11)*qw - S(30)/S(11)*t038)*t036;
+    J[30] = (qy*t040 - S(18)/S(11)*qz - S(30)/S(11)*t041)*t036;
+    J[31] = (qz*t032 - S(18)/S(11)*qy - S(30)/S(11)*t042)*t036;
     J[32] = S(9)/S(22)*omega3 - S(15)/S(22)*(omega3 - omega2) - S(9)/S(22)*omega2;
-    J[33] = -(S(9)/S(11)*omega2 + S(9)/S(22)*omega1 - S(15)/S(22)*(S(2)*omega2 + omega1));
-    J[34] = S(9)/S(11)*omega3 + S(9)/S(22)*omega1 - S(15)/S(22)*(S(2)*omega3 + omega1);
-    J[35] = -(S(18)/S(11)*qy + qw*t043 - S(30)/S(11)*t044)*p.g*t036;
-    J[36] = -(qx*t045 - S(18)/S(11)*qz - S(30)/S(11)*t046)*p.g*t036;
-    J[37] = (S(30)/S(11)*t047 - S(18)/S(11)*qw - qy*t045)*p.g*t036;
-    J[38] = -(S(30)/S(11)*t048 + qz*t043 - S(18)/S(11)*qx)*p.g*t036;
-    J[39] = S(9)/S(11)*omega1 + S(9)/S(22)*omega2 - S(15)/S(22)*(S(2)*omega1 + omega2);
+    J[33] = S(15)/S(11)*omega2 + S(15)/S(22)*omega1 - S(9)/S(11)*omega2 - S(9)/S(22)*omega1;
+    J[34] = S(9)/S(11)*omega3 + S(9)/S(22)*omega1 - S(15)/S(11)*omega3 - S(15)/S(22)*omega1;
+    J[35] = (S(30)/S(11)*t044 - S(18)/S(11)*qy - qw*t043)*t036;
+    J[36] = (S(18)/S(11)*qz + S(30)/S(11)*t046 - qx*t045)*t036;
+    J[37] = (S(30)/S(11)*t047 - S(18)/S(11)*qw - qy*t045)*t036;
+    J[38] = (S(18)/S(11)*qx - S(30)/S(11)*t048 - qz*t043)*t036;
+    J[39] = S(9)/S(11)*omega1 + S(9)/S(22)*omega2 - S(15)/S(11)*omega1 - S(15)/S(22)*omega2;
     J[40] = S(9)/S(22)*omega1 - S(15)/S(22)*(omega1 - omega3) - S(9)/S(22)*omega3;
-    J[41] = -(S(9)/S(11)*omega3 + S(9)/S(22)*omega2 - S(15)/S(22)*(S(2)*omega3 + omega2));
-    J[42] = (S(18)/S(11)*t035 + S(18)/S(11)*t044 + S(30)/S(11)*(S(2)*qw*t007*t010 - qx - qy))*p.g*t036;
-    J[43] = t049;
-    J[44] = (S(18)/S(11)*t047 + S(30)/S(11)*(S(2)*qy*t007*t010 - qw - qz) - S(18)/S(11)*t041)*p.g*t036;
-    J[45] = t050;
-    J[46] = -(S(9)/S(11)*omega1 + S(9)/S(22)*omega3 - S(15)/S(22)*(S(2)*omega1 + omega3));
-    J[47] = S(9)/S(11)*omega2 + S(9)/S(22)*omega3 - S(15)/S(22)*(S(2)*omega2 + omega3);
-    J[48] = -(S(9)/S(22)*omega1 - S(15)/S(22)*(omega1 - omega2) - S(9)/S(22)*omega2);
+    J[41] = S(15)/S(11)*omega3 + S(15)/S(22)*omega2 - S(9)/S(11)*omega3 - S(9)/S(22)*omega2;
+    J[42] = (S(18)/S(11)*t035 + S(18)/S(11)*t044 + S(30)/S(11)*(S(2)*qw*t010 - qx - qy))*t036;
+    J[43] = (S(18)/S(11)*t046 - S(18)/S(11)*t038 - S(30)/S(11)*(qw - S(2)*qx*t010 - qz))*t036;
+    J[44] = (S(18)/S(11)*t047 + S(30)/S(11)*(S(2)*qy*t010 - qw - qz) - S(18)/S(11)*t041)*t036;
+    J[45] = (-S(18)/S(11)*t042 - S(18)/S(11)*t048 - S(30)/S(11)*(qy - S(2)*qz*t010 - qx))*t036;
+    J[46] = S(15)/S(11)*omega1 + S(15)/S(22)*omega3 - S(9)/S(11)*omega1 - S(9)/S(22)*omega3;
+    J[47] = S(9)/S(11)*omega2 + S(9)/S(22)*omega3 - S(15)/S(11)*omega2 - S(15)/S(22)*omega3;
+    J[48] = S(15)/S(22)*(omega1 - omega2) + S(9)/S(22)*omega2 - S(9)/S(22)*omega1;
 }
 
 // The energy T + V (conserved without damping and driving torques).
@@ -395,7 +390,7 @@ T energy(const T* y, const params<T>& p) {
     const T t002 = qz*qz;
     const T t003 = qy*qy;
     const T t004 = qw*qw;
-    const T t005 = (t001 + t003 - t002 - t004) + S(2)*(qw*qy - qx*qz) - S(2)*(qw*qx + qy*qz);
+    const T t005 = S(2)*(qw*qy - qx*qz) + t001 + t003 - S(2)*(qw*qx + qy*qz) - t002 - t004;
     const T t006 = (S(1)/S(2)*p.g*t005/(t001 + t002 + t003 + t004) + S(1)/S(24)*p.L*t000)*p.L*p.M;
     return -t006;
 }
@@ -404,17 +399,17 @@ T energy(const T* y, const params<T>& p) {
 //   y     state, dim 7: (qw, qx, qy, qz, omega1, omega2, omega3)
 //   momentum output, dim 3: l1, l2, l3
 //   p     parameters
-// Operations (+ - * / and calls): 42 before lowering, 24 after (8 +-, 16 *, 0 /, 0 calls).
+// Operations (+ - * / and calls): 42 before lowering, 20 after (6 +-, 14 *, 0 /, 0 calls).
 template <class T>
 void momenta(const T* y, T* momentum, const params<T>& p) {
     using S = typename detail::scalar_of<T>::type;
     const T omega1 = y[4];
     const T omega2 = y[5];
     const T omega3 = y[6];
-    const T t000 = p.L*p.L;
-    momentum[0] = (S(2)/S(3)*omega1 - S(1)/S(4)*omega2 - S(1)/S(4)*omega3)*p.M*t000;
-    momentum[1] = -(S(1)/S(4)*omega1 + S(1)/S(4)*omega3 - S(2)/S(3)*omega2)*p.M*t000;
-    momentum[2] = -(S(1)/S(4)*omega1 + S(1)/S(4)*omega2 - S(2)/S(3)*omega3)*p.M*t000;
+    const T t000 = p.L*p.L*p.M;
+    momentum[0] = (S(2)/S(3)*omega1 - S(1)/S(4)*omega2 - S(1)/S(4)*omega3)*t000;
+    momentum[1] = (S(2)/S(3)*omega2 - S(1)/S(4)*omega1 - S(1)/S(4)*omega3)*t000;
+    momentum[2] = (S(2)/S(3)*omega3 - S(1)/S(4)*omega1 - S(1)/S(4)*omega2)*t000;
 }
 
 // The inertia tensor I in body axes, row-major (l = I omega).
@@ -460,7 +455,7 @@ void omega(const T* y, T* w, const params<T>& p) {
 //   y     state, dim 7: (qw, qx, qy, qz, omega1, omega2, omega3)
 //   A     output, dim 3 x 3 (row-major): A11, A12, A13, A21, A22, A23, A31, A32, A33
 //   p     parameters
-// Operations (+ - * / and calls): 117 before lowering, 49 after (23 +-, 25 *, 1 /, 0 calls).
+// Operations (+ - * / and calls): 117 before lowering, 44 after (18 +-, 25 *, 1 /, 0 calls).
 template <class T>
 void rotation(const T* y, T* A, const params<T>& p) {
     using S = typename detail::scalar_of<T>::type;
@@ -482,13 +477,13 @@ void rotation(const T* y, T* A, const params<T>& p) {
     const T t010 = qy*qz;
     A[0] = (t000 + t003 - t001 - t002)*t004;
     A[1] = S(2)*(t005 + t006)*t004;
-    A[2] = -S(2)*(t007 - t008)*t004;
-    A[3] = -S(2)*(t005 - t006)*t004;
-    A[4] = -(t000 + t001 - t002 - t003)*t004;
+    A[2] = S(2)*(t008 - t007)*t004;
+    A[3] = S(2)*(t006 - t005)*t004;
+    A[4] = (t002 + t003 - t000 - t001)*t004;
     A[5] = S(2)*(t009 + t010)*t004;
     A[6] = S(2)*(t007 + t008)*t004;
-    A[7] = -S(2)*(t009 - t010)*t004;
-    A[8] = -(t000 + t002 - t001 - t003)*t004;
+    A[7] = S(2)*(t010 - t009)*t004;
+    A[8] = (t001 + t003 - t000 - t002)*t004;
 }
 
 // The quaternion of z-x-z Euler angles: q = qz(phi) (x) qx(theta) (x) qz(psi), which rotates body

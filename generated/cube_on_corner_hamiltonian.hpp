@@ -19,14 +19,14 @@
 // Parameters (params<T>, defaults from the model file): M = 1.0, L = 0.2, g = 9.81.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 610 -> 78 (15 temporaries)
-//   jacobian: 3701 -> 252 (45 temporaries)
-//   rhs_and_jacobian: 4311 -> 286 (50 temporaries)
-//   energy: 184 -> 48 (10 temporaries)
+//   rhs: 610 -> 75 (17 temporaries)
+//   jacobian: 3701 -> 230 (48 temporaries)
+//   rhs_and_jacobian: 4311 -> 257 (51 temporaries)
+//   energy: 184 -> 46 (9 temporaries)
 //   momenta: 0 -> 0 (0 temporaries)
-//   mass_matrix: 182 -> 45 (13 temporaries)
-//   omega: 126 -> 39 (9 temporaries)
-//   rotation: 49 -> 29 (6 temporaries)
+//   mass_matrix: 182 -> 39 (12 temporaries)
+//   omega: 126 -> 34 (8 temporaries)
+//   rotation: 49 -> 26 (8 temporaries)
 //
 // Self-contained: includes <array>, <cmath> and <cstddef> only. Every function is a template on the
 // scalar type T (float, double, long double, Eigen array batches such as Eigen::Array<double, 4, 1>,
@@ -100,7 +100,7 @@ constexpr std::array<unsigned char, 36> jacobian_pattern{{
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, p_phi_dot, p_theta_dot, p_psi_dot
 //   p     parameters
-// Operations (+ - * / and calls): 610 before lowering, 78 after (20 +-, 50 *, 4 /, 4 calls).
+// Operations (+ - * / and calls): 610 before lowering, 75 after (20 +-, 47 *, 4 /, 4 calls).
 template <class T>
 void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     using std::cos;
@@ -119,20 +119,22 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     const T t000 = p.L*p.L;
     const T t001 = S(1)/sin_theta;
     const T t002 = cos_theta*p_psi - p_phi;
-    const T t003 = cos_psi*t001*t002 + p_theta*sin_psi;
-    const T t004 = cos_psi*p_theta - sin_psi*t001*t002;
-    const T t005 = S(3)*t003 - S(3)*p_psi - S(5)*t004;
-    const T t006 = S(5)*t003 - S(3)*p_psi - S(3)*t004;
-    const T t007 = cos_psi*t006 + sin_psi*t005;
-    const T t008 = S(1)/(p.M*t000);
-    const T t009 = S(1)/S(2)*(sin_theta - (cos_psi + sin_psi)*cos_theta)*p.L*p.M*p.g + S(6)/S(11)*(cos_theta*t002/(sin_theta*sin_theta) + p_psi)*t007*t008;
-    const T t010 = S(1)/S(2)*(sin_psi - cos_psi)*p.L*p.M*p.g*sin_theta - S(6)/S(11)*(t003*t005 + t004*t006)*t008;
-    dydt[0] = -S(6)/S(11)*t007/(p.M*sin_theta*t000);
-    dydt[1] = S(6)/S(11)*(sin_psi*t006 - cos_psi*t005)*t008;
-    dydt[2] = (S(18)/S(11)*t004 + S(30)/S(11)*p_psi + S(6)/S(11)*cos_theta*t001*t007 - S(18)/S(11)*t003)*t008;
+    const T t003 = t001*t002;
+    const T t004 = cos_psi*t003 + p_theta*sin_psi;
+    const T t005 = cos_psi*p_theta - sin_psi*t003;
+    const T t006 = S(3)*t004 - S(3)*p_psi - S(5)*t005;
+    const T t007 = S(5)*t004 - S(3)*p_psi - S(3)*t005;
+    const T t008 = cos_psi*t007 + sin_psi*t006;
+    const T t009 = S(1)/(p.M*t000);
+    const T t010 = p.L*p.M*p.g;
+    const T t011 = S(1)/S(2)*(sin_theta - (cos_psi + sin_psi)*cos_theta)*t010 + S(6)/S(11)*(cos_theta*t002/(sin_theta*sin_theta) + p_psi)*t008*t009;
+    const T t012 = S(1)/S(2)*(sin_psi - cos_psi)*sin_theta*t010 - S(6)/S(11)*(t004*t006 + t005*t007)*t009;
+    dydt[0] = -S(6)/S(11)*t008/(p.M*sin_theta*t000);
+    dydt[1] = S(6)/S(11)*(sin_psi*t007 - cos_psi*t006)*t009;
+    dydt[2] = (S(18)/S(11)*t005 + S(30)/S(11)*p_psi + S(6)/S(11)*cos_theta*t001*t008 - S(18)/S(11)*t004)*t009;
     dydt[3] = T(S(0));
-    dydt[4] = t009;
-    dydt[5] = t010;
+    dydt[4] = t011;
+    dydt[5] = t012;
 }
 
 // The analytic Jacobian J = d(dy/dt)/dy, dense, row-major: J[i * state_size + k] = d dydt[i] / d y[k].
@@ -140,7 +142,7 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   J     output, dim 6 x 6 (row-major); structural zeros in jacobian_pattern
 //   p     parameters
-// Operations (+ - * / and calls): 3701 before lowering, 252 after (74 +-, 169 *, 5 /, 4 calls).
+// Operations (+ - * / and calls): 3701 before lowering, 230 after (69 +-, 152 *, 5 /, 4 calls).
 template <class T>
 void jacobian(T t, const T* y, T* J, const params<T>& p) {
     using std::cos;
@@ -157,64 +159,67 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
     const T t000 = S(1)/sin_theta;
-    const T t001 = cos_theta*p_psi - p_phi;
-    const T t002 = cos_psi*t000*t001 + p_theta*sin_psi;
-    const T t003 = cos_psi*p_theta - sin_psi*t000*t001;
-    const T t004 = S(3)*t002 - S(3)*p_psi - S(5)*t003;
-    const T t005 = sin_psi*t004;
-    const T t006 = S(5)*t002 - S(3)*p_psi - S(3)*t003;
-    const T t007 = cos_psi*t006;
-    const T t008 = t005 + t007;
-    const T t009 = S(3)*sin_psi + S(5)*cos_psi;
-    const T t010 = S(3)*cos_psi + S(5)*sin_psi;
-    const T t011 = cos_psi*t009 + sin_psi*t010;
-    const T t012 = sin_theta*sin_theta;
-    const T t013 = S(1)/t012;
-    const T t014 = cos_theta*t001*t013 + p_psi;
-    const T t015 = cos_theta*t000*t008 + t011*t014;
-    const T t016 = p.L*p.L;
-    const T t017 = S(1)/(p.M*sin_theta*t016);
-    const T t018 = t015*t017;
-    const T t019 = S(18)/S(11)*p_psi + S(36)/S(11)*t003;
-    const T t020 = S(36)/S(11)*t002 - S(18)/S(11)*p_psi;
-    const T t021 = cos_psi*t020 + sin_psi*t019;
-    const T t022 = S(3)*sin_psi - S(5)*cos_psi;
-    const T t023 = S(5)*sin_psi - S(3)*cos_psi;
-    const T t024 = cos_psi*t023 + sin_psi*t022;
-    const T t025 = cos_theta*t000*t009 - S(3);
-    const T t026 = cos_theta*t000*t010 - S(3);
-    const T t027 = cos_psi*t025 + sin_psi*t026;
-    const T t028 = sin_psi*t009 - cos_psi*t010;
-    const T t029 = S(1)/(p.M*t016);
-    const T t030 = (S(18)/S(11)*t014 - S(6)/S(11)*t006)*cos_psi - (S(6)/S(11)*t004 - S(18)/S(11)*t014)*sin_psi - S(6)/S(11)*cos_theta*t000*t015;
-    const T t031 = ((S(6)/S(11)*t025 - S(18)/S(11))*cos_psi + (S(6)/S(11)*t026 - S(18)/S(11))*sin_psi)*cos_theta*t000;
-    const T t032 = cos_psi + sin_psi;
-    const T t033 = (S(2)*cos_theta*t014 - p_phi)*t000*t008 + t011*t014*t014;
-    const T t034 = (sin_psi - cos_psi)*cos_theta*p.L*p.M*p.g;
-    const T t035 = ((S(1) + cos_theta*cos_theta*t013)*t008 + t014*t027)*t029;
-    const T t036 = sin_psi*t006;
-    const T t037 = cos_psi*t004;
-    const T t038 = t002*t010 + t003*t009 + t037 - t036;
-    const T t039 = S(1)/S(2)*p.L*p.M*p.g*sin_theta*t032 - (t002*t019 + t003*t020)*t029;
-    const T t040 = (t002*t026 + t003*t025 - (t036 - t037)*cos_theta*t000)*t029;
+    const T t001 = cos_theta*t000;
+    const T t002 = cos_theta*p_psi - p_phi;
+    const T t003 = t000*t002;
+    const T t004 = cos_psi*t003 + p_theta*sin_psi;
+    const T t005 = cos_psi*p_theta - sin_psi*t003;
+    const T t006 = S(3)*t004 - S(3)*p_psi - S(5)*t005;
+    const T t007 = sin_psi*t006;
+    const T t008 = S(5)*t004 - S(3)*p_psi - S(3)*t005;
+    const T t009 = cos_psi*t008;
+    const T t010 = t007 + t009;
+    const T t011 = S(3)*sin_psi + S(5)*cos_psi;
+    const T t012 = S(3)*cos_psi + S(5)*sin_psi;
+    const T t013 = cos_psi*t011 + sin_psi*t012;
+    const T t014 = sin_theta*sin_theta;
+    const T t015 = S(1)/t014;
+    const T t016 = cos_theta*t002*t015 + p_psi;
+    const T t017 = t001*t010 + t013*t016;
+    const T t018 = p.L*p.L;
+    const T t019 = S(1)/(p.M*sin_theta*t018);
+    const T t020 = t017*t019;
+    const T t021 = S(18)/S(11)*p_psi + S(36)/S(11)*t005;
+    const T t022 = S(36)/S(11)*t004 - S(18)/S(11)*p_psi;
+    const T t023 = cos_psi*t022 + sin_psi*t021;
+    const T t024 = S(3)*sin_psi - S(5)*cos_psi;
+    const T t025 = S(5)*sin_psi - S(3)*cos_psi;
+    const T t026 = cos_psi*t025 + sin_psi*t024;
+    const T t027 = t001*t011 - S(3);
+    const T t028 = t001*t012 - S(3);
+    const T t029 = cos_psi*t027 + sin_psi*t028;
+    const T t030 = S(1)/(p.M*t018);
+    const T t031 = t016*t030;
+    const T t032 = sin_psi*t011 - cos_psi*t012;
+    const T t033 = (S(18)/S(11)*t016 - S(6)/S(11)*t008)*cos_psi - (S(6)/S(11)*t006 - S(18)/S(11)*t016)*sin_psi - S(6)/S(11)*t001*t017;
+    const T t034 = ((S(6)/S(11)*t027 - S(18)/S(11))*cos_psi + (S(6)/S(11)*t028 - S(18)/S(11))*sin_psi)*t001 + S(30)/S(11);
+    const T t035 = p.L*p.M*p.g;
+    const T t036 = (cos_psi + sin_psi)*sin_theta;
+    const T t037 = (S(2)*cos_theta*t016 - p_phi)*t000*t010 + t013*t016*t016;
+    const T t038 = (sin_psi - cos_psi)*cos_theta*t035;
+    const T t039 = ((S(1) + cos_theta*cos_theta*t015)*t010 + t016*t029)*t030;
+    const T t040 = sin_psi*t008;
+    const T t041 = cos_psi*t006;
+    const T t042 = t004*t012 + t005*t011 + t041 - t040;
+    const T t043 = (t004*t028 + t005*t027 - (t040 - t041)*t001)*t030;
     J[0] = T(S(0));
-    J[1] = S(6)/S(11)*t018;
-    J[2] = -t017*t021;
-    J[3] = S(6)/S(11)*t011/(p.M*t012*t016);
-    J[4] = -S(6)/S(11)*t017*t024;
-    J[5] = -S(6)/S(11)*t017*t027;
+    J[1] = S(6)/S(11)*t020;
+    J[2] = -t019*t023;
+    J[3] = S(6)/S(11)*t013/(p.M*t014*t018);
+    J[4] = -S(6)/S(11)*t019*t026;
+    J[5] = -S(6)/S(11)*t019*t029;
     J[6] = T(S(0));
-    J[7] = -S(6)/S(11)*t014*t028*t029;
-    J[8] = -(cos_psi*t019 - sin_psi*t020)*t029;
-    J[9] = -S(6)/S(11)*t017*t028;
-    J[10] = -S(6)/S(11)*(cos_psi*t022 - sin_psi*t023)*t029;
-    J[11] = -S(6)/S(11)*(cos_psi*t026 - sin_psi*t025)*t029;
+    J[7] = -S(6)/S(11)*t031*t032;
+    J[8] = (sin_psi*t022 - cos_psi*t021)*t030;
+    J[9] = -S(6)/S(11)*t019*t032;
+    J[10] = S(6)/S(11)*(sin_psi*t025 - cos_psi*t024)*t030;
+    J[11] = S(6)/S(11)*(sin_psi*t027 - cos_psi*t028)*t030;
     J[12] = T(S(0));
-    J[13] = t029*t030;
-    J[14] = -(S(18)/S(11)*t002 + S(18)/S(11)*t003 - cos_theta*t000*t021)*t029;
-    J[15] = (S(18)/S(11)*cos_psi + S(18)/S(11)*sin_psi - S(6)/S(11)*cos_theta*t000*t011)*t017;
-    J[16] = -(S(18)/S(11)*sin_psi - S(18)/S(11)*cos_psi - S(6)/S(11)*cos_theta*t000*t024)*t029;
-    J[17] = (S(30)/S(11) + t031)*t029;
+    J[13] = t030*t033;
+    J[14] = (t001*t023 - S(18)/S(11)*t004 - S(18)/S(11)*t005)*t030;
+    J[15] = (S(18)/S(11)*cos_psi + S(18)/S(11)*sin_psi - S(6)/S(11)*t001*t013)*t019;
+    J[16] = (S(18)/S(11)*cos_psi + S(6)/S(11)*t001*t026 - S(18)/S(11)*sin_psi)*t030;
+    J[17] = t030*t034;
     J[18] = T(S(0));
     J[19] = T(S(0));
     J[20] = T(S(0));
@@ -222,17 +227,17 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     J[22] = T(S(0));
     J[23] = T(S(0));
     J[24] = T(S(0));
-    J[25] = S(1)/S(2)*(cos_theta + sin_theta*t032)*p.L*p.M*p.g - S(6)/S(11)*t029*t033;
-    J[26] = S(1)/S(2)*t034 + t014*t021*t029;
-    J[27] = -S(6)/S(11)*t018;
-    J[28] = S(6)/S(11)*t014*t024*t029;
-    J[29] = S(6)/S(11)*t035;
+    J[25] = S(1)/S(2)*(cos_theta + t036)*t035 - S(6)/S(11)*t030*t037;
+    J[26] = S(1)/S(2)*t038 + t023*t031;
+    J[27] = -S(6)/S(11)*t020;
+    J[28] = S(6)/S(11)*t026*t031;
+    J[29] = S(6)/S(11)*t039;
     J[30] = T(S(0));
-    J[31] = S(1)/S(2)*t034 + S(6)/S(11)*t014*t029*t038;
-    J[32] = t039;
-    J[33] = S(6)/S(11)*t017*t038;
-    J[34] = -S(6)/S(11)*(t002*t022 + t003*t023 + t005 + t007)*t029;
-    J[35] = -S(6)/S(11)*t040;
+    J[31] = S(1)/S(2)*t038 + S(6)/S(11)*t031*t042;
+    J[32] = S(1)/S(2)*t035*t036 - (t004*t021 + t005*t022)*t030;
+    J[33] = S(6)/S(11)*t019*t042;
+    J[34] = S(6)/S(11)*(-t004*t024 - t005*t025 - t007 - t009)*t030;
+    J[35] = -S(6)/S(11)*t043;
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -241,7 +246,7 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, p_phi_dot, p_theta_dot, p_psi_dot
 //   J     output, dim 6 x 6 (row-major)
 //   p     parameters
-// Operations (+ - * / and calls): 4311 before lowering, 286 after (82 +-, 195 *, 5 /, 4 calls).
+// Operations (+ - * / and calls): 4311 before lowering, 257 after (76 +-, 172 *, 5 /, 4 calls).
 template <class T>
 void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     using std::cos;
@@ -261,72 +266,73 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T t001 = S(1)/(p.M*sin_theta*t000);
     const T t002 = S(1)/sin_theta;
     const T t003 = cos_theta*p_psi - p_phi;
-    const T t004 = cos_psi*t002*t003 + p_theta*sin_psi;
-    const T t005 = cos_psi*p_theta - sin_psi*t002*t003;
-    const T t006 = S(3)*t004 - S(3)*p_psi - S(5)*t005;
-    const T t007 = sin_psi*t006;
-    const T t008 = S(5)*t004 - S(3)*p_psi - S(3)*t005;
-    const T t009 = cos_psi*t008;
-    const T t010 = t007 + t009;
-    const T t011 = sin_psi*t008;
-    const T t012 = cos_psi*t006;
-    const T t013 = t011 - t012;
-    const T t014 = S(1)/(p.M*t000);
-    const T t015 = cos_theta*t002*t010;
-    const T t016 = sin_theta*sin_theta;
-    const T t017 = S(1)/t016;
-    const T t018 = cos_theta*t003*t017 + p_psi;
-    const T t019 = cos_psi + sin_psi;
-    const T t020 = S(1)/S(2)*(sin_theta - cos_theta*t019)*p.L*p.M*p.g + S(6)/S(11)*t010*t014*t018;
-    const T t021 = sin_psi - cos_psi;
-    const T t022 = S(1)/S(2)*p.L*p.M*p.g*sin_theta*t021 - S(6)/S(11)*(t004*t006 + t005*t008)*t014;
-    const T t023 = S(3)*sin_psi + S(5)*cos_psi;
-    const T t024 = S(3)*cos_psi + S(5)*sin_psi;
-    const T t025 = cos_psi*t023 + sin_psi*t024;
-    const T t026 = t015 + t018*t025;
-    const T t027 = t001*t026;
-    const T t028 = S(18)/S(11)*p_psi + S(36)/S(11)*t005;
-    const T t029 = S(36)/S(11)*t004 - S(18)/S(11)*p_psi;
-    const T t030 = cos_psi*t029 + sin_psi*t028;
-    const T t031 = S(3)*sin_psi - S(5)*cos_psi;
-    const T t032 = S(5)*sin_psi - S(3)*cos_psi;
-    const T t033 = cos_psi*t032 + sin_psi*t031;
-    const T t034 = cos_theta*t002*t023 - S(3);
-    const T t035 = cos_theta*t002*t024 - S(3);
-    const T t036 = cos_psi*t034 + sin_psi*t035;
-    const T t037 = sin_psi*t023 - cos_psi*t024;
-    const T t038 = (S(18)/S(11)*t018 - S(6)/S(11)*t008)*cos_psi - (S(6)/S(11)*t006 - S(18)/S(11)*t018)*sin_psi - S(6)/S(11)*cos_theta*t002*t026;
-    const T t039 = ((S(6)/S(11)*t034 - S(18)/S(11))*cos_psi + (S(6)/S(11)*t035 - S(18)/S(11))*sin_psi)*cos_theta*t002;
-    const T t040 = (S(2)*cos_theta*t018 - p_phi)*t002*t010 + t018*t018*t025;
-    const T t041 = cos_theta*p.L*p.M*p.g*t021;
-    const T t042 = ((S(1) + cos_theta*cos_theta*t017)*t010 + t018*t036)*t014;
-    const T t043 = t004*t024 + t005*t023 + t012 - t011;
-    const T t044 = S(1)/S(2)*p.L*p.M*p.g*sin_theta*t019 - (t004*t028 + t005*t029)*t014;
-    const T t045 = -S(6)/S(11)*(t004*t035 + t005*t034 - cos_theta*t002*t013)*t014;
-    dydt[0] = -S(6)/S(11)*t001*t010;
-    dydt[1] = S(6)/S(11)*t013*t014;
-    dydt[2] = (S(18)/S(11)*t005 + S(30)/S(11)*p_psi + S(6)/S(11)*t015 - S(18)/S(11)*t004)*t014;
+    const T t004 = t002*t003;
+    const T t005 = cos_psi*t004 + p_theta*sin_psi;
+    const T t006 = cos_psi*p_theta - sin_psi*t004;
+    const T t007 = S(3)*t005 - S(3)*p_psi - S(5)*t006;
+    const T t008 = sin_psi*t007;
+    const T t009 = S(5)*t005 - S(3)*p_psi - S(3)*t006;
+    const T t010 = cos_psi*t009;
+    const T t011 = t008 + t010;
+    const T t012 = sin_psi*t009;
+    const T t013 = cos_psi*t007;
+    const T t014 = t012 - t013;
+    const T t015 = S(1)/(p.M*t000);
+    const T t016 = cos_theta*t002;
+    const T t017 = t011*t016;
+    const T t018 = sin_theta*sin_theta;
+    const T t019 = S(1)/t018;
+    const T t020 = cos_theta*t003*t019 + p_psi;
+    const T t021 = t015*t020;
+    const T t022 = p.L*p.M*p.g;
+    const T t023 = cos_psi + sin_psi;
+    const T t024 = (sin_psi - cos_psi)*t022;
+    const T t025 = S(3)*sin_psi + S(5)*cos_psi;
+    const T t026 = S(3)*cos_psi + S(5)*sin_psi;
+    const T t027 = cos_psi*t025 + sin_psi*t026;
+    const T t028 = t017 + t020*t027;
+    const T t029 = t001*t028;
+    const T t030 = S(18)/S(11)*p_psi + S(36)/S(11)*t006;
+    const T t031 = S(36)/S(11)*t005 - S(18)/S(11)*p_psi;
+    const T t032 = cos_psi*t031 + sin_psi*t030;
+    const T t033 = S(3)*sin_psi - S(5)*cos_psi;
+    const T t034 = S(5)*sin_psi - S(3)*cos_psi;
+    const T t035 = cos_psi*t034 + sin_psi*t033;
+    const T t036 = t016*t025 - S(3);
+    const T t037 = t016*t026 - S(3);
+    const T t038 = cos_psi*t036 + sin_psi*t037;
+    const T t039 = sin_psi*t025 - cos_psi*t026;
+    const T t040 = (S(18)/S(11)*t020 - S(6)/S(11)*t009)*cos_psi - (S(6)/S(11)*t007 - S(18)/S(11)*t020)*sin_psi - S(6)/S(11)*t016*t028;
+    const T t041 = ((S(6)/S(11)*t036 - S(18)/S(11))*cos_psi + (S(6)/S(11)*t037 - S(18)/S(11))*sin_psi)*t016 + S(30)/S(11);
+    const T t042 = sin_theta*t023;
+    const T t043 = (S(2)*cos_theta*t020 - p_phi)*t002*t011 + t020*t020*t027;
+    const T t044 = cos_theta*t024;
+    const T t045 = ((S(1) + cos_theta*cos_theta*t019)*t011 + t020*t038)*t015;
+    const T t046 = t005*t026 + t006*t025 + t013 - t012;
+    dydt[0] = -S(6)/S(11)*t001*t011;
+    dydt[1] = S(6)/S(11)*t014*t015;
+    dydt[2] = (S(18)/S(11)*t006 + S(30)/S(11)*p_psi + S(6)/S(11)*t017 - S(18)/S(11)*t005)*t015;
     dydt[3] = T(S(0));
-    dydt[4] = t020;
-    dydt[5] = t022;
+    dydt[4] = S(1)/S(2)*(sin_theta - cos_theta*t023)*t022 + S(6)/S(11)*t011*t021;
+    dydt[5] = S(1)/S(2)*sin_theta*t024 - S(6)/S(11)*(t005*t007 + t006*t009)*t015;
     J[0] = T(S(0));
-    J[1] = S(6)/S(11)*t027;
-    J[2] = -t001*t030;
-    J[3] = S(6)/S(11)*t025/(p.M*t000*t016);
-    J[4] = -S(6)/S(11)*t001*t033;
-    J[5] = -S(6)/S(11)*t001*t036;
+    J[1] = S(6)/S(11)*t029;
+    J[2] = -t001*t032;
+    J[3] = S(6)/S(11)*t027/(p.M*t000*t018);
+    J[4] = -S(6)/S(11)*t001*t035;
+    J[5] = -S(6)/S(11)*t001*t038;
     J[6] = T(S(0));
-    J[7] = -S(6)/S(11)*t014*t018*t037;
-    J[8] = -(cos_psi*t028 - sin_psi*t029)*t014;
-    J[9] = -S(6)/S(11)*t001*t037;
-    J[10] = -S(6)/S(11)*(cos_psi*t031 - sin_psi*t032)*t014;
-    J[11] = -S(6)/S(11)*(cos_psi*t035 - sin_psi*t034)*t014;
+    J[7] = -S(6)/S(11)*t021*t039;
+    J[8] = (sin_psi*t031 - cos_psi*t030)*t015;
+    J[9] = -S(6)/S(11)*t001*t039;
+    J[10] = S(6)/S(11)*(sin_psi*t034 - cos_psi*t033)*t015;
+    J[11] = S(6)/S(11)*(sin_psi*t036 - cos_psi*t037)*t015;
     J[12] = T(S(0));
-    J[13] = t014*t038;
-    J[14] = -(S(18)/S(11)*t004 + S(18)/S(11)*t005 - cos_theta*t002*t030)*t014;
-    J[15] = (S(18)/S(11)*cos_psi + S(18)/S(11)*sin_psi - S(6)/S(11)*cos_theta*t002*t025)*t001;
-    J[16] = -(S(18)/S(11)*sin_psi - S(18)/S(11)*cos_psi - S(6)/S(11)*cos_theta*t002*t033)*t014;
-    J[17] = (S(30)/S(11) + t039)*t014;
+    J[13] = t015*t040;
+    J[14] = (t016*t032 - S(18)/S(11)*t005 - S(18)/S(11)*t006)*t015;
+    J[15] = (S(18)/S(11)*cos_psi + S(18)/S(11)*sin_psi - S(6)/S(11)*t016*t027)*t001;
+    J[16] = (S(18)/S(11)*cos_psi + S(6)/S(11)*t016*t035 - S(18)/S(11)*sin_psi)*t015;
+    J[17] = t015*t041;
     J[18] = T(S(0));
     J[19] = T(S(0));
     J[20] = T(S(0));
@@ -334,23 +340,23 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     J[22] = T(S(0));
     J[23] = T(S(0));
     J[24] = T(S(0));
-    J[25] = S(1)/S(2)*(cos_theta + sin_theta*t019)*p.L*p.M*p.g - S(6)/S(11)*t014*t040;
-    J[26] = S(1)/S(2)*t041 + t014*t018*t030;
-    J[27] = -S(6)/S(11)*t027;
-    J[28] = S(6)/S(11)*t014*t018*t033;
-    J[29] = S(6)/S(11)*t042;
+    J[25] = S(1)/S(2)*(cos_theta + t042)*t022 - S(6)/S(11)*t015*t043;
+    J[26] = S(1)/S(2)*t044 + t021*t032;
+    J[27] = -S(6)/S(11)*t029;
+    J[28] = S(6)/S(11)*t021*t035;
+    J[29] = S(6)/S(11)*t045;
     J[30] = T(S(0));
-    J[31] = S(1)/S(2)*t041 + S(6)/S(11)*t014*t018*t043;
-    J[32] = t044;
-    J[33] = S(6)/S(11)*t001*t043;
-    J[34] = -S(6)/S(11)*(t004*t031 + t005*t032 + t007 + t009)*t014;
-    J[35] = t045;
+    J[31] = S(1)/S(2)*t044 + S(6)/S(11)*t021*t046;
+    J[32] = S(1)/S(2)*t022*t042 - (t005*t030 + t006*t031)*t015;
+    J[33] = S(6)/S(11)*t001*t046;
+    J[34] = S(6)/S(11)*(-t005*t033 - t006*t034 - t008 - t010)*t015;
+    J[35] = S(6)/S(11)*(t014*t016 - t005*t037 - t006*t036)*t015;
 }
 
 // The energy, the Hamiltonian H = T + V (conserved without damping and driving torques).
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   p     parameters
-// Operations (+ - * / and calls): 184 before lowering, 48 after (15 +-, 27 *, 2 /, 4 calls).
+// Operations (+ - * / and calls): 184 before lowering, 46 after (15 +-, 25 *, 2 /, 4 calls).
 template <class T>
 T energy(const T* y, const params<T>& p) {
     using std::cos;
@@ -365,13 +371,12 @@ T energy(const T* y, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    const T t000 = S(1)/sin_theta;
-    const T t001 = cos_theta*p_psi - p_phi;
-    const T t002 = cos_psi*t000*t001 + p_theta*sin_psi;
-    const T t003 = cos_psi*p_theta - sin_psi*t000*t001;
-    const T t004 = (S(3)*t002 - S(3)*p_psi - S(5)*t003)*t003 + (S(3)*t002 - S(3)*t003 - S(5)*p_psi)*p_psi - (S(5)*t002 - S(3)*p_psi - S(3)*t003)*t002;
-    const T t005 = S(3)/S(11)*t004/(p.L*p.L*p.M) - S(1)/S(2)*((cos_psi + sin_psi)*sin_theta + cos_theta)*p.L*p.M*p.g;
-    return -t005;
+    const T t000 = (cos_theta*p_psi - p_phi)/sin_theta;
+    const T t001 = cos_psi*t000 + p_theta*sin_psi;
+    const T t002 = cos_psi*p_theta - sin_psi*t000;
+    const T t003 = (S(3)*t001 - S(3)*p_psi - S(5)*t002)*t002 + (S(3)*t001 - S(3)*t002 - S(5)*p_psi)*p_psi - (S(5)*t001 - S(3)*p_psi - S(3)*t002)*t001;
+    const T t004 = S(3)/S(11)*t003/(p.L*p.L*p.M) - S(1)/S(2)*((cos_psi + sin_psi)*sin_theta + cos_theta)*p.L*p.M*p.g;
+    return -t004;
 }
 
 // The conjugate momenta p = dL/dq_dot (5.74)-(5.76).
@@ -394,7 +399,7 @@ void momenta(const T* y, T* momentum, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   M     output, dim 3 x 3 (row-major): M11, M12, M13, M21, M22, M23, M31, M32, M33
 //   p     parameters
-// Operations (+ - * / and calls): 182 before lowering, 45 after (10 +-, 31 *, 0 /, 4 calls).
+// Operations (+ - * / and calls): 182 before lowering, 39 after (9 +-, 26 *, 0 /, 4 calls).
 template <class T>
 void mass_matrix(const T* y, T* M, const params<T>& p) {
     using std::cos;
@@ -406,31 +411,30 @@ void mass_matrix(const T* y, T* M, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    const T t000 = p.L*p.L;
-    const T t001 = cos_psi*sin_psi;
-    const T t002 = cos_psi + sin_psi;
-    const T t003 = S(2)/S(3)*cos_theta*cos_theta - ((S(1)/S(2)*t001 - S(2)/S(3))*sin_theta + S(1)/S(2)*cos_theta*t002)*sin_theta;
+    const T t000 = cos_psi*sin_psi;
+    const T t001 = cos_psi + sin_psi;
+    const T t002 = S(2)/S(3)*cos_theta*cos_theta - ((S(1)/S(2)*t000 - S(2)/S(3))*sin_theta + S(1)/S(2)*cos_theta*t001)*sin_theta;
+    const T t003 = p.L*p.L*p.M;
     const T t004 = sin_psi - cos_psi;
-    const T t005 = ((S(1)/S(2)*cos_psi*cos_psi - S(1)/S(4))*sin_theta - S(1)/S(4)*cos_theta*t004)*p.M*t000;
-    const T t006 = -t005;
-    const T t007 = (S(2)/S(3)*cos_theta - S(1)/S(4)*sin_theta*t002)*p.M*t000;
-    const T t008 = S(1)/S(4)*p.M*t000*t004;
-    M[0] = p.M*t000*t003;
-    M[1] = t006;
-    M[2] = t007;
-    M[3] = t006;
-    M[4] = (S(1)/S(2)*t001 + S(2)/S(3))*p.M*t000;
-    M[5] = t008;
-    M[6] = t007;
-    M[7] = t008;
-    M[8] = S(2)/S(3)*p.M*t000;
+    const T t005 = (S(1)/S(4)*cos_theta*t004 - (S(1)/S(2)*cos_psi*cos_psi - S(1)/S(4))*sin_theta)*t003;
+    const T t006 = (S(2)/S(3)*cos_theta - S(1)/S(4)*sin_theta*t001)*t003;
+    const T t007 = S(1)/S(4)*t003*t004;
+    M[0] = t002*t003;
+    M[1] = t005;
+    M[2] = t006;
+    M[3] = t005;
+    M[4] = (S(1)/S(2)*t000 + S(2)/S(3))*t003;
+    M[5] = t007;
+    M[6] = t006;
+    M[7] = t007;
+    M[8] = S(2)/S(3)*t003;
 }
 
 // The body angular velocity (5.30).
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   w     output, dim 3: omega1, omega2, omega3
 //   p     parameters
-// Operations (+ - * / and calls): 126 before lowering, 39 after (12 +-, 21 *, 2 /, 4 calls).
+// Operations (+ - * / and calls): 126 before lowering, 34 after (9 +-, 19 *, 2 /, 4 calls).
 template <class T>
 void omega(const T* y, T* w, const params<T>& p) {
     using std::cos;
@@ -445,21 +449,20 @@ void omega(const T* y, T* w, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    const T t000 = S(1)/sin_theta;
-    const T t001 = cos_theta*p_psi - p_phi;
-    const T t002 = cos_psi*t000*t001 + p_theta*sin_psi;
-    const T t003 = cos_psi*p_theta - sin_psi*t000*t001;
-    const T t004 = S(1)/(p.L*p.L*p.M);
-    w[0] = -(S(18)/S(11)*t002 - S(18)/S(11)*p_psi - S(30)/S(11)*t003)*t004;
-    w[1] = -(S(30)/S(11)*t002 - S(18)/S(11)*p_psi - S(18)/S(11)*t003)*t004;
-    w[2] = -(S(18)/S(11)*t002 - S(18)/S(11)*t003 - S(30)/S(11)*p_psi)*t004;
+    const T t000 = (cos_theta*p_psi - p_phi)/sin_theta;
+    const T t001 = cos_psi*t000 + p_theta*sin_psi;
+    const T t002 = cos_psi*p_theta - sin_psi*t000;
+    const T t003 = S(1)/(p.L*p.L*p.M);
+    w[0] = (S(18)/S(11)*p_psi + S(30)/S(11)*t002 - S(18)/S(11)*t001)*t003;
+    w[1] = (S(18)/S(11)*p_psi + S(18)/S(11)*t002 - S(30)/S(11)*t001)*t003;
+    w[2] = (S(18)/S(11)*t002 + S(30)/S(11)*p_psi - S(18)/S(11)*t001)*t003;
 }
 
 // The rotation matrix A (5.25), passive, body <- space, row-major: x_body = A x_space.
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   A     output, dim 3 x 3 (row-major): A11, A12, A13, A21, A22, A23, A31, A32, A33
 //   p     parameters
-// Operations (+ - * / and calls): 49 before lowering, 29 after (7 +-, 16 *, 0 /, 6 calls).
+// Operations (+ - * / and calls): 49 before lowering, 26 after (6 +-, 14 *, 0 /, 6 calls).
 template <class T>
 void rotation(const T* y, T* A, const params<T>& p) {
     using std::cos;
@@ -474,11 +477,13 @@ void rotation(const T* y, T* A, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    A[0] = cos_phi*cos_psi - cos_theta*sin_phi*sin_psi;
-    A[1] = cos_phi*cos_theta*sin_psi + cos_psi*sin_phi;
+    const T t000 = cos_theta*sin_phi;
+    const T t001 = cos_phi*cos_theta;
+    A[0] = cos_phi*cos_psi - sin_psi*t000;
+    A[1] = cos_psi*sin_phi + sin_psi*t001;
     A[2] = sin_psi*sin_theta;
-    A[3] = -(cos_phi*sin_psi + cos_psi*cos_theta*sin_phi);
-    A[4] = -(sin_phi*sin_psi - cos_phi*cos_psi*cos_theta);
+    A[3] = -cos_phi*sin_psi - cos_psi*t000;
+    A[4] = cos_psi*t001 - sin_phi*sin_psi;
     A[5] = cos_psi*sin_theta;
     A[6] = sin_phi*sin_theta;
     A[7] = -cos_phi*sin_theta;

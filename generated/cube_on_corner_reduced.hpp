@@ -20,13 +20,13 @@
 // Parameters (params<T>, defaults from the model file): M = 1.0, L = 0.2, g = 9.81, p_phi = 0.0.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 515 -> 74 (14 temporaries)
-//   jacobian: 2750 -> 220 (38 temporaries)
-//   rhs_and_jacobian: 3265 -> 252 (43 temporaries)
-//   energy: 184 -> 47 (10 temporaries)
+//   rhs: 515 -> 70 (16 temporaries)
+//   jacobian: 2750 -> 198 (40 temporaries)
+//   rhs_and_jacobian: 3265 -> 222 (43 temporaries)
+//   energy: 184 -> 45 (9 temporaries)
 //   momenta: 0 -> 0 (0 temporaries)
-//   mass_matrix: 182 -> 45 (13 temporaries)
-//   omega: 126 -> 39 (9 temporaries)
+//   mass_matrix: 182 -> 39 (12 temporaries)
+//   omega: 126 -> 34 (8 temporaries)
 //   ignored_rates: 78 -> 27 (5 temporaries)
 //
 // Self-contained: includes <array>, <cmath> and <cstddef> only. Every function is a template on the
@@ -100,7 +100,7 @@ constexpr std::array<unsigned char, 16> jacobian_pattern{{
 //   y     state, dim 4: (theta, psi, p_theta, p_psi)
 //   dydt  output, dim 4: theta_dot, psi_dot, p_theta_dot, p_psi_dot
 //   p     parameters
-// Operations (+ - * / and calls): 515 before lowering, 74 after (20 +-, 47 *, 3 /, 4 calls).
+// Operations (+ - * / and calls): 515 before lowering, 70 after (19 +-, 44 *, 3 /, 4 calls).
 template <class T>
 void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     using std::cos;
@@ -117,18 +117,20 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     const T cos_psi = cos(psi);
     const T t000 = cos_theta*p_psi - p.p_phi;
     const T t001 = S(1)/sin_theta;
-    const T t002 = cos_psi*t000*t001 + p_theta*sin_psi;
-    const T t003 = cos_psi*p_theta - sin_psi*t000*t001;
-    const T t004 = S(5)*t002 - S(3)*p_psi - S(3)*t003;
-    const T t005 = S(3)*t002 - S(3)*p_psi - S(5)*t003;
-    const T t006 = S(1)/(p.L*p.L*p.M);
-    const T t007 = cos_psi*t004 + sin_psi*t005;
-    const T t008 = S(1)/S(2)*(sin_theta - (cos_psi + sin_psi)*cos_theta)*p.L*p.M*p.g + S(6)/S(11)*(cos_theta*t000/(sin_theta*sin_theta) + p_psi)*t006*t007;
-    const T t009 = S(1)/S(2)*(sin_psi - cos_psi)*p.L*p.M*p.g*sin_theta - S(6)/S(11)*(t002*t005 + t003*t004)*t006;
-    dydt[0] = S(6)/S(11)*(sin_psi*t004 - cos_psi*t005)*t006;
-    dydt[1] = -(S(18)/S(11)*t002 - S(18)/S(11)*t003 - S(30)/S(11)*p_psi - S(6)/S(11)*cos_theta*t001*t007)*t006;
-    dydt[2] = t008;
-    dydt[3] = t009;
+    const T t002 = t000*t001;
+    const T t003 = cos_psi*t002 + p_theta*sin_psi;
+    const T t004 = cos_psi*p_theta - sin_psi*t002;
+    const T t005 = S(5)*t003 - S(3)*p_psi - S(3)*t004;
+    const T t006 = S(3)*t003 - S(3)*p_psi - S(5)*t004;
+    const T t007 = S(1)/(p.L*p.L*p.M);
+    const T t008 = cos_psi*t005 + sin_psi*t006;
+    const T t009 = p.L*p.M*p.g;
+    const T t010 = S(1)/S(2)*(sin_theta - (cos_psi + sin_psi)*cos_theta)*t009 + S(6)/S(11)*(cos_theta*t000/(sin_theta*sin_theta) + p_psi)*t007*t008;
+    const T t011 = S(1)/S(2)*(sin_psi - cos_psi)*sin_theta*t009 - S(6)/S(11)*(t003*t006 + t004*t005)*t007;
+    dydt[0] = S(6)/S(11)*(sin_psi*t005 - cos_psi*t006)*t007;
+    dydt[1] = (S(18)/S(11)*t004 + S(30)/S(11)*p_psi + S(6)/S(11)*cos_theta*t001*t008 - S(18)/S(11)*t003)*t007;
+    dydt[2] = t010;
+    dydt[3] = t011;
 }
 
 // The analytic Jacobian J = d(dy/dt)/dy, dense, row-major: J[i * state_size + k] = d dydt[i] / d y[k].
@@ -136,7 +138,7 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
 //   y     state, dim 4: (theta, psi, p_theta, p_psi)
 //   J     output, dim 4 x 4 (row-major); structural zeros in jacobian_pattern
 //   p     parameters
-// Operations (+ - * / and calls): 2750 before lowering, 220 after (67 +-, 146 *, 3 /, 4 calls).
+// Operations (+ - * / and calls): 2750 before lowering, 198 after (61 +-, 130 *, 3 /, 4 calls).
 template <class T>
 void jacobian(T t, const T* y, T* J, const params<T>& p) {
     using std::cos;
@@ -154,53 +156,55 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T t000 = S(1)/(sin_theta*sin_theta);
     const T t001 = cos_theta*p_psi - p.p_phi;
     const T t002 = cos_theta*t000*t001 + p_psi;
-    const T t003 = S(3)*sin_psi + S(5)*cos_psi;
-    const T t004 = S(3)*cos_psi + S(5)*sin_psi;
-    const T t005 = S(1)/(p.L*p.L*p.M);
-    const T t006 = S(1)/sin_theta;
-    const T t007 = cos_psi*p_theta - sin_psi*t001*t006;
-    const T t008 = S(18)/S(11)*p_psi + S(36)/S(11)*t007;
-    const T t009 = cos_psi*t001*t006 + p_theta*sin_psi;
-    const T t010 = S(36)/S(11)*t009 - S(18)/S(11)*p_psi;
-    const T t011 = S(3)*sin_psi - S(5)*cos_psi;
-    const T t012 = S(5)*sin_psi - S(3)*cos_psi;
-    const T t013 = cos_theta*t004*t006 - S(3);
-    const T t014 = cos_theta*t003*t006 - S(3);
-    const T t015 = S(5)*t009 - S(3)*p_psi - S(3)*t007;
-    const T t016 = S(3)*t009 - S(3)*p_psi - S(5)*t007;
-    const T t017 = cos_psi*t003 + sin_psi*t004;
-    const T t018 = cos_psi*t015;
-    const T t019 = sin_psi*t016;
-    const T t020 = t018 + t019;
-    const T t021 = (S(18)/S(11)*t002 - S(6)/S(11)*t015)*cos_psi - (S(6)/S(11)*t016 - S(18)/S(11)*t002)*sin_psi - S(6)/S(11)*(cos_theta*t006*t020 + t002*t017)*cos_theta*t006;
-    const T t022 = cos_psi*t010 + sin_psi*t008;
-    const T t023 = cos_psi*t012 + sin_psi*t011;
-    const T t024 = ((S(6)/S(11)*t013 - S(18)/S(11))*sin_psi + (S(6)/S(11)*t014 - S(18)/S(11))*cos_psi)*cos_theta*t006;
-    const T t025 = cos_psi + sin_psi;
-    const T t026 = (p.p_phi - S(2)*cos_theta*t002)*t006*t020 - t002*t002*t017;
-    const T t027 = (sin_psi - cos_psi)*cos_theta*p.L*p.M*p.g;
-    const T t028 = (S(1) + cos_theta*cos_theta*t000)*t020 + (cos_psi*t014 + sin_psi*t013)*t002;
-    const T t029 = sin_psi*t015;
-    const T t030 = cos_psi*t016;
-    const T t031 = S(1)/S(2)*t027 - S(6)/S(11)*(t029 - t003*t007 - t004*t009 - t030)*t002*t005;
-    const T t032 = S(1)/S(2)*p.L*p.M*p.g*sin_theta*t025 - (t007*t010 + t008*t009)*t005;
-    const T t033 = (t007*t014 + t009*t013 - (t029 - t030)*cos_theta*t006)*t005;
-    J[0] = -S(6)/S(11)*(sin_psi*t003 - cos_psi*t004)*t002*t005;
-    J[1] = -(cos_psi*t008 - sin_psi*t010)*t005;
-    J[2] = -S(6)/S(11)*(cos_psi*t011 - sin_psi*t012)*t005;
-    J[3] = -S(6)/S(11)*(cos_psi*t013 - sin_psi*t014)*t005;
-    J[4] = t005*t021;
-    J[5] = -(S(18)/S(11)*t007 + S(18)/S(11)*t009 - cos_theta*t006*t022)*t005;
-    J[6] = -(S(18)/S(11)*sin_psi - S(18)/S(11)*cos_psi - S(6)/S(11)*cos_theta*t006*t023)*t005;
-    J[7] = (S(30)/S(11) + t024)*t005;
-    J[8] = S(1)/S(2)*(cos_theta + sin_theta*t025)*p.L*p.M*p.g + S(6)/S(11)*t005*t026;
-    J[9] = S(1)/S(2)*t027 + t002*t005*t022;
-    J[10] = S(6)/S(11)*t002*t005*t023;
-    J[11] = S(6)/S(11)*t005*t028;
-    J[12] = t031;
-    J[13] = t032;
-    J[14] = -S(6)/S(11)*(t007*t012 + t009*t011 + t018 + t019)*t005;
-    J[15] = -S(6)/S(11)*t033;
+    const T t003 = S(1)/(p.L*p.L*p.M);
+    const T t004 = t002*t003;
+    const T t005 = S(3)*sin_psi + S(5)*cos_psi;
+    const T t006 = S(3)*cos_psi + S(5)*sin_psi;
+    const T t007 = S(1)/sin_theta;
+    const T t008 = t001*t007;
+    const T t009 = cos_psi*p_theta - sin_psi*t008;
+    const T t010 = S(18)/S(11)*p_psi + S(36)/S(11)*t009;
+    const T t011 = cos_psi*t008 + p_theta*sin_psi;
+    const T t012 = S(36)/S(11)*t011 - S(18)/S(11)*p_psi;
+    const T t013 = S(3)*sin_psi - S(5)*cos_psi;
+    const T t014 = S(5)*sin_psi - S(3)*cos_psi;
+    const T t015 = cos_theta*t007;
+    const T t016 = t006*t015 - S(3);
+    const T t017 = t005*t015 - S(3);
+    const T t018 = S(5)*t011 - S(3)*p_psi - S(3)*t009;
+    const T t019 = S(3)*t011 - S(3)*p_psi - S(5)*t009;
+    const T t020 = cos_psi*t005 + sin_psi*t006;
+    const T t021 = cos_psi*t018;
+    const T t022 = sin_psi*t019;
+    const T t023 = t021 + t022;
+    const T t024 = (S(18)/S(11)*t002 - S(6)/S(11)*t018)*cos_psi - (S(6)/S(11)*t019 - S(18)/S(11)*t002)*sin_psi - S(6)/S(11)*(t002*t020 + t015*t023)*t015;
+    const T t025 = cos_psi*t012 + sin_psi*t010;
+    const T t026 = cos_psi*t014 + sin_psi*t013;
+    const T t027 = ((S(6)/S(11)*t016 - S(18)/S(11))*sin_psi + (S(6)/S(11)*t017 - S(18)/S(11))*cos_psi)*t015 + S(30)/S(11);
+    const T t028 = p.L*p.M*p.g;
+    const T t029 = (cos_psi + sin_psi)*sin_theta;
+    const T t030 = (p.p_phi - S(2)*cos_theta*t002)*t007*t023 - t002*t002*t020;
+    const T t031 = (sin_psi - cos_psi)*cos_theta*t028;
+    const T t032 = (S(1) + cos_theta*cos_theta*t000)*t023 + (cos_psi*t017 + sin_psi*t016)*t002;
+    const T t033 = sin_psi*t018;
+    const T t034 = cos_psi*t019;
+    const T t035 = (t009*t017 + t011*t016 - (t033 - t034)*t015)*t003;
+    J[0] = S(6)/S(11)*(cos_psi*t006 - sin_psi*t005)*t004;
+    J[1] = (sin_psi*t012 - cos_psi*t010)*t003;
+    J[2] = S(6)/S(11)*(sin_psi*t014 - cos_psi*t013)*t003;
+    J[3] = S(6)/S(11)*(sin_psi*t017 - cos_psi*t016)*t003;
+    J[4] = t003*t024;
+    J[5] = (t015*t025 - S(18)/S(11)*t009 - S(18)/S(11)*t011)*t003;
+    J[6] = (S(18)/S(11)*cos_psi + S(6)/S(11)*t015*t026 - S(18)/S(11)*sin_psi)*t003;
+    J[7] = t003*t027;
+    J[8] = S(1)/S(2)*(cos_theta + t029)*t028 + S(6)/S(11)*t003*t030;
+    J[9] = S(1)/S(2)*t031 + t004*t025;
+    J[10] = S(6)/S(11)*t004*t026;
+    J[11] = S(6)/S(11)*t003*t032;
+    J[12] = S(1)/S(2)*t031 - S(6)/S(11)*(t033 - t005*t009 - t006*t011 - t034)*t004;
+    J[13] = S(1)/S(2)*t028*t029 - (t009*t012 + t010*t011)*t003;
+    J[14] = S(6)/S(11)*(-t009*t014 - t011*t013 - t021 - t022)*t003;
+    J[15] = -S(6)/S(11)*t035;
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -209,7 +213,7 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   dydt  output, dim 4: theta_dot, psi_dot, p_theta_dot, p_psi_dot
 //   J     output, dim 4 x 4 (row-major)
 //   p     parameters
-// Operations (+ - * / and calls): 3265 before lowering, 252 after (75 +-, 170 *, 3 /, 4 calls).
+// Operations (+ - * / and calls): 3265 before lowering, 222 after (67 +-, 148 *, 3 /, 4 calls).
 template <class T>
 void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     using std::cos;
@@ -226,69 +230,69 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T cos_psi = cos(psi);
     const T t000 = cos_theta*p_psi - p.p_phi;
     const T t001 = S(1)/sin_theta;
-    const T t002 = cos_psi*t000*t001 + p_theta*sin_psi;
-    const T t003 = cos_psi*p_theta - sin_psi*t000*t001;
-    const T t004 = S(5)*t002 - S(3)*p_psi - S(3)*t003;
-    const T t005 = sin_psi*t004;
-    const T t006 = S(3)*t002 - S(3)*p_psi - S(5)*t003;
-    const T t007 = cos_psi*t006;
-    const T t008 = t005 - t007;
-    const T t009 = S(1)/(p.L*p.L*p.M);
-    const T t010 = cos_psi*t004;
-    const T t011 = sin_psi*t006;
-    const T t012 = t010 + t011;
-    const T t013 = cos_theta*t001*t012;
-    const T t014 = cos_psi + sin_psi;
-    const T t015 = S(1)/(sin_theta*sin_theta);
-    const T t016 = cos_theta*t000*t015 + p_psi;
-    const T t017 = S(1)/S(2)*(sin_theta - cos_theta*t014)*p.L*p.M*p.g + S(6)/S(11)*t009*t012*t016;
-    const T t018 = sin_psi - cos_psi;
-    const T t019 = S(1)/S(2)*p.L*p.M*p.g*sin_theta*t018 - S(6)/S(11)*(t002*t006 + t003*t004)*t009;
-    const T t020 = S(3)*sin_psi + S(5)*cos_psi;
-    const T t021 = S(3)*cos_psi + S(5)*sin_psi;
-    const T t022 = S(18)/S(11)*p_psi + S(36)/S(11)*t003;
-    const T t023 = S(36)/S(11)*t002 - S(18)/S(11)*p_psi;
-    const T t024 = S(3)*sin_psi - S(5)*cos_psi;
-    const T t025 = S(5)*sin_psi - S(3)*cos_psi;
-    const T t026 = cos_theta*t001*t021 - S(3);
-    const T t027 = cos_theta*t001*t020 - S(3);
-    const T t028 = cos_psi*t020 + sin_psi*t021;
-    const T t029 = (S(18)/S(11)*t016 - S(6)/S(11)*t004)*cos_psi - (S(6)/S(11)*t006 - S(18)/S(11)*t016)*sin_psi - S(6)/S(11)*(t013 + t016*t028)*cos_theta*t001;
-    const T t030 = cos_psi*t023 + sin_psi*t022;
-    const T t031 = cos_psi*t025 + sin_psi*t024;
-    const T t032 = ((S(6)/S(11)*t026 - S(18)/S(11))*sin_psi + (S(6)/S(11)*t027 - S(18)/S(11))*cos_psi)*cos_theta*t001;
-    const T t033 = (p.p_phi - S(2)*cos_theta*t016)*t001*t012 - t016*t016*t028;
-    const T t034 = cos_theta*p.L*p.M*p.g*t018;
-    const T t035 = (S(1) + cos_theta*cos_theta*t015)*t012 + (cos_psi*t027 + sin_psi*t026)*t016;
-    const T t036 = S(1)/S(2)*t034 - S(6)/S(11)*(t005 - t002*t021 - t003*t020 - t007)*t009*t016;
-    const T t037 = S(1)/S(2)*p.L*p.M*p.g*sin_theta*t014 - (t002*t022 + t003*t023)*t009;
-    const T t038 = -S(6)/S(11)*(t002*t026 + t003*t027 - cos_theta*t001*t008)*t009;
-    dydt[0] = S(6)/S(11)*t008*t009;
-    dydt[1] = -(S(18)/S(11)*t002 - S(18)/S(11)*t003 - S(30)/S(11)*p_psi - S(6)/S(11)*t013)*t009;
-    dydt[2] = t017;
-    dydt[3] = t019;
-    J[0] = -S(6)/S(11)*(sin_psi*t020 - cos_psi*t021)*t009*t016;
-    J[1] = -(cos_psi*t022 - sin_psi*t023)*t009;
-    J[2] = -S(6)/S(11)*(cos_psi*t024 - sin_psi*t025)*t009;
-    J[3] = -S(6)/S(11)*(cos_psi*t026 - sin_psi*t027)*t009;
-    J[4] = t009*t029;
-    J[5] = -(S(18)/S(11)*t002 + S(18)/S(11)*t003 - cos_theta*t001*t030)*t009;
-    J[6] = -(S(18)/S(11)*sin_psi - S(18)/S(11)*cos_psi - S(6)/S(11)*cos_theta*t001*t031)*t009;
-    J[7] = (S(30)/S(11) + t032)*t009;
-    J[8] = S(1)/S(2)*(cos_theta + sin_theta*t014)*p.L*p.M*p.g + S(6)/S(11)*t009*t033;
-    J[9] = S(1)/S(2)*t034 + t009*t016*t030;
-    J[10] = S(6)/S(11)*t009*t016*t031;
-    J[11] = S(6)/S(11)*t009*t035;
-    J[12] = t036;
-    J[13] = t037;
-    J[14] = -S(6)/S(11)*(t002*t024 + t003*t025 + t010 + t011)*t009;
-    J[15] = t038;
+    const T t002 = t000*t001;
+    const T t003 = cos_psi*t002 + p_theta*sin_psi;
+    const T t004 = cos_psi*p_theta - sin_psi*t002;
+    const T t005 = S(5)*t003 - S(3)*p_psi - S(3)*t004;
+    const T t006 = sin_psi*t005;
+    const T t007 = S(3)*t003 - S(3)*p_psi - S(5)*t004;
+    const T t008 = cos_psi*t007;
+    const T t009 = t006 - t008;
+    const T t010 = S(1)/(p.L*p.L*p.M);
+    const T t011 = cos_theta*t001;
+    const T t012 = cos_psi*t005;
+    const T t013 = sin_psi*t007;
+    const T t014 = t012 + t013;
+    const T t015 = t011*t014;
+    const T t016 = p.L*p.M*p.g;
+    const T t017 = cos_psi + sin_psi;
+    const T t018 = S(1)/(sin_theta*sin_theta);
+    const T t019 = cos_theta*t000*t018 + p_psi;
+    const T t020 = t010*t019;
+    const T t021 = (sin_psi - cos_psi)*t016;
+    const T t022 = S(3)*sin_psi + S(5)*cos_psi;
+    const T t023 = S(3)*cos_psi + S(5)*sin_psi;
+    const T t024 = S(18)/S(11)*p_psi + S(36)/S(11)*t004;
+    const T t025 = S(36)/S(11)*t003 - S(18)/S(11)*p_psi;
+    const T t026 = S(3)*sin_psi - S(5)*cos_psi;
+    const T t027 = S(5)*sin_psi - S(3)*cos_psi;
+    const T t028 = t011*t023 - S(3);
+    const T t029 = t011*t022 - S(3);
+    const T t030 = cos_psi*t022 + sin_psi*t023;
+    const T t031 = (S(18)/S(11)*t019 - S(6)/S(11)*t005)*cos_psi - (S(6)/S(11)*t007 - S(18)/S(11)*t019)*sin_psi - S(6)/S(11)*(t015 + t019*t030)*t011;
+    const T t032 = cos_psi*t025 + sin_psi*t024;
+    const T t033 = cos_psi*t027 + sin_psi*t026;
+    const T t034 = ((S(6)/S(11)*t028 - S(18)/S(11))*sin_psi + (S(6)/S(11)*t029 - S(18)/S(11))*cos_psi)*t011 + S(30)/S(11);
+    const T t035 = sin_theta*t017;
+    const T t036 = (p.p_phi - S(2)*cos_theta*t019)*t001*t014 - t019*t019*t030;
+    const T t037 = cos_theta*t021;
+    const T t038 = (S(1) + cos_theta*cos_theta*t018)*t014 + (cos_psi*t029 + sin_psi*t028)*t019;
+    dydt[0] = S(6)/S(11)*t009*t010;
+    dydt[1] = (S(18)/S(11)*t004 + S(30)/S(11)*p_psi + S(6)/S(11)*t015 - S(18)/S(11)*t003)*t010;
+    dydt[2] = S(1)/S(2)*(sin_theta - cos_theta*t017)*t016 + S(6)/S(11)*t014*t020;
+    dydt[3] = S(1)/S(2)*sin_theta*t021 - S(6)/S(11)*(t003*t007 + t004*t005)*t010;
+    J[0] = S(6)/S(11)*(cos_psi*t023 - sin_psi*t022)*t020;
+    J[1] = (sin_psi*t025 - cos_psi*t024)*t010;
+    J[2] = S(6)/S(11)*(sin_psi*t027 - cos_psi*t026)*t010;
+    J[3] = S(6)/S(11)*(sin_psi*t029 - cos_psi*t028)*t010;
+    J[4] = t010*t031;
+    J[5] = (t011*t032 - S(18)/S(11)*t003 - S(18)/S(11)*t004)*t010;
+    J[6] = (S(18)/S(11)*cos_psi + S(6)/S(11)*t011*t033 - S(18)/S(11)*sin_psi)*t010;
+    J[7] = t010*t034;
+    J[8] = S(1)/S(2)*(cos_theta + t035)*t016 + S(6)/S(11)*t010*t036;
+    J[9] = S(1)/S(2)*t037 + t020*t032;
+    J[10] = S(6)/S(11)*t020*t033;
+    J[11] = S(6)/S(11)*t010*t038;
+    J[12] = S(1)/S(2)*t037 - S(6)/S(11)*(t006 - t003*t023 - t004*t022 - t008)*t020;
+    J[13] = S(1)/S(2)*t016*t035 - (t003*t024 + t004*t025)*t010;
+    J[14] = S(6)/S(11)*(-t003*t026 - t004*t027 - t012 - t013)*t010;
+    J[15] = S(6)/S(11)*(t009*t011 - t003*t028 - t004*t029)*t010;
 }
 
 // The energy, the Hamiltonian H = T + V (conserved without damping and driving torques).
 //   y     state, dim 4: (theta, psi, p_theta, p_psi)
 //   p     parameters
-// Operations (+ - * / and calls): 184 before lowering, 47 after (14 +-, 27 *, 2 /, 4 calls).
+// Operations (+ - * / and calls): 184 before lowering, 45 after (14 +-, 25 *, 2 /, 4 calls).
 template <class T>
 T energy(const T* y, const params<T>& p) {
     using std::cos;
@@ -302,13 +306,12 @@ T energy(const T* y, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    const T t000 = cos_theta*p_psi - p.p_phi;
-    const T t001 = S(1)/sin_theta;
-    const T t002 = cos_psi*t000*t001 + p_theta*sin_psi;
-    const T t003 = cos_psi*p_theta - sin_psi*t000*t001;
-    const T t004 = (S(5)*t002 - S(3)*p_psi - S(3)*t003)*t002 - (S(3)*t002 - S(3)*p_psi - S(5)*t003)*t003 - (S(3)*t002 - S(3)*t003 - S(5)*p_psi)*p_psi;
-    const T t005 = S(1)/S(2)*((cos_psi + sin_psi)*sin_theta + cos_theta)*p.L*p.M*p.g + S(3)/S(11)*t004/(p.L*p.L*p.M);
-    return t005;
+    const T t000 = (cos_theta*p_psi - p.p_phi)/sin_theta;
+    const T t001 = cos_psi*t000 + p_theta*sin_psi;
+    const T t002 = cos_psi*p_theta - sin_psi*t000;
+    const T t003 = (S(5)*t001 - S(3)*p_psi - S(3)*t002)*t001 - (S(3)*t001 - S(3)*p_psi - S(5)*t002)*t002 - (S(3)*t001 - S(3)*t002 - S(5)*p_psi)*p_psi;
+    const T t004 = S(1)/S(2)*((cos_psi + sin_psi)*sin_theta + cos_theta)*p.L*p.M*p.g + S(3)/S(11)*t003/(p.L*p.L*p.M);
+    return t004;
 }
 
 // The conjugate momenta p = dL/dq_dot (5.74)-(5.76).
@@ -329,7 +332,7 @@ void momenta(const T* y, T* momentum, const params<T>& p) {
 //   y     state, dim 4: (theta, psi, p_theta, p_psi)
 //   M     output, dim 3 x 3 (row-major): M11, M12, M13, M21, M22, M23, M31, M32, M33
 //   p     parameters
-// Operations (+ - * / and calls): 182 before lowering, 45 after (10 +-, 31 *, 0 /, 4 calls).
+// Operations (+ - * / and calls): 182 before lowering, 39 after (9 +-, 26 *, 0 /, 4 calls).
 template <class T>
 void mass_matrix(const T* y, T* M, const params<T>& p) {
     using std::cos;
@@ -341,31 +344,30 @@ void mass_matrix(const T* y, T* M, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    const T t000 = p.L*p.L;
-    const T t001 = cos_psi*sin_psi;
-    const T t002 = cos_psi + sin_psi;
-    const T t003 = S(2)/S(3)*cos_theta*cos_theta - ((S(1)/S(2)*t001 - S(2)/S(3))*sin_theta + S(1)/S(2)*cos_theta*t002)*sin_theta;
+    const T t000 = cos_psi*sin_psi;
+    const T t001 = cos_psi + sin_psi;
+    const T t002 = S(2)/S(3)*cos_theta*cos_theta - ((S(1)/S(2)*t000 - S(2)/S(3))*sin_theta + S(1)/S(2)*cos_theta*t001)*sin_theta;
+    const T t003 = p.L*p.L*p.M;
     const T t004 = sin_psi - cos_psi;
-    const T t005 = ((S(1)/S(2)*cos_psi*cos_psi - S(1)/S(4))*sin_theta - S(1)/S(4)*cos_theta*t004)*p.M*t000;
-    const T t006 = -t005;
-    const T t007 = (S(2)/S(3)*cos_theta - S(1)/S(4)*sin_theta*t002)*p.M*t000;
-    const T t008 = S(1)/S(4)*p.M*t000*t004;
-    M[0] = p.M*t000*t003;
-    M[1] = t006;
-    M[2] = t007;
-    M[3] = t006;
-    M[4] = (S(1)/S(2)*t001 + S(2)/S(3))*p.M*t000;
-    M[5] = t008;
-    M[6] = t007;
-    M[7] = t008;
-    M[8] = S(2)/S(3)*p.M*t000;
+    const T t005 = (S(1)/S(4)*cos_theta*t004 - (S(1)/S(2)*cos_psi*cos_psi - S(1)/S(4))*sin_theta)*t003;
+    const T t006 = (S(2)/S(3)*cos_theta - S(1)/S(4)*sin_theta*t001)*t003;
+    const T t007 = S(1)/S(4)*t003*t004;
+    M[0] = t002*t003;
+    M[1] = t005;
+    M[2] = t006;
+    M[3] = t005;
+    M[4] = (S(1)/S(2)*t000 + S(2)/S(3))*t003;
+    M[5] = t007;
+    M[6] = t006;
+    M[7] = t007;
+    M[8] = S(2)/S(3)*t003;
 }
 
 // The body angular velocity (5.30).
 //   y     state, dim 4: (theta, psi, p_theta, p_psi)
 //   w     output, dim 3: omega1, omega2, omega3
 //   p     parameters
-// Operations (+ - * / and calls): 126 before lowering, 39 after (12 +-, 21 *, 2 /, 4 calls).
+// Operations (+ - * / and calls): 126 before lowering, 34 after (9 +-, 19 *, 2 /, 4 calls).
 template <class T>
 void omega(const T* y, T* w, const params<T>& p) {
     using std::cos;
@@ -379,14 +381,13 @@ void omega(const T* y, T* w, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    const T t000 = cos_theta*p_psi - p.p_phi;
-    const T t001 = S(1)/sin_theta;
-    const T t002 = cos_psi*t000*t001 + p_theta*sin_psi;
-    const T t003 = cos_psi*p_theta - sin_psi*t000*t001;
-    const T t004 = S(1)/(p.L*p.L*p.M);
-    w[0] = -(S(18)/S(11)*t002 - S(18)/S(11)*p_psi - S(30)/S(11)*t003)*t004;
-    w[1] = -(S(30)/S(11)*t002 - S(18)/S(11)*p_psi - S(18)/S(11)*t003)*t004;
-    w[2] = -(S(18)/S(11)*t002 - S(18)/S(11)*t003 - S(30)/S(11)*p_psi)*t004;
+    const T t000 = (cos_theta*p_psi - p.p_phi)/sin_theta;
+    const T t001 = cos_psi*t000 + p_theta*sin_psi;
+    const T t002 = cos_psi*p_theta - sin_psi*t000;
+    const T t003 = S(1)/(p.L*p.L*p.M);
+    w[0] = (S(18)/S(11)*p_psi + S(30)/S(11)*t002 - S(18)/S(11)*t001)*t003;
+    w[1] = (S(18)/S(11)*p_psi + S(18)/S(11)*t002 - S(30)/S(11)*t001)*t003;
+    w[2] = (S(18)/S(11)*t002 + S(30)/S(11)*p_psi - S(18)/S(11)*t001)*t003;
 }
 
 // The rates of the ignored (cyclic) coordinates; integrate them to recover the angles.

@@ -20,14 +20,14 @@
 // 0.1, c = 0.05, A = 0.2, w = 3.0.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 129 -> 49 (10 temporaries)
-//   jacobian: 483 -> 137 (22 temporaries)
-//   rhs_and_jacobian: 612 -> 148 (23 temporaries)
+//   rhs: 129 -> 47 (11 temporaries)
+//   jacobian: 483 -> 118 (31 temporaries)
+//   rhs_and_jacobian: 612 -> 127 (33 temporaries)
 //   energy: 31 -> 23 (4 temporaries)
-//   momenta: 19 -> 12 (3 temporaries)
+//   momenta: 19 -> 11 (3 temporaries)
 //   mass_matrix: 11 -> 8 (3 temporaries)
-//   omega: 17 -> 14 (4 temporaries)
-//   rotation: 49 -> 29 (6 temporaries)
+//   omega: 17 -> 13 (5 temporaries)
+//   rotation: 49 -> 26 (8 temporaries)
 //
 // Self-contained: includes <array>, <cmath> and <cstddef> only. Every function is a template on the
 // scalar type T (float, double, long double, Eigen array batches such as Eigen::Array<double, 4, 1>,
@@ -106,7 +106,7 @@ constexpr std::array<unsigned char, 36> jacobian_pattern{{
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, phi_ddot, theta_ddot, psi_ddot
 //   p     parameters
-// Operations (+ - * / and calls): 129 before lowering, 49 after (14 +-, 29 *, 3 /, 3 calls).
+// Operations (+ - * / and calls): 129 before lowering, 47 after (14 +-, 27 *, 3 /, 3 calls).
 template <class T>
 void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     using std::cos;
@@ -118,20 +118,21 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     const T psi_dot = y[5];
     const T sin_theta = sin(theta);
     const T cos_theta = cos(theta);
-    const T t000 = sin(p.w*t);
-    const T t001 = p.c*psi_dot - p.A*t000 - p.I3*phi_dot*sin_theta*theta_dot;
-    const T t002 = p.I3*psi_dot;
-    const T t003 = (p.I3 - p.I1)*cos_theta*phi_dot;
-    const T t004 = (S(2)*t003 + t002)*sin_theta*theta_dot + cos_theta*p.A*t000 - p.c*phi_dot;
-    const T t005 = S(1)/(p.I1*sin_theta*sin_theta);
-    const T t006 = ((t002 + t003)*phi_dot - p.M*p.g*p.h)*sin_theta + p.c*theta_dot;
-    const T t007 = (S(1)/p.I3 + cos_theta*cos_theta*t005)*t001 + cos_theta*t004*t005;
+    const T t000 = sin_theta*theta_dot;
+    const T t001 = p.A*sin(p.w*t);
+    const T t002 = p.c*psi_dot - p.I3*phi_dot*t000 - t001;
+    const T t003 = p.I3*psi_dot;
+    const T t004 = (p.I3 - p.I1)*cos_theta*phi_dot;
+    const T t005 = (S(2)*t004 + t003)*t000 + cos_theta*t001 - p.c*phi_dot;
+    const T t006 = S(1)/(p.I1*sin_theta*sin_theta);
+    const T t007 = ((t003 + t004)*phi_dot - p.M*p.g*p.h)*sin_theta + p.c*theta_dot;
+    const T t008 = (S(1)/p.I3 + cos_theta*cos_theta*t006)*t002 + cos_theta*t005*t006;
     dydt[0] = phi_dot;
     dydt[1] = theta_dot;
     dydt[2] = psi_dot;
-    dydt[3] = (cos_theta*t001 + t004)*t005;
-    dydt[4] = -t006/p.I1;
-    dydt[5] = -t007;
+    dydt[3] = (cos_theta*t002 + t005)*t006;
+    dydt[4] = -t007/p.I1;
+    dydt[5] = -t008;
 }
 
 // The analytic Jacobian J = d(dy/dt)/dy, dense, row-major: J[i * state_size + k] = d dydt[i] / d y[k].
@@ -139,7 +140,7 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   J     output, dim 6 x 6 (row-major); structural zeros in jacobian_pattern
 //   p     parameters
-// Operations (+ - * / and calls): 483 before lowering, 137 after (36 +-, 92 *, 6 /, 3 calls).
+// Operations (+ - * / and calls): 483 before lowering, 118 after (36 +-, 72 *, 7 /, 3 calls).
 template <class T>
 void jacobian(T t, const T* y, T* J, const params<T>& p) {
     using std::cos;
@@ -152,25 +153,34 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T sin_theta = sin(theta);
     const T cos_theta = cos(theta);
     const T t000 = S(1)/(p.I1*sin_theta);
-    const T t001 = S(1)/sin_theta;
-    const T t002 = sin(p.w*t);
-    const T t003 = p.c*psi_dot - p.A*t002 - p.I3*phi_dot*sin_theta*theta_dot;
-    const T t004 = p.I3*psi_dot;
-    const T t005 = p.I3 - p.I1;
-    const T t006 = cos_theta*phi_dot*t005;
-    const T t007 = S(2)*t006 + t004;
-    const T t008 = cos_theta*p.A*t002 + sin_theta*t007*theta_dot - p.c*phi_dot;
-    const T t009 = (S(2)*(cos_theta*t003 + t008)*t001 + cos_theta*p.I3*phi_dot*theta_dot)*cos_theta;
-    const T t010 = sin_theta*sin_theta;
-    const T t011 = p.A*sin_theta*t002 - (cos_theta*t007 - S(2)*phi_dot*t005*t010)*theta_dot;
-    const T t012 = S(2)*cos_theta*sin_theta*t005*theta_dot - p.c;
-    const T t013 = S(1)/p.I1;
-    const T t014 = ((t004 + t006)*phi_dot - p.M*p.g*p.h)*cos_theta - phi_dot*phi_dot*t005*t010;
-    const T t015 = cos_theta*cos_theta;
-    const T t016 = S(1)/(p.I1*t010);
-    const T t017 = S(1)/p.I3 + t015*t016;
-    const T t018 = (S(2)*cos_theta*t001*t008 + t011)*t001 + S(2)*(S(1) + t015/t010)*t003;
-    const T t019 = (cos_theta*t018 + t008)*t000 + cos_theta*p.I3*phi_dot*t017*theta_dot;
+    const T t001 = p.I3*theta_dot;
+    const T t002 = cos_theta*t001;
+    const T t003 = phi_dot*t002;
+    const T t004 = S(1)/sin_theta;
+    const T t005 = phi_dot*sin_theta;
+    const T t006 = p.A*sin(p.w*t);
+    const T t007 = p.c*psi_dot - t001*t005 - t006;
+    const T t008 = sin_theta*theta_dot;
+    const T t009 = p.I3*psi_dot;
+    const T t010 = p.I3 - p.I1;
+    const T t011 = cos_theta*t010;
+    const T t012 = phi_dot*t011;
+    const T t013 = S(2)*t012 + t009;
+    const T t014 = cos_theta*t006 + t008*t013 - p.c*phi_dot;
+    const T t015 = cos_theta*t013;
+    const T t016 = sin_theta*sin_theta;
+    const T t017 = t010*t016;
+    const T t018 = sin_theta*t006 - (t015 - S(2)*phi_dot*t017)*theta_dot;
+    const T t019 = ((S(2)*(cos_theta*t007 + t014)*t004 + t003)*cos_theta + t018)*t004;
+    const T t020 = S(2)*t008*t011 - p.c;
+    const T t021 = cos_theta*t004;
+    const T t022 = S(1)/p.I1;
+    const T t023 = ((t009 + t012)*phi_dot - p.M*p.g*p.h)*cos_theta - phi_dot*phi_dot*t017;
+    const T t024 = cos_theta*cos_theta;
+    const T t025 = S(1)/(p.I1*t016);
+    const T t026 = S(1)/p.I3 + t024*t025;
+    const T t027 = (S(2)*t014*t021 + t018)*t004 + S(2)*(S(1) + t024/t016)*t007;
+    const T t028 = p.I3*t000*t024 + sin_theta;
     J[0] = T(S(0));
     J[1] = T(S(0));
     J[2] = T(S(0));
@@ -190,23 +200,23 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     J[16] = T(S(0));
     J[17] = T(S(1));
     J[18] = T(S(0));
-    J[19] = -((t009 + t011)*t001 + t003)*t000;
+    J[19] = (-t007 - t019)*t000;
     J[20] = T(S(0));
-    J[21] = -(cos_theta*p.I3*theta_dot - t001*t012)*t000;
-    J[22] = ((p.I3 - S(2)*p.I1)*cos_theta*phi_dot + t004)*t000;
-    J[23] = (cos_theta*p.c*t001 + p.I3*theta_dot)*t000;
+    J[21] = (t004*t020 - t002)*t000;
+    J[22] = ((p.I3 - S(2)*p.I1)*cos_theta*phi_dot + t009)*t000;
+    J[23] = (p.c*t021 + t001)*t000;
     J[24] = T(S(0));
-    J[25] = -t013*t014;
+    J[25] = -t022*t023;
     J[26] = T(S(0));
-    J[27] = -sin_theta*t007*t013;
-    J[28] = -p.c*t013;
-    J[29] = -p.I3*phi_dot*sin_theta*t013;
+    J[27] = -sin_theta*t013*t022;
+    J[28] = -p.c*t022;
+    J[29] = -(p.I3/p.I1)*t005;
     J[30] = T(S(0));
-    J[31] = t019;
+    J[31] = (cos_theta*t027 + t014)*t000 + t003*t026;
     J[32] = T(S(0));
-    J[33] = p.I3*sin_theta*t017*theta_dot - cos_theta*t012*t016;
-    J[34] = p.I3*phi_dot*sin_theta*t017 - cos_theta*t000*t007;
-    J[35] = -(cos_theta*p.I3*t000*theta_dot + p.c*t017);
+    J[33] = t028*theta_dot - cos_theta*t020*t025;
+    J[34] = phi_dot*t028 - t000*t015;
+    J[35] = -p.c*t026 - t000*t002;
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -215,7 +225,7 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, phi_ddot, theta_ddot, psi_ddot
 //   J     output, dim 6 x 6 (row-major)
 //   p     parameters
-// Operations (+ - * / and calls): 612 before lowering, 148 after (40 +-, 99 *, 6 /, 3 calls).
+// Operations (+ - * / and calls): 612 before lowering, 127 after (39 +-, 78 *, 7 /, 3 calls).
 template <class T>
 void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     using std::cos;
@@ -227,33 +237,43 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T psi_dot = y[5];
     const T sin_theta = sin(theta);
     const T cos_theta = cos(theta);
-    const T t000 = sin(p.w*t);
-    const T t001 = p.c*psi_dot - p.A*t000 - p.I3*phi_dot*sin_theta*theta_dot;
-    const T t002 = p.I3*psi_dot;
-    const T t003 = p.I3 - p.I1;
-    const T t004 = cos_theta*phi_dot*t003;
-    const T t005 = S(2)*t004 + t002;
-    const T t006 = cos_theta*p.A*t000 + sin_theta*t005*theta_dot - p.c*phi_dot;
-    const T t007 = cos_theta*t001 + t006;
-    const T t008 = sin_theta*sin_theta;
-    const T t009 = S(1)/(p.I1*t008);
-    const T t010 = S(1)/p.I1;
-    const T t011 = (t002 + t004)*phi_dot - p.M*p.g*p.h;
-    const T t012 = cos_theta*cos_theta;
-    const T t013 = S(1)/p.I3 + t009*t012;
-    const T t014 = S(1)/(p.I1*sin_theta);
-    const T t015 = S(1)/sin_theta;
-    const T t016 = p.A*sin_theta*t000 - (cos_theta*t005 - S(2)*phi_dot*t003*t008)*theta_dot;
-    const T t017 = ((S(2)*t007*t015 + cos_theta*p.I3*phi_dot*theta_dot)*cos_theta + t016)*t015;
-    const T t018 = S(2)*cos_theta*sin_theta*t003*theta_dot - p.c;
-    const T t019 = (S(2)*cos_theta*t006*t015 + t016)*t015 + S(2)*(S(1) + t012/t008)*t001;
-    const T t020 = (cos_theta*t019 + t006)*t014 + cos_theta*p.I3*phi_dot*t013*theta_dot;
+    const T t000 = p.I3*theta_dot;
+    const T t001 = phi_dot*sin_theta;
+    const T t002 = p.A*sin(p.w*t);
+    const T t003 = p.c*psi_dot - t000*t001 - t002;
+    const T t004 = sin_theta*theta_dot;
+    const T t005 = p.I3*psi_dot;
+    const T t006 = p.I3 - p.I1;
+    const T t007 = cos_theta*t006;
+    const T t008 = phi_dot*t007;
+    const T t009 = S(2)*t008 + t005;
+    const T t010 = cos_theta*t002 + t004*t009 - p.c*phi_dot;
+    const T t011 = cos_theta*t003 + t010;
+    const T t012 = sin_theta*sin_theta;
+    const T t013 = S(1)/(p.I1*t012);
+    const T t014 = S(1)/p.I1;
+    const T t015 = (t005 + t008)*phi_dot - p.M*p.g*p.h;
+    const T t016 = cos_theta*cos_theta;
+    const T t017 = S(1)/p.I3 + t013*t016;
+    const T t018 = cos_theta*t013;
+    const T t019 = S(1)/(p.I1*sin_theta);
+    const T t020 = cos_theta*t000;
+    const T t021 = phi_dot*t020;
+    const T t022 = S(1)/sin_theta;
+    const T t023 = cos_theta*t009;
+    const T t024 = t006*t012;
+    const T t025 = sin_theta*t002 - (t023 - S(2)*phi_dot*t024)*theta_dot;
+    const T t026 = (((S(2)*t011*t022 + t021)*cos_theta + t025)*t022 + t003)*t019;
+    const T t027 = S(2)*t004*t007 - p.c;
+    const T t028 = cos_theta*t022;
+    const T t029 = (S(2)*t010*t028 + t025)*t022 + S(2)*(S(1) + t016/t012)*t003;
+    const T t030 = p.I3*t016*t019 + sin_theta;
     dydt[0] = phi_dot;
     dydt[1] = theta_dot;
     dydt[2] = psi_dot;
-    dydt[3] = t007*t009;
-    dydt[4] = -(p.c*theta_dot + sin_theta*t011)*t010;
-    dydt[5] = -(cos_theta*t006*t009 + t001*t013);
+    dydt[3] = t011*t013;
+    dydt[4] = (-p.c*theta_dot - sin_theta*t015)*t014;
+    dydt[5] = -t003*t017 - t010*t018;
     J[0] = T(S(0));
     J[1] = T(S(0));
     J[2] = T(S(0));
@@ -273,23 +293,23 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     J[16] = T(S(0));
     J[17] = T(S(1));
     J[18] = T(S(0));
-    J[19] = -(t001 + t017)*t014;
+    J[19] = -t026;
     J[20] = T(S(0));
-    J[21] = -(cos_theta*p.I3*theta_dot - t015*t018)*t014;
-    J[22] = ((p.I3 - S(2)*p.I1)*cos_theta*phi_dot + t002)*t014;
-    J[23] = (cos_theta*p.c*t015 + p.I3*theta_dot)*t014;
+    J[21] = (t022*t027 - t020)*t019;
+    J[22] = ((p.I3 - S(2)*p.I1)*cos_theta*phi_dot + t005)*t019;
+    J[23] = (p.c*t028 + t000)*t019;
     J[24] = T(S(0));
-    J[25] = -(cos_theta*t011 - phi_dot*phi_dot*t003*t008)*t010;
+    J[25] = (phi_dot*phi_dot*t024 - cos_theta*t015)*t014;
     J[26] = T(S(0));
-    J[27] = -sin_theta*t005*t010;
-    J[28] = -p.c*t010;
-    J[29] = -p.I3*phi_dot*sin_theta*t010;
+    J[27] = -sin_theta*t009*t014;
+    J[28] = -p.c*t014;
+    J[29] = -(p.I3/p.I1)*t001;
     J[30] = T(S(0));
-    J[31] = t020;
+    J[31] = (cos_theta*t029 + t010)*t019 + t017*t021;
     J[32] = T(S(0));
-    J[33] = p.I3*sin_theta*t013*theta_dot - cos_theta*t009*t018;
-    J[34] = p.I3*phi_dot*sin_theta*t013 - cos_theta*t005*t014;
-    J[35] = -(cos_theta*p.I3*t014*theta_dot + p.c*t013);
+    J[33] = t030*theta_dot - t018*t027;
+    J[34] = phi_dot*t030 - t019*t023;
+    J[35] = -p.c*t017 - t019*t020;
 }
 
 // The energy T + V (conserved without damping and driving torques).
@@ -316,7 +336,7 @@ T energy(const T* y, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   momentum output, dim 3: p_phi, p_theta, p_psi
 //   p     parameters
-// Operations (+ - * / and calls): 19 before lowering, 12 after (2 +-, 8 *, 0 /, 2 calls).
+// Operations (+ - * / and calls): 19 before lowering, 11 after (2 +-, 7 *, 0 /, 2 calls).
 template <class T>
 void momenta(const T* y, T* momentum, const params<T>& p) {
     using std::cos;
@@ -327,10 +347,10 @@ void momenta(const T* y, T* momentum, const params<T>& p) {
     const T psi_dot = y[5];
     const T sin_theta = sin(theta);
     const T cos_theta = cos(theta);
-    const T t000 = cos_theta*phi_dot + psi_dot;
-    momentum[0] = cos_theta*p.I3*t000 + p.I1*phi_dot*sin_theta*sin_theta;
+    const T t000 = (cos_theta*phi_dot + psi_dot)*p.I3;
+    momentum[0] = cos_theta*t000 + p.I1*phi_dot*sin_theta*sin_theta;
     momentum[1] = p.I1*theta_dot;
-    momentum[2] = p.I3*t000;
+    momentum[2] = t000;
 }
 
 // The mass matrix M(q) = J^T I J of the Euler-angle rates, row-major (p = M q_dot).
@@ -362,7 +382,7 @@ void mass_matrix(const T* y, T* M, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   w     output, dim 3: omega1, omega2, omega3
 //   p     parameters
-// Operations (+ - * / and calls): 17 before lowering, 14 after (3 +-, 7 *, 0 /, 4 calls).
+// Operations (+ - * / and calls): 17 before lowering, 13 after (3 +-, 6 *, 0 /, 4 calls).
 template <class T>
 void omega(const T* y, T* w, const params<T>& p) {
     using std::cos;
@@ -377,8 +397,9 @@ void omega(const T* y, T* w, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    w[0] = cos_psi*theta_dot + phi_dot*sin_psi*sin_theta;
-    w[1] = cos_psi*phi_dot*sin_theta - sin_psi*theta_dot;
+    const T t000 = phi_dot*sin_theta;
+    w[0] = cos_psi*theta_dot + sin_psi*t000;
+    w[1] = cos_psi*t000 - sin_psi*theta_dot;
     w[2] = cos_theta*phi_dot + psi_dot;
 }
 
@@ -386,7 +407,7 @@ void omega(const T* y, T* w, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   A     output, dim 3 x 3 (row-major): A11, A12, A13, A21, A22, A23, A31, A32, A33
 //   p     parameters
-// Operations (+ - * / and calls): 49 before lowering, 29 after (7 +-, 16 *, 0 /, 6 calls).
+// Operations (+ - * / and calls): 49 before lowering, 26 after (6 +-, 14 *, 0 /, 6 calls).
 template <class T>
 void rotation(const T* y, T* A, const params<T>& p) {
     using std::cos;
@@ -401,11 +422,13 @@ void rotation(const T* y, T* A, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    A[0] = cos_phi*cos_psi - cos_theta*sin_phi*sin_psi;
-    A[1] = cos_phi*cos_theta*sin_psi + cos_psi*sin_phi;
+    const T t000 = cos_theta*sin_phi;
+    const T t001 = cos_phi*cos_theta;
+    A[0] = cos_phi*cos_psi - sin_psi*t000;
+    A[1] = cos_psi*sin_phi + sin_psi*t001;
     A[2] = sin_psi*sin_theta;
-    A[3] = -(cos_phi*sin_psi + cos_psi*cos_theta*sin_phi);
-    A[4] = -(sin_phi*sin_psi - cos_phi*cos_psi*cos_theta);
+    A[3] = -cos_phi*sin_psi - cos_psi*t000;
+    A[4] = cos_psi*t001 - sin_phi*sin_psi;
     A[5] = cos_psi*sin_theta;
     A[6] = sin_phi*sin_theta;
     A[7] = -cos_phi*sin_theta;

@@ -20,14 +20,14 @@
 // 0.1, c = 0.05, A = 0.2, w = 3.0.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 120 -> 46 (11 temporaries)
-//   jacobian: 292 -> 73 (20 temporaries)
-//   rhs_and_jacobian: 412 -> 106 (27 temporaries)
-//   energy: 37 -> 24 (4 temporaries)
+//   rhs: 120 -> 40 (10 temporaries)
+//   jacobian: 292 -> 70 (22 temporaries)
+//   rhs_and_jacobian: 412 -> 95 (31 temporaries)
+//   energy: 37 -> 23 (5 temporaries)
 //   momenta: 0 -> 0 (0 temporaries)
 //   mass_matrix: 11 -> 8 (3 temporaries)
-//   omega: 31 -> 20 (7 temporaries)
-//   rotation: 49 -> 29 (6 temporaries)
+//   omega: 31 -> 18 (6 temporaries)
+//   rotation: 49 -> 26 (8 temporaries)
 //
 // Self-contained: includes <array>, <cmath> and <cstddef> only. Every function is a template on the
 // scalar type T (float, double, long double, Eigen array batches such as Eigen::Array<double, 4, 1>,
@@ -106,7 +106,7 @@ constexpr std::array<unsigned char, 36> jacobian_pattern{{
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, p_phi_dot, p_theta_dot, p_psi_dot
 //   p     parameters
-// Operations (+ - * / and calls): 120 before lowering, 46 after (12 +-, 26 *, 5 /, 3 calls).
+// Operations (+ - * / and calls): 120 before lowering, 40 after (11 +-, 21 *, 5 /, 3 calls).
 template <class T>
 void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     using std::cos;
@@ -119,20 +119,19 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     const T sin_theta = sin(theta);
     const T cos_theta = cos(theta);
     const T t000 = sin_theta*sin_theta;
-    const T t001 = S(1)/(p.I1*t000);
-    const T t002 = cos_theta*p_psi;
-    const T t003 = t002 - p_phi;
-    const T t004 = S(1)/p.I1;
-    const T t005 = cos_theta*t001*t003 + p_psi/p.I3;
-    const T t006 = sin(p.w*t);
-    const T t007 = ((t002 - S(2)*p_phi)*cos_theta*p_psi + p_phi*p_phi)/t000 + p_psi*p_psi;
-    const T t008 = (cos_theta*t007 - p_phi*p_psi)/sin_theta - p.c*p_theta;
-    dydt[0] = -t001*t003;
-    dydt[1] = p_theta*t004;
-    dydt[2] = t005;
-    dydt[3] = cos_theta*p.A*t006 + p.c*t001*t003;
-    dydt[4] = p.M*p.g*p.h*sin_theta + t004*t008;
-    dydt[5] = -(p.c*t005 - p.A*t006);
+    const T t001 = cos_theta*p_psi;
+    const T t002 = (t001 - p_phi)/(p.I1*t000);
+    const T t003 = S(1)/p.I1;
+    const T t004 = cos_theta*t002 + p_psi/p.I3;
+    const T t005 = p.A*sin(p.w*t);
+    const T t006 = ((t001 - S(2)*p_phi)*t001 + p_phi*p_phi)/t000 + p_psi*p_psi;
+    const T t007 = (cos_theta*t006 - p_phi*p_psi)/sin_theta - p.c*p_theta;
+    dydt[0] = -t002;
+    dydt[1] = p_theta*t003;
+    dydt[2] = t004;
+    dydt[3] = cos_theta*t005 + p.c*t002;
+    dydt[4] = p.M*p.g*p.h*sin_theta + t003*t007;
+    dydt[5] = t005 - p.c*t004;
 }
 
 // The analytic Jacobian J = d(dy/dt)/dy, dense, row-major: J[i * state_size + k] = d dydt[i] / d y[k].
@@ -140,7 +139,7 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   J     output, dim 6 x 6 (row-major); structural zeros in jacobian_pattern
 //   p     parameters
-// Operations (+ - * / and calls): 292 before lowering, 73 after (21 +-, 44 *, 5 /, 3 calls).
+// Operations (+ - * / and calls): 292 before lowering, 70 after (21 +-, 41 *, 5 /, 3 calls).
 template <class T>
 void jacobian(T t, const T* y, T* J, const params<T>& p) {
     using std::cos;
@@ -164,11 +163,13 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T t010 = S(2)*(p_psi + t004)*cos_theta - p_phi;
     const T t011 = t000*t010;
     const T t012 = S(1)/p.I3 + cos_theta*cos_theta*t007;
-    const T t013 = cos_theta*p.c*t007;
-    const T t014 = p_phi*p_phi;
-    const T t015 = p_psi*p_psi;
-    const T t016 = (((S(3)*t003 - S(6)*p_phi)*cos_theta*p_psi + S(3)*t014)*t002 + S(4)*t015)*cos_theta;
-    const T t017 = (((t016 - S(5)*p_phi*p_psi)*cos_theta + t014)*t002 + t015)*t009;
+    const T t013 = p.c*t000;
+    const T t014 = p.c*t007;
+    const T t015 = cos_theta*t014;
+    const T t016 = p_phi*p_phi;
+    const T t017 = p_psi*p_psi;
+    const T t018 = (((S(3)*t003 - S(6)*p_phi)*t003 + S(3)*t016)*t002 + S(4)*t017)*cos_theta - S(5)*p_phi*p_psi;
+    const T t019 = ((cos_theta*t018 + t016)*t002 + t017)*t009 - cos_theta*p.M*p.g*p.h;
     J[0] = T(S(0));
     J[1] = t006;
     J[2] = T(S(0));
@@ -188,21 +189,21 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     J[16] = T(S(0));
     J[17] = t012;
     J[18] = T(S(0));
-    J[19] = -(p.A*sin(p.w*t)*sin_theta + p.c*t000*t005);
+    J[19] = -p.A*sin(p.w*t)*sin_theta - t005*t013;
     J[20] = T(S(0));
-    J[21] = -p.c*t007;
+    J[21] = -t014;
     J[22] = T(S(0));
-    J[23] = t013;
+    J[23] = t015;
     J[24] = T(S(0));
-    J[25] = -(t017 - cos_theta*p.M*p.g*p.h);
+    J[25] = -t019;
     J[26] = T(S(0));
     J[27] = -t006;
     J[28] = -p.c*t009;
     J[29] = t011;
     J[30] = T(S(0));
-    J[31] = p.c*t000*t010;
+    J[31] = t010*t013;
     J[32] = T(S(0));
-    J[33] = t013;
+    J[33] = t015;
     J[34] = T(S(0));
     J[35] = -p.c*t012;
 }
@@ -213,7 +214,7 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, p_phi_dot, p_theta_dot, p_psi_dot
 //   J     output, dim 6 x 6 (row-major)
 //   p     parameters
-// Operations (+ - * / and calls): 412 before lowering, 106 after (32 +-, 65 *, 6 /, 3 calls).
+// Operations (+ - * / and calls): 412 before lowering, 95 after (31 +-, 55 *, 6 /, 3 calls).
 template <class T>
 void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     using std::cos;
@@ -231,37 +232,41 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T t003 = t002 - p_phi;
     const T t004 = S(1)/p.I1;
     const T t005 = S(1)/p.I3;
-    const T t006 = cos_theta*t001*t003 + p_psi*t005;
-    const T t007 = sin(p.w*t);
-    const T t008 = S(1)/t000;
-    const T t009 = p_phi*p_phi;
-    const T t010 = p_psi*p_psi;
-    const T t011 = (((t002 - S(2)*p_phi)*cos_theta*p_psi + t009)*t008 + t010)*cos_theta;
-    const T t012 = p_phi*p_psi;
-    const T t013 = ((t011 - t012)/sin_theta - p.c*p_theta)*t004 + p.M*p.g*p.h*sin_theta;
-    const T t014 = S(1)/(p.I1*sin_theta);
-    const T t015 = cos_theta*t003*t008;
-    const T t016 = S(2)*t015 + p_psi;
-    const T t017 = t014*t016;
-    const T t018 = -cos_theta*t001;
-    const T t019 = S(2)*(p_psi + t015)*cos_theta - p_phi;
-    const T t020 = t014*t019;
-    const T t021 = cos_theta*cos_theta*t001 + t005;
-    const T t022 = cos_theta*p.c*t001;
-    const T t023 = (((S(3)*t002 - S(6)*p_phi)*cos_theta*p_psi + S(3)*t009)*t008 + S(4)*t010)*cos_theta;
-    const T t024 = (((t023 - S(5)*t012)*cos_theta + t009)*t008 + t010)*t004 - cos_theta*p.M*p.g*p.h;
+    const T t006 = cos_theta*t001;
+    const T t007 = p_psi*t005 + t003*t006;
+    const T t008 = p.A*sin(p.w*t);
+    const T t009 = p.c*t001;
+    const T t010 = S(1)/t000;
+    const T t011 = p_phi*p_phi;
+    const T t012 = p_psi*p_psi;
+    const T t013 = p_phi*p_psi;
+    const T t014 = (((t002 - S(2)*p_phi)*t002 + t011)*t010 + t012)*cos_theta - t013;
+    const T t015 = p.M*p.g*p.h;
+    const T t016 = (t014/sin_theta - p.c*p_theta)*t004 + sin_theta*t015;
+    const T t017 = S(1)/(p.I1*sin_theta);
+    const T t018 = cos_theta*t003*t010;
+    const T t019 = S(2)*t018 + p_psi;
+    const T t020 = t017*t019;
+    const T t021 = -t006;
+    const T t022 = S(2)*(p_psi + t018)*cos_theta - p_phi;
+    const T t023 = t017*t022;
+    const T t024 = cos_theta*cos_theta*t001 + t005;
+    const T t025 = p.c*t017;
+    const T t026 = cos_theta*t009;
+    const T t027 = (((S(3)*t002 - S(6)*p_phi)*t002 + S(3)*t011)*t010 + S(4)*t012)*cos_theta - S(5)*t013;
+    const T t028 = ((cos_theta*t027 + t011)*t010 + t012)*t004 - cos_theta*t015;
     dydt[0] = -t001*t003;
     dydt[1] = p_theta*t004;
-    dydt[2] = t006;
-    dydt[3] = cos_theta*p.A*t007 + p.c*t001*t003;
-    dydt[4] = t013;
-    dydt[5] = -(p.c*t006 - p.A*t007);
+    dydt[2] = t007;
+    dydt[3] = cos_theta*t008 + t003*t009;
+    dydt[4] = t016;
+    dydt[5] = t008 - p.c*t007;
     J[0] = T(S(0));
-    J[1] = t017;
+    J[1] = t020;
     J[2] = T(S(0));
     J[3] = t001;
     J[4] = T(S(0));
-    J[5] = t018;
+    J[5] = t021;
     J[6] = T(S(0));
     J[7] = T(S(0));
     J[8] = T(S(0));
@@ -269,35 +274,35 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     J[10] = t004;
     J[11] = T(S(0));
     J[12] = T(S(0));
-    J[13] = -t020;
+    J[13] = -t023;
     J[14] = T(S(0));
-    J[15] = t018;
+    J[15] = t021;
     J[16] = T(S(0));
-    J[17] = t021;
+    J[17] = t024;
     J[18] = T(S(0));
-    J[19] = -(p.A*sin_theta*t007 + p.c*t014*t016);
+    J[19] = -sin_theta*t008 - t019*t025;
     J[20] = T(S(0));
-    J[21] = -p.c*t001;
+    J[21] = -t009;
     J[22] = T(S(0));
-    J[23] = t022;
+    J[23] = t026;
     J[24] = T(S(0));
-    J[25] = -t024;
+    J[25] = -t028;
     J[26] = T(S(0));
-    J[27] = -t017;
+    J[27] = -t020;
     J[28] = -p.c*t004;
-    J[29] = t020;
+    J[29] = t023;
     J[30] = T(S(0));
-    J[31] = p.c*t014*t019;
+    J[31] = t022*t025;
     J[32] = T(S(0));
-    J[33] = t022;
+    J[33] = t026;
     J[34] = T(S(0));
-    J[35] = -p.c*t021;
+    J[35] = -p.c*t024;
 }
 
 // The energy, the Hamiltonian H = T + V (conserved without damping and driving torques).
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   p     parameters
-// Operations (+ - * / and calls): 37 before lowering, 24 after (5 +-, 14 *, 3 /, 2 calls).
+// Operations (+ - * / and calls): 37 before lowering, 23 after (5 +-, 13 *, 3 /, 2 calls).
 template <class T>
 T energy(const T* y, const params<T>& p) {
     using std::cos;
@@ -309,9 +314,10 @@ T energy(const T* y, const params<T>& p) {
     const T p_psi = y[5];
     const T sin_theta = sin(theta);
     const T cos_theta = cos(theta);
-    const T t000 = ((S(1)/S(2)*cos_theta*p_psi - p_phi)*cos_theta*p_psi + S(1)/S(2)*p_phi*p_phi)/(sin_theta*sin_theta);
-    const T t001 = (S(1)/S(2)*p_theta*p_theta + t000)/p.I1 + S(1)/S(2)*p_psi*p_psi/p.I3 + cos_theta*p.M*p.g*p.h;
-    return t001;
+    const T t000 = cos_theta*p_psi;
+    const T t001 = ((S(1)/S(2)*t000 - p_phi)*t000 + S(1)/S(2)*p_phi*p_phi)/(sin_theta*sin_theta);
+    const T t002 = (S(1)/S(2)*p_theta*p_theta + t001)/p.I1 + S(1)/S(2)*p_psi*p_psi/p.I3 + cos_theta*p.M*p.g*p.h;
+    return t002;
 }
 
 // The conjugate momenta p = dL/dq_dot (5.74)-(5.76).
@@ -359,7 +365,7 @@ void mass_matrix(const T* y, T* M, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   w     output, dim 3: omega1, omega2, omega3
 //   p     parameters
-// Operations (+ - * / and calls): 31 before lowering, 20 after (4 +-, 9 *, 3 /, 4 calls).
+// Operations (+ - * / and calls): 31 before lowering, 18 after (4 +-, 7 *, 3 /, 4 calls).
 template <class T>
 void omega(const T* y, T* w, const params<T>& p) {
     using std::cos;
@@ -375,10 +381,9 @@ void omega(const T* y, T* w, const params<T>& p) {
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
     const T t000 = S(1)/p.I1;
-    const T t001 = S(1)/sin_theta;
-    const T t002 = cos_theta*p_psi - p_phi;
-    w[0] = (cos_psi*p_theta - sin_psi*t001*t002)*t000;
-    w[1] = -(cos_psi*t001*t002 + p_theta*sin_psi)*t000;
+    const T t001 = (cos_theta*p_psi - p_phi)/sin_theta;
+    w[0] = (cos_psi*p_theta - sin_psi*t001)*t000;
+    w[1] = (-cos_psi*t001 - p_theta*sin_psi)*t000;
     w[2] = p_psi/p.I3;
 }
 
@@ -386,7 +391,7 @@ void omega(const T* y, T* w, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   A     output, dim 3 x 3 (row-major): A11, A12, A13, A21, A22, A23, A31, A32, A33
 //   p     parameters
-// Operations (+ - * / and calls): 49 before lowering, 29 after (7 +-, 16 *, 0 /, 6 calls).
+// Operations (+ - * / and calls): 49 before lowering, 26 after (6 +-, 14 *, 0 /, 6 calls).
 template <class T>
 void rotation(const T* y, T* A, const params<T>& p) {
     using std::cos;
@@ -401,11 +406,13 @@ void rotation(const T* y, T* A, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    A[0] = cos_phi*cos_psi - cos_theta*sin_phi*sin_psi;
-    A[1] = cos_phi*cos_theta*sin_psi + cos_psi*sin_phi;
+    const T t000 = cos_theta*sin_phi;
+    const T t001 = cos_phi*cos_theta;
+    A[0] = cos_phi*cos_psi - sin_psi*t000;
+    A[1] = cos_psi*sin_phi + sin_psi*t001;
     A[2] = sin_psi*sin_theta;
-    A[3] = -(cos_phi*sin_psi + cos_psi*cos_theta*sin_phi);
-    A[4] = -(sin_phi*sin_psi - cos_phi*cos_psi*cos_theta);
+    A[3] = -cos_phi*sin_psi - cos_psi*t000;
+    A[4] = cos_psi*t001 - sin_phi*sin_psi;
     A[5] = cos_psi*sin_theta;
     A[6] = sin_phi*sin_theta;
     A[7] = -cos_phi*sin_theta;

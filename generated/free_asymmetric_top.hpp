@@ -19,14 +19,14 @@
 // Parameters (params<T>, defaults from the model file): I1 = 1.0, I2 = 2.0, I3 = 3.0.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 318 -> 57 (14 temporaries)
-//   jacobian: 2091 -> 207 (42 temporaries)
-//   rhs_and_jacobian: 2409 -> 220 (43 temporaries)
-//   energy: 28 -> 23 (8 temporaries)
-//   momenta: 77 -> 28 (8 temporaries)
+//   rhs: 318 -> 48 (16 temporaries)
+//   jacobian: 2091 -> 164 (44 temporaries)
+//   rhs_and_jacobian: 2409 -> 174 (48 temporaries)
+//   energy: 28 -> 22 (9 temporaries)
+//   momenta: 77 -> 24 (10 temporaries)
 //   mass_matrix: 59 -> 19 (8 temporaries)
-//   omega: 17 -> 14 (4 temporaries)
-//   rotation: 49 -> 29 (6 temporaries)
+//   omega: 17 -> 13 (5 temporaries)
+//   rotation: 49 -> 26 (8 temporaries)
 //
 // Self-contained: includes <array>, <cmath> and <cstddef> only. Every function is a template on the
 // scalar type T (float, double, long double, Eigen array batches such as Eigen::Array<double, 4, 1>,
@@ -100,12 +100,11 @@ constexpr std::array<unsigned char, 36> jacobian_pattern{{
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, phi_ddot, theta_ddot, psi_ddot
 //   p     parameters
-// Operations (+ - * / and calls): 318 before lowering, 57 after (17 +-, 32 *, 4 /, 4 calls).
+// Operations (+ - * / and calls): 318 before lowering, 48 after (17 +-, 23 *, 4 /, 4 calls).
 template <class T>
 void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     using std::cos;
     using std::sin;
-    using S = typename detail::scalar_of<T>::type;
     (void)t;
     const T theta = y[1];
     const T psi = y[2];
@@ -116,22 +115,24 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    const T t000 = S(1)/sin_theta;
-    const T t001 = cos_theta*phi_dot;
-    const T t002 = psi_dot + t001;
-    const T t003 = cos_psi*theta_dot + phi_dot*sin_psi*sin_theta;
-    const T t004 = t001 - psi_dot;
-    const T t005 = (p.I3 - p.I1)*t002*t003/p.I2 + phi_dot*psi_dot*sin_psi*sin_theta - cos_psi*t004*theta_dot;
-    const T t006 = cos_psi*phi_dot*sin_theta - sin_psi*theta_dot;
-    const T t007 = (p.I3 - p.I2)*t002*t006/p.I1 + cos_psi*phi_dot*psi_dot*sin_theta + sin_psi*t004*theta_dot;
-    const T t008 = cos_psi*t005 - sin_psi*t007;
-    const T t009 = (p.I2 - p.I1)*t003*t006/p.I3 + cos_theta*t000*t008 - phi_dot*sin_theta*theta_dot;
+    const T t000 = cos_theta*phi_dot;
+    const T t001 = psi_dot + t000;
+    const T t002 = phi_dot*sin_theta;
+    const T t003 = sin_psi*t002;
+    const T t004 = cos_psi*theta_dot + t003;
+    const T t005 = (t000 - psi_dot)*theta_dot;
+    const T t006 = ((p.I3 - p.I1)/p.I2)*t001*t004 + psi_dot*t003 - cos_psi*t005;
+    const T t007 = cos_psi*t002;
+    const T t008 = t007 - sin_psi*theta_dot;
+    const T t009 = ((p.I3 - p.I2)/p.I1)*t001*t008 + psi_dot*t007 + sin_psi*t005;
+    const T t010 = (cos_psi*t006 - sin_psi*t009)/sin_theta;
+    const T t011 = ((p.I2 - p.I1)/p.I3)*t004*t008 + cos_theta*t010 - t002*theta_dot;
     dydt[0] = phi_dot;
     dydt[1] = theta_dot;
     dydt[2] = psi_dot;
-    dydt[3] = t000*t008;
-    dydt[4] = -(cos_psi*t007 + sin_psi*t005);
-    dydt[5] = -t009;
+    dydt[3] = t010;
+    dydt[4] = -cos_psi*t009 - sin_psi*t006;
+    dydt[5] = -t011;
 }
 
 // The analytic Jacobian J = d(dy/dt)/dy, dense, row-major: J[i * state_size + k] = d dydt[i] / d y[k].
@@ -139,7 +140,7 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   J     output, dim 6 x 6 (row-major); structural zeros in jacobian_pattern
 //   p     parameters
-// Operations (+ - * / and calls): 2091 before lowering, 207 after (62 +-, 135 *, 6 /, 4 calls).
+// Operations (+ - * / and calls): 2091 before lowering, 164 after (60 +-, 94 *, 6 /, 4 calls).
 template <class T>
 void jacobian(T t, const T* y, T* J, const params<T>& p) {
     using std::cos;
@@ -155,149 +156,46 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    const T t000 = S(1)/sin_theta;
-    const T t001 = S(1)/p.I1;
-    const T t002 = cos_psi*phi_dot*sin_theta;
-    const T t003 = sin_psi*theta_dot;
-    const T t004 = t002 - t003;
-    const T t005 = cos_theta*phi_dot;
-    const T t006 = psi_dot + t005;
-    const T t007 = p.I3 - p.I2;
-    const T t008 = (sin_theta*t004 - cos_psi*cos_theta*t006)*t001*t007 + sin_psi*sin_theta*theta_dot - cos_psi*cos_theta*psi_dot;
-    const T t009 = phi_dot*sin_psi*sin_theta;
-    const T t010 = cos_psi*theta_dot;
-    const T t011 = t009 + t010;
-    const T t012 = S(1)/p.I2;
-    const T t013 = p.I3 - p.I1;
-    const T t014 = cos_psi*sin_theta*theta_dot + cos_theta*psi_dot*sin_psi - (sin_theta*t011 - cos_theta*sin_psi*t006)*t012*t013;
-    const T t015 = t005 - psi_dot;
-    const T t016 = phi_dot*psi_dot*sin_psi*sin_theta + t006*t011*t012*t013 - cos_psi*t015*theta_dot;
-    const T t017 = cos_psi*t016;
-    const T t018 = cos_psi*phi_dot*psi_dot*sin_theta + sin_psi*t015*theta_dot + t001*t004*t006*t007;
-    const T t019 = sin_psi*t018;
-    const T t020 = (cos_psi*t014 + sin_psi*t008)*phi_dot - (t017 - t019)*cos_theta*t000;
-    const T t021 = t000*t020;
-    const T t022 = sin_psi*t011 - cos_psi*t004;
-    const T t023 = p.I2 - p.I1;
-    const T t024 = p.I2*p.I2 - p.I1*p.I1 - p.I3*t023;
-    const T t025 = S(1)/(p.I1*p.I2*sin_theta);
-    const T t026 = (cos_theta*t011 + sin_psi*sin_theta*t006)*t012*t013 + psi_dot*sin_psi*sin_theta - cos_psi*cos_theta*theta_dot;
-    const T t027 = (cos_psi*sin_theta*t006 + cos_theta*t004)*t001*t007 + cos_psi*psi_dot*sin_theta + cos_theta*sin_psi*theta_dot;
-    const T t028 = cos_psi*t026 - sin_psi*t027;
-    const T t029 = (t005 - psi_dot - t001*t006*t007)*sin_psi*sin_psi + (t005 - psi_dot - t006*t012*t013)*cos_psi*cos_psi;
-    const T t030 = t001*t004*t007 + t002 - t003;
-    const T t031 = t009 + t010 + t011*t012*t013;
-    const T t032 = sin_psi*t030 - cos_psi*t031;
-    const T t033 = cos_psi*t011 + sin_psi*t004;
-    const T t034 = S(1)/(p.I1*p.I2);
-    const T t035 = S(1)/p.I3;
-    const T t036 = t023*t033*t035 - theta_dot;
-    const T t037 = (t011*t011 - t004*t004)*t023*t035 + cos_theta*t006*t022*t024*t025;
-    J[0] = T(S(0));
-    J[1] = T(S(0));
-    J[2] = T(S(0));
-    J[3] = T(S(1));
-    J[4] = T(S(0));
-    J[5] = T(S(0));
-    J[6] = T(S(0));
-    J[7] = T(S(0));
-    J[8] = T(S(0));
-    J[9] = T(S(0));
-    J[10] = T(S(1));
-    J[11] = T(S(0));
-    J[12] = T(S(0));
-    J[13] = T(S(0));
-    J[14] = T(S(0));
-    J[15] = T(S(0));
-    J[16] = T(S(0));
-    J[17] = T(S(1));
-    J[18] = T(S(0));
-    J[19] = t021;
-    J[20] = -t006*t022*t024*t025;
-    J[21] = t000*t028;
-    J[22] = -t000*t029;
-    J[23] = -t000*t032;
-    J[24] = T(S(0));
-    J[25] = -(sin_psi*t014 - cos_psi*t008)*phi_dot;
-    J[26] = -t006*t024*t033*t034;
-    J[27] = -(cos_psi*t027 + sin_psi*t026);
-    J[28] = -cos_psi*sin_psi*t006*t024*t034;
-    J[29] = -(cos_psi*t030 + sin_psi*t031);
-    J[30] = T(S(0));
-    J[31] = t017 - (phi_dot*t036 + t021)*cos_theta - t019;
-    J[32] = t037;
-    J[33] = -(cos_theta*t000*t028 + sin_theta*t036);
-    J[34] = cos_theta*t000*t029 + phi_dot*sin_theta + t022*t023*t035;
-    J[35] = cos_theta*t000*t032;
-}
-
-// rhs and jacobian in one pass, sharing their common subexpressions.
-//   t     time
-//   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
-//   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, phi_ddot, theta_ddot, psi_ddot
-//   J     output, dim 6 x 6 (row-major)
-//   p     parameters
-// Operations (+ - * / and calls): 2409 before lowering, 220 after (67 +-, 143 *, 6 /, 4 calls).
-template <class T>
-void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
-    using std::cos;
-    using std::sin;
-    using S = typename detail::scalar_of<T>::type;
-    (void)t;
-    const T theta = y[1];
-    const T psi = y[2];
-    const T phi_dot = y[3];
-    const T theta_dot = y[4];
-    const T psi_dot = y[5];
-    const T sin_theta = sin(theta);
-    const T cos_theta = cos(theta);
-    const T sin_psi = sin(psi);
-    const T cos_psi = cos(psi);
-    const T t000 = S(1)/sin_theta;
-    const T t001 = cos_theta*phi_dot;
-    const T t002 = psi_dot + t001;
-    const T t003 = S(1)/p.I2;
-    const T t004 = p.I3 - p.I1;
-    const T t005 = phi_dot*sin_psi*sin_theta;
-    const T t006 = cos_psi*theta_dot;
-    const T t007 = t005 + t006;
-    const T t008 = t001 - psi_dot;
-    const T t009 = phi_dot*psi_dot*sin_psi*sin_theta + t002*t003*t004*t007 - cos_psi*t008*theta_dot;
-    const T t010 = cos_psi*t009;
-    const T t011 = cos_psi*phi_dot*sin_theta;
-    const T t012 = sin_psi*theta_dot;
-    const T t013 = t011 - t012;
-    const T t014 = S(1)/p.I1;
-    const T t015 = p.I3 - p.I2;
-    const T t016 = cos_psi*phi_dot*psi_dot*sin_theta + sin_psi*t008*theta_dot + t002*t013*t014*t015;
-    const T t017 = sin_psi*t016;
-    const T t018 = t010 - t017;
-    const T t019 = cos_theta*t000*t018;
-    const T t020 = p.I2 - p.I1;
-    const T t021 = S(1)/p.I3;
-    const T t022 = (sin_theta*t013 - cos_psi*cos_theta*t002)*t014*t015 + sin_psi*sin_theta*theta_dot - cos_psi*cos_theta*psi_dot;
-    const T t023 = cos_psi*sin_theta*theta_dot + cos_theta*psi_dot*sin_psi - (sin_theta*t007 - cos_theta*sin_psi*t002)*t003*t004;
-    const T t024 = ((cos_psi*t023 + sin_psi*t022)*phi_dot - t019)*t000;
-    const T t025 = sin_psi*t007 - cos_psi*t013;
-    const T t026 = p.I2*p.I2 - p.I1*p.I1 - p.I3*t020;
-    const T t027 = S(1)/(p.I1*p.I2*sin_theta);
-    const T t028 = (cos_theta*t007 + sin_psi*sin_theta*t002)*t003*t004 + psi_dot*sin_psi*sin_theta - cos_psi*cos_theta*theta_dot;
-    const T t029 = (cos_psi*sin_theta*t002 + cos_theta*t013)*t014*t015 + cos_psi*psi_dot*sin_theta + cos_theta*sin_psi*theta_dot;
-    const T t030 = cos_psi*t028 - sin_psi*t029;
-    const T t031 = (t001 - psi_dot - t002*t003*t004)*cos_psi*cos_psi + (t001 - psi_dot - t002*t014*t015)*sin_psi*sin_psi;
-    const T t032 = t011 + t013*t014*t015 - t012;
-    const T t033 = t003*t004*t007 + t005 + t006;
-    const T t034 = sin_psi*t032 - cos_psi*t033;
-    const T t035 = cos_psi*t007 + sin_psi*t013;
-    const T t036 = S(1)/(p.I1*p.I2);
-    const T t037 = t020*t021*t035 - theta_dot;
-    const T t038 = (t007*t007 - t013*t013)*t020*t021 + cos_theta*t002*t025*t026*t027;
-    dydt[0] = phi_dot;
-    dydt[1] = theta_dot;
-    dydt[2] = psi_dot;
-    dydt[3] = t000*t018;
-    dydt[4] = -(cos_psi*t016 + sin_psi*t009);
-    dydt[5] = -(t007*t013*t020*t021 + t019 - phi_dot*sin_theta*theta_dot);
+    const T t000 = sin_psi*sin_theta;
+    const T t001 = (p.I3 - p.I2)/p.I1;
+    const T t002 = cos_psi*sin_theta;
+    const T t003 = phi_dot*t002;
+    const T t004 = sin_psi*theta_dot;
+    const T t005 = t003 - t004;
+    const T t006 = cos_theta*phi_dot;
+    const T t007 = psi_dot + t006;
+    const T t008 = cos_theta*t007;
+    const T t009 = cos_theta*psi_dot;
+    const T t010 = (sin_theta*t005 - cos_psi*t008)*t001 + t000*theta_dot - cos_psi*t009;
+    const T t011 = phi_dot*t000;
+    const T t012 = cos_psi*theta_dot;
+    const T t013 = t011 + t012;
+    const T t014 = (p.I3 - p.I1)/p.I2;
+    const T t015 = sin_psi*t009 + t002*theta_dot - (sin_theta*t013 - sin_psi*t008)*t014;
+    const T t016 = S(1)/sin_theta;
+    const T t017 = cos_theta*t016;
+    const T t018 = t007*t014;
+    const T t019 = t006 - psi_dot;
+    const T t020 = (psi_dot*t011 + t013*t018 - t012*t019)*cos_psi;
+    const T t021 = t001*t007;
+    const T t022 = (psi_dot*t003 + t004*t019 + t005*t021)*sin_psi;
+    const T t023 = (cos_psi*t015 + sin_psi*t010)*phi_dot - (t020 - t022)*t017;
+    const T t024 = t016*t023;
+    const T t025 = sin_psi*t013 - cos_psi*t005;
+    const T t026 = p.I2 - p.I1;
+    const T t027 = p.I2*p.I2 - p.I1*p.I1 - p.I3*t026;
+    const T t028 = t025*t027/(p.I1*p.I2*sin_theta);
+    const T t029 = (cos_theta*t013 + t000*t007)*t014 + psi_dot*t000 - cos_theta*t012;
+    const T t030 = (cos_theta*t005 + t002*t007)*t001 + cos_theta*t004 + psi_dot*t002;
+    const T t031 = cos_psi*t029 - sin_psi*t030;
+    const T t032 = (t006 - psi_dot - t018)*cos_psi*cos_psi + (t006 - psi_dot - t021)*sin_psi*sin_psi;
+    const T t033 = t001*t005 + t003 - t004;
+    const T t034 = t011 + t012 + t013*t014;
+    const T t035 = sin_psi*t033 - cos_psi*t034;
+    const T t036 = (t027/(p.I1*p.I2))*t007;
+    const T t037 = cos_psi*t013 + sin_psi*t005;
+    const T t038 = t026/p.I3;
+    const T t039 = theta_dot - t037*t038;
     J[0] = T(S(0));
     J[1] = T(S(0));
     J[2] = T(S(0));
@@ -318,28 +216,138 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     J[17] = T(S(1));
     J[18] = T(S(0));
     J[19] = t024;
-    J[20] = -t002*t025*t026*t027;
-    J[21] = t000*t030;
-    J[22] = -t000*t031;
-    J[23] = -t000*t034;
+    J[20] = -t007*t028;
+    J[21] = t016*t031;
+    J[22] = -t016*t032;
+    J[23] = -t016*t035;
     J[24] = T(S(0));
-    J[25] = -(sin_psi*t023 - cos_psi*t022)*phi_dot;
-    J[26] = -t002*t026*t035*t036;
-    J[27] = -(cos_psi*t029 + sin_psi*t028);
-    J[28] = -cos_psi*sin_psi*t002*t026*t036;
-    J[29] = -(cos_psi*t032 + sin_psi*t033);
+    J[25] = (cos_psi*t010 - sin_psi*t015)*phi_dot;
+    J[26] = -t036*t037;
+    J[27] = -cos_psi*t030 - sin_psi*t029;
+    J[28] = -cos_psi*sin_psi*t036;
+    J[29] = -cos_psi*t033 - sin_psi*t034;
     J[30] = T(S(0));
-    J[31] = t010 - (phi_dot*t037 + t024)*cos_theta - t017;
-    J[32] = t038;
-    J[33] = -(cos_theta*t000*t030 + sin_theta*t037);
-    J[34] = cos_theta*t000*t031 + phi_dot*sin_theta + t020*t021*t025;
-    J[35] = cos_theta*t000*t034;
+    J[31] = (phi_dot*t039 - t024)*cos_theta + t020 - t022;
+    J[32] = (t013*t013 - t005*t005)*t038 + t008*t028;
+    J[33] = sin_theta*t039 - t017*t031;
+    J[34] = phi_dot*sin_theta + t017*t032 + t025*t038;
+    J[35] = t017*t035;
+}
+
+// rhs and jacobian in one pass, sharing their common subexpressions.
+//   t     time
+//   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
+//   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, phi_ddot, theta_ddot, psi_ddot
+//   J     output, dim 6 x 6 (row-major)
+//   p     parameters
+// Operations (+ - * / and calls): 2409 before lowering, 174 after (64 +-, 100 *, 6 /, 4 calls).
+template <class T>
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+    using std::cos;
+    using std::sin;
+    using S = typename detail::scalar_of<T>::type;
+    (void)t;
+    const T theta = y[1];
+    const T psi = y[2];
+    const T phi_dot = y[3];
+    const T theta_dot = y[4];
+    const T psi_dot = y[5];
+    const T sin_theta = sin(theta);
+    const T cos_theta = cos(theta);
+    const T sin_psi = sin(psi);
+    const T cos_psi = cos(psi);
+    const T t000 = S(1)/sin_theta;
+    const T t001 = phi_dot*sin_theta;
+    const T t002 = sin_psi*t001;
+    const T t003 = cos_psi*theta_dot;
+    const T t004 = t002 + t003;
+    const T t005 = cos_theta*phi_dot;
+    const T t006 = psi_dot + t005;
+    const T t007 = (p.I3 - p.I1)/p.I2;
+    const T t008 = t006*t007;
+    const T t009 = t005 - psi_dot;
+    const T t010 = psi_dot*sin_psi;
+    const T t011 = t001*t010 + t004*t008 - t003*t009;
+    const T t012 = cos_psi*t011;
+    const T t013 = cos_psi*t001;
+    const T t014 = sin_psi*theta_dot;
+    const T t015 = t013 - t014;
+    const T t016 = (p.I3 - p.I2)/p.I1;
+    const T t017 = t006*t016;
+    const T t018 = cos_psi*psi_dot;
+    const T t019 = t001*t018 + t009*t014 + t015*t017;
+    const T t020 = sin_psi*t019;
+    const T t021 = t012 - t020;
+    const T t022 = cos_theta*t000;
+    const T t023 = t021*t022;
+    const T t024 = p.I2 - p.I1;
+    const T t025 = t024/p.I3;
+    const T t026 = cos_theta*t006;
+    const T t027 = (sin_theta*t015 - cos_psi*t026)*t016 + sin_theta*t014 - cos_theta*t018;
+    const T t028 = cos_theta*t010 + sin_theta*t003 - (sin_theta*t004 - sin_psi*t026)*t007;
+    const T t029 = ((cos_psi*t028 + sin_psi*t027)*phi_dot - t023)*t000;
+    const T t030 = sin_psi*t004 - cos_psi*t015;
+    const T t031 = p.I2*p.I2 - p.I1*p.I1 - p.I3*t024;
+    const T t032 = t030*t031/(p.I1*p.I2*sin_theta);
+    const T t033 = sin_theta*t006;
+    const T t034 = (cos_theta*t004 + sin_psi*t033)*t007 + sin_theta*t010 - cos_theta*t003;
+    const T t035 = (cos_psi*t033 + cos_theta*t015)*t016 + cos_theta*t014 + sin_theta*t018;
+    const T t036 = cos_psi*t034 - sin_psi*t035;
+    const T t037 = (t005 - psi_dot - t008)*cos_psi*cos_psi + (t005 - psi_dot - t017)*sin_psi*sin_psi;
+    const T t038 = t013 + t015*t016 - t014;
+    const T t039 = t002 + t003 + t004*t007;
+    const T t040 = sin_psi*t038 - cos_psi*t039;
+    const T t041 = (t031/(p.I1*p.I2))*t006;
+    const T t042 = cos_psi*t004 + sin_psi*t015;
+    const T t043 = theta_dot - t025*t042;
+    dydt[0] = phi_dot;
+    dydt[1] = theta_dot;
+    dydt[2] = psi_dot;
+    dydt[3] = t000*t021;
+    dydt[4] = -cos_psi*t019 - sin_psi*t011;
+    dydt[5] = t001*theta_dot - t004*t015*t025 - t023;
+    J[0] = T(S(0));
+    J[1] = T(S(0));
+    J[2] = T(S(0));
+    J[3] = T(S(1));
+    J[4] = T(S(0));
+    J[5] = T(S(0));
+    J[6] = T(S(0));
+    J[7] = T(S(0));
+    J[8] = T(S(0));
+    J[9] = T(S(0));
+    J[10] = T(S(1));
+    J[11] = T(S(0));
+    J[12] = T(S(0));
+    J[13] = T(S(0));
+    J[14] = T(S(0));
+    J[15] = T(S(0));
+    J[16] = T(S(0));
+    J[17] = T(S(1));
+    J[18] = T(S(0));
+    J[19] = t029;
+    J[20] = -t006*t032;
+    J[21] = t000*t036;
+    J[22] = -t000*t037;
+    J[23] = -t000*t040;
+    J[24] = T(S(0));
+    J[25] = (cos_psi*t027 - sin_psi*t028)*phi_dot;
+    J[26] = -t041*t042;
+    J[27] = -cos_psi*t035 - sin_psi*t034;
+    J[28] = -cos_psi*sin_psi*t041;
+    J[29] = -cos_psi*t038 - sin_psi*t039;
+    J[30] = T(S(0));
+    J[31] = (phi_dot*t043 - t029)*cos_theta + t012 - t020;
+    J[32] = (t004*t004 - t015*t015)*t025 + t026*t032;
+    J[33] = sin_theta*t043 - t022*t036;
+    J[34] = t001 + t022*t037 + t025*t030;
+    J[35] = t022*t040;
 }
 
 // The energy T + V (conserved without damping and driving torques).
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   p     parameters
-// Operations (+ - * / and calls): 28 before lowering, 23 after (5 +-, 14 *, 0 /, 4 calls).
+// Operations (+ - * / and calls): 28 before lowering, 22 after (5 +-, 13 *, 0 /, 4 calls).
 template <class T>
 T energy(const T* y, const params<T>& p) {
     using std::cos;
@@ -355,17 +363,18 @@ T energy(const T* y, const params<T>& p) {
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
     const T t000 = cos_theta*phi_dot + psi_dot;
-    const T t001 = cos_psi*phi_dot*sin_theta - sin_psi*theta_dot;
-    const T t002 = cos_psi*theta_dot + phi_dot*sin_psi*sin_theta;
-    const T t003 = p.I1*t002*t002 + p.I2*t001*t001 + p.I3*t000*t000;
-    return S(1)/S(2)*t003;
+    const T t001 = phi_dot*sin_theta;
+    const T t002 = cos_psi*t001 - sin_psi*theta_dot;
+    const T t003 = cos_psi*theta_dot + sin_psi*t001;
+    const T t004 = p.I1*t003*t003 + p.I2*t002*t002 + p.I3*t000*t000;
+    return S(1)/S(2)*t004;
 }
 
 // The conjugate momenta p = dL/dq_dot (5.74)-(5.76).
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   momentum output, dim 3: p_phi, p_theta, p_psi
 //   p     parameters
-// Operations (+ - * / and calls): 77 before lowering, 28 after (7 +-, 17 *, 0 /, 4 calls).
+// Operations (+ - * / and calls): 77 before lowering, 24 after (7 +-, 13 *, 0 /, 4 calls).
 template <class T>
 void momenta(const T* y, T* momentum, const params<T>& p) {
     using std::cos;
@@ -379,13 +388,15 @@ void momenta(const T* y, T* momentum, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    const T t000 = p.I2 - p.I1;
-    const T t001 = cos_psi*cos_psi*t000;
-    const T t002 = ((p.I1 + t001)*phi_dot*sin_theta - cos_psi*sin_psi*t000*theta_dot)*sin_theta;
-    const T t003 = cos_theta*phi_dot + psi_dot;
-    momentum[0] = cos_theta*p.I3*t003 + t002;
-    momentum[1] = (p.I2 - t001)*theta_dot - cos_psi*phi_dot*sin_psi*sin_theta*t000;
-    momentum[2] = p.I3*t003;
+    const T t000 = phi_dot*sin_theta;
+    const T t001 = p.I2 - p.I1;
+    const T t002 = cos_psi*cos_psi*t001;
+    const T t003 = cos_psi*sin_psi*t001;
+    const T t004 = (cos_theta*phi_dot + psi_dot)*p.I3;
+    const T t005 = ((p.I1 + t002)*t000 - t003*theta_dot)*sin_theta + cos_theta*t004;
+    momentum[0] = t005;
+    momentum[1] = (p.I2 - t002)*theta_dot - t000*t003;
+    momentum[2] = t004;
 }
 
 // The mass matrix M(q) = J^T I J of the Euler-angle rates, row-major (p = M q_dot).
@@ -423,7 +434,7 @@ void mass_matrix(const T* y, T* M, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   w     output, dim 3: omega1, omega2, omega3
 //   p     parameters
-// Operations (+ - * / and calls): 17 before lowering, 14 after (3 +-, 7 *, 0 /, 4 calls).
+// Operations (+ - * / and calls): 17 before lowering, 13 after (3 +-, 6 *, 0 /, 4 calls).
 template <class T>
 void omega(const T* y, T* w, const params<T>& p) {
     using std::cos;
@@ -438,8 +449,9 @@ void omega(const T* y, T* w, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    w[0] = cos_psi*theta_dot + phi_dot*sin_psi*sin_theta;
-    w[1] = cos_psi*phi_dot*sin_theta - sin_psi*theta_dot;
+    const T t000 = phi_dot*sin_theta;
+    w[0] = cos_psi*theta_dot + sin_psi*t000;
+    w[1] = cos_psi*t000 - sin_psi*theta_dot;
     w[2] = cos_theta*phi_dot + psi_dot;
 }
 
@@ -447,7 +459,7 @@ void omega(const T* y, T* w, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   A     output, dim 3 x 3 (row-major): A11, A12, A13, A21, A22, A23, A31, A32, A33
 //   p     parameters
-// Operations (+ - * / and calls): 49 before lowering, 29 after (7 +-, 16 *, 0 /, 6 calls).
+// Operations (+ - * / and calls): 49 before lowering, 26 after (6 +-, 14 *, 0 /, 6 calls).
 template <class T>
 void rotation(const T* y, T* A, const params<T>& p) {
     using std::cos;
@@ -462,11 +474,13 @@ void rotation(const T* y, T* A, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    A[0] = cos_phi*cos_psi - cos_theta*sin_phi*sin_psi;
-    A[1] = cos_phi*cos_theta*sin_psi + cos_psi*sin_phi;
+    const T t000 = cos_theta*sin_phi;
+    const T t001 = cos_phi*cos_theta;
+    A[0] = cos_phi*cos_psi - sin_psi*t000;
+    A[1] = cos_psi*sin_phi + sin_psi*t001;
     A[2] = sin_psi*sin_theta;
-    A[3] = -(cos_phi*sin_psi + cos_psi*cos_theta*sin_phi);
-    A[4] = -(sin_phi*sin_psi - cos_phi*cos_psi*cos_theta);
+    A[3] = -cos_phi*sin_psi - cos_psi*t000;
+    A[4] = cos_psi*t001 - sin_phi*sin_psi;
     A[5] = cos_psi*sin_theta;
     A[6] = sin_phi*sin_theta;
     A[7] = -cos_phi*sin_theta;

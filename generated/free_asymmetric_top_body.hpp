@@ -14,9 +14,9 @@
 // Parameters (params<T>, defaults from the model file): I1 = 1.0, I2 = 2.0, I3 = 3.0.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 18 -> 14 (0 temporaries)
-//   jacobian: 24 -> 22 (6 temporaries)
-//   rhs_and_jacobian: 42 -> 33 (6 temporaries)
+//   rhs: 18 -> 12 (0 temporaries)
+//   jacobian: 24 -> 16 (3 temporaries)
+//   rhs_and_jacobian: 42 -> 21 (6 temporaries)
 //   energy: 11 -> 9 (1 temporaries)
 //   momenta: 3 -> 3 (0 temporaries)
 //   mass_matrix: 0 -> 0 (0 temporaries)
@@ -91,16 +91,16 @@ constexpr std::array<unsigned char, 9> jacobian_pattern{{
 //   y     state, dim 3: (omega1, omega2, omega3)
 //   dydt  output, dim 3: omega1_dot, omega2_dot, omega3_dot
 //   p     parameters
-// Operations (+ - * / and calls): 18 before lowering, 14 after (5 +-, 6 *, 3 /, 0 calls).
+// Operations (+ - * / and calls): 18 before lowering, 12 after (3 +-, 6 *, 3 /, 0 calls).
 template <class T>
 void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     (void)t;
     const T omega1 = y[0];
     const T omega2 = y[1];
     const T omega3 = y[2];
-    dydt[0] = -(p.I3 - p.I2)*omega2*omega3/p.I1;
-    dydt[1] = (p.I3 - p.I1)*omega1*omega3/p.I2;
-    dydt[2] = -(p.I2 - p.I1)*omega1*omega2/p.I3;
+    dydt[0] = ((p.I2 - p.I3)/p.I1)*omega2*omega3;
+    dydt[1] = ((p.I3 - p.I1)/p.I2)*omega1*omega3;
+    dydt[2] = ((p.I1 - p.I2)/p.I3)*omega1*omega2;
 }
 
 // The analytic Jacobian J = d(dy/dt)/dy, dense, row-major: J[i * state_size + k] = d dydt[i] / d y[k].
@@ -108,7 +108,7 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
 //   y     state, dim 3: (omega1, omega2, omega3)
 //   J     output, dim 3 x 3 (row-major); structural zeros in jacobian_pattern
 //   p     parameters
-// Operations (+ - * / and calls): 24 before lowering, 22 after (7 +-, 12 *, 3 /, 0 calls).
+// Operations (+ - * / and calls): 24 before lowering, 16 after (7 +-, 6 *, 3 /, 0 calls).
 template <class T>
 void jacobian(T t, const T* y, T* J, const params<T>& p) {
     using S = typename detail::scalar_of<T>::type;
@@ -116,20 +116,17 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T omega1 = y[0];
     const T omega2 = y[1];
     const T omega3 = y[2];
-    const T t000 = S(1)/p.I1;
-    const T t001 = p.I3 - p.I2;
-    const T t002 = S(1)/p.I2;
-    const T t003 = p.I3 - p.I1;
-    const T t004 = p.I2 - p.I1;
-    const T t005 = S(1)/p.I3;
+    const T t000 = (p.I3 - p.I2)/p.I1;
+    const T t001 = (p.I3 - p.I1)/p.I2;
+    const T t002 = (p.I2 - p.I1)/p.I3;
     J[0] = T(S(0));
-    J[1] = -omega3*t000*t001;
-    J[2] = -omega2*t000*t001;
-    J[3] = omega3*t002*t003;
+    J[1] = -omega3*t000;
+    J[2] = -omega2*t000;
+    J[3] = omega3*t001;
     J[4] = T(S(0));
-    J[5] = omega1*t002*t003;
-    J[6] = -omega2*t004*t005;
-    J[7] = -omega1*t004*t005;
+    J[5] = omega1*t001;
+    J[6] = -omega2*t002;
+    J[7] = -omega1*t002;
     J[8] = T(S(0));
 }
 
@@ -139,7 +136,7 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   dydt  output, dim 3: omega1_dot, omega2_dot, omega3_dot
 //   J     output, dim 3 x 3 (row-major)
 //   p     parameters
-// Operations (+ - * / and calls): 42 before lowering, 33 after (9 +-, 21 *, 3 /, 0 calls).
+// Operations (+ - * / and calls): 42 before lowering, 21 after (9 +-, 9 *, 3 /, 0 calls).
 template <class T>
 void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     using S = typename detail::scalar_of<T>::type;
@@ -147,23 +144,23 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T omega1 = y[0];
     const T omega2 = y[1];
     const T omega3 = y[2];
-    const T t000 = S(1)/p.I1;
-    const T t001 = p.I3 - p.I2;
-    const T t002 = S(1)/p.I2;
-    const T t003 = p.I3 - p.I1;
-    const T t004 = p.I2 - p.I1;
-    const T t005 = S(1)/p.I3;
-    dydt[0] = -omega2*omega3*t000*t001;
-    dydt[1] = omega1*omega3*t002*t003;
-    dydt[2] = -omega1*omega2*t004*t005;
+    const T t000 = (p.I3 - p.I2)/p.I1;
+    const T t001 = omega3*t000;
+    const T t002 = (p.I3 - p.I1)/p.I2;
+    const T t003 = omega1*t002;
+    const T t004 = (p.I2 - p.I1)/p.I3;
+    const T t005 = omega1*t004;
+    dydt[0] = -omega2*t001;
+    dydt[1] = omega3*t003;
+    dydt[2] = -omega2*t005;
     J[0] = T(S(0));
-    J[1] = -omega3*t000*t001;
-    J[2] = -omega2*t000*t001;
-    J[3] = omega3*t002*t003;
+    J[1] = -t001;
+    J[2] = -omega2*t000;
+    J[3] = omega3*t002;
     J[4] = T(S(0));
-    J[5] = omega1*t002*t003;
-    J[6] = -omega2*t004*t005;
-    J[7] = -omega1*t004*t005;
+    J[5] = t003;
+    J[6] = -omega2*t004;
+    J[7] = -t005;
     J[8] = T(S(0));
 }
 

@@ -19,14 +19,14 @@
 // Parameters (params<T>, defaults from the model file): I1 = 1.0, I2 = 2.0, I3 = 3.0.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 251 -> 43 (11 temporaries)
-//   jacobian: 1631 -> 116 (34 temporaries)
-//   rhs_and_jacobian: 1882 -> 129 (36 temporaries)
-//   energy: 39 -> 24 (9 temporaries)
+//   rhs: 251 -> 37 (13 temporaries)
+//   jacobian: 1631 -> 93 (42 temporaries)
+//   rhs_and_jacobian: 1882 -> 104 (45 temporaries)
+//   energy: 39 -> 22 (8 temporaries)
 //   momenta: 0 -> 0 (0 temporaries)
 //   mass_matrix: 59 -> 19 (8 temporaries)
-//   omega: 31 -> 19 (6 temporaries)
-//   rotation: 49 -> 29 (6 temporaries)
+//   omega: 31 -> 17 (5 temporaries)
+//   rotation: 49 -> 26 (8 temporaries)
 //
 // Self-contained: includes <array>, <cmath> and <cstddef> only. Every function is a template on the
 // scalar type T (float, double, long double, Eigen array batches such as Eigen::Array<double, 4, 1>,
@@ -100,7 +100,7 @@ constexpr std::array<unsigned char, 36> jacobian_pattern{{
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, p_phi_dot, p_theta_dot, p_psi_dot
 //   p     parameters
-// Operations (+ - * / and calls): 251 before lowering, 43 after (9 +-, 24 *, 6 /, 4 calls).
+// Operations (+ - * / and calls): 251 before lowering, 37 after (9 +-, 18 *, 6 /, 4 calls).
 template <class T>
 void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     using std::cos;
@@ -117,18 +117,20 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
     const T t000 = S(1)/sin_theta;
-    const T t001 = S(1)/p.I2;
-    const T t002 = cos_theta*p_psi - p_phi;
-    const T t003 = cos_psi*t000*t002 + p_theta*sin_psi;
-    const T t004 = S(1)/p.I1;
-    const T t005 = cos_psi*p_theta - sin_psi*t000*t002;
-    const T t006 = cos_psi*t001*t003 - sin_psi*t004*t005;
-    dydt[0] = -t000*t006;
-    dydt[1] = cos_psi*t004*t005 + sin_psi*t001*t003;
-    dydt[2] = cos_theta*t000*t006 + p_psi/p.I3;
+    const T t001 = cos_theta*p_psi - p_phi;
+    const T t002 = t000*t001;
+    const T t003 = cos_psi*t002 + p_theta*sin_psi;
+    const T t004 = t003/p.I2;
+    const T t005 = cos_psi*p_theta - sin_psi*t002;
+    const T t006 = t005/p.I1;
+    const T t007 = cos_psi*t004 - sin_psi*t006;
+    const T t008 = t000*t007;
+    dydt[0] = -t008;
+    dydt[1] = cos_psi*t006 + sin_psi*t004;
+    dydt[2] = cos_theta*t008 + p_psi/p.I3;
     dydt[3] = T(S(0));
-    dydt[4] = (cos_theta*t002/(sin_theta*sin_theta) + p_psi)*t006;
-    dydt[5] = (p.I2 - p.I1)*t003*t005/(p.I1*p.I2);
+    dydt[4] = (cos_theta*t001/(sin_theta*sin_theta) + p_psi)*t007;
+    dydt[5] = ((p.I2 - p.I1)/(p.I1*p.I2))*t003*t005;
 }
 
 // The analytic Jacobian J = d(dy/dt)/dy, dense, row-major: J[i * state_size + k] = d dydt[i] / d y[k].
@@ -136,7 +138,7 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   J     output, dim 6 x 6 (row-major); structural zeros in jacobian_pattern
 //   p     parameters
-// Operations (+ - * / and calls): 1631 before lowering, 116 after (30 +-, 75 *, 7 /, 4 calls).
+// Operations (+ - * / and calls): 1631 before lowering, 93 after (28 +-, 54 *, 7 /, 4 calls).
 template <class T>
 void jacobian(T t, const T* y, T* J, const params<T>& p) {
     using std::cos;
@@ -153,53 +155,61 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
     const T t000 = S(1)/sin_theta;
-    const T t001 = S(1)/p.I2;
-    const T t002 = cos_theta*p_psi - p_phi;
-    const T t003 = cos_psi*t000*t002 + p_theta*sin_psi;
-    const T t004 = cos_psi*t001*t003;
-    const T t005 = S(1)/p.I1;
-    const T t006 = cos_psi*p_theta - sin_psi*t000*t002;
-    const T t007 = sin_psi*t005*t006;
-    const T t008 = t004 - t007;
-    const T t009 = sin_psi*sin_psi;
-    const T t010 = cos_psi*cos_psi;
-    const T t011 = t001*t010 + t005*t009;
-    const T t012 = S(1)/(sin_theta*sin_theta);
-    const T t013 = cos_theta*t002*t012 + p_psi;
-    const T t014 = cos_theta*t000*t008 + t011*t013;
-    const T t015 = t000*t014;
-    const T t016 = p.I2 - p.I1;
-    const T t017 = cos_psi*t006 - sin_psi*t003;
-    const T t018 = S(1)/(p.I1*p.I2*sin_theta);
-    const T t019 = t016*t017*t018;
-    const T t020 = cos_psi*sin_psi*t016*t018;
-    const T t021 = -cos_theta*t011*t012;
-    const T t022 = S(1)/(p.I1*p.I2);
-    const T t023 = cos_psi*sin_psi*t013*t016*t022;
-    const T t024 = (cos_psi*t003 + sin_psi*t006)*t016*t022;
-    const T t025 = -cos_psi*cos_theta*sin_psi*t016*t018;
-    const T t026 = cos_theta*t016*t017*t018;
-    const T t027 = cos_theta*cos_theta;
-    const T t028 = (S(2)*cos_theta*t013 - p_phi)*t000*t008 + t011*t013*t013;
-    const T t029 = -t013*t016*t017*t022;
+    const T t001 = cos_theta*t000;
+    const T t002 = S(1)/p.I2;
+    const T t003 = cos_theta*p_psi - p_phi;
+    const T t004 = t000*t003;
+    const T t005 = cos_psi*t004 + p_theta*sin_psi;
+    const T t006 = cos_psi*t005;
+    const T t007 = t002*t006;
+    const T t008 = cos_psi*p_theta - sin_psi*t004;
+    const T t009 = sin_psi*t008;
+    const T t010 = S(1)/p.I1;
+    const T t011 = t009*t010;
+    const T t012 = t007 - t011;
+    const T t013 = sin_psi*sin_psi;
+    const T t014 = cos_psi*cos_psi;
+    const T t015 = t002*t014 + t010*t013;
+    const T t016 = S(1)/(sin_theta*sin_theta);
+    const T t017 = cos_theta*t003*t016 + p_psi;
+    const T t018 = t015*t017;
+    const T t019 = t001*t012 + t018;
+    const T t020 = t000*t019;
+    const T t021 = cos_psi*t008 - sin_psi*t005;
+    const T t022 = p.I2 - p.I1;
+    const T t023 = t022/(p.I1*p.I2*sin_theta);
+    const T t024 = t021*t023;
+    const T t025 = t015*t016;
+    const T t026 = cos_psi*sin_psi;
+    const T t027 = t023*t026;
+    const T t028 = -cos_theta*t025;
+    const T t029 = t022/(p.I1*p.I2);
+    const T t030 = t017*t029;
+    const T t031 = t026*t030;
+    const T t032 = (t006 + t009)*t029;
+    const T t033 = -cos_theta*t027;
+    const T t034 = cos_theta*t024;
+    const T t035 = cos_theta*cos_theta;
+    const T t036 = (S(2)*cos_theta*t017 - p_phi)*t000*t012 + t015*t017*t017;
+    const T t037 = -t021*t030;
     J[0] = T(S(0));
-    J[1] = t015;
-    J[2] = t019;
-    J[3] = t011*t012;
-    J[4] = t020;
-    J[5] = t021;
+    J[1] = t020;
+    J[2] = t024;
+    J[3] = t025;
+    J[4] = t027;
+    J[5] = t028;
     J[6] = T(S(0));
-    J[7] = t023;
-    J[8] = -t024;
-    J[9] = t020;
-    J[10] = t001*t009 + t005*t010;
-    J[11] = t025;
+    J[7] = t031;
+    J[8] = -t032;
+    J[9] = t027;
+    J[10] = t002*t013 + t010*t014;
+    J[11] = t033;
     J[12] = T(S(0));
-    J[13] = -(cos_theta*t000*t014 + t004 - t007);
-    J[14] = -t026;
-    J[15] = t021;
-    J[16] = t025;
-    J[17] = S(1)/p.I3 + t011*t012*t027;
+    J[13] = t011 - t001*t019 - t007;
+    J[14] = -t034;
+    J[15] = t028;
+    J[16] = t033;
+    J[17] = S(1)/p.I3 + t025*t035;
     J[18] = T(S(0));
     J[19] = T(S(0));
     J[20] = T(S(0));
@@ -207,17 +217,17 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     J[22] = T(S(0));
     J[23] = T(S(0));
     J[24] = T(S(0));
-    J[25] = -t028;
-    J[26] = t029;
-    J[27] = -t015;
-    J[28] = -t023;
-    J[29] = (S(1) + t012*t027)*t008 + cos_theta*t000*t011*t013;
+    J[25] = -t036;
+    J[26] = t037;
+    J[27] = -t020;
+    J[28] = -t031;
+    J[29] = (S(1) + t016*t035)*t012 + t001*t018;
     J[30] = T(S(0));
-    J[31] = t029;
-    J[32] = -(t003*t003 - t006*t006)*t016*t022;
-    J[33] = -t019;
-    J[34] = t024;
-    J[35] = t026;
+    J[31] = t037;
+    J[32] = (t008*t008 - t005*t005)*t029;
+    J[33] = -t024;
+    J[34] = t032;
+    J[35] = t034;
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -226,7 +236,7 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, p_phi_dot, p_theta_dot, p_psi_dot
 //   J     output, dim 6 x 6 (row-major)
 //   p     parameters
-// Operations (+ - * / and calls): 1882 before lowering, 129 after (33 +-, 85 *, 7 /, 4 calls).
+// Operations (+ - * / and calls): 1882 before lowering, 104 after (31 +-, 62 *, 7 /, 4 calls).
 template <class T>
 void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     using std::cos;
@@ -245,59 +255,68 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T t000 = S(1)/sin_theta;
     const T t001 = S(1)/p.I2;
     const T t002 = cos_theta*p_psi - p_phi;
-    const T t003 = cos_psi*t000*t002 + p_theta*sin_psi;
-    const T t004 = cos_psi*t001*t003;
-    const T t005 = S(1)/p.I1;
-    const T t006 = cos_psi*p_theta - sin_psi*t000*t002;
-    const T t007 = sin_psi*t005*t006;
-    const T t008 = t004 - t007;
-    const T t009 = S(1)/p.I3;
-    const T t010 = cos_theta*t000*t008;
-    const T t011 = S(1)/(sin_theta*sin_theta);
-    const T t012 = cos_theta*t002*t011 + p_psi;
-    const T t013 = p.I2 - p.I1;
-    const T t014 = S(1)/(p.I1*p.I2);
-    const T t015 = sin_psi*sin_psi;
-    const T t016 = cos_psi*cos_psi;
-    const T t017 = t001*t016 + t005*t015;
-    const T t018 = t010 + t012*t017;
-    const T t019 = t000*t018;
-    const T t020 = cos_psi*t006 - sin_psi*t003;
-    const T t021 = S(1)/(p.I1*p.I2*sin_theta);
-    const T t022 = t013*t020*t021;
-    const T t023 = cos_psi*sin_psi*t013*t021;
-    const T t024 = -cos_theta*t011*t017;
-    const T t025 = cos_psi*sin_psi*t012*t013*t014;
-    const T t026 = (cos_psi*t003 + sin_psi*t006)*t013*t014;
-    const T t027 = -cos_psi*cos_theta*sin_psi*t013*t021;
-    const T t028 = cos_theta*t013*t020*t021;
-    const T t029 = cos_theta*cos_theta;
-    const T t030 = (S(2)*cos_theta*t012 - p_phi)*t000*t008 + t012*t012*t017;
-    const T t031 = -t012*t013*t014*t020;
-    dydt[0] = -t000*t008;
-    dydt[1] = cos_psi*t005*t006 + sin_psi*t001*t003;
-    dydt[2] = p_psi*t009 + t010;
+    const T t003 = t000*t002;
+    const T t004 = cos_psi*t003 + p_theta*sin_psi;
+    const T t005 = t001*t004;
+    const T t006 = cos_psi*t005;
+    const T t007 = S(1)/p.I1;
+    const T t008 = cos_psi*p_theta - sin_psi*t003;
+    const T t009 = t007*t008;
+    const T t010 = sin_psi*t009;
+    const T t011 = t006 - t010;
+    const T t012 = t000*t011;
+    const T t013 = S(1)/p.I3;
+    const T t014 = cos_theta*t000;
+    const T t015 = t011*t014;
+    const T t016 = S(1)/(sin_theta*sin_theta);
+    const T t017 = cos_theta*t002*t016 + p_psi;
+    const T t018 = p.I2 - p.I1;
+    const T t019 = t018/(p.I1*p.I2);
+    const T t020 = sin_psi*sin_psi;
+    const T t021 = cos_psi*cos_psi;
+    const T t022 = t001*t021 + t007*t020;
+    const T t023 = t017*t022;
+    const T t024 = t015 + t023;
+    const T t025 = t000*t024;
+    const T t026 = cos_psi*t008 - sin_psi*t004;
+    const T t027 = t018/(p.I1*p.I2*sin_theta);
+    const T t028 = t026*t027;
+    const T t029 = t016*t022;
+    const T t030 = cos_psi*sin_psi;
+    const T t031 = t027*t030;
+    const T t032 = -cos_theta*t029;
+    const T t033 = t017*t019;
+    const T t034 = t030*t033;
+    const T t035 = (cos_psi*t004 + sin_psi*t008)*t019;
+    const T t036 = -cos_theta*t031;
+    const T t037 = cos_theta*t028;
+    const T t038 = cos_theta*cos_theta;
+    const T t039 = -(S(2)*cos_theta*t017 - p_phi)*t012 - t017*t017*t022;
+    const T t040 = -t026*t033;
+    dydt[0] = -t012;
+    dydt[1] = cos_psi*t009 + sin_psi*t005;
+    dydt[2] = p_psi*t013 + t015;
     dydt[3] = T(S(0));
-    dydt[4] = t008*t012;
-    dydt[5] = t003*t006*t013*t014;
+    dydt[4] = t011*t017;
+    dydt[5] = t004*t008*t019;
     J[0] = T(S(0));
-    J[1] = t019;
-    J[2] = t022;
-    J[3] = t011*t017;
-    J[4] = t023;
-    J[5] = t024;
+    J[1] = t025;
+    J[2] = t028;
+    J[3] = t029;
+    J[4] = t031;
+    J[5] = t032;
     J[6] = T(S(0));
-    J[7] = t025;
-    J[8] = -t026;
-    J[9] = t023;
-    J[10] = t001*t015 + t005*t016;
-    J[11] = t027;
+    J[7] = t034;
+    J[8] = -t035;
+    J[9] = t031;
+    J[10] = t001*t020 + t007*t021;
+    J[11] = t036;
     J[12] = T(S(0));
-    J[13] = -(cos_theta*t000*t018 + t004 - t007);
-    J[14] = -t028;
-    J[15] = t024;
-    J[16] = t027;
-    J[17] = t009 + t011*t017*t029;
+    J[13] = t010 - t006 - t014*t024;
+    J[14] = -t037;
+    J[15] = t032;
+    J[16] = t036;
+    J[17] = t013 + t029*t038;
     J[18] = T(S(0));
     J[19] = T(S(0));
     J[20] = T(S(0));
@@ -305,23 +324,23 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     J[22] = T(S(0));
     J[23] = T(S(0));
     J[24] = T(S(0));
-    J[25] = -t030;
-    J[26] = t031;
-    J[27] = -t019;
-    J[28] = -t025;
-    J[29] = (S(1) + t011*t029)*t008 + cos_theta*t000*t012*t017;
+    J[25] = t039;
+    J[26] = t040;
+    J[27] = -t025;
+    J[28] = -t034;
+    J[29] = (S(1) + t016*t038)*t011 + t014*t023;
     J[30] = T(S(0));
-    J[31] = t031;
-    J[32] = -(t003*t003 - t006*t006)*t013*t014;
-    J[33] = -t022;
-    J[34] = t026;
-    J[35] = t028;
+    J[31] = t040;
+    J[32] = (t008*t008 - t004*t004)*t019;
+    J[33] = -t028;
+    J[34] = t035;
+    J[35] = t037;
 }
 
 // The energy, the Hamiltonian H = T + V (conserved without damping and driving torques).
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   p     parameters
-// Operations (+ - * / and calls): 39 before lowering, 24 after (5 +-, 11 *, 4 /, 4 calls).
+// Operations (+ - * / and calls): 39 before lowering, 22 after (5 +-, 9 *, 4 /, 4 calls).
 template <class T>
 T energy(const T* y, const params<T>& p) {
     using std::cos;
@@ -336,12 +355,11 @@ T energy(const T* y, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    const T t000 = S(1)/sin_theta;
-    const T t001 = cos_theta*p_psi - p_phi;
-    const T t002 = cos_psi*t000*t001 + p_theta*sin_psi;
-    const T t003 = cos_psi*p_theta - sin_psi*t000*t001;
-    const T t004 = p_psi*p_psi/p.I3 + t002*t002/p.I2 + t003*t003/p.I1;
-    return S(1)/S(2)*t004;
+    const T t000 = (cos_theta*p_psi - p_phi)/sin_theta;
+    const T t001 = cos_psi*t000 + p_theta*sin_psi;
+    const T t002 = cos_psi*p_theta - sin_psi*t000;
+    const T t003 = p_psi*p_psi/p.I3 + t001*t001/p.I2 + t002*t002/p.I1;
+    return S(1)/S(2)*t003;
 }
 
 // The conjugate momenta p = dL/dq_dot (5.74)-(5.76).
@@ -395,12 +413,11 @@ void mass_matrix(const T* y, T* M, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   w     output, dim 3: omega1, omega2, omega3
 //   p     parameters
-// Operations (+ - * / and calls): 31 before lowering, 19 after (4 +-, 7 *, 4 /, 4 calls).
+// Operations (+ - * / and calls): 31 before lowering, 17 after (4 +-, 5 *, 4 /, 4 calls).
 template <class T>
 void omega(const T* y, T* w, const params<T>& p) {
     using std::cos;
     using std::sin;
-    using S = typename detail::scalar_of<T>::type;
     const T theta = y[1];
     const T psi = y[2];
     const T p_phi = y[3];
@@ -410,10 +427,9 @@ void omega(const T* y, T* w, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    const T t000 = S(1)/sin_theta;
-    const T t001 = cos_theta*p_psi - p_phi;
-    w[0] = (cos_psi*p_theta - sin_psi*t000*t001)/p.I1;
-    w[1] = -(cos_psi*t000*t001 + p_theta*sin_psi)/p.I2;
+    const T t000 = (cos_theta*p_psi - p_phi)/sin_theta;
+    w[0] = (cos_psi*p_theta - sin_psi*t000)/p.I1;
+    w[1] = (-cos_psi*t000 - p_theta*sin_psi)/p.I2;
     w[2] = p_psi/p.I3;
 }
 
@@ -421,7 +437,7 @@ void omega(const T* y, T* w, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   A     output, dim 3 x 3 (row-major): A11, A12, A13, A21, A22, A23, A31, A32, A33
 //   p     parameters
-// Operations (+ - * / and calls): 49 before lowering, 29 after (7 +-, 16 *, 0 /, 6 calls).
+// Operations (+ - * / and calls): 49 before lowering, 26 after (6 +-, 14 *, 0 /, 6 calls).
 template <class T>
 void rotation(const T* y, T* A, const params<T>& p) {
     using std::cos;
@@ -436,11 +452,13 @@ void rotation(const T* y, T* A, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    A[0] = cos_phi*cos_psi - cos_theta*sin_phi*sin_psi;
-    A[1] = cos_phi*cos_theta*sin_psi + cos_psi*sin_phi;
+    const T t000 = cos_theta*sin_phi;
+    const T t001 = cos_phi*cos_theta;
+    A[0] = cos_phi*cos_psi - sin_psi*t000;
+    A[1] = cos_psi*sin_phi + sin_psi*t001;
     A[2] = sin_psi*sin_theta;
-    A[3] = -(cos_phi*sin_psi + cos_psi*cos_theta*sin_phi);
-    A[4] = -(sin_phi*sin_psi - cos_phi*cos_psi*cos_theta);
+    A[3] = -cos_phi*sin_psi - cos_psi*t000;
+    A[4] = cos_psi*t001 - sin_phi*sin_psi;
     A[5] = cos_psi*sin_theta;
     A[6] = sin_phi*sin_theta;
     A[7] = -cos_phi*sin_theta;

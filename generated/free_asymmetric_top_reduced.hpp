@@ -20,14 +20,14 @@
 // Parameters (params<T>, defaults from the model file): I1 = 1.0, I2 = 2.0, I3 = 3.0, p_phi = 0.0.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 212 -> 41 (11 temporaries)
-//   jacobian: 1210 -> 103 (30 temporaries)
-//   rhs_and_jacobian: 1422 -> 114 (31 temporaries)
-//   energy: 39 -> 24 (9 temporaries)
+//   rhs: 212 -> 36 (12 temporaries)
+//   jacobian: 1210 -> 85 (36 temporaries)
+//   rhs_and_jacobian: 1422 -> 95 (38 temporaries)
+//   energy: 39 -> 22 (8 temporaries)
 //   momenta: 0 -> 0 (0 temporaries)
 //   mass_matrix: 59 -> 19 (8 temporaries)
-//   omega: 31 -> 19 (6 temporaries)
-//   ignored_rates: 63 -> 21 (7 temporaries)
+//   omega: 31 -> 17 (5 temporaries)
+//   ignored_rates: 63 -> 19 (6 temporaries)
 //
 // Self-contained: includes <array>, <cmath> and <cstddef> only. Every function is a template on the
 // scalar type T (float, double, long double, Eigen array batches such as Eigen::Array<double, 4, 1>,
@@ -100,7 +100,7 @@ constexpr std::array<unsigned char, 16> jacobian_pattern{{
 //   y     state, dim 4: (theta, psi, p_theta, p_psi)
 //   dydt  output, dim 4: theta_dot, psi_dot, p_theta_dot, p_psi_dot
 //   p     parameters
-// Operations (+ - * / and calls): 212 before lowering, 41 after (8 +-, 23 *, 6 /, 4 calls).
+// Operations (+ - * / and calls): 212 before lowering, 36 after (8 +-, 18 *, 6 /, 4 calls).
 template <class T>
 void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     using std::cos;
@@ -117,15 +117,16 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     const T cos_psi = cos(psi);
     const T t000 = cos_theta*p_psi - p.p_phi;
     const T t001 = S(1)/sin_theta;
-    const T t002 = cos_psi*t000*t001 + p_theta*sin_psi;
-    const T t003 = S(1)/p.I2;
-    const T t004 = S(1)/p.I1;
-    const T t005 = cos_psi*p_theta - sin_psi*t000*t001;
-    const T t006 = cos_psi*t002*t003 - sin_psi*t004*t005;
-    dydt[0] = cos_psi*t004*t005 + sin_psi*t002*t003;
-    dydt[1] = cos_theta*t001*t006 + p_psi/p.I3;
-    dydt[2] = (cos_theta*t000/(sin_theta*sin_theta) + p_psi)*t006;
-    dydt[3] = (p.I2 - p.I1)*t002*t005/(p.I1*p.I2);
+    const T t002 = t000*t001;
+    const T t003 = cos_psi*t002 + p_theta*sin_psi;
+    const T t004 = t003/p.I2;
+    const T t005 = cos_psi*p_theta - sin_psi*t002;
+    const T t006 = t005/p.I1;
+    const T t007 = cos_psi*t004 - sin_psi*t006;
+    dydt[0] = cos_psi*t006 + sin_psi*t004;
+    dydt[1] = cos_theta*t001*t007 + p_psi/p.I3;
+    dydt[2] = (cos_theta*t000/(sin_theta*sin_theta) + p_psi)*t007;
+    dydt[3] = ((p.I2 - p.I1)/(p.I1*p.I2))*t003*t005;
 }
 
 // The analytic Jacobian J = d(dy/dt)/dy, dense, row-major: J[i * state_size + k] = d dydt[i] / d y[k].
@@ -133,7 +134,7 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
 //   y     state, dim 4: (theta, psi, p_theta, p_psi)
 //   J     output, dim 4 x 4 (row-major); structural zeros in jacobian_pattern
 //   p     parameters
-// Operations (+ - * / and calls): 1210 before lowering, 103 after (26 +-, 66 *, 7 /, 4 calls).
+// Operations (+ - * / and calls): 1210 before lowering, 85 after (24 +-, 50 *, 7 /, 4 calls).
 template <class T>
 void jacobian(T t, const T* y, T* J, const params<T>& p) {
     using std::cos;
@@ -148,48 +149,54 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    const T t000 = p.I2 - p.I1;
+    const T t000 = cos_psi*sin_psi;
     const T t001 = S(1)/(sin_theta*sin_theta);
     const T t002 = cos_theta*p_psi - p.p_phi;
     const T t003 = cos_theta*t001*t002 + p_psi;
-    const T t004 = S(1)/(p.I1*p.I2);
-    const T t005 = cos_psi*sin_psi*t000*t003*t004;
-    const T t006 = S(1)/sin_theta;
-    const T t007 = cos_psi*p_theta - sin_psi*t002*t006;
-    const T t008 = cos_psi*t002*t006 + p_theta*sin_psi;
-    const T t009 = (cos_psi*t008 + sin_psi*t007)*t000*t004;
-    const T t010 = S(1)/p.I1;
-    const T t011 = cos_psi*cos_psi;
-    const T t012 = sin_psi*sin_psi;
-    const T t013 = S(1)/p.I2;
-    const T t014 = S(1)/(p.I1*p.I2*sin_theta);
-    const T t015 = -cos_psi*cos_theta*sin_psi*t000*t014;
-    const T t016 = cos_psi*t008*t013;
-    const T t017 = sin_psi*t007*t010;
-    const T t018 = t016 - t017;
-    const T t019 = t010*t012 + t011*t013;
-    const T t020 = (cos_theta*t006*t018 + t003*t019)*cos_theta*t006 + t016 - t017;
-    const T t021 = cos_psi*t007 - sin_psi*t008;
-    const T t022 = cos_theta*t000*t014*t021;
-    const T t023 = cos_theta*cos_theta;
-    const T t024 = (p.p_phi - S(2)*cos_theta*t003)*t006*t018 - t003*t003*t019;
-    const T t025 = -t000*t003*t004*t021;
-    J[0] = t005;
-    J[1] = -t009;
-    J[2] = t010*t011 + t012*t013;
-    J[3] = t015;
-    J[4] = -t020;
-    J[5] = -t022;
-    J[6] = t015;
-    J[7] = S(1)/p.I3 + t001*t019*t023;
-    J[8] = t024;
-    J[9] = t025;
-    J[10] = -t005;
-    J[11] = (S(1) + t001*t023)*t018 + cos_theta*t003*t006*t019;
-    J[12] = t025;
-    J[13] = -(t008*t008 - t007*t007)*t000*t004;
-    J[14] = t009;
-    J[15] = t022;
+    const T t004 = p.I2 - p.I1;
+    const T t005 = t004/(p.I1*p.I2);
+    const T t006 = t003*t005;
+    const T t007 = t000*t006;
+    const T t008 = S(1)/sin_theta;
+    const T t009 = t002*t008;
+    const T t010 = cos_psi*p_theta - sin_psi*t009;
+    const T t011 = sin_psi*t010;
+    const T t012 = cos_psi*t009 + p_theta*sin_psi;
+    const T t013 = cos_psi*t012;
+    const T t014 = (t011 + t013)*t005;
+    const T t015 = S(1)/p.I1;
+    const T t016 = cos_psi*cos_psi;
+    const T t017 = sin_psi*sin_psi;
+    const T t018 = S(1)/p.I2;
+    const T t019 = cos_theta*t004/(p.I1*p.I2*sin_theta);
+    const T t020 = -t000*t019;
+    const T t021 = cos_theta*t008;
+    const T t022 = t013*t018;
+    const T t023 = t011*t015;
+    const T t024 = t022 - t023;
+    const T t025 = t015*t017 + t016*t018;
+    const T t026 = t003*t025;
+    const T t027 = cos_psi*t010 - sin_psi*t012;
+    const T t028 = t019*t027;
+    const T t029 = cos_theta*cos_theta*t001;
+    const T t030 = (p.p_phi - S(2)*cos_theta*t003)*t008*t024 - t003*t003*t025;
+    const T t031 = -t006*t027;
+    J[0] = t007;
+    J[1] = -t014;
+    J[2] = t015*t016 + t017*t018;
+    J[3] = t020;
+    J[4] = t023 - (t021*t024 + t026)*t021 - t022;
+    J[5] = -t028;
+    J[6] = t020;
+    J[7] = S(1)/p.I3 + t025*t029;
+    J[8] = t030;
+    J[9] = t031;
+    J[10] = -t007;
+    J[11] = (S(1) + t029)*t024 + t021*t026;
+    J[12] = t031;
+    J[13] = (t010*t010 - t012*t012)*t005;
+    J[14] = t014;
+    J[15] = t028;
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -198,7 +205,7 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   dydt  output, dim 4: theta_dot, psi_dot, p_theta_dot, p_psi_dot
 //   J     output, dim 4 x 4 (row-major)
 //   p     parameters
-// Operations (+ - * / and calls): 1422 before lowering, 114 after (28 +-, 75 *, 7 /, 4 calls).
+// Operations (+ - * / and calls): 1422 before lowering, 95 after (26 +-, 58 *, 7 /, 4 calls).
 template <class T>
 void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     using std::cos;
@@ -215,57 +222,64 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T cos_psi = cos(psi);
     const T t000 = cos_theta*p_psi - p.p_phi;
     const T t001 = S(1)/sin_theta;
-    const T t002 = cos_psi*t000*t001 + p_theta*sin_psi;
-    const T t003 = S(1)/p.I2;
-    const T t004 = S(1)/p.I1;
-    const T t005 = cos_psi*p_theta - sin_psi*t000*t001;
-    const T t006 = cos_psi*t002*t003;
-    const T t007 = sin_psi*t004*t005;
-    const T t008 = t006 - t007;
-    const T t009 = cos_theta*t001*t008;
-    const T t010 = S(1)/p.I3;
-    const T t011 = S(1)/(sin_theta*sin_theta);
-    const T t012 = cos_theta*t000*t011 + p_psi;
-    const T t013 = p.I2 - p.I1;
-    const T t014 = S(1)/(p.I1*p.I2);
-    const T t015 = cos_psi*sin_psi*t012*t013*t014;
-    const T t016 = (cos_psi*t002 + sin_psi*t005)*t013*t014;
-    const T t017 = cos_psi*cos_psi;
-    const T t018 = sin_psi*sin_psi;
-    const T t019 = S(1)/(p.I1*p.I2*sin_theta);
-    const T t020 = -cos_psi*cos_theta*sin_psi*t013*t019;
-    const T t021 = t003*t017 + t004*t018;
-    const T t022 = cos_psi*t005 - sin_psi*t002;
-    const T t023 = cos_theta*t013*t019*t022;
-    const T t024 = cos_theta*cos_theta;
-    const T t025 = (p.p_phi - S(2)*cos_theta*t012)*t001*t008 - t012*t012*t021;
-    const T t026 = -t012*t013*t014*t022;
-    dydt[0] = cos_psi*t004*t005 + sin_psi*t002*t003;
-    dydt[1] = p_psi*t010 + t009;
-    dydt[2] = t008*t012;
-    dydt[3] = t002*t005*t013*t014;
-    J[0] = t015;
-    J[1] = -t016;
-    J[2] = t003*t018 + t004*t017;
-    J[3] = t020;
-    J[4] = -((t009 + t012*t021)*cos_theta*t001 + t006 - t007);
-    J[5] = -t023;
-    J[6] = t020;
-    J[7] = t010 + t011*t021*t024;
-    J[8] = t025;
-    J[9] = t026;
-    J[10] = -t015;
-    J[11] = (S(1) + t011*t024)*t008 + cos_theta*t001*t012*t021;
-    J[12] = t026;
-    J[13] = -(t002*t002 - t005*t005)*t013*t014;
-    J[14] = t016;
-    J[15] = t023;
+    const T t002 = t000*t001;
+    const T t003 = cos_psi*t002 + p_theta*sin_psi;
+    const T t004 = S(1)/p.I2;
+    const T t005 = t003*t004;
+    const T t006 = S(1)/p.I1;
+    const T t007 = cos_psi*p_theta - sin_psi*t002;
+    const T t008 = t006*t007;
+    const T t009 = cos_theta*t001;
+    const T t010 = cos_psi*t005;
+    const T t011 = sin_psi*t008;
+    const T t012 = t010 - t011;
+    const T t013 = t009*t012;
+    const T t014 = S(1)/p.I3;
+    const T t015 = S(1)/(sin_theta*sin_theta);
+    const T t016 = cos_theta*t000*t015 + p_psi;
+    const T t017 = p.I2 - p.I1;
+    const T t018 = t017/(p.I1*p.I2);
+    const T t019 = cos_psi*sin_psi;
+    const T t020 = t016*t018;
+    const T t021 = t019*t020;
+    const T t022 = (cos_psi*t003 + sin_psi*t007)*t018;
+    const T t023 = cos_psi*cos_psi;
+    const T t024 = sin_psi*sin_psi;
+    const T t025 = cos_theta*t017/(p.I1*p.I2*sin_theta);
+    const T t026 = -t019*t025;
+    const T t027 = t004*t023 + t006*t024;
+    const T t028 = t016*t027;
+    const T t029 = cos_psi*t007 - sin_psi*t003;
+    const T t030 = t025*t029;
+    const T t031 = cos_theta*cos_theta*t015;
+    const T t032 = (p.p_phi - S(2)*cos_theta*t016)*t001*t012 - t016*t016*t027;
+    const T t033 = -t020*t029;
+    dydt[0] = cos_psi*t008 + sin_psi*t005;
+    dydt[1] = p_psi*t014 + t013;
+    dydt[2] = t012*t016;
+    dydt[3] = t003*t007*t018;
+    J[0] = t021;
+    J[1] = -t022;
+    J[2] = t004*t024 + t006*t023;
+    J[3] = t026;
+    J[4] = t011 - (t013 + t028)*t009 - t010;
+    J[5] = -t030;
+    J[6] = t026;
+    J[7] = t014 + t027*t031;
+    J[8] = t032;
+    J[9] = t033;
+    J[10] = -t021;
+    J[11] = (S(1) + t031)*t012 + t009*t028;
+    J[12] = t033;
+    J[13] = (t007*t007 - t003*t003)*t018;
+    J[14] = t022;
+    J[15] = t030;
 }
 
 // The energy, the Hamiltonian H = T + V (conserved without damping and driving torques).
 //   y     state, dim 4: (theta, psi, p_theta, p_psi)
 //   p     parameters
-// Operations (+ - * / and calls): 39 before lowering, 24 after (5 +-, 11 *, 4 /, 4 calls).
+// Operations (+ - * / and calls): 39 before lowering, 22 after (5 +-, 9 *, 4 /, 4 calls).
 template <class T>
 T energy(const T* y, const params<T>& p) {
     using std::cos;
@@ -279,12 +293,11 @@ T energy(const T* y, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    const T t000 = cos_theta*p_psi - p.p_phi;
-    const T t001 = S(1)/sin_theta;
-    const T t002 = cos_psi*p_theta - sin_psi*t000*t001;
-    const T t003 = cos_psi*t000*t001 + p_theta*sin_psi;
-    const T t004 = p_psi*p_psi/p.I3 + t002*t002/p.I1 + t003*t003/p.I2;
-    return S(1)/S(2)*t004;
+    const T t000 = (cos_theta*p_psi - p.p_phi)/sin_theta;
+    const T t001 = cos_psi*p_theta - sin_psi*t000;
+    const T t002 = cos_psi*t000 + p_theta*sin_psi;
+    const T t003 = p_psi*p_psi/p.I3 + t001*t001/p.I1 + t002*t002/p.I2;
+    return S(1)/S(2)*t003;
 }
 
 // The conjugate momenta p = dL/dq_dot (5.74)-(5.76).
@@ -336,12 +349,11 @@ void mass_matrix(const T* y, T* M, const params<T>& p) {
 //   y     state, dim 4: (theta, psi, p_theta, p_psi)
 //   w     output, dim 3: omega1, omega2, omega3
 //   p     parameters
-// Operations (+ - * / and calls): 31 before lowering, 19 after (4 +-, 7 *, 4 /, 4 calls).
+// Operations (+ - * / and calls): 31 before lowering, 17 after (4 +-, 5 *, 4 /, 4 calls).
 template <class T>
 void omega(const T* y, T* w, const params<T>& p) {
     using std::cos;
     using std::sin;
-    using S = typename detail::scalar_of<T>::type;
     const T theta = y[0];
     const T psi = y[1];
     const T p_theta = y[2];
@@ -350,10 +362,9 @@ void omega(const T* y, T* w, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    const T t000 = cos_theta*p_psi - p.p_phi;
-    const T t001 = S(1)/sin_theta;
-    w[0] = (cos_psi*p_theta - sin_psi*t000*t001)/p.I1;
-    w[1] = -(cos_psi*t000*t001 + p_theta*sin_psi)/p.I2;
+    const T t000 = (cos_theta*p_psi - p.p_phi)/sin_theta;
+    w[0] = (cos_psi*p_theta - sin_psi*t000)/p.I1;
+    w[1] = (-cos_psi*t000 - p_theta*sin_psi)/p.I2;
     w[2] = p_psi/p.I3;
 }
 
@@ -361,7 +372,7 @@ void omega(const T* y, T* w, const params<T>& p) {
 //   y     state, dim 4: (theta, psi, p_theta, p_psi)
 //   rates output, dim 1: phi_dot
 //   p     parameters
-// Operations (+ - * / and calls): 63 before lowering, 21 after (4 +-, 10 *, 3 /, 4 calls).
+// Operations (+ - * / and calls): 63 before lowering, 19 after (4 +-, 8 *, 3 /, 4 calls).
 template <class T>
 void ignored_rates(const T* y, T* rates, const params<T>& p) {
     using std::cos;
@@ -375,10 +386,9 @@ void ignored_rates(const T* y, T* rates, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    const T t000 = S(1)/p.I2;
-    const T t001 = p.I2 - p.I1;
-    const T t002 = (cos_psi*cos_psi*t000*t001 - S(1))*(cos_theta*p_psi - p.p_phi)/sin_theta;
-    rates[0] = (cos_psi*p_theta*sin_psi*t000*t001 + t002)/(p.I1*sin_theta);
+    const T t000 = (p.I2 - p.I1)/p.I2;
+    const T t001 = (cos_psi*cos_psi*t000 - S(1))*(cos_theta*p_psi - p.p_phi)/sin_theta;
+    rates[0] = (cos_psi*p_theta*sin_psi*t000 + t001)/(p.I1*sin_theta);
 }
 
 } // namespace free_asymmetric_top_reduced

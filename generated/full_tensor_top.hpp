@@ -20,14 +20,14 @@
 // -0.3, Ixz = 0.2, Iyz = -0.1, M = 1.2, g = 9.81, cx = 0.05, cy = -0.02, cz = 0.15.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 2053 -> 133 (30 temporaries)
-//   jacobian: 14319 -> 480 (95 temporaries)
-//   rhs_and_jacobian: 16372 -> 495 (100 temporaries)
-//   energy: 110 -> 45 (9 temporaries)
-//   momenta: 149 -> 38 (10 temporaries)
-//   mass_matrix: 160 -> 41 (13 temporaries)
-//   omega: 17 -> 14 (4 temporaries)
-//   rotation: 49 -> 29 (6 temporaries)
+//   rhs: 2053 -> 121 (34 temporaries)
+//   jacobian: 14319 -> 443 (105 temporaries)
+//   rhs_and_jacobian: 16372 -> 457 (111 temporaries)
+//   energy: 110 -> 44 (10 temporaries)
+//   momenta: 149 -> 37 (11 temporaries)
+//   mass_matrix: 160 -> 40 (13 temporaries)
+//   omega: 17 -> 13 (5 temporaries)
+//   rotation: 49 -> 26 (8 temporaries)
 //
 // Self-contained: includes <array>, <cmath> and <cstddef> only. Every function is a template on the
 // scalar type T (float, double, long double, Eigen array batches such as Eigen::Array<double, 4, 1>,
@@ -109,7 +109,7 @@ constexpr std::array<unsigned char, 36> jacobian_pattern{{
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, phi_ddot, theta_ddot, psi_ddot
 //   p     parameters
-// Operations (+ - * / and calls): 2053 before lowering, 133 after (43 +-, 84 *, 2 /, 4 calls).
+// Operations (+ - * / and calls): 2053 before lowering, 121 after (43 +-, 72 *, 2 /, 4 calls).
 template <class T>
 void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     using std::cos;
@@ -125,38 +125,42 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    const T t000 = S(1)/sin_theta;
-    const T t001 = cos_theta*phi_dot;
-    const T t002 = t001 - psi_dot;
-    const T t003 = p.Ixy*p.Ixy - p.Ixx*p.Iyy;
-    const T t004 = p.Ixx*p.Iyz;
-    const T t005 = p.Ixy*p.Ixz;
-    const T t006 = p.Ixz*p.Ixz;
-    const T t007 = S(1)/((t004 - S(2)*t005)*p.Iyz + p.Iyy*t006 + p.Izz*t003);
-    const T t008 = cos_psi*theta_dot + phi_dot*sin_psi*sin_theta;
-    const T t009 = psi_dot + t001;
-    const T t010 = cos_psi*phi_dot*sin_theta - sin_psi*theta_dot;
-    const T t011 = p.Ixz*t008 + p.Iyz*t010 + p.Izz*t009;
-    const T t012 = p.Ixx*t008 + p.Ixy*t010 + p.Ixz*t009;
-    const T t013 = (cos_theta*p.cx - p.cz*sin_psi*sin_theta)*p.M*p.g + t008*t011 - t009*t012;
-    const T t014 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
-    const T t015 = p.Ixy*t008 + p.Iyy*t010 + p.Iyz*t009;
-    const T t016 = (cos_psi*p.cz*sin_theta - cos_theta*p.cy)*p.M*p.g + t009*t015 - t010*t011;
-    const T t017 = t004 - t005;
-    const T t018 = t008*t015 - (p.cy*sin_psi - cos_psi*p.cx)*p.M*p.g*sin_theta - t010*t012;
-    const T t019 = (t006 - p.Ixx*p.Izz)*t013 - t014*t016 - t017*t018;
-    const T t020 = cos_psi*t002*theta_dot - phi_dot*psi_dot*sin_psi*sin_theta - t007*t019;
-    const T t021 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
-    const T t022 = (p.Iyy*p.Izz - p.Iyz*p.Iyz)*t016 + t013*t014 - t018*t021;
-    const T t023 = cos_psi*phi_dot*psi_dot*sin_theta + sin_psi*t002*theta_dot + t007*t022;
-    const T t024 = cos_psi*t020 + sin_psi*t023;
-    const T t025 = (t013*t017 - t003*t018 - t016*t021)*t007 + cos_theta*t000*t024 + phi_dot*sin_theta*theta_dot;
+    const T t000 = cos_theta*phi_dot;
+    const T t001 = (t000 - psi_dot)*theta_dot;
+    const T t002 = p.Ixy*p.Ixy - p.Ixx*p.Iyy;
+    const T t003 = p.Ixx*p.Iyz;
+    const T t004 = p.Ixy*p.Ixz;
+    const T t005 = p.Ixz*p.Ixz;
+    const T t006 = S(1)/((t003 - S(2)*t004)*p.Iyz + p.Iyy*t005 + p.Izz*t002);
+    const T t007 = phi_dot*sin_theta;
+    const T t008 = sin_psi*t007;
+    const T t009 = cos_psi*theta_dot + t008;
+    const T t010 = psi_dot + t000;
+    const T t011 = cos_psi*t007;
+    const T t012 = t011 - sin_psi*theta_dot;
+    const T t013 = p.Ixz*t009 + p.Iyz*t012 + p.Izz*t010;
+    const T t014 = p.M*p.g;
+    const T t015 = p.cz*sin_theta;
+    const T t016 = p.Ixx*t009 + p.Ixy*t012 + p.Ixz*t010;
+    const T t017 = (cos_theta*p.cx - sin_psi*t015)*t014 + t009*t013 - t010*t016;
+    const T t018 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
+    const T t019 = p.Ixy*t009 + p.Iyy*t012 + p.Iyz*t010;
+    const T t020 = (cos_psi*t015 - cos_theta*p.cy)*t014 + t010*t019 - t012*t013;
+    const T t021 = t003 - t004;
+    const T t022 = t009*t019 - (p.cy*sin_psi - cos_psi*p.cx)*sin_theta*t014 - t012*t016;
+    const T t023 = (t005 - p.Ixx*p.Izz)*t017 - t018*t020 - t021*t022;
+    const T t024 = cos_psi*t001 - psi_dot*t008 - t006*t023;
+    const T t025 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
+    const T t026 = (p.Iyy*p.Izz - p.Iyz*p.Iyz)*t020 + t017*t018 - t022*t025;
+    const T t027 = psi_dot*t011 + sin_psi*t001 + t006*t026;
+    const T t028 = (cos_psi*t024 + sin_psi*t027)/sin_theta;
+    const T t029 = (t017*t021 - t002*t022 - t020*t025)*t006 + cos_theta*t028 + t007*theta_dot;
     dydt[0] = phi_dot;
     dydt[1] = theta_dot;
     dydt[2] = psi_dot;
-    dydt[3] = -t000*t024;
-    dydt[4] = sin_psi*t020 - cos_psi*t023;
-    dydt[5] = t025;
+    dydt[3] = -t028;
+    dydt[4] = sin_psi*t024 - cos_psi*t027;
+    dydt[5] = t029;
 }
 
 // The analytic Jacobian J = d(dy/dt)/dy, dense, row-major: J[i * state_size + k] = d dydt[i] / d y[k].
@@ -164,7 +168,7 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   J     output, dim 6 x 6 (row-major); structural zeros in jacobian_pattern
 //   p     parameters
-// Operations (+ - * / and calls): 14319 before lowering, 480 after (175 +-, 298 *, 3 /, 4 calls).
+// Operations (+ - * / and calls): 14319 before lowering, 443 after (174 +-, 262 *, 3 /, 4 calls).
 template <class T>
 void jacobian(T t, const T* y, T* J, const params<T>& p) {
     using std::cos;
@@ -181,96 +185,106 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
     const T t000 = S(1)/sin_theta;
-    const T t001 = p.Ixy*p.Ixy - p.Ixx*p.Iyy;
-    const T t002 = p.Ixx*p.Iyz;
-    const T t003 = p.Ixy*p.Ixz;
-    const T t004 = p.Ixz*p.Ixz;
-    const T t005 = (t002 - S(2)*t003)*p.Iyz + p.Iyy*t004 + p.Izz*t001;
-    const T t006 = S(1)/t005;
-    const T t007 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
-    const T t008 = phi_dot*sin_psi*sin_theta;
-    const T t009 = cos_psi*theta_dot;
-    const T t010 = t008 + t009;
-    const T t011 = p.Ixy*t010;
-    const T t012 = cos_theta*phi_dot;
-    const T t013 = psi_dot + t012;
-    const T t014 = p.Iyz*t013;
-    const T t015 = cos_psi*phi_dot*sin_theta;
-    const T t016 = sin_psi*theta_dot;
-    const T t017 = t015 - t016;
-    const T t018 = p.Iyy*t017 + t011 + t014;
-    const T t019 = p.Ixz*t010 + p.Iyz*t017 + p.Izz*t013;
-    const T t020 = p.Ixy*sin_psi;
-    const T t021 = cos_psi*p.Iyy + t020;
-    const T t022 = p.Iyz*sin_theta - cos_theta*t021;
-    const T t023 = cos_psi*p.Iyz + p.Ixz*sin_psi;
-    const T t024 = cos_theta*t023 - p.Izz*sin_theta;
-    const T t025 = cos_psi*cos_theta*t019 + sin_theta*t018 + t013*t022 + t017*t024;
-    const T t026 = (cos_psi*cos_theta*p.cz + p.cy*sin_theta)*p.M*p.g - phi_dot*t025;
-    const T t027 = t004 - p.Ixx*p.Izz;
-    const T t028 = cos_psi*p.Ixy;
-    const T t029 = p.Ixx*sin_psi + t028;
-    const T t030 = cos_theta*t029 - p.Ixz*sin_theta;
-    const T t031 = p.Ixy*t017;
-    const T t032 = p.Ixz*t013;
-    const T t033 = p.Ixx*t010 + t031 + t032;
-    const T t034 = t013*t030 - cos_theta*sin_psi*t019 - sin_theta*t033 - t010*t024;
-    const T t035 = (cos_theta*p.cz*sin_psi + p.cx*sin_theta)*p.M*p.g + phi_dot*t034;
-    const T t036 = t002 - t003;
-    const T t037 = p.cy*sin_psi - cos_psi*p.cx;
-    const T t038 = cos_psi*t033 - sin_psi*t018;
-    const T t039 = (p.M*p.g*t037 + phi_dot*t038)*cos_theta + (t010*t022 + t017*t030)*phi_dot;
-    const T t040 = (cos_psi*sin_theta*theta_dot + cos_theta*psi_dot*sin_psi)*phi_dot - (t007*t026 + t027*t035 - t036*t039)*t006;
-    const T t041 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
-    const T t042 = p.Iyy*p.Izz - p.Iyz*p.Iyz;
-    const T t043 = (sin_psi*sin_theta*theta_dot - cos_psi*cos_theta*psi_dot)*phi_dot - (t026*t042 + t039*t041 - t007*t035)*t006;
-    const T t044 = t012 - psi_dot;
-    const T t045 = t010*t019;
-    const T t046 = (cos_theta*p.cx - p.cz*sin_psi*sin_theta)*p.M*p.g + t045 - t013*t033;
-    const T t047 = t017*t019;
-    const T t048 = (cos_psi*p.cz*sin_theta - cos_theta*p.cy)*p.M*p.g + t013*t018 - t047;
-    const T t049 = t010*t018 - p.M*p.g*sin_theta*t037 - t017*t033;
-    const T t050 = t027*t046 - t007*t048 - t036*t049;
-    const T t051 = (cos_psi*t044*theta_dot - phi_dot*psi_dot*sin_psi*sin_theta - t006*t050)*cos_psi;
-    const T t052 = t007*t046 + t042*t048 - t041*t049;
-    const T t053 = (cos_psi*phi_dot*psi_dot*sin_theta + sin_psi*t044*theta_dot + t006*t052)*sin_psi;
-    const T t054 = ((t051 + t053)*cos_theta*t000 + cos_psi*t040 + sin_psi*t043)*t000;
-    const T t055 = p.Iyy - p.Ixx;
-    const T t056 = (S(2)*t011 + t014 + t017*t055)*t017 + (S(2)*t031 + t032 - t010*t055)*t010 - (cos_psi*p.cy + p.cx*sin_psi)*p.M*p.g*sin_theta;
-    const T t057 = p.Iyz*t010 - p.Ixz*t017;
-    const T t058 = (p.Ixx*t017 - t011)*t013 + cos_psi*p.M*p.cz*p.g*sin_theta + t010*t057 - t047;
-    const T t059 = (t031 - p.Iyy*t010)*t013 + t017*t057 + t045 - p.M*p.cz*p.g*sin_psi*sin_theta;
-    const T t060 = (t007*t059 + t027*t058 + t036*t056) + t052;
-    const T t061 = t050 - (t007*t058 + t041*t056 - t042*t059);
-    const T t062 = cos_psi*t060 + sin_psi*t061;
-    const T t063 = cos_theta*p.Ixz + sin_theta*t029;
-    const T t064 = cos_theta*p.Izz + sin_theta*t023;
-    const T t065 = cos_theta*t033 + t013*t063 - sin_psi*sin_theta*t019 - t010*t064;
-    const T t066 = cos_theta*p.Iyz + sin_theta*t021;
-    const T t067 = t010*t066 - sin_theta*t038 - t017*t063;
-    const T t068 = cos_theta*t018 + t013*t066 - cos_psi*sin_theta*t019 - t017*t064;
-    const T t069 = psi_dot*sin_psi*sin_theta - (t007*t068 + t027*t065 + t036*t067)*t006 - cos_psi*cos_theta*theta_dot;
-    const T t070 = cos_psi*psi_dot*sin_theta + cos_theta*sin_psi*theta_dot - (t007*t065 + t041*t067 - t042*t068)*t006;
-    const T t071 = cos_psi*t069 - sin_psi*t070;
-    const T t072 = t020 - cos_psi*p.Ixx;
-    const T t073 = p.Iyz*sin_psi - cos_psi*p.Ixz;
-    const T t074 = cos_psi*t019 + t013*t072 - t010*t073;
-    const T t075 = t028 - p.Iyy*sin_psi;
-    const T t076 = sin_psi*t019 + t013*t075 + t017*t073;
-    const T t077 = cos_psi*t018 + sin_psi*t033 + t010*t075 + t017*t072;
-    const T t078 = (t007*t074 + t042*t076 - t041*t077)*t006 + sin_psi*t044;
-    const T t079 = (t007*t076 + t036*t077 - t027*t074)*t006 + cos_psi*t044;
-    const T t080 = cos_psi*t079 + sin_psi*t078;
-    const T t081 = S(2)*t014 + t011 - (p.Izz - p.Iyy)*t017;
-    const T t082 = S(2)*t032 + t031 - (p.Izz - p.Ixx)*t010;
-    const T t083 = t008 + t009 - (t007*t081 + t027*t082 + t036*t057)*t006;
-    const T t084 = t015 - (t007*t082 + t041*t057 - t042*t081)*t006 - t016;
-    const T t085 = cos_psi*t083 - sin_psi*t084;
-    const T t086 = (phi_dot*theta_dot - t054)*cos_theta + (t001*t039 - t026*t041 - t035*t036)*t006 - t051 - t053;
-    const T t087 = t001*t056 + t036*t058 + t041*t059 - cos_theta*t000*t062;
-    const T t088 = sin_theta*theta_dot - (t001*t067 + t036*t065 + t041*t068)*t006 - cos_theta*t000*t071;
-    const T t089 = cos_theta*t000*t080 + phi_dot*sin_theta - (t001*t077 + t041*t076 - t036*t074)*t006;
-    const T t090 = (t001*t057 + t036*t082 + t041*t081)*t006 + cos_theta*t000*t085;
+    const T t001 = cos_theta*sin_psi;
+    const T t002 = cos_psi*sin_theta;
+    const T t003 = p.Ixy*p.Ixy - p.Ixx*p.Iyy;
+    const T t004 = p.Ixx*p.Iyz;
+    const T t005 = p.Ixy*p.Ixz;
+    const T t006 = p.Ixz*p.Ixz;
+    const T t007 = (t004 - S(2)*t005)*p.Iyz + p.Iyy*t006 + p.Izz*t003;
+    const T t008 = S(1)/t007;
+    const T t009 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
+    const T t010 = p.M*p.g;
+    const T t011 = cos_psi*cos_theta;
+    const T t012 = sin_psi*sin_theta;
+    const T t013 = phi_dot*t012;
+    const T t014 = cos_psi*theta_dot;
+    const T t015 = t013 + t014;
+    const T t016 = p.Ixy*t015;
+    const T t017 = cos_theta*phi_dot;
+    const T t018 = psi_dot + t017;
+    const T t019 = p.Iyz*t018;
+    const T t020 = phi_dot*t002;
+    const T t021 = sin_psi*theta_dot;
+    const T t022 = t020 - t021;
+    const T t023 = p.Iyy*t022 + t016 + t019;
+    const T t024 = p.Ixz*t015 + p.Iyz*t022 + p.Izz*t018;
+    const T t025 = p.Ixy*sin_psi;
+    const T t026 = cos_psi*p.Iyy + t025;
+    const T t027 = p.Iyz*sin_theta - cos_theta*t026;
+    const T t028 = cos_psi*p.Iyz + p.Ixz*sin_psi;
+    const T t029 = cos_theta*t028 - p.Izz*sin_theta;
+    const T t030 = (sin_theta*t023 + t011*t024 + t018*t027 + t022*t029)*phi_dot;
+    const T t031 = (p.cy*sin_theta + p.cz*t011)*t010 - t030;
+    const T t032 = t006 - p.Ixx*p.Izz;
+    const T t033 = cos_psi*p.Ixy;
+    const T t034 = p.Ixx*sin_psi + t033;
+    const T t035 = cos_theta*t034 - p.Ixz*sin_theta;
+    const T t036 = p.Ixy*t022;
+    const T t037 = p.Ixz*t018;
+    const T t038 = p.Ixx*t015 + t036 + t037;
+    const T t039 = (t018*t035 - sin_theta*t038 - t001*t024 - t015*t029)*phi_dot;
+    const T t040 = (p.cx*sin_theta + p.cz*t001)*t010 + t039;
+    const T t041 = t004 - t005;
+    const T t042 = p.cy*sin_psi - cos_psi*p.cx;
+    const T t043 = cos_psi*t038 - sin_psi*t023;
+    const T t044 = (phi_dot*t043 + t010*t042)*cos_theta + (t015*t027 + t022*t035)*phi_dot;
+    const T t045 = (psi_dot*t001 + t002*theta_dot)*phi_dot - (t009*t031 + t032*t040 - t041*t044)*t008;
+    const T t046 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
+    const T t047 = p.Iyy*p.Izz - p.Iyz*p.Iyz;
+    const T t048 = (t012*theta_dot - psi_dot*t011)*phi_dot - (t031*t047 + t044*t046 - t009*t040)*t008;
+    const T t049 = cos_theta*t000;
+    const T t050 = t017 - psi_dot;
+    const T t051 = t050*theta_dot;
+    const T t052 = t015*t024;
+    const T t053 = p.cz*t012;
+    const T t054 = (cos_theta*p.cx - t053)*t010 + t052 - t018*t038;
+    const T t055 = p.cz*t002;
+    const T t056 = t022*t024;
+    const T t057 = (t055 - cos_theta*p.cy)*t010 + t018*t023 - t056;
+    const T t058 = sin_theta*t010;
+    const T t059 = t015*t023 - t022*t038 - t042*t058;
+    const T t060 = t032*t054 - t009*t057 - t041*t059;
+    const T t061 = (cos_psi*t051 - psi_dot*t013 - t008*t060)*cos_psi;
+    const T t062 = t009*t054 + t047*t057 - t046*t059;
+    const T t063 = (psi_dot*t020 + sin_psi*t051 + t008*t062)*sin_psi;
+    const T t064 = ((t061 + t063)*t049 + cos_psi*t045 + sin_psi*t048)*t000;
+    const T t065 = p.Iyy - p.Ixx;
+    const T t066 = (S(2)*t016 + t019 + t022*t065)*t022 + (S(2)*t036 + t037 - t015*t065)*t015 - (cos_psi*p.cy + p.cx*sin_psi)*t058;
+    const T t067 = p.Iyz*t015 - p.Ixz*t022;
+    const T t068 = (p.Ixx*t022 - t016)*t018 + t010*t055 + t015*t067 - t056;
+    const T t069 = (t036 - p.Iyy*t015)*t018 + t022*t067 + t052 - t010*t053;
+    const T t070 = t009*t069 + t032*t068 + t041*t066 + t062;
+    const T t071 = t047*t069 + t060 - t009*t068 - t046*t066;
+    const T t072 = cos_psi*t070 + sin_psi*t071;
+    const T t073 = cos_theta*p.Ixz + sin_theta*t034;
+    const T t074 = cos_theta*p.Izz + sin_theta*t028;
+    const T t075 = cos_theta*t038 + t018*t073 - t012*t024 - t015*t074;
+    const T t076 = cos_theta*p.Iyz + sin_theta*t026;
+    const T t077 = t015*t076 - sin_theta*t043 - t022*t073;
+    const T t078 = cos_theta*t023 + t018*t076 - t002*t024 - t022*t074;
+    const T t079 = psi_dot*t012 - (t009*t078 + t032*t075 + t041*t077)*t008 - t011*theta_dot;
+    const T t080 = psi_dot*t002 + t001*theta_dot - (t009*t075 + t046*t077 - t047*t078)*t008;
+    const T t081 = cos_psi*t079 - sin_psi*t080;
+    const T t082 = t025 - cos_psi*p.Ixx;
+    const T t083 = p.Iyz*sin_psi - cos_psi*p.Ixz;
+    const T t084 = cos_psi*t024 + t018*t082 - t015*t083;
+    const T t085 = t033 - p.Iyy*sin_psi;
+    const T t086 = sin_psi*t024 + t018*t085 + t022*t083;
+    const T t087 = cos_psi*t023 + sin_psi*t038 + t015*t085 + t022*t082;
+    const T t088 = (t009*t084 + t047*t086 - t046*t087)*t008 + sin_psi*t050;
+    const T t089 = (t009*t086 + t041*t087 - t032*t084)*t008 + cos_psi*t050;
+    const T t090 = cos_psi*t089 + sin_psi*t088;
+    const T t091 = S(2)*t019 + t016 - (p.Izz - p.Iyy)*t022;
+    const T t092 = S(2)*t037 + t036 - (p.Izz - p.Ixx)*t015;
+    const T t093 = t013 + t014 - (t009*t091 + t032*t092 + t041*t067)*t008;
+    const T t094 = t020 - (t009*t092 + t046*t067 - t047*t091)*t008 - t021;
+    const T t095 = cos_psi*t093 - sin_psi*t094;
+    const T t096 = (phi_dot*theta_dot - t064)*cos_theta + (t003*t044 - t031*t046 - t040*t041)*t008 - t061 - t063;
+    const T t097 = (t003*t066 + t041*t068 + t046*t069 - t049*t072)*t008;
+    const T t098 = sin_theta*theta_dot - (t003*t077 + t041*t075 + t046*t078)*t008 - t049*t081;
+    const T t099 = phi_dot*sin_theta + t049*t090 - (t003*t087 + t046*t086 - t041*t084)*t008;
+    const T t100 = (t003*t067 + t041*t092 + t046*t091)*t008 + t049*t095;
     J[0] = T(S(0));
     J[1] = T(S(0));
     J[2] = T(S(0));
@@ -290,23 +304,23 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     J[16] = T(S(0));
     J[17] = T(S(1));
     J[18] = T(S(0));
-    J[19] = t054;
-    J[20] = -t062/(sin_theta*t005);
-    J[21] = t000*t071;
-    J[22] = -t000*t080;
-    J[23] = t000*t085;
+    J[19] = t064;
+    J[20] = -t072/(sin_theta*t007);
+    J[21] = t000*t081;
+    J[22] = -t000*t090;
+    J[23] = t000*t095;
     J[24] = T(S(0));
-    J[25] = cos_psi*t043 - sin_psi*t040;
-    J[26] = -(cos_psi*t061 - sin_psi*t060)*t006;
-    J[27] = -(cos_psi*t070 + sin_psi*t069);
-    J[28] = sin_psi*t079 - cos_psi*t078;
-    J[29] = -(cos_psi*t084 + sin_psi*t083);
+    J[25] = cos_psi*t048 - sin_psi*t045;
+    J[26] = (sin_psi*t070 - cos_psi*t071)*t008;
+    J[27] = -cos_psi*t080 - sin_psi*t079;
+    J[28] = sin_psi*t089 - cos_psi*t088;
+    J[29] = -cos_psi*t094 - sin_psi*t093;
     J[30] = T(S(0));
-    J[31] = t086;
-    J[32] = -t006*t087;
-    J[33] = t088;
-    J[34] = t089;
-    J[35] = -t090;
+    J[31] = t096;
+    J[32] = -t097;
+    J[33] = t098;
+    J[34] = t099;
+    J[35] = -t100;
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -315,7 +329,7 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, phi_ddot, theta_ddot, psi_ddot
 //   J     output, dim 6 x 6 (row-major)
 //   p     parameters
-// Operations (+ - * / and calls): 16372 before lowering, 495 after (181 +-, 307 *, 3 /, 4 calls).
+// Operations (+ - * / and calls): 16372 before lowering, 457 after (180 +-, 270 *, 3 /, 4 calls).
 template <class T>
 void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     using std::cos;
@@ -334,105 +348,116 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T t000 = S(1)/sin_theta;
     const T t001 = cos_theta*phi_dot;
     const T t002 = t001 - psi_dot;
-    const T t003 = p.Ixy*p.Ixy - p.Ixx*p.Iyy;
-    const T t004 = p.Ixx*p.Iyz;
-    const T t005 = p.Ixy*p.Ixz;
-    const T t006 = p.Ixz*p.Ixz;
-    const T t007 = (t004 - S(2)*t005)*p.Iyz + p.Iyy*t006 + p.Izz*t003;
-    const T t008 = S(1)/t007;
-    const T t009 = t006 - p.Ixx*p.Izz;
-    const T t010 = phi_dot*sin_psi*sin_theta;
-    const T t011 = cos_psi*theta_dot;
-    const T t012 = t010 + t011;
-    const T t013 = psi_dot + t001;
-    const T t014 = cos_psi*phi_dot*sin_theta;
-    const T t015 = sin_psi*theta_dot;
-    const T t016 = t014 - t015;
-    const T t017 = p.Ixz*t012 + p.Iyz*t016 + p.Izz*t013;
-    const T t018 = t012*t017;
-    const T t019 = p.Ixy*t016;
-    const T t020 = p.Ixz*t013;
-    const T t021 = p.Ixx*t012 + t019 + t020;
-    const T t022 = (cos_theta*p.cx - p.cz*sin_psi*sin_theta)*p.M*p.g + t018 - t013*t021;
-    const T t023 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
-    const T t024 = t016*t017;
-    const T t025 = p.Ixy*t012;
-    const T t026 = p.Iyz*t013;
-    const T t027 = p.Iyy*t016 + t025 + t026;
-    const T t028 = (cos_psi*p.cz*sin_theta - cos_theta*p.cy)*p.M*p.g + t013*t027 - t024;
-    const T t029 = t004 - t005;
-    const T t030 = p.cy*sin_psi - cos_psi*p.cx;
-    const T t031 = t012*t027 - p.M*p.g*sin_theta*t030 - t016*t021;
-    const T t032 = t009*t022 - t023*t028 - t029*t031;
-    const T t033 = cos_psi*t002*theta_dot - phi_dot*psi_dot*sin_psi*sin_theta - t008*t032;
-    const T t034 = cos_psi*t033;
-    const T t035 = p.Iyy*p.Izz - p.Iyz*p.Iyz;
-    const T t036 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
-    const T t037 = t022*t023 + t028*t035 - t031*t036;
-    const T t038 = cos_psi*phi_dot*psi_dot*sin_theta + sin_psi*t002*theta_dot + t008*t037;
-    const T t039 = sin_psi*t038;
-    const T t040 = t034 + t039;
-    const T t041 = cos_theta*t000*t040;
-    const T t042 = (t022*t029 - t003*t031 - t028*t036)*t008 + phi_dot*sin_theta*theta_dot + t041;
-    const T t043 = p.Ixy*sin_psi;
-    const T t044 = cos_psi*p.Iyy + t043;
-    const T t045 = p.Iyz*sin_theta - cos_theta*t044;
-    const T t046 = cos_psi*p.Iyz + p.Ixz*sin_psi;
-    const T t047 = cos_theta*t046 - p.Izz*sin_theta;
-    const T t048 = cos_psi*cos_theta*t017 + sin_theta*t027 + t013*t045 + t016*t047;
-    const T t049 = (cos_psi*cos_theta*p.cz + p.cy*sin_theta)*p.M*p.g - phi_dot*t048;
-    const T t050 = cos_psi*p.Ixy;
-    const T t051 = p.Ixx*sin_psi + t050;
-    const T t052 = cos_theta*t051 - p.Ixz*sin_theta;
-    const T t053 = t013*t052 - cos_theta*sin_psi*t017 - sin_theta*t021 - t012*t047;
-    const T t054 = (cos_theta*p.cz*sin_psi + p.cx*sin_theta)*p.M*p.g + phi_dot*t053;
-    const T t055 = cos_psi*t021 - sin_psi*t027;
-    const T t056 = (p.M*p.g*t030 + phi_dot*t055)*cos_theta + (t012*t045 + t016*t052)*phi_dot;
-    const T t057 = (cos_psi*sin_theta*theta_dot + cos_theta*psi_dot*sin_psi)*phi_dot - (t009*t054 + t023*t049 - t029*t056)*t008;
-    const T t058 = (sin_psi*sin_theta*theta_dot - cos_psi*cos_theta*psi_dot)*phi_dot - (t035*t049 + t036*t056 - t023*t054)*t008;
-    const T t059 = (cos_psi*t057 + sin_psi*t058 + t041)*t000;
-    const T t060 = p.Iyy - p.Ixx;
-    const T t061 = (S(2)*t019 + t020 - t012*t060)*t012 + (S(2)*t025 + t016*t060 + t026)*t016 - (cos_psi*p.cy + p.cx*sin_psi)*p.M*p.g*sin_theta;
-    const T t062 = p.Iyz*t012 - p.Ixz*t016;
-    const T t063 = (p.Ixx*t016 - t025)*t013 + cos_psi*p.M*p.cz*p.g*sin_theta + t012*t062 - t024;
-    const T t064 = (t019 - p.Iyy*t012)*t013 + t016*t062 + t018 - p.M*p.cz*p.g*sin_psi*sin_theta;
-    const T t065 = (t009*t063 + t023*t064 + t029*t061) + t037;
-    const T t066 = t032 - (t023*t063 + t036*t061 - t035*t064);
-    const T t067 = cos_psi*t065 + sin_psi*t066;
-    const T t068 = cos_theta*p.Ixz + sin_theta*t051;
-    const T t069 = cos_theta*p.Izz + sin_theta*t046;
-    const T t070 = cos_theta*t021 + t013*t068 - sin_psi*sin_theta*t017 - t012*t069;
-    const T t071 = cos_theta*p.Iyz + sin_theta*t044;
-    const T t072 = t012*t071 - sin_theta*t055 - t016*t068;
-    const T t073 = cos_theta*t027 + t013*t071 - cos_psi*sin_theta*t017 - t016*t069;
-    const T t074 = psi_dot*sin_psi*sin_theta - (t009*t070 + t023*t073 + t029*t072)*t008 - cos_psi*cos_theta*theta_dot;
-    const T t075 = cos_psi*psi_dot*sin_theta + cos_theta*sin_psi*theta_dot - (t023*t070 + t036*t072 - t035*t073)*t008;
-    const T t076 = cos_psi*t074 - sin_psi*t075;
-    const T t077 = t043 - cos_psi*p.Ixx;
-    const T t078 = p.Iyz*sin_psi - cos_psi*p.Ixz;
-    const T t079 = cos_psi*t017 + t013*t077 - t012*t078;
-    const T t080 = t050 - p.Iyy*sin_psi;
-    const T t081 = sin_psi*t017 + t013*t080 + t016*t078;
-    const T t082 = cos_psi*t027 + sin_psi*t021 + t012*t080 + t016*t077;
-    const T t083 = (t023*t079 + t035*t081 - t036*t082)*t008 + sin_psi*t002;
-    const T t084 = (t023*t081 + t029*t082 - t009*t079)*t008 + cos_psi*t002;
-    const T t085 = cos_psi*t084 + sin_psi*t083;
-    const T t086 = S(2)*t026 + t025 - (p.Izz - p.Iyy)*t016;
-    const T t087 = S(2)*t020 + t019 - (p.Izz - p.Ixx)*t012;
-    const T t088 = t010 + t011 - (t009*t087 + t023*t086 + t029*t062)*t008;
-    const T t089 = t014 - (t023*t087 + t036*t062 - t035*t086)*t008 - t015;
-    const T t090 = cos_psi*t088 - sin_psi*t089;
-    const T t091 = (phi_dot*theta_dot - t059)*cos_theta + (t003*t056 - t029*t054 - t036*t049)*t008 - t034 - t039;
-    const T t092 = t003*t061 + t029*t063 + t036*t064 - cos_theta*t000*t067;
-    const T t093 = sin_theta*theta_dot - (t003*t072 + t029*t070 + t036*t073)*t008 - cos_theta*t000*t076;
-    const T t094 = cos_theta*t000*t085 + phi_dot*sin_theta - (t003*t082 + t036*t081 - t029*t079)*t008;
-    const T t095 = (t003*t062 + t029*t087 + t036*t086)*t008 + cos_theta*t000*t090;
+    const T t003 = t002*theta_dot;
+    const T t004 = p.Ixy*p.Ixy - p.Ixx*p.Iyy;
+    const T t005 = p.Ixx*p.Iyz;
+    const T t006 = p.Ixy*p.Ixz;
+    const T t007 = p.Ixz*p.Ixz;
+    const T t008 = (t005 - S(2)*t006)*p.Iyz + p.Iyy*t007 + p.Izz*t004;
+    const T t009 = S(1)/t008;
+    const T t010 = t007 - p.Ixx*p.Izz;
+    const T t011 = sin_psi*sin_theta;
+    const T t012 = phi_dot*t011;
+    const T t013 = cos_psi*theta_dot;
+    const T t014 = t012 + t013;
+    const T t015 = psi_dot + t001;
+    const T t016 = cos_psi*sin_theta;
+    const T t017 = phi_dot*t016;
+    const T t018 = sin_psi*theta_dot;
+    const T t019 = t017 - t018;
+    const T t020 = p.Ixz*t014 + p.Iyz*t019 + p.Izz*t015;
+    const T t021 = t014*t020;
+    const T t022 = p.M*p.g;
+    const T t023 = p.cz*t011;
+    const T t024 = p.Ixy*t019;
+    const T t025 = p.Ixz*t015;
+    const T t026 = p.Ixx*t014 + t024 + t025;
+    const T t027 = (cos_theta*p.cx - t023)*t022 + t021 - t015*t026;
+    const T t028 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
+    const T t029 = p.cz*t016;
+    const T t030 = t019*t020;
+    const T t031 = p.Ixy*t014;
+    const T t032 = p.Iyz*t015;
+    const T t033 = p.Iyy*t019 + t031 + t032;
+    const T t034 = (t029 - cos_theta*p.cy)*t022 + t015*t033 - t030;
+    const T t035 = t005 - t006;
+    const T t036 = sin_theta*t022;
+    const T t037 = p.cy*sin_psi - cos_psi*p.cx;
+    const T t038 = t014*t033 - t019*t026 - t036*t037;
+    const T t039 = t010*t027 - t028*t034 - t035*t038;
+    const T t040 = cos_psi*t003 - psi_dot*t012 - t009*t039;
+    const T t041 = cos_psi*t040;
+    const T t042 = p.Iyy*p.Izz - p.Iyz*p.Iyz;
+    const T t043 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
+    const T t044 = t027*t028 + t034*t042 - t038*t043;
+    const T t045 = psi_dot*t017 + sin_psi*t003 + t009*t044;
+    const T t046 = sin_psi*t045;
+    const T t047 = t041 + t046;
+    const T t048 = cos_theta*t000;
+    const T t049 = t047*t048;
+    const T t050 = sin_theta*theta_dot;
+    const T t051 = (t027*t035 - t004*t038 - t034*t043)*t009 + phi_dot*t050 + t049;
+    const T t052 = cos_theta*sin_psi;
+    const T t053 = cos_psi*cos_theta;
+    const T t054 = p.Ixy*sin_psi;
+    const T t055 = cos_psi*p.Iyy + t054;
+    const T t056 = p.Iyz*sin_theta - cos_theta*t055;
+    const T t057 = cos_psi*p.Iyz + p.Ixz*sin_psi;
+    const T t058 = cos_theta*t057 - p.Izz*sin_theta;
+    const T t059 = (sin_theta*t033 + t015*t056 + t019*t058 + t020*t053)*phi_dot;
+    const T t060 = (p.cy*sin_theta + p.cz*t053)*t022 - t059;
+    const T t061 = cos_psi*p.Ixy;
+    const T t062 = p.Ixx*sin_psi + t061;
+    const T t063 = cos_theta*t062 - p.Ixz*sin_theta;
+    const T t064 = (t015*t063 - sin_theta*t026 - t014*t058 - t020*t052)*phi_dot;
+    const T t065 = (p.cx*sin_theta + p.cz*t052)*t022 + t064;
+    const T t066 = cos_psi*t026 - sin_psi*t033;
+    const T t067 = (phi_dot*t066 + t022*t037)*cos_theta + (t014*t056 + t019*t063)*phi_dot;
+    const T t068 = (psi_dot*t052 + t016*theta_dot)*phi_dot - (t010*t065 + t028*t060 - t035*t067)*t009;
+    const T t069 = (t011*theta_dot - psi_dot*t053)*phi_dot - (t042*t060 + t043*t067 - t028*t065)*t009;
+    const T t070 = (cos_psi*t068 + sin_psi*t069 + t049)*t000;
+    const T t071 = p.Iyy - p.Ixx;
+    const T t072 = (S(2)*t024 + t025 - t014*t071)*t014 + (S(2)*t031 + t019*t071 + t032)*t019 - (cos_psi*p.cy + p.cx*sin_psi)*t036;
+    const T t073 = p.Iyz*t014 - p.Ixz*t019;
+    const T t074 = (p.Ixx*t019 - t031)*t015 + t014*t073 + t022*t029 - t030;
+    const T t075 = (t024 - p.Iyy*t014)*t015 + t019*t073 + t021 - t022*t023;
+    const T t076 = t010*t074 + t028*t075 + t035*t072 + t044;
+    const T t077 = t039 + t042*t075 - t028*t074 - t043*t072;
+    const T t078 = cos_psi*t076 + sin_psi*t077;
+    const T t079 = cos_theta*p.Ixz + sin_theta*t062;
+    const T t080 = cos_theta*p.Izz + sin_theta*t057;
+    const T t081 = cos_theta*t026 + t015*t079 - t011*t020 - t014*t080;
+    const T t082 = cos_theta*p.Iyz + sin_theta*t055;
+    const T t083 = t014*t082 - sin_theta*t066 - t019*t079;
+    const T t084 = cos_theta*t033 + t015*t082 - t016*t020 - t019*t080;
+    const T t085 = psi_dot*t011 - (t010*t081 + t028*t084 + t035*t083)*t009 - t053*theta_dot;
+    const T t086 = psi_dot*t016 + t052*theta_dot - (t028*t081 + t043*t083 - t042*t084)*t009;
+    const T t087 = cos_psi*t085 - sin_psi*t086;
+    const T t088 = t054 - cos_psi*p.Ixx;
+    const T t089 = p.Iyz*sin_psi - cos_psi*p.Ixz;
+    const T t090 = cos_psi*t020 + t015*t088 - t014*t089;
+    const T t091 = t061 - p.Iyy*sin_psi;
+    const T t092 = sin_psi*t020 + t015*t091 + t019*t089;
+    const T t093 = cos_psi*t033 + sin_psi*t026 + t014*t091 + t019*t088;
+    const T t094 = (t028*t090 + t042*t092 - t043*t093)*t009 + sin_psi*t002;
+    const T t095 = (t028*t092 + t035*t093 - t010*t090)*t009 + cos_psi*t002;
+    const T t096 = cos_psi*t095 + sin_psi*t094;
+    const T t097 = S(2)*t032 + t031 - (p.Izz - p.Iyy)*t019;
+    const T t098 = S(2)*t025 + t024 - (p.Izz - p.Ixx)*t014;
+    const T t099 = t012 + t013 - (t010*t098 + t028*t097 + t035*t073)*t009;
+    const T t100 = t017 - (t028*t098 + t043*t073 - t042*t097)*t009 - t018;
+    const T t101 = cos_psi*t099 - sin_psi*t100;
+    const T t102 = (phi_dot*theta_dot - t070)*cos_theta + (t004*t067 - t035*t065 - t043*t060)*t009 - t041 - t046;
+    const T t103 = (t004*t072 + t035*t074 + t043*t075 - t048*t078)*t009;
+    const T t104 = t050 - (t004*t083 + t035*t081 + t043*t084)*t009 - t048*t087;
+    const T t105 = phi_dot*sin_theta + t048*t096 - (t004*t093 + t043*t092 - t035*t090)*t009;
+    const T t106 = (t004*t073 + t035*t098 + t043*t097)*t009 + t048*t101;
     dydt[0] = phi_dot;
     dydt[1] = theta_dot;
     dydt[2] = psi_dot;
-    dydt[3] = -t000*t040;
-    dydt[4] = sin_psi*t033 - cos_psi*t038;
-    dydt[5] = t042;
+    dydt[3] = -t000*t047;
+    dydt[4] = sin_psi*t040 - cos_psi*t045;
+    dydt[5] = t051;
     J[0] = T(S(0));
     J[1] = T(S(0));
     J[2] = T(S(0));
@@ -452,29 +477,29 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     J[16] = T(S(0));
     J[17] = T(S(1));
     J[18] = T(S(0));
-    J[19] = t059;
-    J[20] = -t067/(sin_theta*t007);
-    J[21] = t000*t076;
-    J[22] = -t000*t085;
-    J[23] = t000*t090;
+    J[19] = t070;
+    J[20] = -t078/(sin_theta*t008);
+    J[21] = t000*t087;
+    J[22] = -t000*t096;
+    J[23] = t000*t101;
     J[24] = T(S(0));
-    J[25] = cos_psi*t058 - sin_psi*t057;
-    J[26] = -(cos_psi*t066 - sin_psi*t065)*t008;
-    J[27] = -(cos_psi*t075 + sin_psi*t074);
-    J[28] = sin_psi*t084 - cos_psi*t083;
-    J[29] = -(cos_psi*t089 + sin_psi*t088);
+    J[25] = cos_psi*t069 - sin_psi*t068;
+    J[26] = (sin_psi*t076 - cos_psi*t077)*t009;
+    J[27] = -cos_psi*t086 - sin_psi*t085;
+    J[28] = sin_psi*t095 - cos_psi*t094;
+    J[29] = -cos_psi*t100 - sin_psi*t099;
     J[30] = T(S(0));
-    J[31] = t091;
-    J[32] = -t008*t092;
-    J[33] = t093;
-    J[34] = t094;
-    J[35] = -t095;
+    J[31] = t102;
+    J[32] = -t103;
+    J[33] = t104;
+    J[34] = t105;
+    J[35] = -t106;
 }
 
 // The energy T + V (conserved without damping and driving torques).
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   p     parameters
-// Operations (+ - * / and calls): 110 before lowering, 45 after (14 +-, 27 *, 0 /, 4 calls).
+// Operations (+ - * / and calls): 110 before lowering, 44 after (14 +-, 26 *, 0 /, 4 calls).
 template <class T>
 T energy(const T* y, const params<T>& p) {
     using std::cos;
@@ -490,18 +515,19 @@ T energy(const T* y, const params<T>& p) {
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
     const T t000 = ((cos_psi*p.cy + p.cx*sin_psi)*sin_theta + cos_theta*p.cz)*p.M*p.g;
-    const T t001 = cos_psi*theta_dot + phi_dot*sin_psi*sin_theta;
-    const T t002 = cos_psi*phi_dot*sin_theta - sin_psi*theta_dot;
-    const T t003 = cos_theta*phi_dot + psi_dot;
-    const T t004 = (p.Ixx*t001 + p.Ixy*t002 + p.Ixz*t003)*t001 + (p.Ixy*t001 + p.Iyy*t002 + p.Iyz*t003)*t002 + (p.Ixz*t001 + p.Iyz*t002 + p.Izz*t003)*t003 + S(2)*t000;
-    return S(1)/S(2)*t004;
+    const T t001 = phi_dot*sin_theta;
+    const T t002 = cos_psi*theta_dot + sin_psi*t001;
+    const T t003 = cos_psi*t001 - sin_psi*theta_dot;
+    const T t004 = cos_theta*phi_dot + psi_dot;
+    const T t005 = (p.Ixx*t002 + p.Ixy*t003 + p.Ixz*t004)*t002 + (p.Ixy*t002 + p.Iyy*t003 + p.Iyz*t004)*t003 + (p.Ixz*t002 + p.Iyz*t003 + p.Izz*t004)*t004 + S(2)*t000;
+    return S(1)/S(2)*t005;
 }
 
 // The conjugate momenta p = dL/dq_dot (5.74)-(5.76).
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   momentum output, dim 3: p_phi, p_theta, p_psi
 //   p     parameters
-// Operations (+ - * / and calls): 149 before lowering, 38 after (12 +-, 22 *, 0 /, 4 calls).
+// Operations (+ - * / and calls): 149 before lowering, 37 after (12 +-, 21 *, 0 /, 4 calls).
 template <class T>
 void momenta(const T* y, T* momentum, const params<T>& p) {
     using std::cos;
@@ -515,22 +541,23 @@ void momenta(const T* y, T* momentum, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    const T t000 = cos_psi*theta_dot + phi_dot*sin_psi*sin_theta;
-    const T t001 = cos_theta*phi_dot + psi_dot;
-    const T t002 = cos_psi*phi_dot*sin_theta - sin_psi*theta_dot;
-    const T t003 = p.Ixy*t000 + p.Iyy*t002 + p.Iyz*t001;
-    const T t004 = p.Ixx*t000 + p.Ixy*t002 + p.Ixz*t001;
-    const T t005 = p.Ixz*t000 + p.Iyz*t002 + p.Izz*t001;
-    momentum[0] = (cos_psi*t003 + sin_psi*t004)*sin_theta + cos_theta*t005;
-    momentum[1] = cos_psi*t004 - sin_psi*t003;
-    momentum[2] = t005;
+    const T t000 = phi_dot*sin_theta;
+    const T t001 = cos_psi*theta_dot + sin_psi*t000;
+    const T t002 = cos_theta*phi_dot + psi_dot;
+    const T t003 = cos_psi*t000 - sin_psi*theta_dot;
+    const T t004 = p.Ixy*t001 + p.Iyy*t003 + p.Iyz*t002;
+    const T t005 = p.Ixx*t001 + p.Ixy*t003 + p.Ixz*t002;
+    const T t006 = p.Ixz*t001 + p.Iyz*t003 + p.Izz*t002;
+    momentum[0] = (cos_psi*t004 + sin_psi*t005)*sin_theta + cos_theta*t006;
+    momentum[1] = cos_psi*t005 - sin_psi*t004;
+    momentum[2] = t006;
 }
 
 // The mass matrix M(q) = J^T I J of the Euler-angle rates, row-major (p = M q_dot).
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   M     output, dim 3 x 3 (row-major): M11, M12, M13, M21, M22, M23, M31, M32, M33
 //   p     parameters
-// Operations (+ - * / and calls): 160 before lowering, 41 after (14 +-, 23 *, 0 /, 4 calls).
+// Operations (+ - * / and calls): 160 before lowering, 40 after (14 +-, 22 *, 0 /, 4 calls).
 template <class T>
 void mass_matrix(const T* y, T* M, const params<T>& p) {
     using std::cos;
@@ -543,14 +570,14 @@ void mass_matrix(const T* y, T* M, const params<T>& p) {
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
     const T t000 = cos_psi*p.Iyz + p.Ixz*sin_psi;
-    const T t001 = p.Iyy - p.Ixx;
-    const T t002 = (S(2)*p.Ixy*sin_psi + cos_psi*t001)*cos_psi;
+    const T t001 = (p.Iyy - p.Ixx)*cos_psi;
+    const T t002 = (S(2)*p.Ixy*sin_psi + t001)*cos_psi;
     const T t003 = ((p.Ixx + t002)*sin_theta + S(2)*cos_theta*t000)*sin_theta + cos_theta*cos_theta*p.Izz;
-    const T t004 = (cos_psi*sin_psi*t001 - (S(2)*cos_psi*cos_psi - S(1))*p.Ixy)*sin_theta;
-    const T t005 = p.Iyz*sin_psi - cos_psi*p.Ixz;
-    const T t006 = -(cos_theta*t005 + t004);
+    const T t004 = p.Iyz*sin_psi - cos_psi*p.Ixz;
+    const T t005 = (sin_psi*t001 - (S(2)*cos_psi*cos_psi - S(1))*p.Ixy)*sin_theta + cos_theta*t004;
+    const T t006 = -t005;
     const T t007 = cos_theta*p.Izz + sin_theta*t000;
-    const T t008 = -t005;
+    const T t008 = -t004;
     M[0] = t003;
     M[1] = t006;
     M[2] = t007;
@@ -566,7 +593,7 @@ void mass_matrix(const T* y, T* M, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   w     output, dim 3: omega1, omega2, omega3
 //   p     parameters
-// Operations (+ - * / and calls): 17 before lowering, 14 after (3 +-, 7 *, 0 /, 4 calls).
+// Operations (+ - * / and calls): 17 before lowering, 13 after (3 +-, 6 *, 0 /, 4 calls).
 template <class T>
 void omega(const T* y, T* w, const params<T>& p) {
     using std::cos;
@@ -581,8 +608,9 @@ void omega(const T* y, T* w, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    w[0] = cos_psi*theta_dot + phi_dot*sin_psi*sin_theta;
-    w[1] = cos_psi*phi_dot*sin_theta - sin_psi*theta_dot;
+    const T t000 = phi_dot*sin_theta;
+    w[0] = cos_psi*theta_dot + sin_psi*t000;
+    w[1] = cos_psi*t000 - sin_psi*theta_dot;
     w[2] = cos_theta*phi_dot + psi_dot;
 }
 
@@ -590,7 +618,7 @@ void omega(const T* y, T* w, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   A     output, dim 3 x 3 (row-major): A11, A12, A13, A21, A22, A23, A31, A32, A33
 //   p     parameters
-// Operations (+ - * / and calls): 49 before lowering, 29 after (7 +-, 16 *, 0 /, 6 calls).
+// Operations (+ - * / and calls): 49 before lowering, 26 after (6 +-, 14 *, 0 /, 6 calls).
 template <class T>
 void rotation(const T* y, T* A, const params<T>& p) {
     using std::cos;
@@ -605,11 +633,13 @@ void rotation(const T* y, T* A, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    A[0] = cos_phi*cos_psi - cos_theta*sin_phi*sin_psi;
-    A[1] = cos_phi*cos_theta*sin_psi + cos_psi*sin_phi;
+    const T t000 = cos_theta*sin_phi;
+    const T t001 = cos_phi*cos_theta;
+    A[0] = cos_phi*cos_psi - sin_psi*t000;
+    A[1] = cos_psi*sin_phi + sin_psi*t001;
     A[2] = sin_psi*sin_theta;
-    A[3] = -(cos_phi*sin_psi + cos_psi*cos_theta*sin_phi);
-    A[4] = -(sin_phi*sin_psi - cos_phi*cos_psi*cos_theta);
+    A[3] = -cos_phi*sin_psi - cos_psi*t000;
+    A[4] = cos_psi*t001 - sin_phi*sin_psi;
     A[5] = cos_psi*sin_theta;
     A[6] = sin_phi*sin_theta;
     A[7] = -cos_phi*sin_theta;

@@ -22,14 +22,14 @@
 // -0.3, Ixz = 0.2, Iyz = -0.1, M = 1.2, g = 9.81, cx = 0.05, cy = -0.02, cz = 0.15.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 620 -> 134 (24 temporaries)
-//   jacobian: 3513 -> 355 (88 temporaries)
-//   rhs_and_jacobian: 4133 -> 440 (95 temporaries)
+//   rhs: 620 -> 129 (24 temporaries)
+//   jacobian: 3513 -> 317 (76 temporaries)
+//   rhs_and_jacobian: 4133 -> 397 (87 temporaries)
 //   energy: 70 -> 50 (6 temporaries)
 //   momenta: 15 -> 15 (0 temporaries)
 //   mass_matrix: 0 -> 0 (0 temporaries)
 //   omega: 0 -> 0 (0 temporaries)
-//   rotation: 117 -> 49 (11 temporaries)
+//   rotation: 117 -> 44 (11 temporaries)
 //
 // Self-contained: includes <array>, <cmath> and <cstddef> only. Every function is a template on the
 // scalar type T (float, double, long double, Eigen array batches such as Eigen::Array<double, 4, 1>,
@@ -112,7 +112,7 @@ constexpr std::array<unsigned char, 49> jacobian_pattern{{
 //   y     state, dim 7: (qw, qx, qy, qz, omega1, omega2, omega3)
 //   dydt  output, dim 7: qw_dot, qx_dot, qy_dot, qz_dot, omega1_dot, omega2_dot, omega3_dot
 //   p     parameters
-// Operations (+ - * / and calls): 620 before lowering, 134 after (47 +-, 85 *, 2 /, 0 calls).
+// Operations (+ - * / and calls): 620 before lowering, 129 after (47 +-, 80 *, 2 /, 0 calls).
 template <class T>
 void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     using S = typename detail::scalar_of<T>::type;
@@ -137,14 +137,14 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     const T t010 = qw*qw;
     const T t011 = t007 + t009 - t008 - t010;
     const T t012 = qw*qx + qy*qz;
-    const T t013 = S(1)/(t007 + t008 + t009 + t010);
-    const T t014 = omega2*t005 - (S(2)*p.cz*t012 + p.cy*t011)*p.M*p.g*t013 - omega3*t006;
+    const T t013 = p.M*p.g/(t007 + t008 + t009 + t010);
+    const T t014 = omega2*t005 - (S(2)*p.cz*t012 + p.cy*t011)*t013 - omega3*t006;
     const T t015 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
     const T t016 = qw*qy - qx*qz;
     const T t017 = omega1*p.Ixx + omega2*p.Ixy + omega3*p.Ixz;
-    const T t018 = S(2)*(p.cx*t012 + p.cy*t016)*p.M*p.g*t013 + omega1*t006 - omega2*t017;
+    const T t018 = S(2)*(p.cx*t012 + p.cy*t016)*t013 + omega1*t006 - omega2*t017;
     const T t019 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
-    const T t020 = omega1*t005 - (p.cx*t011 - S(2)*p.cz*t016)*p.M*p.g*t013 - omega3*t017;
+    const T t020 = omega1*t005 - (p.cx*t011 - S(2)*p.cz*t016)*t013 - omega3*t017;
     const T t021 = (p.Iyy*p.Izz - p.Iyz*p.Iyz)*t014 + t015*t018 - t019*t020;
     const T t022 = t001 - t002;
     const T t023 = (t003 - p.Ixx*p.Izz)*t020 + t014*t019 - t018*t022;
@@ -162,7 +162,7 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
 //   y     state, dim 7: (qw, qx, qy, qz, omega1, omega2, omega3)
 //   J     output, dim 7 x 7 (row-major); structural zeros in jacobian_pattern
 //   p     parameters
-// Operations (+ - * / and calls): 3513 before lowering, 355 after (116 +-, 236 *, 3 /, 0 calls).
+// Operations (+ - * / and calls): 3513 before lowering, 317 after (109 +-, 205 *, 3 /, 0 calls).
 template <class T>
 void jacobian(T t, const T* y, T* J, const params<T>& p) {
     using S = typename detail::scalar_of<T>::type;
@@ -184,84 +184,72 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T t007 = S(1)/S(2)*omega3;
     const T t008 = S(1)/S(2)*qw;
     const T t009 = S(1)/S(2)*omega2;
-    const T t010 = qx*qx;
-    const T t011 = qz*qz;
-    const T t012 = qy*qy;
-    const T t013 = qw*qw;
-    const T t014 = t010 + t011 + t012 + t013;
-    const T t015 = S(1)/t014;
-    const T t016 = qw*qy - qx*qz;
-    const T t017 = qw*qx + qy*qz;
-    const T t018 = (qx - S(2)*qw*t015*t017)*p.cx + (qy - S(2)*qw*t015*t016)*p.cy;
-    const T t019 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
-    const T t020 = p.Iyy*p.Izz - p.Iyz*p.Iyz;
-    const T t021 = p.cz*t015*t017;
-    const T t022 = (t010 + t012 - t011 - t013)*t015;
-    const T t023 = S(1) + t022;
-    const T t024 = S(2)*t021 + p.cy*t023;
-    const T t025 = p.cz*qx;
-    const T t026 = qw*t024 - t025;
-    const T t027 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
-    const T t028 = p.cz*qy;
-    const T t029 = p.cz*t015*t016;
-    const T t030 = p.cx*t023 - S(2)*t029;
-    const T t031 = qw*t030 + t028;
-    const T t032 = p.Ixy*p.Ixy - p.Ixx*p.Iyy;
-    const T t033 = p.Ixx*p.Iyz;
-    const T t034 = p.Ixy*p.Ixz;
-    const T t035 = p.Ixz*p.Ixz;
-    const T t036 = (t033 - S(2)*t034)*p.Iyz + p.Iyy*t035 + p.Izz*t032;
-    const T t037 = S(1)/(t014*t036);
-    const T t038 = (t018*t019 + t020*t026 - t027*t031)*p.M*p.g*t037;
-    const T t039 = t022 - S(1);
-    const T t040 = S(2)*t021 + p.cy*t039;
-    const T t041 = p.cz*qw;
-    const T t042 = qx*t040 - t041;
-    const T t043 = p.cz*qz;
-    const T t044 = p.cx*t039 - S(2)*t029;
-    const T t045 = t043 - qx*t044;
-    const T t046 = (S(2)*qx*t015*t016 + qz)*p.cy + (S(2)*qx*t015*t017 - qw)*p.cx;
-    const T t047 = (t020*t042 + t027*t045 - t019*t046)*p.M*p.g*t037;
-    const T t048 = (qw - S(2)*qy*t015*t016)*p.cy + (qz - S(2)*qy*t015*t017)*p.cx;
-    const T t049 = qy*t040 - t043;
-    const T t050 = qy*t044 + t041;
-    const T t051 = (t019*t048 + t020*t049 - t027*t050)*p.M*p.g*t037;
-    const T t052 = qz*t024 - t028;
-    const T t053 = qz*t030 - t025;
-    const T t054 = (qy - S(2)*qz*t015*t017)*p.cx - (S(2)*qz*t015*t016 + qx)*p.cy;
-    const T t055 = (t019*t054 + t020*t052 - t027*t053)*p.M*p.g*t037;
-    const T t056 = S(1)/t036;
-    const T t057 = omega1*p.Ixz;
-    const T t058 = omega2*p.Iyz;
-    const T t059 = p.Izz - p.Ixx;
-    const T t060 = S(2)*t057 + omega3*t059 + t058;
-    const T t061 = omega1*p.Ixy;
-    const T t062 = omega3*p.Iyz;
-    const T t063 = p.Iyy - p.Ixx;
-    const T t064 = S(2)*t061 + omega2*t063 + t062;
-    const T t065 = omega3*p.Ixy;
-    const T t066 = omega2*p.Ixz;
-    const T t067 = t065 - t066;
-    const T t068 = omega3*p.Ixz;
-    const T t069 = omega2*p.Ixy;
-    const T t070 = omega1*t063 - S(2)*t069 - t068;
-    const T t071 = omega1*p.Iyz;
-    const T t072 = t071 - t065;
-    const T t073 = p.Izz - p.Iyy;
-    const T t074 = S(2)*t058 + omega3*t073 + t057;
-    const T t075 = S(2)*t062 + t061 - omega2*t073;
-    const T t076 = omega1*t059 - S(2)*t068 - t069;
-    const T t077 = t071 - t066;
-    const T t078 = t033 - t034;
-    const T t079 = t035 - p.Ixx*p.Izz;
-    const T t080 = (t026*t027 + t031*t079 - t018*t078)*p.M*p.g*t037;
-    const T t081 = (t027*t042 + t046*t078 - t045*t079)*p.M*p.g*t037;
-    const T t082 = (t048*t078 - t027*t049 - t050*t079)*p.M*p.g*t037;
-    const T t083 = (t054*t078 - t027*t052 - t053*t079)*p.M*p.g*t037;
-    const T t084 = (t019*t026 + t031*t078 - t018*t032)*p.M*p.g*t037;
-    const T t085 = (t019*t042 + t032*t046 - t045*t078)*p.M*p.g*t037;
-    const T t086 = (t019*t049 + t050*t078 - t032*t048)*p.M*p.g*t037;
-    const T t087 = (t032*t054 - t019*t052 - t053*t078)*p.M*p.g*t037;
+    const T t010 = p.Ixy*p.Ixy - p.Ixx*p.Iyy;
+    const T t011 = p.Ixx*p.Iyz;
+    const T t012 = p.Ixy*p.Ixz;
+    const T t013 = p.Ixz*p.Ixz;
+    const T t014 = (t011 - S(2)*t012)*p.Iyz + p.Iyy*t013 + p.Izz*t010;
+    const T t015 = qx*qx;
+    const T t016 = qz*qz;
+    const T t017 = qy*qy;
+    const T t018 = qw*qw;
+    const T t019 = t015 + t016 + t017 + t018;
+    const T t020 = p.M*p.g/(t014*t019);
+    const T t021 = S(1)/t019;
+    const T t022 = (qw*qy - qx*qz)*t021;
+    const T t023 = (qw*qx + qy*qz)*t021;
+    const T t024 = (qx - S(2)*qw*t023)*p.cx + (qy - S(2)*qw*t022)*p.cy;
+    const T t025 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
+    const T t026 = p.Iyy*p.Izz - p.Iyz*p.Iyz;
+    const T t027 = p.cz*t023;
+    const T t028 = (t015 + t017 - t016 - t018)*t021;
+    const T t029 = S(1) + t028;
+    const T t030 = S(2)*t027 + p.cy*t029;
+    const T t031 = p.cz*qx;
+    const T t032 = qw*t030 - t031;
+    const T t033 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
+    const T t034 = p.cz*qy;
+    const T t035 = p.cz*t022;
+    const T t036 = p.cx*t029 - S(2)*t035;
+    const T t037 = qw*t036 + t034;
+    const T t038 = t028 - S(1);
+    const T t039 = S(2)*t027 + p.cy*t038;
+    const T t040 = p.cz*qw;
+    const T t041 = qx*t039 - t040;
+    const T t042 = p.cz*qz;
+    const T t043 = p.cx*t038 - S(2)*t035;
+    const T t044 = t042 - qx*t043;
+    const T t045 = (S(2)*qx*t022 + qz)*p.cy + (S(2)*qx*t023 - qw)*p.cx;
+    const T t046 = (qw - S(2)*qy*t022)*p.cy + (qz - S(2)*qy*t023)*p.cx;
+    const T t047 = qy*t039 - t042;
+    const T t048 = qy*t043 + t040;
+    const T t049 = qz*t030 - t034;
+    const T t050 = qz*t036 - t031;
+    const T t051 = (qy - S(2)*qz*t023)*p.cx - (S(2)*qz*t022 + qx)*p.cy;
+    const T t052 = S(1)/t014;
+    const T t053 = omega1*p.Ixz;
+    const T t054 = omega2*p.Iyz;
+    const T t055 = p.Izz - p.Ixx;
+    const T t056 = S(2)*t053 + omega3*t055 + t054;
+    const T t057 = omega1*p.Ixy;
+    const T t058 = omega3*p.Iyz;
+    const T t059 = p.Iyy - p.Ixx;
+    const T t060 = S(2)*t057 + omega2*t059 + t058;
+    const T t061 = omega3*p.Ixy;
+    const T t062 = omega2*p.Ixz;
+    const T t063 = t061 - t062;
+    const T t064 = omega3*p.Ixz;
+    const T t065 = omega2*p.Ixy;
+    const T t066 = omega1*t059 - S(2)*t065 - t064;
+    const T t067 = omega1*p.Iyz;
+    const T t068 = t067 - t061;
+    const T t069 = p.Izz - p.Iyy;
+    const T t070 = S(2)*t054 + omega3*t069 + t053;
+    const T t071 = S(2)*t058 + t057 - omega2*t069;
+    const T t072 = omega1*t055 - S(2)*t064 - t065;
+    const T t073 = t067 - t062;
+    const T t074 = t011 - t012;
+    const T t075 = t013 - p.Ixx*p.Izz;
     J[0] = T(S(0));
     J[1] = t000;
     J[2] = t001;
@@ -290,27 +278,27 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     J[25] = t004;
     J[26] = S(1)/S(2)*qx;
     J[27] = t008;
-    J[28] = S(2)*t038;
-    J[29] = S(2)*t047;
-    J[30] = S(2)*t051;
-    J[31] = S(2)*t055;
-    J[32] = -(t020*t067 + t027*t060 - t019*t064)*t056;
-    J[33] = (t019*t070 + t020*t074 - t027*t072)*t056;
-    J[34] = -(t020*t075 + t027*t076 - t019*t077)*t056;
-    J[35] = S(2)*t080;
-    J[36] = S(2)*t081;
-    J[37] = -S(2)*t082;
-    J[38] = -S(2)*t083;
-    J[39] = (t060*t079 - t027*t067 - t064*t078)*t056;
-    J[40] = (t027*t074 + t072*t079 - t070*t078)*t056;
-    J[41] = -(t027*t075 + t077*t078 - t076*t079)*t056;
-    J[42] = S(2)*t084;
-    J[43] = S(2)*t085;
-    J[44] = S(2)*t086;
-    J[45] = -S(2)*t087;
-    J[46] = (t060*t078 - t019*t067 - t032*t064)*t056;
-    J[47] = -(t032*t070 - t019*t074 - t072*t078)*t056;
-    J[48] = (t076*t078 - t019*t075 - t032*t077)*t056;
+    J[28] = S(2)*(t024*t025 + t026*t032 - t033*t037)*t020;
+    J[29] = S(2)*(t026*t041 + t033*t044 - t025*t045)*t020;
+    J[30] = S(2)*(t025*t046 + t026*t047 - t033*t048)*t020;
+    J[31] = S(2)*(t025*t051 + t026*t049 - t033*t050)*t020;
+    J[32] = (t025*t060 - t026*t063 - t033*t056)*t052;
+    J[33] = (t025*t066 + t026*t070 - t033*t068)*t052;
+    J[34] = (t025*t073 - t026*t071 - t033*t072)*t052;
+    J[35] = S(2)*(t032*t033 + t037*t075 - t024*t074)*t020;
+    J[36] = S(2)*(t033*t041 + t045*t074 - t044*t075)*t020;
+    J[37] = S(2)*(t033*t047 + t048*t075 - t046*t074)*t020;
+    J[38] = S(2)*(t033*t049 + t050*t075 - t051*t074)*t020;
+    J[39] = (t056*t075 - t033*t063 - t060*t074)*t052;
+    J[40] = (t033*t070 + t068*t075 - t066*t074)*t052;
+    J[41] = (t072*t075 - t033*t071 - t073*t074)*t052;
+    J[42] = S(2)*(t025*t032 + t037*t074 - t010*t024)*t020;
+    J[43] = S(2)*(t010*t045 + t025*t041 - t044*t074)*t020;
+    J[44] = S(2)*(t025*t047 + t048*t074 - t010*t046)*t020;
+    J[45] = S(2)*(t025*t049 + t050*t074 - t010*t051)*t020;
+    J[46] = (t056*t074 - t010*t060 - t025*t063)*t052;
+    J[47] = (t025*t070 + t068*t074 - t010*t066)*t052;
+    J[48] = (t072*t074 - t010*t073 - t025*t071)*t052;
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -319,7 +307,7 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   dydt  output, dim 7: qw_dot, qx_dot, qy_dot, qz_dot, omega1_dot, omega2_dot, omega3_dot
 //   J     output, dim 7 x 7 (row-major)
 //   p     parameters
-// Operations (+ - * / and calls): 4133 before lowering, 440 after (146 +-, 291 *, 3 /, 0 calls).
+// Operations (+ - * / and calls): 4133 before lowering, 397 after (139 +-, 255 *, 3 /, 0 calls).
 template <class T>
 void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     using S = typename detail::scalar_of<T>::type;
@@ -352,57 +340,57 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T t018 = qw*qx + qy*qz;
     const T t019 = t013 + t014 + t015 + t016;
     const T t020 = S(1)/t019;
-    const T t021 = omega2*t009 - (S(2)*p.cz*t018 + p.cy*t017)*p.M*p.g*t020 - omega3*t012;
-    const T t022 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
-    const T t023 = qw*qy - qx*qz;
-    const T t024 = omega3*p.Ixz;
-    const T t025 = omega2*p.Ixy;
-    const T t026 = omega1*p.Ixx + t024 + t025;
-    const T t027 = S(2)*(p.cx*t018 + p.cy*t023)*p.M*p.g*t020 + omega1*t012 - omega2*t026;
-    const T t028 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
-    const T t029 = omega1*t009 - (p.cx*t017 - S(2)*p.cz*t023)*p.M*p.g*t020 - omega3*t026;
-    const T t030 = t001 - t002;
-    const T t031 = t003 - p.Ixx*p.Izz;
-    const T t032 = -S(1)/S(2)*omega1;
-    const T t033 = -S(1)/S(2)*omega2;
-    const T t034 = -S(1)/S(2)*omega3;
-    const T t035 = -S(1)/S(2)*qx;
-    const T t036 = -S(1)/S(2)*qy;
-    const T t037 = -S(1)/S(2)*qz;
-    const T t038 = S(1)/S(2)*omega1;
-    const T t039 = S(1)/S(2)*omega3;
-    const T t040 = S(1)/S(2)*qw;
-    const T t041 = S(1)/S(2)*omega2;
-    const T t042 = (qx - S(2)*qw*t018*t020)*p.cx + (qy - S(2)*qw*t020*t023)*p.cy;
-    const T t043 = p.cz*t018*t020;
-    const T t044 = t017*t020;
-    const T t045 = S(1) + t044;
-    const T t046 = S(2)*t043 + p.cy*t045;
-    const T t047 = p.cz*qx;
-    const T t048 = qw*t046 - t047;
-    const T t049 = p.cz*qy;
-    const T t050 = p.cz*t020*t023;
-    const T t051 = p.cx*t045 - S(2)*t050;
-    const T t052 = qw*t051 + t049;
-    const T t053 = S(1)/(t004*t019);
-    const T t054 = (t006*t048 + t022*t042 - t028*t052)*p.M*p.g*t053;
-    const T t055 = t044 - S(1);
-    const T t056 = S(2)*t043 + p.cy*t055;
-    const T t057 = p.cz*qw;
-    const T t058 = qx*t056 - t057;
-    const T t059 = p.cz*qz;
-    const T t060 = p.cx*t055 - S(2)*t050;
-    const T t061 = t059 - qx*t060;
-    const T t062 = (S(2)*qx*t018*t020 - qw)*p.cx + (S(2)*qx*t020*t023 + qz)*p.cy;
-    const T t063 = (t006*t058 + t028*t061 - t022*t062)*p.M*p.g*t053;
-    const T t064 = (qw - S(2)*qy*t020*t023)*p.cy + (qz - S(2)*qy*t018*t020)*p.cx;
-    const T t065 = qy*t056 - t059;
-    const T t066 = qy*t060 + t057;
-    const T t067 = (t006*t065 + t022*t064 - t028*t066)*p.M*p.g*t053;
-    const T t068 = qz*t046 - t049;
-    const T t069 = qz*t051 - t047;
-    const T t070 = (qy - S(2)*qz*t018*t020)*p.cx - (S(2)*qz*t020*t023 + qx)*p.cy;
-    const T t071 = (t006*t068 + t022*t070 - t028*t069)*p.M*p.g*t053;
+    const T t021 = p.M*p.g;
+    const T t022 = t020*t021;
+    const T t023 = omega2*t009 - (S(2)*p.cz*t018 + p.cy*t017)*t022 - omega3*t012;
+    const T t024 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
+    const T t025 = qw*qy - qx*qz;
+    const T t026 = omega3*p.Ixz;
+    const T t027 = omega2*p.Ixy;
+    const T t028 = omega1*p.Ixx + t026 + t027;
+    const T t029 = S(2)*(p.cx*t018 + p.cy*t025)*t022 + omega1*t012 - omega2*t028;
+    const T t030 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
+    const T t031 = omega1*t009 - (p.cx*t017 - S(2)*p.cz*t025)*t022 - omega3*t028;
+    const T t032 = t001 - t002;
+    const T t033 = t003 - p.Ixx*p.Izz;
+    const T t034 = -S(1)/S(2)*omega1;
+    const T t035 = -S(1)/S(2)*omega2;
+    const T t036 = -S(1)/S(2)*omega3;
+    const T t037 = -S(1)/S(2)*qx;
+    const T t038 = -S(1)/S(2)*qy;
+    const T t039 = -S(1)/S(2)*qz;
+    const T t040 = S(1)/S(2)*omega1;
+    const T t041 = S(1)/S(2)*omega3;
+    const T t042 = S(1)/S(2)*qw;
+    const T t043 = S(1)/S(2)*omega2;
+    const T t044 = t021/(t004*t019);
+    const T t045 = t020*t025;
+    const T t046 = t018*t020;
+    const T t047 = (qx - S(2)*qw*t046)*p.cx + (qy - S(2)*qw*t045)*p.cy;
+    const T t048 = p.cz*t046;
+    const T t049 = t017*t020;
+    const T t050 = S(1) + t049;
+    const T t051 = S(2)*t048 + p.cy*t050;
+    const T t052 = p.cz*qx;
+    const T t053 = qw*t051 - t052;
+    const T t054 = p.cz*qy;
+    const T t055 = p.cz*t045;
+    const T t056 = p.cx*t050 - S(2)*t055;
+    const T t057 = qw*t056 + t054;
+    const T t058 = t049 - S(1);
+    const T t059 = S(2)*t048 + p.cy*t058;
+    const T t060 = p.cz*qw;
+    const T t061 = qx*t059 - t060;
+    const T t062 = p.cz*qz;
+    const T t063 = p.cx*t058 - S(2)*t055;
+    const T t064 = t062 - qx*t063;
+    const T t065 = (S(2)*qx*t045 + qz)*p.cy + (S(2)*qx*t046 - qw)*p.cx;
+    const T t066 = (qw - S(2)*qy*t045)*p.cy + (qz - S(2)*qy*t046)*p.cx;
+    const T t067 = qy*t059 - t062;
+    const T t068 = qy*t063 + t060;
+    const T t069 = qz*t051 - t054;
+    const T t070 = qz*t056 - t052;
+    const T t071 = (qy - S(2)*qz*t046)*p.cx - (S(2)*qz*t045 + qx)*p.cy;
     const T t072 = p.Izz - p.Ixx;
     const T t073 = S(2)*t007 + omega3*t072 + t008;
     const T t074 = p.Iyy - p.Ixx;
@@ -410,78 +398,70 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T t076 = omega3*p.Ixy;
     const T t077 = omega2*p.Ixz;
     const T t078 = t076 - t077;
-    const T t079 = omega1*t074 - S(2)*t025 - t024;
+    const T t079 = omega1*t074 - S(2)*t027 - t026;
     const T t080 = omega1*p.Iyz;
     const T t081 = t080 - t076;
     const T t082 = p.Izz - p.Iyy;
     const T t083 = S(2)*t008 + omega3*t082 + t007;
     const T t084 = S(2)*t011 + t010 - omega2*t082;
-    const T t085 = omega1*t072 - S(2)*t024 - t025;
+    const T t085 = omega1*t072 - S(2)*t026 - t027;
     const T t086 = t080 - t077;
-    const T t087 = (t028*t048 + t031*t052 - t030*t042)*p.M*p.g*t053;
-    const T t088 = (t028*t058 + t030*t062 - t031*t061)*p.M*p.g*t053;
-    const T t089 = (t030*t064 - t028*t065 - t031*t066)*p.M*p.g*t053;
-    const T t090 = (t030*t070 - t028*t068 - t031*t069)*p.M*p.g*t053;
-    const T t091 = (t022*t048 + t030*t052 - t000*t042)*p.M*p.g*t053;
-    const T t092 = (t000*t062 + t022*t058 - t030*t061)*p.M*p.g*t053;
-    const T t093 = (t022*t065 + t030*t066 - t000*t064)*p.M*p.g*t053;
-    const T t094 = (t000*t070 - t022*t068 - t030*t069)*p.M*p.g*t053;
     dydt[0] = -S(1)/S(2)*(omega1*qx + omega2*qy + omega3*qz);
     dydt[1] = S(1)/S(2)*(omega1*qw + omega3*qy - omega2*qz);
     dydt[2] = S(1)/S(2)*(omega1*qz + omega2*qw - omega3*qx);
     dydt[3] = S(1)/S(2)*(omega2*qx + omega3*qw - omega1*qy);
-    dydt[4] = (t006*t021 + t022*t027 - t028*t029)*t005;
-    dydt[5] = (t021*t028 + t029*t031 - t027*t030)*t005;
-    dydt[6] = (t021*t022 + t029*t030 - t000*t027)*t005;
+    dydt[4] = (t006*t023 + t024*t029 - t030*t031)*t005;
+    dydt[5] = (t023*t030 + t031*t033 - t029*t032)*t005;
+    dydt[6] = (t023*t024 + t031*t032 - t000*t029)*t005;
     J[0] = T(S(0));
-    J[1] = t032;
-    J[2] = t033;
-    J[3] = t034;
-    J[4] = t035;
-    J[5] = t036;
-    J[6] = t037;
-    J[7] = t038;
+    J[1] = t034;
+    J[2] = t035;
+    J[3] = t036;
+    J[4] = t037;
+    J[5] = t038;
+    J[6] = t039;
+    J[7] = t040;
     J[8] = T(S(0));
-    J[9] = t039;
-    J[10] = t033;
-    J[11] = t040;
-    J[12] = t037;
+    J[9] = t041;
+    J[10] = t035;
+    J[11] = t042;
+    J[12] = t039;
     J[13] = S(1)/S(2)*qy;
-    J[14] = t041;
-    J[15] = t034;
+    J[14] = t043;
+    J[15] = t036;
     J[16] = T(S(0));
-    J[17] = t038;
+    J[17] = t040;
     J[18] = S(1)/S(2)*qz;
-    J[19] = t040;
-    J[20] = t035;
-    J[21] = t039;
-    J[22] = t041;
-    J[23] = t032;
+    J[19] = t042;
+    J[20] = t037;
+    J[21] = t041;
+    J[22] = t043;
+    J[23] = t034;
     J[24] = T(S(0));
-    J[25] = t036;
+    J[25] = t038;
     J[26] = S(1)/S(2)*qx;
-    J[27] = t040;
-    J[28] = S(2)*t054;
-    J[29] = S(2)*t063;
-    J[30] = S(2)*t067;
-    J[31] = S(2)*t071;
-    J[32] = -(t006*t078 + t028*t073 - t022*t075)*t005;
-    J[33] = (t006*t083 + t022*t079 - t028*t081)*t005;
-    J[34] = -(t006*t084 + t028*t085 - t022*t086)*t005;
-    J[35] = S(2)*t087;
-    J[36] = S(2)*t088;
-    J[37] = -S(2)*t089;
-    J[38] = -S(2)*t090;
-    J[39] = (t031*t073 - t028*t078 - t030*t075)*t005;
-    J[40] = (t028*t083 + t031*t081 - t030*t079)*t005;
-    J[41] = -(t028*t084 + t030*t086 - t031*t085)*t005;
-    J[42] = S(2)*t091;
-    J[43] = S(2)*t092;
-    J[44] = S(2)*t093;
-    J[45] = -S(2)*t094;
-    J[46] = (t030*t073 - t000*t075 - t022*t078)*t005;
-    J[47] = -(t000*t079 - t022*t083 - t030*t081)*t005;
-    J[48] = (t030*t085 - t000*t086 - t022*t084)*t005;
+    J[27] = t042;
+    J[28] = S(2)*(t006*t053 + t024*t047 - t030*t057)*t044;
+    J[29] = S(2)*(t006*t061 + t030*t064 - t024*t065)*t044;
+    J[30] = S(2)*(t006*t067 + t024*t066 - t030*t068)*t044;
+    J[31] = S(2)*(t006*t069 + t024*t071 - t030*t070)*t044;
+    J[32] = (t024*t075 - t006*t078 - t030*t073)*t005;
+    J[33] = (t006*t083 + t024*t079 - t030*t081)*t005;
+    J[34] = (t024*t086 - t006*t084 - t030*t085)*t005;
+    J[35] = S(2)*(t030*t053 + t033*t057 - t032*t047)*t044;
+    J[36] = S(2)*(t030*t061 + t032*t065 - t033*t064)*t044;
+    J[37] = S(2)*(t030*t067 + t033*t068 - t032*t066)*t044;
+    J[38] = S(2)*(t030*t069 + t033*t070 - t032*t071)*t044;
+    J[39] = (t033*t073 - t030*t078 - t032*t075)*t005;
+    J[40] = (t030*t083 + t033*t081 - t032*t079)*t005;
+    J[41] = (t033*t085 - t030*t084 - t032*t086)*t005;
+    J[42] = S(2)*(t024*t053 + t032*t057 - t000*t047)*t044;
+    J[43] = S(2)*(t000*t065 + t024*t061 - t032*t064)*t044;
+    J[44] = S(2)*(t024*t067 + t032*t068 - t000*t066)*t044;
+    J[45] = S(2)*(t024*t069 + t032*t070 - t000*t071)*t044;
+    J[46] = (t032*t073 - t000*t075 - t024*t078)*t005;
+    J[47] = (t024*t083 + t032*t081 - t000*t079)*t005;
+    J[48] = (t032*t085 - t000*t086 - t024*t084)*t005;
 }
 
 // The energy T + V (conserved without damping and driving torques).
@@ -561,7 +541,7 @@ void omega(const T* y, T* w, const params<T>& p) {
 //   y     state, dim 7: (qw, qx, qy, qz, omega1, omega2, omega3)
 //   A     output, dim 3 x 3 (row-major): A11, A12, A13, A21, A22, A23, A31, A32, A33
 //   p     parameters
-// Operations (+ - * / and calls): 117 before lowering, 49 after (23 +-, 25 *, 1 /, 0 calls).
+// Operations (+ - * / and calls): 117 before lowering, 44 after (18 +-, 25 *, 1 /, 0 calls).
 template <class T>
 void rotation(const T* y, T* A, const params<T>& p) {
     using S = typename detail::scalar_of<T>::type;
@@ -583,13 +563,13 @@ void rotation(const T* y, T* A, const params<T>& p) {
     const T t010 = qy*qz;
     A[0] = (t000 + t003 - t001 - t002)*t004;
     A[1] = S(2)*(t005 + t006)*t004;
-    A[2] = -S(2)*(t007 - t008)*t004;
-    A[3] = -S(2)*(t005 - t006)*t004;
-    A[4] = -(t000 + t001 - t002 - t003)*t004;
+    A[2] = S(2)*(t008 - t007)*t004;
+    A[3] = S(2)*(t006 - t005)*t004;
+    A[4] = (t002 + t003 - t000 - t001)*t004;
     A[5] = S(2)*(t009 + t010)*t004;
     A[6] = S(2)*(t007 + t008)*t004;
-    A[7] = -S(2)*(t009 - t010)*t004;
-    A[8] = -(t000 + t002 - t001 - t003)*t004;
+    A[7] = S(2)*(t010 - t009)*t004;
+    A[8] = (t001 + t003 - t000 - t002)*t004;
 }
 
 // The quaternion of z-x-z Euler angles: q = qz(phi) (x) qx(theta) (x) qz(psi), which rotates body

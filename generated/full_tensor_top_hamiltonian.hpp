@@ -20,14 +20,14 @@
 // -0.3, Ixz = 0.2, Iyz = -0.1, M = 1.2, g = 9.81, cx = 0.05, cy = -0.02, cz = 0.15.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 1123 -> 98 (24 temporaries)
-//   jacobian: 6988 -> 253 (66 temporaries)
-//   rhs_and_jacobian: 8111 -> 281 (71 temporaries)
-//   energy: 325 -> 71 (20 temporaries)
+//   rhs: 1123 -> 96 (26 temporaries)
+//   jacobian: 6988 -> 234 (68 temporaries)
+//   rhs_and_jacobian: 8111 -> 256 (72 temporaries)
+//   energy: 325 -> 69 (19 temporaries)
 //   momenta: 0 -> 0 (0 temporaries)
-//   mass_matrix: 160 -> 41 (13 temporaries)
-//   omega: 270 -> 60 (18 temporaries)
-//   rotation: 49 -> 29 (6 temporaries)
+//   mass_matrix: 160 -> 40 (13 temporaries)
+//   omega: 270 -> 58 (17 temporaries)
+//   rotation: 49 -> 26 (8 temporaries)
 //
 // Self-contained: includes <array>, <cmath> and <cstddef> only. Every function is a template on the
 // scalar type T (float, double, long double, Eigen array batches such as Eigen::Array<double, 4, 1>,
@@ -109,7 +109,7 @@ constexpr std::array<unsigned char, 36> jacobian_pattern{{
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, p_phi_dot, p_theta_dot, p_psi_dot
 //   p     parameters
-// Operations (+ - * / and calls): 1123 before lowering, 98 after (31 +-, 59 *, 4 /, 4 calls).
+// Operations (+ - * / and calls): 1123 before lowering, 96 after (31 +-, 57 *, 4 /, 4 calls).
 template <class T>
 void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     using std::cos;
@@ -129,28 +129,30 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     const T t001 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
     const T t002 = S(1)/sin_theta;
     const T t003 = cos_theta*p_psi - p_phi;
-    const T t004 = cos_psi*t002*t003 + p_theta*sin_psi;
-    const T t005 = cos_psi*p_theta - sin_psi*t002*t003;
-    const T t006 = (p.Iyy*p.Izz - p.Iyz*p.Iyz)*t005 + p_psi*t000 - t001*t004;
-    const T t007 = p.Ixx*p.Iyz;
-    const T t008 = p.Ixy*p.Ixz;
-    const T t009 = t007 - t008;
-    const T t010 = p.Ixz*p.Ixz;
-    const T t011 = p_psi*t009 - (t010 - p.Ixx*p.Izz)*t004 - t001*t005;
-    const T t012 = sin_psi*t006 - cos_psi*t011;
-    const T t013 = p.Ixy*p.Ixy - p.Ixx*p.Iyy;
-    const T t014 = (t007 - S(2)*t008)*p.Iyz + p.Iyy*t010 + p.Izz*t013;
-    const T t015 = S(1)/t014;
-    const T t016 = cos_theta*t002*t012 + p_psi*t013 - t000*t005 - t004*t009;
-    const T t017 = ((cos_psi*p.cy + p.cx*sin_psi)*cos_theta - p.cz*sin_theta)*p.M*p.g;
-    const T t018 = t017 - (cos_theta*t003/(sin_theta*sin_theta) + p_psi)*t012*t015;
-    const T t019 = (p.cy*sin_psi - cos_psi*p.cx)*p.M*p.g*sin_theta + (t005*t011 - t004*t006)*t015;
-    dydt[0] = -t012/(sin_theta*t014);
-    dydt[1] = -(cos_psi*t006 + sin_psi*t011)*t015;
-    dydt[2] = t015*t016;
+    const T t004 = t002*t003;
+    const T t005 = cos_psi*t004 + p_theta*sin_psi;
+    const T t006 = cos_psi*p_theta - sin_psi*t004;
+    const T t007 = (p.Iyy*p.Izz - p.Iyz*p.Iyz)*t006 + p_psi*t000 - t001*t005;
+    const T t008 = p.Ixx*p.Iyz;
+    const T t009 = p.Ixy*p.Ixz;
+    const T t010 = t008 - t009;
+    const T t011 = p.Ixz*p.Ixz;
+    const T t012 = p_psi*t010 - (t011 - p.Ixx*p.Izz)*t005 - t001*t006;
+    const T t013 = sin_psi*t007 - cos_psi*t012;
+    const T t014 = p.Ixy*p.Ixy - p.Ixx*p.Iyy;
+    const T t015 = (t008 - S(2)*t009)*p.Iyz + p.Iyy*t011 + p.Izz*t014;
+    const T t016 = S(1)/t015;
+    const T t017 = cos_theta*t002*t013 + p_psi*t014 - t000*t006 - t005*t010;
+    const T t018 = p.M*p.g;
+    const T t019 = ((cos_psi*p.cy + p.cx*sin_psi)*cos_theta - p.cz*sin_theta)*t018;
+    const T t020 = t019 - (cos_theta*t003/(sin_theta*sin_theta) + p_psi)*t013*t016;
+    const T t021 = (p.cy*sin_psi - cos_psi*p.cx)*sin_theta*t018 + (t006*t012 - t005*t007)*t016;
+    dydt[0] = -t013/(sin_theta*t015);
+    dydt[1] = (-cos_psi*t007 - sin_psi*t012)*t016;
+    dydt[2] = t016*t017;
     dydt[3] = T(S(0));
-    dydt[4] = -t018;
-    dydt[5] = t019;
+    dydt[4] = -t020;
+    dydt[5] = t021;
 }
 
 // The analytic Jacobian J = d(dy/dt)/dy, dense, row-major: J[i * state_size + k] = d dydt[i] / d y[k].
@@ -158,7 +160,7 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   J     output, dim 6 x 6 (row-major); structural zeros in jacobian_pattern
 //   p     parameters
-// Operations (+ - * / and calls): 6988 before lowering, 253 after (87 +-, 157 *, 5 /, 4 calls).
+// Operations (+ - * / and calls): 6988 before lowering, 234 after (83 +-, 142 *, 5 /, 4 calls).
 template <class T>
 void jacobian(T t, const T* y, T* J, const params<T>& p) {
     using std::cos;
@@ -189,71 +191,73 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T t012 = cos_theta*p_psi - p_phi;
     const T t013 = cos_theta*t011*t012 + p_psi;
     const T t014 = S(1)/sin_theta;
-    const T t015 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
-    const T t016 = p_psi*t015;
-    const T t017 = cos_psi*t012*t014 + p_theta*sin_psi;
-    const T t018 = t000*t017;
-    const T t019 = cos_psi*p_theta - sin_psi*t012*t014;
-    const T t020 = t006*t019 + t016 - t018;
-    const T t021 = sin_psi*t020;
-    const T t022 = p.Ixx*p.Iyz;
-    const T t023 = p.Ixy*p.Ixz;
-    const T t024 = t022 - t023;
-    const T t025 = p_psi*t024;
-    const T t026 = t000*t019;
-    const T t027 = t025 - t003*t017 - t026;
-    const T t028 = cos_psi*t027;
-    const T t029 = t021 - t028;
-    const T t030 = t009*t013 - cos_theta*t014*t029;
-    const T t031 = p.Ixy*p.Ixy - p.Ixx*p.Iyy;
-    const T t032 = (t022 - S(2)*t023)*p.Iyz + p.Iyy*t002 + p.Izz*t031;
-    const T t033 = S(1)/(sin_theta*t032);
-    const T t034 = t030*t033;
-    const T t035 = (p.Iyy - p.Ixx)*p.Izz + t002 - t005;
-    const T t036 = t016 + t019*t035 - S(2)*t018;
-    const T t037 = S(2)*t026 + t017*t035 - t025;
-    const T t038 = cos_psi*t036 - sin_psi*t037;
-    const T t039 = sin_psi*t003 + t007;
-    const T t040 = t001 - cos_psi*t006;
-    const T t041 = cos_psi*t039 - sin_psi*t040;
-    const T t042 = cos_theta*t004*t014;
-    const T t043 = t024 + t042;
-    const T t044 = cos_theta*t008*t014;
-    const T t045 = t044 - t015;
-    const T t046 = cos_psi*t043 + sin_psi*t045;
-    const T t047 = S(1)/t032;
-    const T t048 = cos_psi*t008 - sin_psi*t004;
-    const T t049 = (t013*t024 + t027)*cos_psi + cos_theta*t014*t030 - (t013*t015 + t020)*sin_psi;
-    const T t050 = -(cos_psi*t015 + sin_psi*t024 - cos_theta*t014*t041)*t047;
-    const T t051 = ((S(2)*t024 + t042)*cos_psi + (t044 - S(2)*t015)*sin_psi)*cos_theta*t014;
-    const T t052 = cos_psi*p.cy + p.cx*sin_psi;
-    const T t053 = (S(2)*cos_theta*t013 - p_phi)*t014*t029 - t009*t013*t013;
-    const T t054 = (cos_theta*p.cz + sin_theta*t052)*p.M*p.g - t047*t053;
-    const T t055 = (p.cy*sin_psi - cos_psi*p.cx)*cos_theta*p.M*p.g;
-    const T t056 = ((S(1) + cos_theta*cos_theta*t011)*t029 - t013*t046)*t047;
-    const T t057 = cos_psi*t020;
-    const T t058 = sin_psi*t027;
-    const T t059 = t004*t019 + t008*t017 - t057 - t058;
-    const T t060 = (t019*t036 - t017*t037)*t047 - p.M*p.g*sin_theta*t052;
-    const T t061 = ((t057 + t058)*cos_theta*t014 - t017*t045 - t019*t043)*t047;
+    const T t015 = cos_theta*t014;
+    const T t016 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
+    const T t017 = p_psi*t016;
+    const T t018 = t012*t014;
+    const T t019 = cos_psi*t018 + p_theta*sin_psi;
+    const T t020 = t000*t019;
+    const T t021 = cos_psi*p_theta - sin_psi*t018;
+    const T t022 = t006*t021 + t017 - t020;
+    const T t023 = sin_psi*t022;
+    const T t024 = p.Ixx*p.Iyz;
+    const T t025 = p.Ixy*p.Ixz;
+    const T t026 = t024 - t025;
+    const T t027 = p_psi*t026;
+    const T t028 = t000*t021;
+    const T t029 = t027 - t003*t019 - t028;
+    const T t030 = cos_psi*t029;
+    const T t031 = t023 - t030;
+    const T t032 = t009*t013 - t015*t031;
+    const T t033 = p.Ixy*p.Ixy - p.Ixx*p.Iyy;
+    const T t034 = (t024 - S(2)*t025)*p.Iyz + p.Iyy*t002 + p.Izz*t033;
+    const T t035 = S(1)/(sin_theta*t034);
+    const T t036 = t032*t035;
+    const T t037 = (p.Iyy - p.Ixx)*p.Izz + t002 - t005;
+    const T t038 = t017 + t021*t037 - S(2)*t020;
+    const T t039 = S(2)*t028 + t019*t037 - t027;
+    const T t040 = cos_psi*t038 - sin_psi*t039;
+    const T t041 = sin_psi*t003 + t007;
+    const T t042 = t001 - cos_psi*t006;
+    const T t043 = cos_psi*t041 - sin_psi*t042;
+    const T t044 = t004*t015;
+    const T t045 = t026 + t044;
+    const T t046 = t008*t015;
+    const T t047 = t046 - t016;
+    const T t048 = cos_psi*t045 + sin_psi*t047;
+    const T t049 = S(1)/t034;
+    const T t050 = t013*t049;
+    const T t051 = cos_psi*t008 - sin_psi*t004;
+    const T t052 = (t013*t026 + t029)*cos_psi + t015*t032 - (t013*t016 + t022)*sin_psi;
+    const T t053 = t033 - ((S(2)*t026 + t044)*cos_psi + (t046 - S(2)*t016)*sin_psi)*t015;
+    const T t054 = (cos_psi*p.cy + p.cx*sin_psi)*sin_theta;
+    const T t055 = p.M*p.g;
+    const T t056 = (S(2)*cos_theta*t013 - p_phi)*t014*t031 - t009*t013*t013;
+    const T t057 = (p.cy*sin_psi - cos_psi*p.cx)*cos_theta*t055;
+    const T t058 = ((S(1) + cos_theta*cos_theta*t011)*t031 - t013*t048)*t049;
+    const T t059 = cos_psi*t022;
+    const T t060 = sin_psi*t029;
+    const T t061 = t004*t021 + t008*t019 - t059 - t060;
+    const T t062 = t054*t055 - (t021*t038 - t019*t039)*t049;
+    const T t063 = ((t059 + t060)*t015 - t019*t047 - t021*t045)*t049;
     J[0] = T(S(0));
-    J[1] = -t034;
-    J[2] = -t033*t038;
-    J[3] = -t009/(t010*t032);
-    J[4] = -t033*t041;
-    J[5] = t033*t046;
+    J[1] = -t036;
+    J[2] = -t035*t040;
+    J[3] = -t009/(t010*t034);
+    J[4] = -t035*t043;
+    J[5] = t035*t048;
     J[6] = T(S(0));
-    J[7] = -t013*t047*t048;
-    J[8] = (cos_psi*t037 + sin_psi*t036)*t047;
-    J[9] = -t033*t048;
-    J[10] = (cos_psi*t040 + sin_psi*t039)*t047;
-    J[11] = -(sin_psi*t043 - cos_psi*t045)*t047;
+    J[7] = -t050*t051;
+    J[8] = (cos_psi*t039 + sin_psi*t038)*t049;
+    J[9] = -t035*t051;
+    J[10] = (cos_psi*t042 + sin_psi*t041)*t049;
+    J[11] = (cos_psi*t047 - sin_psi*t045)*t049;
     J[12] = T(S(0));
-    J[13] = t047*t049;
-    J[14] = (cos_theta*t014*t038 + t015*t017 - t019*t024)*t047;
-    J[15] = (cos_psi*t024 + cos_theta*t009*t014 - sin_psi*t015)*t033;
-    J[16] = t050;
-    J[17] = (t031 - t051)*t047;
+    J[13] = t049*t052;
+    J[14] = (t015*t040 + t016*t019 - t021*t026)*t049;
+    J[15] = (cos_psi*t026 + t009*t015 - sin_psi*t016)*t035;
+    J[16] = (t015*t043 - cos_psi*t016 - sin_psi*t026)*t049;
+    J[17] = t049*t053;
     J[18] = T(S(0));
     J[19] = T(S(0));
     J[20] = T(S(0));
@@ -261,17 +265,17 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     J[22] = T(S(0));
     J[23] = T(S(0));
     J[24] = T(S(0));
-    J[25] = t054;
-    J[26] = t013*t038*t047 + t055;
-    J[27] = t034;
-    J[28] = t013*t041*t047;
-    J[29] = t056;
+    J[25] = (cos_theta*p.cz + t054)*t055 - t049*t056;
+    J[26] = t040*t050 + t057;
+    J[27] = t036;
+    J[28] = t043*t050;
+    J[29] = t058;
     J[30] = T(S(0));
-    J[31] = t055 - t013*t047*t059;
-    J[32] = -t060;
-    J[33] = -t033*t059;
-    J[34] = -(t019*t039 + t021 - t017*t040 - t028)*t047;
-    J[35] = -t061;
+    J[31] = t057 - t050*t061;
+    J[32] = t062;
+    J[33] = -t035*t061;
+    J[34] = (t019*t042 + t030 - t021*t041 - t023)*t049;
+    J[35] = -t063;
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -280,7 +284,7 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, p_phi_dot, p_theta_dot, p_psi_dot
 //   J     output, dim 6 x 6 (row-major)
 //   p     parameters
-// Operations (+ - * / and calls): 8111 before lowering, 281 after (97 +-, 175 *, 5 /, 4 calls).
+// Operations (+ - * / and calls): 8111 before lowering, 256 after (91 +-, 156 *, 5 /, 4 calls).
 template <class T>
 void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     using std::cos;
@@ -301,92 +305,93 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T t002 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
     const T t003 = S(1)/sin_theta;
     const T t004 = cos_theta*p_psi - p_phi;
-    const T t005 = cos_psi*t003*t004 + p_theta*sin_psi;
-    const T t006 = t002*t005;
-    const T t007 = p.Iyz*p.Iyz;
-    const T t008 = p.Iyy*p.Izz - t007;
-    const T t009 = cos_psi*p_theta - sin_psi*t003*t004;
-    const T t010 = t001 + t008*t009 - t006;
-    const T t011 = sin_psi*t010;
-    const T t012 = p.Ixx*p.Iyz;
-    const T t013 = p.Ixy*p.Ixz;
-    const T t014 = t012 - t013;
-    const T t015 = p_psi*t014;
-    const T t016 = t002*t009;
-    const T t017 = p.Ixz*p.Ixz;
-    const T t018 = t017 - p.Ixx*p.Izz;
-    const T t019 = t015 - t005*t018 - t016;
-    const T t020 = cos_psi*t019;
-    const T t021 = t011 - t020;
-    const T t022 = p.Ixy*p.Ixy - p.Ixx*p.Iyy;
-    const T t023 = (t012 - S(2)*t013)*p.Iyz + p.Iyy*t017 + p.Izz*t022;
-    const T t024 = S(1)/(sin_theta*t023);
-    const T t025 = S(1)/t023;
-    const T t026 = cos_psi*t010;
-    const T t027 = sin_psi*t019;
-    const T t028 = t026 + t027;
-    const T t029 = cos_theta*t003*t021;
-    const T t030 = cos_psi*p.cy + p.cx*sin_psi;
-    const T t031 = sin_theta*sin_theta;
-    const T t032 = S(1)/t031;
-    const T t033 = cos_theta*t004*t032 + p_psi;
-    const T t034 = (cos_theta*t030 - p.cz*sin_theta)*p.M*p.g - t021*t025*t033;
-    const T t035 = p.cy*sin_psi - cos_psi*p.cx;
-    const T t036 = (t009*t019 - t005*t010)*t025 + p.M*p.g*sin_theta*t035;
-    const T t037 = sin_psi*t002;
-    const T t038 = t037 - cos_psi*t018;
-    const T t039 = cos_psi*t002;
-    const T t040 = sin_psi*t008 + t039;
-    const T t041 = cos_psi*t038 + sin_psi*t040;
-    const T t042 = t033*t041 - t029;
-    const T t043 = t024*t042;
-    const T t044 = (p.Iyy - p.Ixx)*p.Izz + t017 - t007;
-    const T t045 = t001 + t009*t044 - S(2)*t006;
-    const T t046 = S(2)*t016 + t005*t044 - t015;
-    const T t047 = cos_psi*t045 - sin_psi*t046;
-    const T t048 = sin_psi*t018 + t039;
-    const T t049 = t037 - cos_psi*t008;
+    const T t005 = t003*t004;
+    const T t006 = cos_psi*t005 + p_theta*sin_psi;
+    const T t007 = t002*t006;
+    const T t008 = p.Iyz*p.Iyz;
+    const T t009 = p.Iyy*p.Izz - t008;
+    const T t010 = cos_psi*p_theta - sin_psi*t005;
+    const T t011 = t001 + t009*t010 - t007;
+    const T t012 = sin_psi*t011;
+    const T t013 = p.Ixx*p.Iyz;
+    const T t014 = p.Ixy*p.Ixz;
+    const T t015 = t013 - t014;
+    const T t016 = p_psi*t015;
+    const T t017 = t002*t010;
+    const T t018 = p.Ixz*p.Ixz;
+    const T t019 = t018 - p.Ixx*p.Izz;
+    const T t020 = t016 - t006*t019 - t017;
+    const T t021 = cos_psi*t020;
+    const T t022 = t012 - t021;
+    const T t023 = p.Ixy*p.Ixy - p.Ixx*p.Iyy;
+    const T t024 = (t013 - S(2)*t014)*p.Iyz + p.Iyy*t018 + p.Izz*t023;
+    const T t025 = S(1)/(sin_theta*t024);
+    const T t026 = S(1)/t024;
+    const T t027 = cos_psi*t011;
+    const T t028 = sin_psi*t020;
+    const T t029 = t027 + t028;
+    const T t030 = cos_theta*t003;
+    const T t031 = t022*t030;
+    const T t032 = p.M*p.g;
+    const T t033 = cos_psi*p.cy + p.cx*sin_psi;
+    const T t034 = sin_theta*sin_theta;
+    const T t035 = S(1)/t034;
+    const T t036 = cos_theta*t004*t035 + p_psi;
+    const T t037 = t026*t036;
+    const T t038 = t022*t037 - (cos_theta*t033 - p.cz*sin_theta)*t032;
+    const T t039 = (p.cy*sin_psi - cos_psi*p.cx)*t032;
+    const T t040 = sin_psi*t002;
+    const T t041 = t040 - cos_psi*t019;
+    const T t042 = cos_psi*t002;
+    const T t043 = sin_psi*t009 + t042;
+    const T t044 = cos_psi*t041 + sin_psi*t043;
+    const T t045 = t036*t044 - t031;
+    const T t046 = t025*t045;
+    const T t047 = (p.Iyy - p.Ixx)*p.Izz + t018 - t008;
+    const T t048 = t001 + t010*t047 - S(2)*t007;
+    const T t049 = S(2)*t017 + t006*t047 - t016;
     const T t050 = cos_psi*t048 - sin_psi*t049;
-    const T t051 = cos_theta*t003*t038;
-    const T t052 = t014 + t051;
-    const T t053 = cos_theta*t003*t040;
-    const T t054 = t053 - t000;
-    const T t055 = cos_psi*t052 + sin_psi*t054;
-    const T t056 = cos_psi*t040 - sin_psi*t038;
-    const T t057 = (t014*t033 + t019)*cos_psi + cos_theta*t003*t042 - (t000*t033 + t010)*sin_psi;
-    const T t058 = -(cos_psi*t000 + sin_psi*t014 - cos_theta*t003*t050)*t025;
-    const T t059 = ((S(2)*t014 + t051)*cos_psi + (t053 - S(2)*t000)*sin_psi)*cos_theta*t003;
-    const T t060 = (S(2)*cos_theta*t033 - p_phi)*t003*t021 - t033*t033*t041;
-    const T t061 = (cos_theta*p.cz + sin_theta*t030)*p.M*p.g - t025*t060;
-    const T t062 = cos_theta*p.M*p.g*t035;
-    const T t063 = ((S(1) + cos_theta*cos_theta*t032)*t021 - t033*t055)*t025;
-    const T t064 = t005*t040 + t009*t038 - t026 - t027;
-    const T t065 = (t009*t045 - t005*t046)*t025 - p.M*p.g*sin_theta*t030;
-    const T t066 = -(cos_theta*t003*t028 - t005*t054 - t009*t052)*t025;
-    dydt[0] = -t021*t024;
-    dydt[1] = -t025*t028;
-    dydt[2] = (p_psi*t022 + t029 - t000*t009 - t005*t014)*t025;
+    const T t051 = sin_psi*t019 + t042;
+    const T t052 = t040 - cos_psi*t009;
+    const T t053 = cos_psi*t051 - sin_psi*t052;
+    const T t054 = t030*t041;
+    const T t055 = t015 + t054;
+    const T t056 = t030*t043;
+    const T t057 = t056 - t000;
+    const T t058 = cos_psi*t055 + sin_psi*t057;
+    const T t059 = cos_psi*t043 - sin_psi*t041;
+    const T t060 = (t015*t036 + t020)*cos_psi + t030*t045 - (t000*t036 + t011)*sin_psi;
+    const T t061 = t023 - ((S(2)*t015 + t054)*cos_psi + (t056 - S(2)*t000)*sin_psi)*t030;
+    const T t062 = sin_theta*t033;
+    const T t063 = (S(2)*cos_theta*t036 - p_phi)*t003*t022 - t036*t036*t044;
+    const T t064 = cos_theta*t039;
+    const T t065 = ((S(1) + cos_theta*cos_theta*t035)*t022 - t036*t058)*t026;
+    const T t066 = t006*t043 + t010*t041 - t027 - t028;
+    const T t067 = t032*t062 - (t010*t048 - t006*t049)*t026;
+    dydt[0] = -t022*t025;
+    dydt[1] = -t026*t029;
+    dydt[2] = (p_psi*t023 + t031 - t000*t010 - t006*t015)*t026;
     dydt[3] = T(S(0));
-    dydt[4] = -t034;
-    dydt[5] = t036;
+    dydt[4] = t038;
+    dydt[5] = (t010*t020 - t006*t011)*t026 + sin_theta*t039;
     J[0] = T(S(0));
-    J[1] = -t043;
-    J[2] = -t024*t047;
-    J[3] = -t041/(t023*t031);
-    J[4] = -t024*t050;
-    J[5] = t024*t055;
+    J[1] = -t046;
+    J[2] = -t025*t050;
+    J[3] = -t044/(t024*t034);
+    J[4] = -t025*t053;
+    J[5] = t025*t058;
     J[6] = T(S(0));
-    J[7] = -t025*t033*t056;
-    J[8] = (cos_psi*t046 + sin_psi*t045)*t025;
-    J[9] = -t024*t056;
-    J[10] = (cos_psi*t049 + sin_psi*t048)*t025;
-    J[11] = -(sin_psi*t052 - cos_psi*t054)*t025;
+    J[7] = -t037*t059;
+    J[8] = (cos_psi*t049 + sin_psi*t048)*t026;
+    J[9] = -t025*t059;
+    J[10] = (cos_psi*t052 + sin_psi*t051)*t026;
+    J[11] = (cos_psi*t057 - sin_psi*t055)*t026;
     J[12] = T(S(0));
-    J[13] = t025*t057;
-    J[14] = (cos_theta*t003*t047 + t000*t005 - t009*t014)*t025;
-    J[15] = (cos_psi*t014 + cos_theta*t003*t041 - sin_psi*t000)*t024;
-    J[16] = t058;
-    J[17] = (t022 - t059)*t025;
+    J[13] = t026*t060;
+    J[14] = (t000*t006 + t030*t050 - t010*t015)*t026;
+    J[15] = (cos_psi*t015 + t030*t044 - sin_psi*t000)*t025;
+    J[16] = (t030*t053 - cos_psi*t000 - sin_psi*t015)*t026;
+    J[17] = t026*t061;
     J[18] = T(S(0));
     J[19] = T(S(0));
     J[20] = T(S(0));
@@ -394,23 +399,23 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     J[22] = T(S(0));
     J[23] = T(S(0));
     J[24] = T(S(0));
-    J[25] = t061;
-    J[26] = t025*t033*t047 + t062;
-    J[27] = t043;
-    J[28] = t025*t033*t050;
-    J[29] = t063;
+    J[25] = (cos_theta*p.cz + t062)*t032 - t026*t063;
+    J[26] = t037*t050 + t064;
+    J[27] = t046;
+    J[28] = t037*t053;
+    J[29] = t065;
     J[30] = T(S(0));
-    J[31] = t062 - t025*t033*t064;
-    J[32] = -t065;
-    J[33] = -t024*t064;
-    J[34] = -(t009*t048 + t011 - t005*t049 - t020)*t025;
-    J[35] = t066;
+    J[31] = t064 - t037*t066;
+    J[32] = t067;
+    J[33] = -t025*t066;
+    J[34] = (t006*t052 + t021 - t010*t051 - t012)*t026;
+    J[35] = (t006*t057 + t010*t055 - t029*t030)*t026;
 }
 
 // The energy, the Hamiltonian H = T + V (conserved without damping and driving torques).
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   p     parameters
-// Operations (+ - * / and calls): 325 before lowering, 71 after (23 +-, 42 *, 2 /, 4 calls).
+// Operations (+ - * / and calls): 325 before lowering, 69 after (23 +-, 40 *, 2 /, 4 calls).
 template <class T>
 T energy(const T* y, const params<T>& p) {
     using std::cos;
@@ -429,19 +434,18 @@ T energy(const T* y, const params<T>& p) {
     const T t001 = p.Ixx*p.Iyz;
     const T t002 = p.Ixy*p.Ixz;
     const T t003 = p.Ixz*p.Ixz;
-    const T t004 = S(1)/sin_theta;
-    const T t005 = cos_theta*p_psi - p_phi;
-    const T t006 = cos_psi*t004*t005 + p_theta*sin_psi;
-    const T t007 = t001 - t002;
-    const T t008 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
-    const T t009 = cos_psi*p_theta - sin_psi*t004*t005;
-    const T t010 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
-    const T t011 = (p.Iyy*p.Izz - p.Iyz*p.Iyz)*t009 + p_psi*t008 - t006*t010;
-    const T t012 = p_psi*t007 - (t003 - p.Ixx*p.Izz)*t006 - t009*t010;
-    const T t013 = (p_psi*t000 - t006*t007 - t008*t009)*p_psi - t006*t012 - t009*t011;
-    const T t014 = t013/((t001 - S(2)*t002)*p.Iyz + p.Iyy*t003 + p.Izz*t000);
-    const T t015 = ((cos_psi*p.cy + p.cx*sin_psi)*sin_theta + cos_theta*p.cz)*p.M*p.g;
-    return S(1)/S(2)*t014 + t015;
+    const T t004 = (cos_theta*p_psi - p_phi)/sin_theta;
+    const T t005 = cos_psi*t004 + p_theta*sin_psi;
+    const T t006 = t001 - t002;
+    const T t007 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
+    const T t008 = cos_psi*p_theta - sin_psi*t004;
+    const T t009 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
+    const T t010 = (p.Iyy*p.Izz - p.Iyz*p.Iyz)*t008 + p_psi*t007 - t005*t009;
+    const T t011 = p_psi*t006 - (t003 - p.Ixx*p.Izz)*t005 - t008*t009;
+    const T t012 = (p_psi*t000 - t005*t006 - t007*t008)*p_psi - t005*t011 - t008*t010;
+    const T t013 = t012/((t001 - S(2)*t002)*p.Iyz + p.Iyy*t003 + p.Izz*t000);
+    const T t014 = ((cos_psi*p.cy + p.cx*sin_psi)*sin_theta + cos_theta*p.cz)*p.M*p.g;
+    return S(1)/S(2)*t013 + t014;
 }
 
 // The conjugate momenta p = dL/dq_dot (5.74)-(5.76).
@@ -464,7 +468,7 @@ void momenta(const T* y, T* momentum, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   M     output, dim 3 x 3 (row-major): M11, M12, M13, M21, M22, M23, M31, M32, M33
 //   p     parameters
-// Operations (+ - * / and calls): 160 before lowering, 41 after (14 +-, 23 *, 0 /, 4 calls).
+// Operations (+ - * / and calls): 160 before lowering, 40 after (14 +-, 22 *, 0 /, 4 calls).
 template <class T>
 void mass_matrix(const T* y, T* M, const params<T>& p) {
     using std::cos;
@@ -477,14 +481,14 @@ void mass_matrix(const T* y, T* M, const params<T>& p) {
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
     const T t000 = cos_psi*p.Iyz + p.Ixz*sin_psi;
-    const T t001 = p.Iyy - p.Ixx;
-    const T t002 = (S(2)*p.Ixy*sin_psi + cos_psi*t001)*cos_psi;
+    const T t001 = (p.Iyy - p.Ixx)*cos_psi;
+    const T t002 = (S(2)*p.Ixy*sin_psi + t001)*cos_psi;
     const T t003 = ((p.Ixx + t002)*sin_theta + S(2)*cos_theta*t000)*sin_theta + cos_theta*cos_theta*p.Izz;
-    const T t004 = (cos_psi*sin_psi*t001 - (S(2)*cos_psi*cos_psi - S(1))*p.Ixy)*sin_theta;
-    const T t005 = p.Iyz*sin_psi - cos_psi*p.Ixz;
-    const T t006 = -(cos_theta*t005 + t004);
+    const T t004 = p.Iyz*sin_psi - cos_psi*p.Ixz;
+    const T t005 = (sin_psi*t001 - (S(2)*cos_psi*cos_psi - S(1))*p.Ixy)*sin_theta + cos_theta*t004;
+    const T t006 = -t005;
     const T t007 = cos_theta*p.Izz + sin_theta*t000;
-    const T t008 = -t005;
+    const T t008 = -t004;
     M[0] = t003;
     M[1] = t006;
     M[2] = t007;
@@ -500,7 +504,7 @@ void mass_matrix(const T* y, T* M, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   w     output, dim 3: omega1, omega2, omega3
 //   p     parameters
-// Operations (+ - * / and calls): 270 before lowering, 60 after (19 +-, 35 *, 2 /, 4 calls).
+// Operations (+ - * / and calls): 270 before lowering, 58 after (19 +-, 33 *, 2 /, 4 calls).
 template <class T>
 void omega(const T* y, T* w, const params<T>& p) {
     using std::cos;
@@ -522,23 +526,22 @@ void omega(const T* y, T* w, const params<T>& p) {
     const T t004 = S(1)/((t001 - S(2)*t002)*p.Iyz + p.Iyy*t003 + p.Izz*t000);
     const T t005 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
     const T t006 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
-    const T t007 = S(1)/sin_theta;
-    const T t008 = cos_theta*p_psi - p_phi;
-    const T t009 = cos_psi*t007*t008 + p_theta*sin_psi;
-    const T t010 = cos_psi*p_theta - sin_psi*t007*t008;
-    const T t011 = (p.Iyy*p.Izz - p.Iyz*p.Iyz)*t010 + p_psi*t005 - t006*t009;
-    const T t012 = t001 - t002;
-    const T t013 = p_psi*t012 - (t003 - p.Ixx*p.Izz)*t009 - t006*t010;
-    w[0] = -t004*t011;
-    w[1] = t004*t013;
-    w[2] = (p_psi*t000 - t005*t010 - t009*t012)*t004;
+    const T t007 = (cos_theta*p_psi - p_phi)/sin_theta;
+    const T t008 = cos_psi*t007 + p_theta*sin_psi;
+    const T t009 = cos_psi*p_theta - sin_psi*t007;
+    const T t010 = (p.Iyy*p.Izz - p.Iyz*p.Iyz)*t009 + p_psi*t005 - t006*t008;
+    const T t011 = t001 - t002;
+    const T t012 = p_psi*t011 - (t003 - p.Ixx*p.Izz)*t008 - t006*t009;
+    w[0] = -t004*t010;
+    w[1] = t004*t012;
+    w[2] = (p_psi*t000 - t005*t009 - t008*t011)*t004;
 }
 
 // The rotation matrix A (5.25), passive, body <- space, row-major: x_body = A x_space.
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   A     output, dim 3 x 3 (row-major): A11, A12, A13, A21, A22, A23, A31, A32, A33
 //   p     parameters
-// Operations (+ - * / and calls): 49 before lowering, 29 after (7 +-, 16 *, 0 /, 6 calls).
+// Operations (+ - * / and calls): 49 before lowering, 26 after (6 +-, 14 *, 0 /, 6 calls).
 template <class T>
 void rotation(const T* y, T* A, const params<T>& p) {
     using std::cos;
@@ -553,11 +556,13 @@ void rotation(const T* y, T* A, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    A[0] = cos_phi*cos_psi - cos_theta*sin_phi*sin_psi;
-    A[1] = cos_phi*cos_theta*sin_psi + cos_psi*sin_phi;
+    const T t000 = cos_theta*sin_phi;
+    const T t001 = cos_phi*cos_theta;
+    A[0] = cos_phi*cos_psi - sin_psi*t000;
+    A[1] = cos_psi*sin_phi + sin_psi*t001;
     A[2] = sin_psi*sin_theta;
-    A[3] = -(cos_phi*sin_psi + cos_psi*cos_theta*sin_phi);
-    A[4] = -(sin_phi*sin_psi - cos_phi*cos_psi*cos_theta);
+    A[3] = -cos_phi*sin_psi - cos_psi*t000;
+    A[4] = cos_psi*t001 - sin_phi*sin_psi;
     A[5] = cos_psi*sin_theta;
     A[6] = sin_phi*sin_theta;
     A[7] = -cos_phi*sin_theta;

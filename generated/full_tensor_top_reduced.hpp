@@ -21,14 +21,14 @@
 // -0.3, Ixz = 0.2, Iyz = -0.1, M = 1.2, g = 9.81, cx = 0.05, cy = -0.02, cz = 0.15, p_phi = 0.0.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 934 -> 95 (23 temporaries)
-//   jacobian: 5039 -> 230 (59 temporaries)
-//   rhs_and_jacobian: 5973 -> 256 (63 temporaries)
-//   energy: 325 -> 71 (20 temporaries)
+//   rhs: 934 -> 93 (25 temporaries)
+//   jacobian: 5039 -> 211 (60 temporaries)
+//   rhs_and_jacobian: 5973 -> 232 (64 temporaries)
+//   energy: 325 -> 69 (19 temporaries)
 //   momenta: 0 -> 0 (0 temporaries)
-//   mass_matrix: 160 -> 41 (13 temporaries)
-//   omega: 270 -> 60 (18 temporaries)
-//   ignored_rates: 695 -> 60 (15 temporaries)
+//   mass_matrix: 160 -> 40 (13 temporaries)
+//   omega: 270 -> 58 (17 temporaries)
+//   ignored_rates: 695 -> 58 (14 temporaries)
 //
 // Self-contained: includes <array>, <cmath> and <cstddef> only. Every function is a template on the
 // scalar type T (float, double, long double, Eigen array batches such as Eigen::Array<double, 4, 1>,
@@ -109,7 +109,7 @@ constexpr std::array<unsigned char, 16> jacobian_pattern{{
 //   y     state, dim 4: (theta, psi, p_theta, p_psi)
 //   dydt  output, dim 4: theta_dot, psi_dot, p_theta_dot, p_psi_dot
 //   p     parameters
-// Operations (+ - * / and calls): 934 before lowering, 95 after (30 +-, 58 *, 3 /, 4 calls).
+// Operations (+ - * / and calls): 934 before lowering, 93 after (30 +-, 56 *, 3 /, 4 calls).
 template <class T>
 void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     using std::cos;
@@ -133,20 +133,22 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     const T t006 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
     const T t007 = cos_theta*p_psi - p.p_phi;
     const T t008 = S(1)/sin_theta;
-    const T t009 = cos_psi*p_theta - sin_psi*t007*t008;
-    const T t010 = cos_psi*t007*t008 + p_theta*sin_psi;
-    const T t011 = p_psi*t005 - (t003 - p.Ixx*p.Izz)*t010 - t006*t009;
-    const T t012 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
-    const T t013 = (p.Iyy*p.Izz - p.Iyz*p.Iyz)*t009 + p_psi*t012 - t006*t010;
-    const T t014 = sin_psi*t013 - cos_psi*t011;
-    const T t015 = cos_theta*t008*t014 + p_psi*t000 - t005*t010 - t009*t012;
-    const T t016 = ((cos_psi*p.cy + p.cx*sin_psi)*cos_theta - p.cz*sin_theta)*p.M*p.g;
-    const T t017 = t016 - (cos_theta*t007/(sin_theta*sin_theta) + p_psi)*t004*t014;
-    const T t018 = (p.cy*sin_psi - cos_psi*p.cx)*p.M*p.g*sin_theta + (t009*t011 - t010*t013)*t004;
-    dydt[0] = -(cos_psi*t013 + sin_psi*t011)*t004;
-    dydt[1] = t004*t015;
-    dydt[2] = -t017;
-    dydt[3] = t018;
+    const T t009 = t007*t008;
+    const T t010 = cos_psi*p_theta - sin_psi*t009;
+    const T t011 = cos_psi*t009 + p_theta*sin_psi;
+    const T t012 = p_psi*t005 - (t003 - p.Ixx*p.Izz)*t011 - t006*t010;
+    const T t013 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
+    const T t014 = (p.Iyy*p.Izz - p.Iyz*p.Iyz)*t010 + p_psi*t013 - t006*t011;
+    const T t015 = sin_psi*t014 - cos_psi*t012;
+    const T t016 = cos_theta*t008*t015 + p_psi*t000 - t005*t011 - t010*t013;
+    const T t017 = p.M*p.g;
+    const T t018 = ((cos_psi*p.cy + p.cx*sin_psi)*cos_theta - p.cz*sin_theta)*t017;
+    const T t019 = t018 - (cos_theta*t007/(sin_theta*sin_theta) + p_psi)*t004*t015;
+    const T t020 = (p.cy*sin_psi - cos_psi*p.cx)*sin_theta*t017 + (t010*t012 - t011*t014)*t004;
+    dydt[0] = (-cos_psi*t014 - sin_psi*t012)*t004;
+    dydt[1] = t004*t016;
+    dydt[2] = -t019;
+    dydt[3] = t020;
 }
 
 // The analytic Jacobian J = d(dy/dt)/dy, dense, row-major: J[i * state_size + k] = d dydt[i] / d y[k].
@@ -154,7 +156,7 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
 //   y     state, dim 4: (theta, psi, p_theta, p_psi)
 //   J     output, dim 4 x 4 (row-major); structural zeros in jacobian_pattern
 //   p     parameters
-// Operations (+ - * / and calls): 5039 before lowering, 230 after (79 +-, 144 *, 3 /, 4 calls).
+// Operations (+ - * / and calls): 5039 before lowering, 211 after (74 +-, 130 *, 3 /, 4 calls).
 template <class T>
 void jacobian(T t, const T* y, T* J, const params<T>& p) {
     using std::cos;
@@ -177,69 +179,70 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T t005 = S(1)/(sin_theta*sin_theta);
     const T t006 = cos_theta*p_psi - p.p_phi;
     const T t007 = cos_theta*t005*t006 + p_psi;
-    const T t008 = p.Iyz*p.Iyz;
-    const T t009 = p.Iyy*p.Izz - t008;
-    const T t010 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
-    const T t011 = cos_psi*t010;
-    const T t012 = sin_psi*t009 + t011;
-    const T t013 = sin_psi*t010;
-    const T t014 = t003 - p.Ixx*p.Izz;
-    const T t015 = t013 - cos_psi*t014;
-    const T t016 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
-    const T t017 = p_psi*t016;
-    const T t018 = S(1)/sin_theta;
-    const T t019 = cos_psi*t006*t018 + p_theta*sin_psi;
-    const T t020 = t010*t019;
-    const T t021 = cos_psi*p_theta - sin_psi*t006*t018;
-    const T t022 = (p.Iyy - p.Ixx)*p.Izz + t003 - t008;
-    const T t023 = t017 + t021*t022 - S(2)*t020;
-    const T t024 = t001 - t002;
-    const T t025 = p_psi*t024;
-    const T t026 = t010*t021;
-    const T t027 = t025 - S(2)*t026 - t019*t022;
-    const T t028 = sin_psi*t014 + t011;
-    const T t029 = t013 - cos_psi*t009;
-    const T t030 = cos_theta*t015*t018;
-    const T t031 = t024 + t030;
-    const T t032 = cos_theta*t012*t018;
-    const T t033 = t032 - t016;
-    const T t034 = t009*t021 + t017 - t020;
-    const T t035 = sin_psi*t034;
-    const T t036 = t025 - t014*t019 - t026;
-    const T t037 = cos_psi*t036;
-    const T t038 = t035 - t037;
-    const T t039 = cos_psi*t015 + sin_psi*t012;
-    const T t040 = (cos_theta*t018*t038 - t007*t039)*cos_theta*t018 + (t007*t016 + t034)*sin_psi - (t007*t024 + t036)*cos_psi;
-    const T t041 = cos_psi*t023 + sin_psi*t027;
-    const T t042 = cos_psi*t028 - sin_psi*t029;
-    const T t043 = -(cos_psi*t016 + sin_psi*t024 - cos_theta*t018*t042)*t004;
-    const T t044 = ((S(2)*t024 + t030)*cos_psi + (t032 - S(2)*t016)*sin_psi)*cos_theta*t018;
-    const T t045 = cos_psi*p.cy + p.cx*sin_psi;
-    const T t046 = (p.p_phi - S(2)*cos_theta*t007)*t018*t038 + t007*t007*t039;
-    const T t047 = (cos_theta*p.cz + sin_theta*t045)*p.M*p.g + t004*t046;
-    const T t048 = (p.cy*sin_psi - cos_psi*p.cx)*cos_theta*p.M*p.g;
-    const T t049 = (S(1) + cos_theta*cos_theta*t005)*t038 - (cos_psi*t031 + sin_psi*t033)*t007;
-    const T t050 = sin_psi*t036;
-    const T t051 = cos_psi*t034;
-    const T t052 = t048 - (t012*t019 + t015*t021 - t050 - t051)*t004*t007;
-    const T t053 = (t019*t027 + t021*t023)*t004 - p.M*p.g*sin_theta*t045;
-    const T t054 = (t019*t033 + t021*t031 - (t050 + t051)*cos_theta*t018)*t004;
-    J[0] = -(cos_psi*t012 - sin_psi*t015)*t004*t007;
-    J[1] = (sin_psi*t023 - cos_psi*t027)*t004;
-    J[2] = (cos_psi*t029 + sin_psi*t028)*t004;
-    J[3] = -(sin_psi*t031 - cos_psi*t033)*t004;
-    J[4] = -t004*t040;
-    J[5] = (cos_theta*t018*t041 + t016*t019 - t021*t024)*t004;
-    J[6] = t043;
-    J[7] = (t000 - t044)*t004;
-    J[8] = t047;
-    J[9] = t004*t007*t041 + t048;
-    J[10] = t004*t007*t042;
-    J[11] = t004*t049;
-    J[12] = t052;
-    J[13] = -t053;
-    J[14] = -(t021*t028 + t035 - t019*t029 - t037)*t004;
-    J[15] = t054;
+    const T t008 = t004*t007;
+    const T t009 = p.Iyz*p.Iyz;
+    const T t010 = p.Iyy*p.Izz - t009;
+    const T t011 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
+    const T t012 = cos_psi*t011;
+    const T t013 = sin_psi*t010 + t012;
+    const T t014 = sin_psi*t011;
+    const T t015 = t003 - p.Ixx*p.Izz;
+    const T t016 = t014 - cos_psi*t015;
+    const T t017 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
+    const T t018 = p_psi*t017;
+    const T t019 = S(1)/sin_theta;
+    const T t020 = t006*t019;
+    const T t021 = cos_psi*t020 + p_theta*sin_psi;
+    const T t022 = t011*t021;
+    const T t023 = cos_psi*p_theta - sin_psi*t020;
+    const T t024 = (p.Iyy - p.Ixx)*p.Izz + t003 - t009;
+    const T t025 = t018 + t023*t024 - S(2)*t022;
+    const T t026 = t001 - t002;
+    const T t027 = p_psi*t026;
+    const T t028 = t011*t023;
+    const T t029 = t027 - S(2)*t028 - t021*t024;
+    const T t030 = sin_psi*t015 + t012;
+    const T t031 = t014 - cos_psi*t010;
+    const T t032 = cos_theta*t019;
+    const T t033 = t016*t032;
+    const T t034 = t026 + t033;
+    const T t035 = t013*t032;
+    const T t036 = t035 - t017;
+    const T t037 = t010*t023 + t018 - t022;
+    const T t038 = sin_psi*t037;
+    const T t039 = t027 - t015*t021 - t028;
+    const T t040 = cos_psi*t039;
+    const T t041 = t038 - t040;
+    const T t042 = cos_psi*t016 + sin_psi*t013;
+    const T t043 = (t007*t017 + t037)*sin_psi + (t032*t041 - t007*t042)*t032 - (t007*t026 + t039)*cos_psi;
+    const T t044 = cos_psi*t025 + sin_psi*t029;
+    const T t045 = cos_psi*t030 - sin_psi*t031;
+    const T t046 = t000 - ((S(2)*t026 + t033)*cos_psi + (t035 - S(2)*t017)*sin_psi)*t032;
+    const T t047 = (cos_psi*p.cy + p.cx*sin_psi)*sin_theta;
+    const T t048 = p.M*p.g;
+    const T t049 = (p.p_phi - S(2)*cos_theta*t007)*t019*t041 + t007*t007*t042;
+    const T t050 = (p.cy*sin_psi - cos_psi*p.cx)*cos_theta*t048;
+    const T t051 = (S(1) + cos_theta*cos_theta*t005)*t041 - (cos_psi*t034 + sin_psi*t036)*t007;
+    const T t052 = sin_psi*t039;
+    const T t053 = cos_psi*t037;
+    const T t054 = t047*t048 - (t021*t029 + t023*t025)*t004;
+    const T t055 = (t021*t036 + t023*t034 - (t052 + t053)*t032)*t004;
+    J[0] = (sin_psi*t016 - cos_psi*t013)*t008;
+    J[1] = (sin_psi*t025 - cos_psi*t029)*t004;
+    J[2] = (cos_psi*t031 + sin_psi*t030)*t004;
+    J[3] = (cos_psi*t036 - sin_psi*t034)*t004;
+    J[4] = -t004*t043;
+    J[5] = (t017*t021 + t032*t044 - t023*t026)*t004;
+    J[6] = (t032*t045 - cos_psi*t017 - sin_psi*t026)*t004;
+    J[7] = t004*t046;
+    J[8] = (cos_theta*p.cz + t047)*t048 + t004*t049;
+    J[9] = t008*t044 + t050;
+    J[10] = t008*t045;
+    J[11] = t004*t051;
+    J[12] = t050 - (t013*t021 + t016*t023 - t052 - t053)*t008;
+    J[13] = t054;
+    J[14] = (t021*t031 + t040 - t023*t030 - t038)*t004;
+    J[15] = t055;
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -248,7 +251,7 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   dydt  output, dim 4: theta_dot, psi_dot, p_theta_dot, p_psi_dot
 //   J     output, dim 4 x 4 (row-major)
 //   p     parameters
-// Operations (+ - * / and calls): 5973 before lowering, 256 after (88 +-, 161 *, 3 /, 4 calls).
+// Operations (+ - * / and calls): 5973 before lowering, 232 after (82 +-, 143 *, 3 /, 4 calls).
 template <class T>
 void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     using std::cos;
@@ -273,81 +276,82 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T t007 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
     const T t008 = cos_theta*p_psi - p.p_phi;
     const T t009 = S(1)/sin_theta;
-    const T t010 = cos_psi*p_theta - sin_psi*t008*t009;
-    const T t011 = t007*t010;
-    const T t012 = t003 - p.Ixx*p.Izz;
-    const T t013 = cos_psi*t008*t009 + p_theta*sin_psi;
-    const T t014 = t006 - t011 - t012*t013;
-    const T t015 = sin_psi*t014;
-    const T t016 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
-    const T t017 = p_psi*t016;
-    const T t018 = t007*t013;
-    const T t019 = p.Iyz*p.Iyz;
-    const T t020 = p.Iyy*p.Izz - t019;
-    const T t021 = t010*t020 + t017 - t018;
-    const T t022 = cos_psi*t021;
-    const T t023 = t015 + t022;
-    const T t024 = sin_psi*t021;
-    const T t025 = cos_psi*t014;
-    const T t026 = t024 - t025;
-    const T t027 = cos_theta*t009*t026;
-    const T t028 = cos_psi*p.cy + p.cx*sin_psi;
-    const T t029 = S(1)/(sin_theta*sin_theta);
-    const T t030 = cos_theta*t008*t029 + p_psi;
-    const T t031 = (cos_theta*t028 - p.cz*sin_theta)*p.M*p.g - t004*t026*t030;
-    const T t032 = p.cy*sin_psi - cos_psi*p.cx;
-    const T t033 = (t010*t014 - t013*t021)*t004 + p.M*p.g*sin_theta*t032;
-    const T t034 = cos_psi*t007;
-    const T t035 = sin_psi*t020 + t034;
-    const T t036 = sin_psi*t007;
-    const T t037 = t036 - cos_psi*t012;
-    const T t038 = (p.Iyy - p.Ixx)*p.Izz + t003 - t019;
-    const T t039 = t010*t038 + t017 - S(2)*t018;
-    const T t040 = t006 - S(2)*t011 - t013*t038;
-    const T t041 = sin_psi*t012 + t034;
-    const T t042 = t036 - cos_psi*t020;
-    const T t043 = cos_theta*t009*t037;
-    const T t044 = t005 + t043;
-    const T t045 = cos_theta*t009*t035;
-    const T t046 = t045 - t016;
-    const T t047 = cos_psi*t037 + sin_psi*t035;
-    const T t048 = (t016*t030 + t021)*sin_psi + (t027 - t030*t047)*cos_theta*t009 - (t005*t030 + t014)*cos_psi;
-    const T t049 = cos_psi*t039 + sin_psi*t040;
-    const T t050 = cos_psi*t041 - sin_psi*t042;
-    const T t051 = -(cos_psi*t016 + sin_psi*t005 - cos_theta*t009*t050)*t004;
-    const T t052 = ((S(2)*t005 + t043)*cos_psi + (t045 - S(2)*t016)*sin_psi)*cos_theta*t009;
-    const T t053 = (p.p_phi - S(2)*cos_theta*t030)*t009*t026 + t030*t030*t047;
-    const T t054 = (cos_theta*p.cz + sin_theta*t028)*p.M*p.g + t004*t053;
-    const T t055 = cos_theta*p.M*p.g*t032;
-    const T t056 = (S(1) + cos_theta*cos_theta*t029)*t026 - (cos_psi*t044 + sin_psi*t046)*t030;
-    const T t057 = t055 - (t010*t037 + t013*t035 - t015 - t022)*t004*t030;
-    const T t058 = (t010*t039 + t013*t040)*t004 - p.M*p.g*sin_theta*t028;
-    dydt[0] = -t004*t023;
-    dydt[1] = (p_psi*t000 + t027 - t005*t013 - t010*t016)*t004;
-    dydt[2] = -t031;
-    dydt[3] = t033;
-    J[0] = -(cos_psi*t035 - sin_psi*t037)*t004*t030;
-    J[1] = (sin_psi*t039 - cos_psi*t040)*t004;
-    J[2] = (cos_psi*t042 + sin_psi*t041)*t004;
-    J[3] = -(sin_psi*t044 - cos_psi*t046)*t004;
-    J[4] = -t004*t048;
-    J[5] = (cos_theta*t009*t049 + t013*t016 - t005*t010)*t004;
-    J[6] = t051;
-    J[7] = (t000 - t052)*t004;
-    J[8] = t054;
-    J[9] = t004*t030*t049 + t055;
-    J[10] = t004*t030*t050;
-    J[11] = t004*t056;
-    J[12] = t057;
-    J[13] = -t058;
-    J[14] = -(t010*t041 + t024 - t013*t042 - t025)*t004;
-    J[15] = (t010*t044 + t013*t046 - cos_theta*t009*t023)*t004;
+    const T t010 = t008*t009;
+    const T t011 = cos_psi*p_theta - sin_psi*t010;
+    const T t012 = t007*t011;
+    const T t013 = t003 - p.Ixx*p.Izz;
+    const T t014 = cos_psi*t010 + p_theta*sin_psi;
+    const T t015 = t006 - t012 - t013*t014;
+    const T t016 = sin_psi*t015;
+    const T t017 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
+    const T t018 = p_psi*t017;
+    const T t019 = t007*t014;
+    const T t020 = p.Iyz*p.Iyz;
+    const T t021 = p.Iyy*p.Izz - t020;
+    const T t022 = t011*t021 + t018 - t019;
+    const T t023 = cos_psi*t022;
+    const T t024 = t016 + t023;
+    const T t025 = sin_psi*t022;
+    const T t026 = cos_psi*t015;
+    const T t027 = t025 - t026;
+    const T t028 = cos_theta*t009;
+    const T t029 = t027*t028;
+    const T t030 = p.M*p.g;
+    const T t031 = cos_psi*p.cy + p.cx*sin_psi;
+    const T t032 = S(1)/(sin_theta*sin_theta);
+    const T t033 = cos_theta*t008*t032 + p_psi;
+    const T t034 = t004*t033;
+    const T t035 = t027*t034 - (cos_theta*t031 - p.cz*sin_theta)*t030;
+    const T t036 = (p.cy*sin_psi - cos_psi*p.cx)*t030;
+    const T t037 = cos_psi*t007;
+    const T t038 = sin_psi*t021 + t037;
+    const T t039 = sin_psi*t007;
+    const T t040 = t039 - cos_psi*t013;
+    const T t041 = (p.Iyy - p.Ixx)*p.Izz + t003 - t020;
+    const T t042 = t011*t041 + t018 - S(2)*t019;
+    const T t043 = t006 - S(2)*t012 - t014*t041;
+    const T t044 = sin_psi*t013 + t037;
+    const T t045 = t039 - cos_psi*t021;
+    const T t046 = t028*t040;
+    const T t047 = t005 + t046;
+    const T t048 = t028*t038;
+    const T t049 = t048 - t017;
+    const T t050 = cos_psi*t040 + sin_psi*t038;
+    const T t051 = (t017*t033 + t022)*sin_psi + (t029 - t033*t050)*t028 - (t005*t033 + t015)*cos_psi;
+    const T t052 = cos_psi*t042 + sin_psi*t043;
+    const T t053 = cos_psi*t044 - sin_psi*t045;
+    const T t054 = t000 - ((S(2)*t005 + t046)*cos_psi + (t048 - S(2)*t017)*sin_psi)*t028;
+    const T t055 = sin_theta*t031;
+    const T t056 = (p.p_phi - S(2)*cos_theta*t033)*t009*t027 + t033*t033*t050;
+    const T t057 = cos_theta*t036;
+    const T t058 = (S(1) + cos_theta*cos_theta*t032)*t027 - (cos_psi*t047 + sin_psi*t049)*t033;
+    const T t059 = t030*t055 - (t011*t042 + t014*t043)*t004;
+    dydt[0] = -t004*t024;
+    dydt[1] = (p_psi*t000 + t029 - t005*t014 - t011*t017)*t004;
+    dydt[2] = t035;
+    dydt[3] = (t011*t015 - t014*t022)*t004 + sin_theta*t036;
+    J[0] = (sin_psi*t040 - cos_psi*t038)*t034;
+    J[1] = (sin_psi*t042 - cos_psi*t043)*t004;
+    J[2] = (cos_psi*t045 + sin_psi*t044)*t004;
+    J[3] = (cos_psi*t049 - sin_psi*t047)*t004;
+    J[4] = -t004*t051;
+    J[5] = (t014*t017 + t028*t052 - t005*t011)*t004;
+    J[6] = (t028*t053 - cos_psi*t017 - sin_psi*t005)*t004;
+    J[7] = t004*t054;
+    J[8] = (cos_theta*p.cz + t055)*t030 + t004*t056;
+    J[9] = t034*t052 + t057;
+    J[10] = t034*t053;
+    J[11] = t004*t058;
+    J[12] = t057 - (t011*t040 + t014*t038 - t016 - t023)*t034;
+    J[13] = t059;
+    J[14] = (t014*t045 + t026 - t011*t044 - t025)*t004;
+    J[15] = (t011*t047 + t014*t049 - t024*t028)*t004;
 }
 
 // The energy, the Hamiltonian H = T + V (conserved without damping and driving torques).
 //   y     state, dim 4: (theta, psi, p_theta, p_psi)
 //   p     parameters
-// Operations (+ - * / and calls): 325 before lowering, 71 after (23 +-, 42 *, 2 /, 4 calls).
+// Operations (+ - * / and calls): 325 before lowering, 69 after (23 +-, 40 *, 2 /, 4 calls).
 template <class T>
 T energy(const T* y, const params<T>& p) {
     using std::cos;
@@ -368,16 +372,15 @@ T energy(const T* y, const params<T>& p) {
     const T t004 = p.Ixz*p.Ixz;
     const T t005 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
     const T t006 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
-    const T t007 = cos_theta*p_psi - p.p_phi;
-    const T t008 = S(1)/sin_theta;
-    const T t009 = cos_psi*t007*t008 + p_theta*sin_psi;
-    const T t010 = cos_psi*p_theta - sin_psi*t007*t008;
-    const T t011 = (p.Iyy*p.Izz - p.Iyz*p.Iyz)*t010 + p_psi*t005 - t006*t009;
-    const T t012 = t002 - t003;
-    const T t013 = p_psi*t012 - (t004 - p.Ixx*p.Izz)*t009 - t006*t010;
-    const T t014 = t009*t013 + t010*t011 - (p_psi*t001 - t005*t010 - t009*t012)*p_psi;
-    const T t015 = t014/((t002 - S(2)*t003)*p.Iyz + p.Iyy*t004 + p.Izz*t001);
-    return t000 - S(1)/S(2)*t015;
+    const T t007 = (cos_theta*p_psi - p.p_phi)/sin_theta;
+    const T t008 = cos_psi*t007 + p_theta*sin_psi;
+    const T t009 = cos_psi*p_theta - sin_psi*t007;
+    const T t010 = (p.Iyy*p.Izz - p.Iyz*p.Iyz)*t009 + p_psi*t005 - t006*t008;
+    const T t011 = t002 - t003;
+    const T t012 = p_psi*t011 - (t004 - p.Ixx*p.Izz)*t008 - t006*t009;
+    const T t013 = t008*t012 + t009*t010 - (p_psi*t001 - t005*t009 - t008*t011)*p_psi;
+    const T t014 = t013/((t002 - S(2)*t003)*p.Iyz + p.Iyy*t004 + p.Izz*t001);
+    return t000 - S(1)/S(2)*t014;
 }
 
 // The conjugate momenta p = dL/dq_dot (5.74)-(5.76).
@@ -398,7 +401,7 @@ void momenta(const T* y, T* momentum, const params<T>& p) {
 //   y     state, dim 4: (theta, psi, p_theta, p_psi)
 //   M     output, dim 3 x 3 (row-major): M11, M12, M13, M21, M22, M23, M31, M32, M33
 //   p     parameters
-// Operations (+ - * / and calls): 160 before lowering, 41 after (14 +-, 23 *, 0 /, 4 calls).
+// Operations (+ - * / and calls): 160 before lowering, 40 after (14 +-, 22 *, 0 /, 4 calls).
 template <class T>
 void mass_matrix(const T* y, T* M, const params<T>& p) {
     using std::cos;
@@ -411,14 +414,14 @@ void mass_matrix(const T* y, T* M, const params<T>& p) {
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
     const T t000 = cos_psi*p.Iyz + p.Ixz*sin_psi;
-    const T t001 = p.Iyy - p.Ixx;
-    const T t002 = (S(2)*p.Ixy*sin_psi + cos_psi*t001)*cos_psi;
+    const T t001 = (p.Iyy - p.Ixx)*cos_psi;
+    const T t002 = (S(2)*p.Ixy*sin_psi + t001)*cos_psi;
     const T t003 = ((p.Ixx + t002)*sin_theta + S(2)*cos_theta*t000)*sin_theta + cos_theta*cos_theta*p.Izz;
-    const T t004 = (cos_psi*sin_psi*t001 - (S(2)*cos_psi*cos_psi - S(1))*p.Ixy)*sin_theta;
-    const T t005 = p.Iyz*sin_psi - cos_psi*p.Ixz;
-    const T t006 = -(cos_theta*t005 + t004);
+    const T t004 = p.Iyz*sin_psi - cos_psi*p.Ixz;
+    const T t005 = (sin_psi*t001 - (S(2)*cos_psi*cos_psi - S(1))*p.Ixy)*sin_theta + cos_theta*t004;
+    const T t006 = -t005;
     const T t007 = cos_theta*p.Izz + sin_theta*t000;
-    const T t008 = -t005;
+    const T t008 = -t004;
     M[0] = t003;
     M[1] = t006;
     M[2] = t007;
@@ -434,7 +437,7 @@ void mass_matrix(const T* y, T* M, const params<T>& p) {
 //   y     state, dim 4: (theta, psi, p_theta, p_psi)
 //   w     output, dim 3: omega1, omega2, omega3
 //   p     parameters
-// Operations (+ - * / and calls): 270 before lowering, 60 after (19 +-, 35 *, 2 /, 4 calls).
+// Operations (+ - * / and calls): 270 before lowering, 58 after (19 +-, 33 *, 2 /, 4 calls).
 template <class T>
 void omega(const T* y, T* w, const params<T>& p) {
     using std::cos;
@@ -455,23 +458,22 @@ void omega(const T* y, T* w, const params<T>& p) {
     const T t004 = S(1)/((t001 - S(2)*t002)*p.Iyz + p.Iyy*t003 + p.Izz*t000);
     const T t005 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
     const T t006 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
-    const T t007 = cos_theta*p_psi - p.p_phi;
-    const T t008 = S(1)/sin_theta;
-    const T t009 = cos_psi*t007*t008 + p_theta*sin_psi;
-    const T t010 = cos_psi*p_theta - sin_psi*t007*t008;
-    const T t011 = (p.Iyy*p.Izz - p.Iyz*p.Iyz)*t010 + p_psi*t005 - t006*t009;
-    const T t012 = t001 - t002;
-    const T t013 = p_psi*t012 - (t003 - p.Ixx*p.Izz)*t009 - t006*t010;
-    w[0] = -t004*t011;
-    w[1] = t004*t013;
-    w[2] = (p_psi*t000 - t005*t010 - t009*t012)*t004;
+    const T t007 = (cos_theta*p_psi - p.p_phi)/sin_theta;
+    const T t008 = cos_psi*t007 + p_theta*sin_psi;
+    const T t009 = cos_psi*p_theta - sin_psi*t007;
+    const T t010 = (p.Iyy*p.Izz - p.Iyz*p.Iyz)*t009 + p_psi*t005 - t006*t008;
+    const T t011 = t001 - t002;
+    const T t012 = p_psi*t011 - (t003 - p.Ixx*p.Izz)*t008 - t006*t009;
+    w[0] = -t004*t010;
+    w[1] = t004*t012;
+    w[2] = (p_psi*t000 - t005*t009 - t008*t011)*t004;
 }
 
 // The rates of the ignored (cyclic) coordinates; integrate them to recover the angles.
 //   y     state, dim 4: (theta, psi, p_theta, p_psi)
 //   rates output, dim 1: phi_dot
 //   p     parameters
-// Operations (+ - * / and calls): 695 before lowering, 60 after (20 +-, 34 *, 2 /, 4 calls).
+// Operations (+ - * / and calls): 695 before lowering, 58 after (20 +-, 32 *, 2 /, 4 calls).
 template <class T>
 void ignored_rates(const T* y, T* rates, const params<T>& p) {
     using std::cos;
@@ -490,13 +492,12 @@ void ignored_rates(const T* y, T* rates, const params<T>& p) {
     const T t002 = p.Ixz*p.Ixz;
     const T t003 = (p.Ixy*p.Ixy - p.Ixx*p.Iyy)*p.Izz + (t000 - S(2)*t001)*p.Iyz + p.Iyy*t002;
     const T t004 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
-    const T t005 = cos_theta*p_psi - p.p_phi;
-    const T t006 = S(1)/sin_theta;
-    const T t007 = p.Iyz*p.Iyz;
-    const T t008 = (p.Iyy - p.Ixx)*p.Izz + t002 - t007;
-    const T t009 = (S(2)*cos_psi*t004 + sin_psi*t008)*p_theta + (cos_psi*t008 - S(2)*sin_psi*t004)*t005*t006 - (t000 - t001)*p_psi;
-    const T t010 = (p.Ixy*p.Iyz - p.Ixz*p.Iyy)*p_psi*sin_psi + cos_psi*t009 - (p.Iyy*p.Izz - t007)*t005*t006 - p_theta*t004;
-    rates[0] = -t010/(sin_theta*t003);
+    const T t005 = p.Iyz*p.Iyz;
+    const T t006 = (cos_theta*p_psi - p.p_phi)/sin_theta;
+    const T t007 = (p.Iyy - p.Ixx)*p.Izz + t002 - t005;
+    const T t008 = (S(2)*cos_psi*t004 + sin_psi*t007)*p_theta + (cos_psi*t007 - S(2)*sin_psi*t004)*t006 - (t000 - t001)*p_psi;
+    const T t009 = (p.Ixy*p.Iyz - p.Ixz*p.Iyy)*p_psi*sin_psi + cos_psi*t008 - (p.Iyy*p.Izz - t005)*t006 - p_theta*t004;
+    rates[0] = -t009/(sin_theta*t003);
 }
 
 } // namespace full_tensor_top_reduced

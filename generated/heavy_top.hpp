@@ -20,14 +20,14 @@
 // 0.1.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 96 -> 38 (7 temporaries)
-//   jacobian: 389 -> 102 (19 temporaries)
-//   rhs_and_jacobian: 485 -> 108 (21 temporaries)
+//   rhs: 96 -> 33 (8 temporaries)
+//   jacobian: 389 -> 89 (25 temporaries)
+//   rhs_and_jacobian: 485 -> 92 (27 temporaries)
 //   energy: 31 -> 23 (4 temporaries)
-//   momenta: 19 -> 12 (3 temporaries)
+//   momenta: 19 -> 11 (3 temporaries)
 //   mass_matrix: 11 -> 8 (3 temporaries)
-//   omega: 17 -> 14 (4 temporaries)
-//   rotation: 49 -> 29 (6 temporaries)
+//   omega: 17 -> 13 (5 temporaries)
+//   rotation: 49 -> 26 (8 temporaries)
 //
 // Self-contained: includes <array>, <cmath> and <cstddef> only. Every function is a template on the
 // scalar type T (float, double, long double, Eigen array batches such as Eigen::Array<double, 4, 1>,
@@ -103,7 +103,7 @@ constexpr std::array<unsigned char, 36> jacobian_pattern{{
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, phi_ddot, theta_ddot, psi_ddot
 //   p     parameters
-// Operations (+ - * / and calls): 96 before lowering, 38 after (9 +-, 23 *, 4 /, 2 calls).
+// Operations (+ - * / and calls): 96 before lowering, 33 after (9 +-, 20 *, 2 /, 2 calls).
 template <class T>
 void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     using std::cos;
@@ -117,16 +117,17 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     const T sin_theta = sin(theta);
     const T cos_theta = cos(theta);
     const T t000 = S(1)/(p.I1*sin_theta);
-    const T t001 = p.I3*psi_dot;
-    const T t002 = (p.I3 - p.I1)*cos_theta*phi_dot;
-    const T t003 = ((t001 + t002)*phi_dot - p.M*p.g*p.h)*sin_theta/p.I1;
-    const T t004 = (S(1)/p.I3 + cos_theta*cos_theta/(p.I1*sin_theta*sin_theta))*p.I3*phi_dot*sin_theta;
+    const T t001 = cos_theta*phi_dot;
+    const T t002 = p.I3*psi_dot;
+    const T t003 = (p.I3 - p.I1)*t001;
+    const T t004 = ((t002 + t003)*phi_dot - p.M*p.g*p.h)*sin_theta/p.I1;
+    const T t005 = (cos_theta*cos_theta*p.I3*t000 + sin_theta)*phi_dot - (S(2)*t003 + t002)*cos_theta*t000;
     dydt[0] = phi_dot;
     dydt[1] = theta_dot;
     dydt[2] = psi_dot;
-    dydt[3] = ((p.I3 - S(2)*p.I1)*cos_theta*phi_dot + t001)*t000*theta_dot;
-    dydt[4] = -t003;
-    dydt[5] = (t004 - (S(2)*t002 + t001)*cos_theta*t000)*theta_dot;
+    dydt[3] = ((p.I3 - S(2)*p.I1)*t001 + t002)*t000*theta_dot;
+    dydt[4] = -t004;
+    dydt[5] = t005*theta_dot;
 }
 
 // The analytic Jacobian J = d(dy/dt)/dy, dense, row-major: J[i * state_size + k] = d dydt[i] / d y[k].
@@ -134,7 +135,7 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   J     output, dim 6 x 6 (row-major); structural zeros in jacobian_pattern
 //   p     parameters
-// Operations (+ - * / and calls): 389 before lowering, 102 after (25 +-, 70 *, 5 /, 2 calls).
+// Operations (+ - * / and calls): 389 before lowering, 89 after (25 +-, 56 *, 6 /, 2 calls).
 template <class T>
 void jacobian(T t, const T* y, T* J, const params<T>& p) {
     using std::cos;
@@ -151,19 +152,25 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T t001 = S(1)/t000;
     const T t002 = p.I3*psi_dot;
     const T t003 = p.I3 - p.I1;
-    const T t004 = cos_theta*phi_dot*t003;
-    const T t005 = S(2)*t004 + t002;
-    const T t006 = cos_theta*t005;
-    const T t007 = t006 - S(2)*phi_dot*t000*t003;
-    const T t008 = (t007 - ((S(3)*p.I3 - S(4)*p.I1)*cos_theta*phi_dot + S(2)*t002)*cos_theta)*t001;
-    const T t009 = S(1)/p.I1;
-    const T t010 = S(1)/(p.I1*sin_theta);
-    const T t011 = p.I3 - S(2)*p.I1;
-    const T t012 = ((t002 + t004)*phi_dot - p.M*p.g*p.h)*cos_theta - phi_dot*phi_dot*t000*t003;
-    const T t013 = cos_theta*cos_theta;
-    const T t014 = S(1)/p.I3 + t013/(p.I1*t000);
-    const T t015 = (t007 - S(2)*t006)*t001 + S(2)*(S(1) + t001*t013)*p.I3*phi_dot;
-    const T t016 = (p.I3*phi_dot*t014 - t009*t015)*cos_theta + t005*t009;
+    const T t004 = cos_theta*phi_dot;
+    const T t005 = t003*t004;
+    const T t006 = S(2)*t005 + t002;
+    const T t007 = cos_theta*t006;
+    const T t008 = t000*t003;
+    const T t009 = t007 - S(2)*phi_dot*t008;
+    const T t010 = p.I3*phi_dot;
+    const T t011 = (t009 - ((S(3)*p.I3 - S(4)*p.I1)*t004 + S(2)*t002)*cos_theta)*t001 + t010;
+    const T t012 = S(1)/p.I1;
+    const T t013 = S(1)/(p.I1*sin_theta);
+    const T t014 = cos_theta*t013;
+    const T t015 = t014*theta_dot;
+    const T t016 = p.I3 - S(2)*p.I1;
+    const T t017 = ((t002 + t005)*phi_dot - p.M*p.g*p.h)*cos_theta - phi_dot*phi_dot*t008;
+    const T t018 = t006*t012;
+    const T t019 = cos_theta*cos_theta;
+    const T t020 = ((t009 - S(2)*t007)*t001 + S(2)*(S(1) + t001*t019)*t010)*t012;
+    const T t021 = ((S(1)/p.I3 + t019/(p.I1*t000))*t010 - t020)*cos_theta;
+    const T t022 = t013*t019;
     J[0] = T(S(0));
     J[1] = T(S(0));
     J[2] = T(S(0));
@@ -183,23 +190,23 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     J[16] = T(S(0));
     J[17] = T(S(1));
     J[18] = T(S(0));
-    J[19] = (p.I3*phi_dot + t008)*t009*theta_dot;
+    J[19] = t011*t012*theta_dot;
     J[20] = T(S(0));
-    J[21] = cos_theta*t010*t011*theta_dot;
-    J[22] = (cos_theta*phi_dot*t011 + t002)*t010;
-    J[23] = p.I3*t010*theta_dot;
+    J[21] = t015*t016;
+    J[22] = (t002 + t004*t016)*t013;
+    J[23] = p.I3*t013*theta_dot;
     J[24] = T(S(0));
-    J[25] = -t009*t012;
+    J[25] = -t012*t017;
     J[26] = T(S(0));
-    J[27] = -sin_theta*t005*t009;
+    J[27] = -sin_theta*t018;
     J[28] = T(S(0));
-    J[29] = -p.I3*phi_dot*sin_theta*t009;
+    J[29] = -(p.I3/p.I1)*phi_dot*sin_theta;
     J[30] = T(S(0));
-    J[31] = t016*theta_dot;
+    J[31] = (t018 + t021)*theta_dot;
     J[32] = T(S(0));
-    J[33] = -(S(2)*t003*t010*t013 - p.I3*sin_theta*t014)*theta_dot;
-    J[34] = p.I3*phi_dot*sin_theta*t014 - cos_theta*t005*t010;
-    J[35] = -cos_theta*p.I3*t010*theta_dot;
+    J[33] = (sin_theta - t016*t022)*theta_dot;
+    J[34] = (p.I3*t022 + sin_theta)*phi_dot - t006*t014;
+    J[35] = -p.I3*t015;
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -208,7 +215,7 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, phi_ddot, theta_ddot, psi_ddot
 //   J     output, dim 6 x 6 (row-major)
 //   p     parameters
-// Operations (+ - * / and calls): 485 before lowering, 108 after (26 +-, 75 *, 5 /, 2 calls).
+// Operations (+ - * / and calls): 485 before lowering, 92 after (25 +-, 59 *, 6 /, 2 calls).
 template <class T>
 void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     using std::cos;
@@ -222,30 +229,36 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T sin_theta = sin(theta);
     const T cos_theta = cos(theta);
     const T t000 = S(1)/(p.I1*sin_theta);
-    const T t001 = p.I3 - S(2)*p.I1;
-    const T t002 = p.I3*psi_dot;
-    const T t003 = cos_theta*phi_dot*t001 + t002;
-    const T t004 = S(1)/p.I1;
-    const T t005 = p.I3 - p.I1;
-    const T t006 = cos_theta*phi_dot*t005;
-    const T t007 = (t002 + t006)*phi_dot - p.M*p.g*p.h;
-    const T t008 = cos_theta*cos_theta;
-    const T t009 = sin_theta*sin_theta;
-    const T t010 = S(1)/p.I3 + t008/(p.I1*t009);
-    const T t011 = S(2)*t006 + t002;
-    const T t012 = p.I3*phi_dot*sin_theta*t010 - cos_theta*t000*t011;
-    const T t013 = S(1)/t009;
-    const T t014 = cos_theta*t011;
-    const T t015 = t014 - S(2)*phi_dot*t005*t009;
-    const T t016 = (t015 - ((S(3)*p.I3 - S(4)*p.I1)*cos_theta*phi_dot + S(2)*t002)*cos_theta)*t013;
-    const T t017 = (t015 - S(2)*t014)*t013 + S(2)*(S(1) + t008*t013)*p.I3*phi_dot;
-    const T t018 = (p.I3*phi_dot*t010 - t004*t017)*cos_theta + t004*t011;
+    const T t001 = t000*theta_dot;
+    const T t002 = cos_theta*phi_dot;
+    const T t003 = p.I3 - S(2)*p.I1;
+    const T t004 = p.I3*psi_dot;
+    const T t005 = t002*t003 + t004;
+    const T t006 = S(1)/p.I1;
+    const T t007 = sin_theta*t006;
+    const T t008 = p.I3 - p.I1;
+    const T t009 = t002*t008;
+    const T t010 = (t004 + t009)*phi_dot - p.M*p.g*p.h;
+    const T t011 = cos_theta*cos_theta;
+    const T t012 = t000*t011;
+    const T t013 = S(2)*t009 + t004;
+    const T t014 = cos_theta*t013;
+    const T t015 = (p.I3*t012 + sin_theta)*phi_dot - t000*t014;
+    const T t016 = sin_theta*sin_theta;
+    const T t017 = S(1)/t016;
+    const T t018 = t008*t016;
+    const T t019 = t014 - S(2)*phi_dot*t018;
+    const T t020 = p.I3*phi_dot;
+    const T t021 = (t019 - ((S(3)*p.I3 - S(4)*p.I1)*t002 + S(2)*t004)*cos_theta)*t017 + t020;
+    const T t022 = cos_theta*t001;
+    const T t023 = ((t019 - S(2)*t014)*t017 + S(2)*(S(1) + t011*t017)*t020)*t006;
+    const T t024 = ((S(1)/p.I3 + t011/(p.I1*t016))*t020 - t023)*cos_theta;
     dydt[0] = phi_dot;
     dydt[1] = theta_dot;
     dydt[2] = psi_dot;
-    dydt[3] = t000*t003*theta_dot;
-    dydt[4] = -sin_theta*t004*t007;
-    dydt[5] = t012*theta_dot;
+    dydt[3] = t001*t005;
+    dydt[4] = -t007*t010;
+    dydt[5] = t015*theta_dot;
     J[0] = T(S(0));
     J[1] = T(S(0));
     J[2] = T(S(0));
@@ -265,23 +278,23 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     J[16] = T(S(0));
     J[17] = T(S(1));
     J[18] = T(S(0));
-    J[19] = (p.I3*phi_dot + t016)*t004*theta_dot;
+    J[19] = t006*t021*theta_dot;
     J[20] = T(S(0));
-    J[21] = cos_theta*t000*t001*theta_dot;
-    J[22] = t000*t003;
-    J[23] = p.I3*t000*theta_dot;
+    J[21] = t003*t022;
+    J[22] = t000*t005;
+    J[23] = p.I3*t001;
     J[24] = T(S(0));
-    J[25] = -(cos_theta*t007 - phi_dot*phi_dot*t005*t009)*t004;
+    J[25] = (phi_dot*phi_dot*t018 - cos_theta*t010)*t006;
     J[26] = T(S(0));
-    J[27] = -sin_theta*t004*t011;
+    J[27] = -t007*t013;
     J[28] = T(S(0));
-    J[29] = -p.I3*phi_dot*sin_theta*t004;
+    J[29] = -(p.I3/p.I1)*phi_dot*sin_theta;
     J[30] = T(S(0));
-    J[31] = t018*theta_dot;
+    J[31] = (t006*t013 + t024)*theta_dot;
     J[32] = T(S(0));
-    J[33] = -(S(2)*t000*t005*t008 - p.I3*sin_theta*t010)*theta_dot;
-    J[34] = t012;
-    J[35] = -cos_theta*p.I3*t000*theta_dot;
+    J[33] = (sin_theta - t003*t012)*theta_dot;
+    J[34] = t015;
+    J[35] = -p.I3*t022;
 }
 
 // The energy T + V (conserved without damping and driving torques).
@@ -308,7 +321,7 @@ T energy(const T* y, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   momentum output, dim 3: p_phi, p_theta, p_psi
 //   p     parameters
-// Operations (+ - * / and calls): 19 before lowering, 12 after (2 +-, 8 *, 0 /, 2 calls).
+// Operations (+ - * / and calls): 19 before lowering, 11 after (2 +-, 7 *, 0 /, 2 calls).
 template <class T>
 void momenta(const T* y, T* momentum, const params<T>& p) {
     using std::cos;
@@ -319,10 +332,10 @@ void momenta(const T* y, T* momentum, const params<T>& p) {
     const T psi_dot = y[5];
     const T sin_theta = sin(theta);
     const T cos_theta = cos(theta);
-    const T t000 = cos_theta*phi_dot + psi_dot;
-    momentum[0] = cos_theta*p.I3*t000 + p.I1*phi_dot*sin_theta*sin_theta;
+    const T t000 = (cos_theta*phi_dot + psi_dot)*p.I3;
+    momentum[0] = cos_theta*t000 + p.I1*phi_dot*sin_theta*sin_theta;
     momentum[1] = p.I1*theta_dot;
-    momentum[2] = p.I3*t000;
+    momentum[2] = t000;
 }
 
 // The mass matrix M(q) = J^T I J of the Euler-angle rates, row-major (p = M q_dot).
@@ -354,7 +367,7 @@ void mass_matrix(const T* y, T* M, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   w     output, dim 3: omega1, omega2, omega3
 //   p     parameters
-// Operations (+ - * / and calls): 17 before lowering, 14 after (3 +-, 7 *, 0 /, 4 calls).
+// Operations (+ - * / and calls): 17 before lowering, 13 after (3 +-, 6 *, 0 /, 4 calls).
 template <class T>
 void omega(const T* y, T* w, const params<T>& p) {
     using std::cos;
@@ -369,8 +382,9 @@ void omega(const T* y, T* w, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    w[0] = cos_psi*theta_dot + phi_dot*sin_psi*sin_theta;
-    w[1] = cos_psi*phi_dot*sin_theta - sin_psi*theta_dot;
+    const T t000 = phi_dot*sin_theta;
+    w[0] = cos_psi*theta_dot + sin_psi*t000;
+    w[1] = cos_psi*t000 - sin_psi*theta_dot;
     w[2] = cos_theta*phi_dot + psi_dot;
 }
 
@@ -378,7 +392,7 @@ void omega(const T* y, T* w, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   A     output, dim 3 x 3 (row-major): A11, A12, A13, A21, A22, A23, A31, A32, A33
 //   p     parameters
-// Operations (+ - * / and calls): 49 before lowering, 29 after (7 +-, 16 *, 0 /, 6 calls).
+// Operations (+ - * / and calls): 49 before lowering, 26 after (6 +-, 14 *, 0 /, 6 calls).
 template <class T>
 void rotation(const T* y, T* A, const params<T>& p) {
     using std::cos;
@@ -393,11 +407,13 @@ void rotation(const T* y, T* A, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    A[0] = cos_phi*cos_psi - cos_theta*sin_phi*sin_psi;
-    A[1] = cos_phi*cos_theta*sin_psi + cos_psi*sin_phi;
+    const T t000 = cos_theta*sin_phi;
+    const T t001 = cos_phi*cos_theta;
+    A[0] = cos_phi*cos_psi - sin_psi*t000;
+    A[1] = cos_psi*sin_phi + sin_psi*t001;
     A[2] = sin_psi*sin_theta;
-    A[3] = -(cos_phi*sin_psi + cos_psi*cos_theta*sin_phi);
-    A[4] = -(sin_phi*sin_psi - cos_phi*cos_psi*cos_theta);
+    A[3] = -cos_phi*sin_psi - cos_psi*t000;
+    A[4] = cos_psi*t001 - sin_phi*sin_psi;
     A[5] = cos_psi*sin_theta;
     A[6] = sin_phi*sin_theta;
     A[7] = -cos_phi*sin_theta;

@@ -22,14 +22,14 @@
 // 0.1.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 76 -> 59 (5 temporaries)
-//   jacobian: 288 -> 120 (18 temporaries)
-//   rhs_and_jacobian: 364 -> 163 (18 temporaries)
+//   rhs: 76 -> 55 (6 temporaries)
+//   jacobian: 288 -> 88 (17 temporaries)
+//   rhs_and_jacobian: 364 -> 125 (21 temporaries)
 //   energy: 30 -> 25 (6 temporaries)
 //   momenta: 3 -> 3 (0 temporaries)
 //   mass_matrix: 0 -> 0 (0 temporaries)
 //   omega: 0 -> 0 (0 temporaries)
-//   rotation: 117 -> 49 (11 temporaries)
+//   rotation: 117 -> 44 (11 temporaries)
 //
 // Self-contained: includes <array>, <cmath> and <cstddef> only. Every function is a template on the
 // scalar type T (float, double, long double, Eigen array batches such as Eigen::Array<double, 4, 1>,
@@ -106,7 +106,7 @@ constexpr std::array<unsigned char, 49> jacobian_pattern{{
 //   y     state, dim 7: (qw, qx, qy, qz, omega1, omega2, omega3)
 //   dydt  output, dim 7: qw_dot, qx_dot, qy_dot, qz_dot, omega1_dot, omega2_dot, omega3_dot
 //   p     parameters
-// Operations (+ - * / and calls): 76 before lowering, 59 after (17 +-, 40 *, 2 /, 0 calls).
+// Operations (+ - * / and calls): 76 before lowering, 55 after (17 +-, 36 *, 2 /, 0 calls).
 template <class T>
 void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     using S = typename detail::scalar_of<T>::type;
@@ -120,15 +120,16 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     const T omega3 = y[6];
     const T t000 = S(1)/p.I1;
     const T t001 = S(1)/(qw*qw + qx*qx + qy*qy + qz*qz);
-    const T t002 = p.I3 - p.I1;
-    const T t003 = S(2)*(qw*qx + qy*qz)*p.M*p.g*p.h*t001 - omega2*omega3*t002;
-    const T t004 = S(2)*(qw*qy - qx*qz)*p.M*p.g*p.h*t001 + omega1*omega3*t002;
+    const T t002 = p.M*p.g*p.h*t001;
+    const T t003 = (p.I3 - p.I1)*omega3;
+    const T t004 = (S(2)*(qw*qx + qy*qz)*t002 - omega2*t003)*t000;
+    const T t005 = (S(2)*(qw*qy - qx*qz)*t002 + omega1*t003)*t000;
     dydt[0] = -S(1)/S(2)*(omega1*qx + omega2*qy + omega3*qz);
     dydt[1] = S(1)/S(2)*(omega1*qw + omega3*qy - omega2*qz);
     dydt[2] = S(1)/S(2)*(omega1*qz + omega2*qw - omega3*qx);
     dydt[3] = S(1)/S(2)*(omega2*qx + omega3*qw - omega1*qy);
-    dydt[4] = t000*t003;
-    dydt[5] = t000*t004;
+    dydt[4] = t004;
+    dydt[5] = t005;
     dydt[6] = T(S(0));
 }
 
@@ -137,7 +138,7 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
 //   y     state, dim 7: (qw, qx, qy, qz, omega1, omega2, omega3)
 //   J     output, dim 7 x 7 (row-major); structural zeros in jacobian_pattern
 //   p     parameters
-// Operations (+ - * / and calls): 288 before lowering, 120 after (25 +-, 92 *, 3 /, 0 calls).
+// Operations (+ - * / and calls): 288 before lowering, 88 after (24 +-, 61 *, 3 /, 0 calls).
 template <class T>
 void jacobian(T t, const T* y, T* J, const params<T>& p) {
     using S = typename detail::scalar_of<T>::type;
@@ -160,13 +161,12 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T t008 = S(1)/S(2)*qw;
     const T t009 = S(1)/S(2)*omega2;
     const T t010 = qw*qw + qx*qx + qy*qy + qz*qz;
-    const T t011 = S(1)/(p.I1*t010);
+    const T t011 = p.M*p.g*p.h/(p.I1*t010);
     const T t012 = S(1)/t010;
-    const T t013 = qw*qx + qy*qz;
-    const T t014 = p.I3 - p.I1;
-    const T t015 = S(1)/p.I1;
-    const T t016 = omega3*t014*t015;
-    const T t017 = qw*qy - qx*qz;
+    const T t013 = (qw*qx + qy*qz)*t012;
+    const T t014 = (p.I3 - p.I1)/p.I1;
+    const T t015 = omega3*t014;
+    const T t016 = (qw*qy - qx*qz)*t012;
     J[0] = T(S(0));
     J[1] = t000;
     J[2] = t001;
@@ -195,20 +195,20 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     J[25] = t004;
     J[26] = S(1)/S(2)*qx;
     J[27] = t008;
-    J[28] = S(2)*(qx - S(2)*qw*t012*t013)*p.M*p.g*p.h*t011;
-    J[29] = -S(2)*(S(2)*qx*t012*t013 - qw)*p.M*p.g*p.h*t011;
-    J[30] = S(2)*(qz - S(2)*qy*t012*t013)*p.M*p.g*p.h*t011;
-    J[31] = S(2)*(qy - S(2)*qz*t012*t013)*p.M*p.g*p.h*t011;
+    J[28] = S(2)*(qx - S(2)*qw*t013)*t011;
+    J[29] = S(2)*(qw - S(2)*qx*t013)*t011;
+    J[30] = S(2)*(qz - S(2)*qy*t013)*t011;
+    J[31] = S(2)*(qy - S(2)*qz*t013)*t011;
     J[32] = T(S(0));
-    J[33] = -t016;
-    J[34] = -omega2*t014*t015;
-    J[35] = S(2)*(qy - S(2)*qw*t012*t017)*p.M*p.g*p.h*t011;
-    J[36] = -S(2)*(S(2)*qx*t012*t017 + qz)*p.M*p.g*p.h*t011;
-    J[37] = S(2)*(qw - S(2)*qy*t012*t017)*p.M*p.g*p.h*t011;
-    J[38] = -S(2)*(S(2)*qz*t012*t017 + qx)*p.M*p.g*p.h*t011;
-    J[39] = t016;
+    J[33] = -t015;
+    J[34] = -omega2*t014;
+    J[35] = S(2)*(qy - S(2)*qw*t016)*t011;
+    J[36] = S(2)*(-S(2)*qx*t016 - qz)*t011;
+    J[37] = S(2)*(qw - S(2)*qy*t016)*t011;
+    J[38] = S(2)*(-S(2)*qz*t016 - qx)*t011;
+    J[39] = t015;
     J[40] = T(S(0));
-    J[41] = omega1*t014*t015;
+    J[41] = omega1*t014;
     J[42] = T(S(0));
     J[43] = T(S(0));
     J[44] = T(S(0));
@@ -224,7 +224,7 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   dydt  output, dim 7: qw_dot, qx_dot, qy_dot, qz_dot, omega1_dot, omega2_dot, omega3_dot
 //   J     output, dim 7 x 7 (row-major)
 //   p     parameters
-// Operations (+ - * / and calls): 364 before lowering, 163 after (36 +-, 124 *, 3 /, 0 calls).
+// Operations (+ - * / and calls): 364 before lowering, 125 after (35 +-, 86 *, 4 /, 0 calls).
 template <class T>
 void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     using S = typename detail::scalar_of<T>::type;
@@ -237,72 +237,75 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T omega2 = y[5];
     const T omega3 = y[6];
     const T t000 = S(1)/p.I1;
-    const T t001 = qw*qw + qx*qx + qy*qy + qz*qz;
-    const T t002 = S(1)/t001;
-    const T t003 = qw*qx + qy*qz;
-    const T t004 = p.I3 - p.I1;
-    const T t005 = qw*qy - qx*qz;
-    const T t006 = -S(1)/S(2)*omega1;
-    const T t007 = -S(1)/S(2)*omega2;
-    const T t008 = -S(1)/S(2)*omega3;
-    const T t009 = -S(1)/S(2)*qx;
-    const T t010 = -S(1)/S(2)*qy;
-    const T t011 = -S(1)/S(2)*qz;
-    const T t012 = S(1)/S(2)*omega1;
-    const T t013 = S(1)/S(2)*omega3;
-    const T t014 = S(1)/S(2)*qw;
-    const T t015 = S(1)/S(2)*omega2;
-    const T t016 = S(1)/(p.I1*t001);
-    const T t017 = omega3*t000*t004;
+    const T t001 = p.M*p.g*p.h;
+    const T t002 = qw*qw + qx*qx + qy*qy + qz*qz;
+    const T t003 = S(1)/t002;
+    const T t004 = (qw*qx + qy*qz)*t003;
+    const T t005 = p.I3 - p.I1;
+    const T t006 = omega3*t005;
+    const T t007 = (qw*qy - qx*qz)*t003;
+    const T t008 = -S(1)/S(2)*omega1;
+    const T t009 = -S(1)/S(2)*omega2;
+    const T t010 = -S(1)/S(2)*omega3;
+    const T t011 = -S(1)/S(2)*qx;
+    const T t012 = -S(1)/S(2)*qy;
+    const T t013 = -S(1)/S(2)*qz;
+    const T t014 = S(1)/S(2)*omega1;
+    const T t015 = S(1)/S(2)*omega3;
+    const T t016 = S(1)/S(2)*qw;
+    const T t017 = S(1)/S(2)*omega2;
+    const T t018 = t001/(p.I1*t002);
+    const T t019 = t005/p.I1;
+    const T t020 = omega3*t019;
     dydt[0] = -S(1)/S(2)*(omega1*qx + omega2*qy + omega3*qz);
     dydt[1] = S(1)/S(2)*(omega1*qw + omega3*qy - omega2*qz);
     dydt[2] = S(1)/S(2)*(omega1*qz + omega2*qw - omega3*qx);
     dydt[3] = S(1)/S(2)*(omega2*qx + omega3*qw - omega1*qy);
-    dydt[4] = (S(2)*p.M*p.g*p.h*t002*t003 - omega2*omega3*t004)*t000;
-    dydt[5] = (S(2)*p.M*p.g*p.h*t002*t005 + omega1*omega3*t004)*t000;
+    dydt[4] = (S(2)*t001*t004 - omega2*t006)*t000;
+    dydt[5] = (S(2)*t001*t007 + omega1*t006)*t000;
     dydt[6] = T(S(0));
     J[0] = T(S(0));
-    J[1] = t006;
-    J[2] = t007;
-    J[3] = t008;
-    J[4] = t009;
-    J[5] = t010;
-    J[6] = t011;
-    J[7] = t012;
+    J[1] = t008;
+    J[2] = t009;
+    J[3] = t010;
+    J[4] = t011;
+    J[5] = t012;
+    J[6] = t013;
+    J[7] = t014;
     J[8] = T(S(0));
-    J[9] = t013;
-    J[10] = t007;
-    J[11] = t014;
-    J[12] = t011;
+    J[9] = t015;
+    J[10] = t009;
+    J[11] = t016;
+    J[12] = t013;
     J[13] = S(1)/S(2)*qy;
-    J[14] = t015;
-    J[15] = t008;
+    J[14] = t017;
+    J[15] = t010;
     J[16] = T(S(0));
-    J[17] = t012;
+    J[17] = t014;
     J[18] = S(1)/S(2)*qz;
-    J[19] = t014;
-    J[20] = t009;
-    J[21] = t013;
-    J[22] = t015;
-    J[23] = t006;
+    J[19] = t016;
+    J[20] = t011;
+    J[21] = t015;
+    J[22] = t017;
+    J[23] = t008;
     J[24] = T(S(0));
-    J[25] = t010;
+    J[25] = t012;
     J[26] = S(1)/S(2)*qx;
-    J[27] = t014;
-    J[28] = S(2)*(qx - S(2)*qw*t002*t003)*p.M*p.g*p.h*t016;
-    J[29] = -S(2)*(S(2)*qx*t002*t003 - qw)*p.M*p.g*p.h*t016;
-    J[30] = S(2)*(qz - S(2)*qy*t002*t003)*p.M*p.g*p.h*t016;
-    J[31] = S(2)*(qy - S(2)*qz*t002*t003)*p.M*p.g*p.h*t016;
+    J[27] = t016;
+    J[28] = S(2)*(qx - S(2)*qw*t004)*t018;
+    J[29] = S(2)*(qw - S(2)*qx*t004)*t018;
+    J[30] = S(2)*(qz - S(2)*qy*t004)*t018;
+    J[31] = S(2)*(qy - S(2)*qz*t004)*t018;
     J[32] = T(S(0));
-    J[33] = -t017;
-    J[34] = -omega2*t000*t004;
-    J[35] = S(2)*(qy - S(2)*qw*t002*t005)*p.M*p.g*p.h*t016;
-    J[36] = -S(2)*(S(2)*qx*t002*t005 + qz)*p.M*p.g*p.h*t016;
-    J[37] = S(2)*(qw - S(2)*qy*t002*t005)*p.M*p.g*p.h*t016;
-    J[38] = -S(2)*(S(2)*qz*t002*t005 + qx)*p.M*p.g*p.h*t016;
-    J[39] = t017;
+    J[33] = -t020;
+    J[34] = -omega2*t019;
+    J[35] = S(2)*(qy - S(2)*qw*t007)*t018;
+    J[36] = S(2)*(-S(2)*qx*t007 - qz)*t018;
+    J[37] = S(2)*(qw - S(2)*qy*t007)*t018;
+    J[38] = S(2)*(-S(2)*qz*t007 - qx)*t018;
+    J[39] = t020;
     J[40] = T(S(0));
-    J[41] = omega1*t000*t004;
+    J[41] = omega1*t019;
     J[42] = T(S(0));
     J[43] = T(S(0));
     J[44] = T(S(0));
@@ -390,7 +393,7 @@ void omega(const T* y, T* w, const params<T>& p) {
 //   y     state, dim 7: (qw, qx, qy, qz, omega1, omega2, omega3)
 //   A     output, dim 3 x 3 (row-major): A11, A12, A13, A21, A22, A23, A31, A32, A33
 //   p     parameters
-// Operations (+ - * / and calls): 117 before lowering, 49 after (23 +-, 25 *, 1 /, 0 calls).
+// Operations (+ - * / and calls): 117 before lowering, 44 after (18 +-, 25 *, 1 /, 0 calls).
 template <class T>
 void rotation(const T* y, T* A, const params<T>& p) {
     using S = typename detail::scalar_of<T>::type;
@@ -412,13 +415,13 @@ void rotation(const T* y, T* A, const params<T>& p) {
     const T t010 = qy*qz;
     A[0] = (t000 + t003 - t001 - t002)*t004;
     A[1] = S(2)*(t005 + t006)*t004;
-    A[2] = -S(2)*(t007 - t008)*t004;
-    A[3] = -S(2)*(t005 - t006)*t004;
-    A[4] = -(t000 + t001 - t002 - t003)*t004;
+    A[2] = S(2)*(t008 - t007)*t004;
+    A[3] = S(2)*(t006 - t005)*t004;
+    A[4] = (t002 + t003 - t000 - t001)*t004;
     A[5] = S(2)*(t009 + t010)*t004;
     A[6] = S(2)*(t007 + t008)*t004;
-    A[7] = -S(2)*(t009 - t010)*t004;
-    A[8] = -(t000 + t002 - t001 - t003)*t004;
+    A[7] = S(2)*(t010 - t009)*t004;
+    A[8] = (t001 + t003 - t000 - t002)*t004;
 }
 
 // The quaternion of z-x-z Euler angles: q = qz(phi) (x) qx(theta) (x) qz(psi), which rotates body

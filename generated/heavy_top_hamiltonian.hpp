@@ -20,14 +20,14 @@
 // 0.1.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 75 -> 32 (8 temporaries)
-//   jacobian: 200 -> 55 (16 temporaries)
-//   rhs_and_jacobian: 275 -> 76 (20 temporaries)
-//   energy: 37 -> 24 (4 temporaries)
+//   rhs: 75 -> 29 (7 temporaries)
+//   jacobian: 200 -> 54 (16 temporaries)
+//   rhs_and_jacobian: 275 -> 71 (22 temporaries)
+//   energy: 37 -> 23 (5 temporaries)
 //   momenta: 0 -> 0 (0 temporaries)
 //   mass_matrix: 11 -> 8 (3 temporaries)
-//   omega: 31 -> 20 (7 temporaries)
-//   rotation: 49 -> 29 (6 temporaries)
+//   omega: 31 -> 18 (6 temporaries)
+//   rotation: 49 -> 26 (8 temporaries)
 //
 // Self-contained: includes <array>, <cmath> and <cstddef> only. Every function is a template on the
 // scalar type T (float, double, long double, Eigen array batches such as Eigen::Array<double, 4, 1>,
@@ -103,7 +103,7 @@ constexpr std::array<unsigned char, 36> jacobian_pattern{{
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, p_phi_dot, p_theta_dot, p_psi_dot
 //   p     parameters
-// Operations (+ - * / and calls): 75 before lowering, 32 after (8 +-, 17 *, 5 /, 2 calls).
+// Operations (+ - * / and calls): 75 before lowering, 29 after (8 +-, 14 *, 5 /, 2 calls).
 template <class T>
 void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     using std::cos;
@@ -117,16 +117,15 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     const T sin_theta = sin(theta);
     const T cos_theta = cos(theta);
     const T t000 = sin_theta*sin_theta;
-    const T t001 = S(1)/(p.I1*t000);
-    const T t002 = cos_theta*p_psi;
-    const T t003 = t002 - p_phi;
-    const T t004 = ((t002 - S(2)*p_phi)*cos_theta*p_psi + p_phi*p_phi)/t000 + p_psi*p_psi;
-    const T t005 = (cos_theta*t004 - p_phi*p_psi)/(p.I1*sin_theta) + p.M*p.g*p.h*sin_theta;
-    dydt[0] = -t001*t003;
+    const T t001 = cos_theta*p_psi;
+    const T t002 = (t001 - p_phi)/(p.I1*t000);
+    const T t003 = ((t001 - S(2)*p_phi)*t001 + p_phi*p_phi)/t000 + p_psi*p_psi;
+    const T t004 = (cos_theta*t003 - p_phi*p_psi)/(p.I1*sin_theta) + p.M*p.g*p.h*sin_theta;
+    dydt[0] = -t002;
     dydt[1] = p_theta/p.I1;
-    dydt[2] = cos_theta*t001*t003 + p_psi/p.I3;
+    dydt[2] = cos_theta*t002 + p_psi/p.I3;
     dydt[3] = T(S(0));
-    dydt[4] = t005;
+    dydt[4] = t004;
     dydt[5] = T(S(0));
 }
 
@@ -135,7 +134,7 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   J     output, dim 6 x 6 (row-major); structural zeros in jacobian_pattern
 //   p     parameters
-// Operations (+ - * / and calls): 200 before lowering, 55 after (16 +-, 32 *, 5 /, 2 calls).
+// Operations (+ - * / and calls): 200 before lowering, 54 after (16 +-, 31 *, 5 /, 2 calls).
 template <class T>
 void jacobian(T t, const T* y, T* J, const params<T>& p) {
     using std::cos;
@@ -159,8 +158,8 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T t009 = (S(2)*(p_psi + t004)*cos_theta - p_phi)*t000;
     const T t010 = p_phi*p_phi;
     const T t011 = p_psi*p_psi;
-    const T t012 = (((S(3)*t003 - S(6)*p_phi)*cos_theta*p_psi + S(3)*t010)*t002 + S(4)*t011)*cos_theta;
-    const T t013 = (((t012 - S(5)*p_phi*p_psi)*cos_theta + t010)*t002 + t011)*t008;
+    const T t012 = (((S(3)*t003 - S(6)*p_phi)*t003 + S(3)*t010)*t002 + S(4)*t011)*cos_theta - S(5)*p_phi*p_psi;
+    const T t013 = ((cos_theta*t012 + t010)*t002 + t011)*t008 - cos_theta*p.M*p.g*p.h;
     J[0] = T(S(0));
     J[1] = t005;
     J[2] = T(S(0));
@@ -186,7 +185,7 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     J[22] = T(S(0));
     J[23] = T(S(0));
     J[24] = T(S(0));
-    J[25] = -(t013 - cos_theta*p.M*p.g*p.h);
+    J[25] = -t013;
     J[26] = T(S(0));
     J[27] = -t005;
     J[28] = T(S(0));
@@ -205,7 +204,7 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, p_phi_dot, p_theta_dot, p_psi_dot
 //   J     output, dim 6 x 6 (row-major)
 //   p     parameters
-// Operations (+ - * / and calls): 275 before lowering, 76 after (23 +-, 46 *, 5 /, 2 calls).
+// Operations (+ - * / and calls): 275 before lowering, 71 after (23 +-, 41 *, 5 /, 2 calls).
 template <class T>
 void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     using std::cos;
@@ -224,30 +223,32 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T t003 = t002 - p_phi;
     const T t004 = S(1)/p.I1;
     const T t005 = S(1)/p.I3;
-    const T t006 = S(1)/(p.I1*sin_theta);
-    const T t007 = S(1)/t000;
-    const T t008 = p_phi*p_phi;
-    const T t009 = p_psi*p_psi;
-    const T t010 = (((t002 - S(2)*p_phi)*cos_theta*p_psi + t008)*t007 + t009)*cos_theta;
-    const T t011 = p_phi*p_psi;
-    const T t012 = cos_theta*t003*t007;
-    const T t013 = (S(2)*t012 + p_psi)*t006;
-    const T t014 = -cos_theta*t001;
-    const T t015 = (S(2)*(p_psi + t012)*cos_theta - p_phi)*t006;
-    const T t016 = (((S(3)*t002 - S(6)*p_phi)*cos_theta*p_psi + S(3)*t008)*t007 + S(4)*t009)*cos_theta;
-    const T t017 = (((t016 - S(5)*t011)*cos_theta + t008)*t007 + t009)*t004 - cos_theta*p.M*p.g*p.h;
+    const T t006 = cos_theta*t001;
+    const T t007 = p.M*p.g*p.h;
+    const T t008 = S(1)/(p.I1*sin_theta);
+    const T t009 = S(1)/t000;
+    const T t010 = p_phi*p_phi;
+    const T t011 = p_psi*p_psi;
+    const T t012 = p_phi*p_psi;
+    const T t013 = (((t002 - S(2)*p_phi)*t002 + t010)*t009 + t011)*cos_theta - t012;
+    const T t014 = cos_theta*t003*t009;
+    const T t015 = (S(2)*t014 + p_psi)*t008;
+    const T t016 = -t006;
+    const T t017 = (S(2)*(p_psi + t014)*cos_theta - p_phi)*t008;
+    const T t018 = (((S(3)*t002 - S(6)*p_phi)*t002 + S(3)*t010)*t009 + S(4)*t011)*cos_theta - S(5)*t012;
+    const T t019 = ((cos_theta*t018 + t010)*t009 + t011)*t004 - cos_theta*t007;
     dydt[0] = -t001*t003;
     dydt[1] = p_theta*t004;
-    dydt[2] = cos_theta*t001*t003 + p_psi*t005;
+    dydt[2] = p_psi*t005 + t003*t006;
     dydt[3] = T(S(0));
-    dydt[4] = (t010 - t011)*t006 + p.M*p.g*p.h*sin_theta;
+    dydt[4] = sin_theta*t007 + t008*t013;
     dydt[5] = T(S(0));
     J[0] = T(S(0));
-    J[1] = t013;
+    J[1] = t015;
     J[2] = T(S(0));
     J[3] = t001;
     J[4] = T(S(0));
-    J[5] = t014;
+    J[5] = t016;
     J[6] = T(S(0));
     J[7] = T(S(0));
     J[8] = T(S(0));
@@ -255,9 +256,9 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     J[10] = t004;
     J[11] = T(S(0));
     J[12] = T(S(0));
-    J[13] = -t015;
+    J[13] = -t017;
     J[14] = T(S(0));
-    J[15] = t014;
+    J[15] = t016;
     J[16] = T(S(0));
     J[17] = cos_theta*cos_theta*t001 + t005;
     J[18] = T(S(0));
@@ -267,11 +268,11 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     J[22] = T(S(0));
     J[23] = T(S(0));
     J[24] = T(S(0));
-    J[25] = -t017;
+    J[25] = -t019;
     J[26] = T(S(0));
-    J[27] = -t013;
+    J[27] = -t015;
     J[28] = T(S(0));
-    J[29] = t015;
+    J[29] = t017;
     J[30] = T(S(0));
     J[31] = T(S(0));
     J[32] = T(S(0));
@@ -283,7 +284,7 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
 // The energy, the Hamiltonian H = T + V (conserved without damping and driving torques).
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   p     parameters
-// Operations (+ - * / and calls): 37 before lowering, 24 after (5 +-, 14 *, 3 /, 2 calls).
+// Operations (+ - * / and calls): 37 before lowering, 23 after (5 +-, 13 *, 3 /, 2 calls).
 template <class T>
 T energy(const T* y, const params<T>& p) {
     using std::cos;
@@ -295,9 +296,10 @@ T energy(const T* y, const params<T>& p) {
     const T p_psi = y[5];
     const T sin_theta = sin(theta);
     const T cos_theta = cos(theta);
-    const T t000 = ((S(1)/S(2)*cos_theta*p_psi - p_phi)*cos_theta*p_psi + S(1)/S(2)*p_phi*p_phi)/(sin_theta*sin_theta);
-    const T t001 = (S(1)/S(2)*p_theta*p_theta + t000)/p.I1 + S(1)/S(2)*p_psi*p_psi/p.I3 + cos_theta*p.M*p.g*p.h;
-    return t001;
+    const T t000 = cos_theta*p_psi;
+    const T t001 = ((S(1)/S(2)*t000 - p_phi)*t000 + S(1)/S(2)*p_phi*p_phi)/(sin_theta*sin_theta);
+    const T t002 = (S(1)/S(2)*p_theta*p_theta + t001)/p.I1 + S(1)/S(2)*p_psi*p_psi/p.I3 + cos_theta*p.M*p.g*p.h;
+    return t002;
 }
 
 // The conjugate momenta p = dL/dq_dot (5.74)-(5.76).
@@ -345,7 +347,7 @@ void mass_matrix(const T* y, T* M, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   w     output, dim 3: omega1, omega2, omega3
 //   p     parameters
-// Operations (+ - * / and calls): 31 before lowering, 20 after (4 +-, 9 *, 3 /, 4 calls).
+// Operations (+ - * / and calls): 31 before lowering, 18 after (4 +-, 7 *, 3 /, 4 calls).
 template <class T>
 void omega(const T* y, T* w, const params<T>& p) {
     using std::cos;
@@ -361,10 +363,9 @@ void omega(const T* y, T* w, const params<T>& p) {
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
     const T t000 = S(1)/p.I1;
-    const T t001 = S(1)/sin_theta;
-    const T t002 = cos_theta*p_psi - p_phi;
-    w[0] = (cos_psi*p_theta - sin_psi*t001*t002)*t000;
-    w[1] = -(cos_psi*t001*t002 + p_theta*sin_psi)*t000;
+    const T t001 = (cos_theta*p_psi - p_phi)/sin_theta;
+    w[0] = (cos_psi*p_theta - sin_psi*t001)*t000;
+    w[1] = (-cos_psi*t001 - p_theta*sin_psi)*t000;
     w[2] = p_psi/p.I3;
 }
 
@@ -372,7 +373,7 @@ void omega(const T* y, T* w, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   A     output, dim 3 x 3 (row-major): A11, A12, A13, A21, A22, A23, A31, A32, A33
 //   p     parameters
-// Operations (+ - * / and calls): 49 before lowering, 29 after (7 +-, 16 *, 0 /, 6 calls).
+// Operations (+ - * / and calls): 49 before lowering, 26 after (6 +-, 14 *, 0 /, 6 calls).
 template <class T>
 void rotation(const T* y, T* A, const params<T>& p) {
     using std::cos;
@@ -387,11 +388,13 @@ void rotation(const T* y, T* A, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    A[0] = cos_phi*cos_psi - cos_theta*sin_phi*sin_psi;
-    A[1] = cos_phi*cos_theta*sin_psi + cos_psi*sin_phi;
+    const T t000 = cos_theta*sin_phi;
+    const T t001 = cos_phi*cos_theta;
+    A[0] = cos_phi*cos_psi - sin_psi*t000;
+    A[1] = cos_psi*sin_phi + sin_psi*t001;
     A[2] = sin_psi*sin_theta;
-    A[3] = -(cos_phi*sin_psi + cos_psi*cos_theta*sin_phi);
-    A[4] = -(sin_phi*sin_psi - cos_phi*cos_psi*cos_theta);
+    A[3] = -cos_phi*sin_psi - cos_psi*t000;
+    A[4] = cos_psi*t001 - sin_phi*sin_psi;
     A[5] = cos_psi*sin_theta;
     A[6] = sin_phi*sin_theta;
     A[7] = -cos_phi*sin_theta;

@@ -21,13 +21,13 @@
 // 0.1, p_phi = 0.0, p_psi = 0.0.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 48 -> 23 (4 temporaries)
-//   jacobian: 72 -> 32 (8 temporaries)
-//   rhs_and_jacobian: 120 -> 48 (11 temporaries)
-//   energy: 37 -> 24 (4 temporaries)
+//   rhs: 48 -> 22 (5 temporaries)
+//   jacobian: 72 -> 31 (9 temporaries)
+//   rhs_and_jacobian: 120 -> 44 (12 temporaries)
+//   energy: 37 -> 23 (5 temporaries)
 //   momenta: 0 -> 0 (0 temporaries)
 //   mass_matrix: 11 -> 8 (3 temporaries)
-//   ignored_rates: 27 -> 13 (4 temporaries)
+//   ignored_rates: 27 -> 11 (3 temporaries)
 //
 // Self-contained: includes <array>, <cmath> and <cstddef> only. Every function is a template on the
 // scalar type T (float, double, long double, Eigen array batches such as Eigen::Array<double, 4, 1>,
@@ -101,7 +101,7 @@ constexpr std::array<unsigned char, 4> jacobian_pattern{{
 //   y     state, dim 2: (theta, p_theta)
 //   dydt  output, dim 2: theta_dot, p_theta_dot
 //   p     parameters
-// Operations (+ - * / and calls): 48 before lowering, 23 after (5 +-, 13 *, 3 /, 2 calls).
+// Operations (+ - * / and calls): 48 before lowering, 22 after (5 +-, 12 *, 3 /, 2 calls).
 template <class T>
 void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     using std::cos;
@@ -112,10 +112,11 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     const T p_theta = y[1];
     const T sin_theta = sin(theta);
     const T cos_theta = cos(theta);
-    const T t000 = ((cos_theta*p.p_psi - S(2)*p.p_phi)*cos_theta*p.p_psi + p.p_phi*p.p_phi)/(sin_theta*sin_theta);
-    const T t001 = ((p.p_psi*p.p_psi + t000)*cos_theta - p.p_phi*p.p_psi)/(p.I1*sin_theta);
+    const T t000 = cos_theta*p.p_psi;
+    const T t001 = ((t000 - S(2)*p.p_phi)*t000 + p.p_phi*p.p_phi)/(sin_theta*sin_theta);
+    const T t002 = ((p.p_psi*p.p_psi + t001)*cos_theta - p.p_phi*p.p_psi)/(p.I1*sin_theta);
     dydt[0] = p_theta/p.I1;
-    dydt[1] = p.M*p.g*p.h*sin_theta + t001;
+    dydt[1] = p.M*p.g*p.h*sin_theta + t002;
 }
 
 // The analytic Jacobian J = d(dy/dt)/dy, dense, row-major: J[i * state_size + k] = d dydt[i] / d y[k].
@@ -123,7 +124,7 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
 //   y     state, dim 2: (theta, p_theta)
 //   J     output, dim 2 x 2 (row-major); structural zeros in jacobian_pattern
 //   p     parameters
-// Operations (+ - * / and calls): 72 before lowering, 32 after (8 +-, 20 *, 2 /, 2 calls).
+// Operations (+ - * / and calls): 72 before lowering, 31 after (8 +-, 19 *, 2 /, 2 calls).
 template <class T>
 void jacobian(T t, const T* y, T* J, const params<T>& p) {
     using std::cos;
@@ -137,11 +138,12 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T t001 = S(1)/(sin_theta*sin_theta);
     const T t002 = p.p_psi*p.p_psi;
     const T t003 = p.p_phi*p.p_phi;
-    const T t004 = ((S(3)*cos_theta*p.p_psi - S(6)*p.p_phi)*cos_theta*p.p_psi + S(3)*t003)*t001 + S(4)*t002;
-    const T t005 = ((cos_theta*t004 - S(5)*p.p_phi*p.p_psi)*cos_theta + t003)*t001 + t002;
+    const T t004 = cos_theta*p.p_psi;
+    const T t005 = (((S(3)*t004 - S(6)*p.p_phi)*t004 + S(3)*t003)*t001 + S(4)*t002)*cos_theta - S(5)*p.p_phi*p.p_psi;
+    const T t006 = ((cos_theta*t005 + t003)*t001 + t002)*t000 - cos_theta*p.M*p.g*p.h;
     J[0] = T(S(0));
     J[1] = t000;
-    J[2] = -(t000*t005 - cos_theta*p.M*p.g*p.h);
+    J[2] = -t006;
     J[3] = T(S(0));
 }
 
@@ -151,7 +153,7 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   dydt  output, dim 2: theta_dot, p_theta_dot
 //   J     output, dim 2 x 2 (row-major)
 //   p     parameters
-// Operations (+ - * / and calls): 120 before lowering, 48 after (13 +-, 30 *, 3 /, 2 calls).
+// Operations (+ - * / and calls): 120 before lowering, 44 after (13 +-, 26 *, 3 /, 2 calls).
 template <class T>
 void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     using std::cos;
@@ -167,22 +169,23 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T t002 = S(1)/(sin_theta*sin_theta);
     const T t003 = cos_theta*p.p_psi;
     const T t004 = p.p_phi*p.p_phi;
-    const T t005 = (((t003 - S(2)*p.p_phi)*cos_theta*p.p_psi + t004)*t002 + t001)*cos_theta;
-    const T t006 = p.p_phi*p.p_psi;
-    const T t007 = (((S(3)*t003 - S(6)*p.p_phi)*cos_theta*p.p_psi + S(3)*t004)*t002 + S(4)*t001)*cos_theta;
-    const T t008 = (((t007 - S(5)*t006)*cos_theta + t004)*t002 + t001)*t000 - cos_theta*p.M*p.g*p.h;
+    const T t005 = p.p_phi*p.p_psi;
+    const T t006 = (((t003 - S(2)*p.p_phi)*t003 + t004)*t002 + t001)*cos_theta - t005;
+    const T t007 = p.M*p.g*p.h;
+    const T t008 = (((S(3)*t003 - S(6)*p.p_phi)*t003 + S(3)*t004)*t002 + S(4)*t001)*cos_theta - S(5)*t005;
+    const T t009 = ((cos_theta*t008 + t004)*t002 + t001)*t000 - cos_theta*t007;
     dydt[0] = p_theta*t000;
-    dydt[1] = (t005 - t006)/(p.I1*sin_theta) + p.M*p.g*p.h*sin_theta;
+    dydt[1] = sin_theta*t007 + t006/(p.I1*sin_theta);
     J[0] = T(S(0));
     J[1] = t000;
-    J[2] = -t008;
+    J[2] = -t009;
     J[3] = T(S(0));
 }
 
 // The energy, the Hamiltonian H = T + V (conserved without damping and driving torques).
 //   y     state, dim 2: (theta, p_theta)
 //   p     parameters
-// Operations (+ - * / and calls): 37 before lowering, 24 after (5 +-, 14 *, 3 /, 2 calls).
+// Operations (+ - * / and calls): 37 before lowering, 23 after (5 +-, 13 *, 3 /, 2 calls).
 template <class T>
 T energy(const T* y, const params<T>& p) {
     using std::cos;
@@ -192,9 +195,10 @@ T energy(const T* y, const params<T>& p) {
     const T p_theta = y[1];
     const T sin_theta = sin(theta);
     const T cos_theta = cos(theta);
-    const T t000 = ((S(1)/S(2)*cos_theta*p.p_psi - p.p_phi)*cos_theta*p.p_psi + S(1)/S(2)*p.p_phi*p.p_phi)/(sin_theta*sin_theta);
-    const T t001 = (S(1)/S(2)*p_theta*p_theta + t000)/p.I1 + S(1)/S(2)*p.p_psi*p.p_psi/p.I3 + cos_theta*p.M*p.g*p.h;
-    return t001;
+    const T t000 = cos_theta*p.p_psi;
+    const T t001 = ((S(1)/S(2)*t000 - p.p_phi)*t000 + S(1)/S(2)*p.p_phi*p.p_phi)/(sin_theta*sin_theta);
+    const T t002 = (S(1)/S(2)*p_theta*p_theta + t001)/p.I1 + S(1)/S(2)*p.p_psi*p.p_psi/p.I3 + cos_theta*p.M*p.g*p.h;
+    return t002;
 }
 
 // The conjugate momenta p = dL/dq_dot (5.74)-(5.76).
@@ -239,19 +243,17 @@ void mass_matrix(const T* y, T* M, const params<T>& p) {
 //   y     state, dim 2: (theta, p_theta)
 //   rates output, dim 2: phi_dot, psi_dot
 //   p     parameters
-// Operations (+ - * / and calls): 27 before lowering, 13 after (3 +-, 6 *, 2 /, 2 calls).
+// Operations (+ - * / and calls): 27 before lowering, 11 after (3 +-, 4 *, 2 /, 2 calls).
 template <class T>
 void ignored_rates(const T* y, T* rates, const params<T>& p) {
     using std::cos;
     using std::sin;
-    using S = typename detail::scalar_of<T>::type;
     const T theta = y[0];
     const T sin_theta = sin(theta);
     const T cos_theta = cos(theta);
-    const T t000 = cos_theta*p.p_psi - p.p_phi;
-    const T t001 = S(1)/(p.I1*sin_theta*sin_theta);
-    rates[0] = -t000*t001;
-    rates[1] = cos_theta*t000*t001 + p.p_psi/p.I3;
+    const T t000 = (cos_theta*p.p_psi - p.p_phi)/(p.I1*sin_theta*sin_theta);
+    rates[0] = -t000;
+    rates[1] = cos_theta*t000 + p.p_psi/p.I3;
 }
 
 } // namespace heavy_top_reduced

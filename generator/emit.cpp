@@ -133,20 +133,42 @@ class body_writer {
   public:
     explicit body_writer(const std::vector<program_input>& inputs) : m_inputs(inputs) {}
 
+    // With specialisation: `runtime_inputs` has the folded parameters as inputs too, `folded`
+    // their values; the candidates' runtime-parameter versions are lowered and then folded
+    // (lower_folded), and compete with the substituted ones.
+    body_writer(const std::vector<program_input>& inputs,
+                const std::vector<program_input>& runtime_inputs, const GiNaC::exmap& folded)
+        : m_inputs(inputs), m_runtime_inputs(&runtime_inputs), m_folded(folded) {}
+
     // `targets[i]` receives output i: "dydt[0]", "J[7]", or "return" for a returned value.
     // `arguments` are the function's arguments that may go unused (t, y, p).
     // Of several equivalent candidates, the cheapest after lowering (the first of equals), an
     // operation weighted by its rough cost in cycles: +-* 1, / 4, a call (sin, cos, sqrt) 20.
+    // With specialisation, `runtime_candidates` are the same candidates before the parameters
+    // were substituted: each is also lowered with the parameters as inputs and folded afterwards,
+    // which keeps the runtime program's sharing (substituting first can lower to more operations:
+    // GiNaC distributes numbers over sums). The substituted candidates come first and win ties.
     function_body write(const std::vector<std::vector<ex>>& candidates,
                         const std::vector<std::string>& targets,
-                        const std::vector<std::string>& arguments) const {
+                        const std::vector<std::string>& arguments,
+                        const std::vector<std::vector<ex>>& runtime_candidates = {}) const {
         const auto cost = [](const op_count& o) { return o.add + o.mul + 4 * o.div + 20 * o.call; };
+        const auto better = [&](const op_count& a, const op_count& b) {
+            return cost(a) < cost(b) || (cost(a) == cost(b) && a.total() < b.total());
+        };
         std::size_t best = 0;
         std::vector<lowered_program> programs;
         for (std::size_t i = 0; i < candidates.size(); ++i) {
             programs.push_back(lower(candidates[i], m_inputs));
-            if (cost(programs[i].after) < cost(programs[best].after)) best = i;
+            if (better(programs.back().after, programs[best].after)) best = programs.size() - 1;
         }
+        if (m_runtime_inputs && !m_folded.empty())
+            for (const auto& c : runtime_candidates) {
+                std::optional<lowered_program> p = lower_folded(c, *m_runtime_inputs, m_folded);
+                if (!p) continue;
+                programs.push_back(std::move(*p));
+                if (better(programs.back().after, programs[best].after)) best = programs.size() - 1;
+            }
         return write(programs[best], targets, arguments);
     }
 
@@ -206,6 +228,8 @@ class body_writer {
 
   private:
     const std::vector<program_input>& m_inputs;
+    const std::vector<program_input>* m_runtime_inputs = nullptr;
+    GiNaC::exmap m_folded;
 };
 
 // Which entries of a (row-major, n columns) matrix of expressions vanish identically: evaluated
@@ -367,6 +391,9 @@ emitted_header emit_header(const model_spec& spec, const derivation& d, const em
             runtime.push_back(p);
         }
     }
+    // The form before substitution: its candidates are lowered with the parameters as inputs and
+    // folded afterwards, and compete with the substituted ones (body_writer::write).
+    const form_expressions runtime_f = f;
     if (!folded.empty()) {
         for (auto& e : f.rates)
             e = e.subs(folded);
@@ -394,7 +421,11 @@ emitted_header emit_header(const model_spec& spec, const derivation& d, const em
     // fractions); the reduced form's conserved momenta are initial data, like the state.
     for (const auto& p : runtime)
         inputs.push_back({p.symbol, "p." + p.name, "", p.specialisable});
+    std::vector<program_input> runtime_inputs = inputs;
+    for (const auto& p : f.parameters)
+        if (folded.count(p.symbol)) runtime_inputs.push_back({p.symbol, "p." + p.name, "", true});
     inputs.push_back({f.time, "t", ""});
+    runtime_inputs.push_back({f.time, "t", ""});
 
     const std::size_t n = f.state.size();
     std::vector<std::string> state_names, layout;
@@ -405,11 +436,22 @@ emitted_header emit_header(const model_spec& spec, const derivation& d, const em
     emitted_header h;
     h.unit = o.name.empty() ? unit_name(spec.name, o.form) : o.name;
     h.file_name = h.unit + ".hpp";
-    const body_writer writer(inputs);
+    const body_writer writer(inputs, runtime_inputs, folded);
     std::string functions;
     std::vector<std::vector<ex>> rate_candidates{f.rates};
     rate_candidates.insert(rate_candidates.end(), f.alternative_rates.begin(),
                            f.alternative_rates.end());
+    // The same before substitution (empty without specialisation).
+    std::vector<std::vector<ex>> runtime_rates, runtime_jac, runtime_both;
+    if (!folded.empty()) {
+        runtime_rates.push_back(runtime_f.rates);
+        runtime_rates.insert(runtime_rates.end(), runtime_f.alternative_rates.begin(),
+                             runtime_f.alternative_rates.end());
+    }
+    const auto runtime_candidates_of = [&](const std::string& name) {
+        return folded.empty() ? std::vector<std::vector<ex>>{}
+                              : candidates_of(runtime_f.outputs.at(name));
+    };
     std::vector<std::vector<ex>> jac_candidates, both_candidates;
     std::vector<std::string> dydt_targets, jac_targets;
     for (std::size_t i = 0; i < n; ++i)
@@ -439,6 +481,16 @@ emitted_header emit_header(const model_spec& spec, const derivation& d, const em
             both.insert(both.end(), jac_candidates[c].begin(), jac_candidates[c].end());
             both_candidates.push_back(both);
         }
+        // Entries zero for the folded values are zero in the runtime versions too.
+        for (const auto& r : runtime_rates) {
+            std::vector<ex> J = jacobian(runtime_f, r);
+            for (std::size_t i = 0; i < n * n; ++i)
+                if (zero[i]) J[i] = 0;
+            std::vector<ex> both = r;
+            both.insert(both.end(), J.begin(), J.end());
+            runtime_jac.push_back(std::move(J));
+            runtime_both.push_back(std::move(both));
+        }
     }
     const auto common = [&](const function_body& b) {
         return std::map<std::string, std::string>{{"n", std::to_string(n)},
@@ -453,11 +505,13 @@ emitted_header emit_header(const model_spec& spec, const derivation& d, const em
     std::string pattern_piece;
     for (const auto& name : outputs) {
         if (name == "rhs") {
-            const function_body b = writer.write(rate_candidates, dydt_targets, {"t", "y", "p"});
+            const function_body b =
+                writer.write(rate_candidates, dydt_targets, {"t", "y", "p"}, runtime_rates);
             record(name, b);
             functions += fill_template("rhs.hpp.in", common(b));
         } else if (name == "jacobian") {
-            const function_body b = writer.write(jac_candidates, jac_targets, {"t", "y", "p"});
+            const function_body b =
+                writer.write(jac_candidates, jac_targets, {"t", "y", "p"}, runtime_jac);
             record(name, b);
             functions += fill_template("jacobian.hpp.in", common(b));
             std::string rows;
@@ -473,13 +527,14 @@ emitted_header emit_header(const model_spec& spec, const derivation& d, const em
             if (want_rhs) {
                 std::vector<std::string> targets = dydt_targets;
                 targets.insert(targets.end(), jac_targets.begin(), jac_targets.end());
-                const function_body bj = writer.write(both_candidates, targets, {"t", "y", "p"});
+                const function_body bj =
+                    writer.write(both_candidates, targets, {"t", "y", "p"}, runtime_both);
                 record("rhs_and_jacobian", bj);
                 functions += fill_template("rhs_and_jacobian.hpp.in", common(bj));
             }
         } else if (name == "energy") {
-            const function_body b =
-                writer.write(candidates_of(f.outputs.at(name)), {"return"}, {"y", "p"});
+            const function_body b = writer.write(candidates_of(f.outputs.at(name)), {"return"},
+                                                 {"y", "p"}, runtime_candidates_of(name));
             record(name, b);
             auto v = common(b);
             v["doc"] = o.form == form_kind::body || o.form == form_kind::lagrangian
@@ -512,7 +567,8 @@ emitted_header emit_header(const model_spec& spec, const derivation& d, const em
                       "/ |q|^2.";
             for (std::size_t i = 0; i < out.values.size(); ++i)
                 targets.push_back(arg + "[" + std::to_string(i) + "]");
-            const function_body b = writer.write(candidates_of(out), targets, {"y", "p"});
+            const function_body b =
+                writer.write(candidates_of(out), targets, {"y", "p"}, runtime_candidates_of(name));
             record(name, b);
             auto v = common(b);
             v["doc"] = doc;

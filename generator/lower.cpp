@@ -519,6 +519,35 @@ class dag_builder {
 
     // coefficient * prod factor^exponent as (coefficient, node).
     linear from_monomial(const numeric& c, const monomial& m) {
+        // State factors times parameters over parameters, x y I3/I2: the parameters' quotient is
+        // one node, x y (I3/I2), computed apart from the state (off the chain of operations on
+        // the state, and shared by the products that have it) with the same operations.
+        // (A reciprocal alone, x/I2, stays as it is: (1/I2) x would be one operation more.)
+        bool parameter_above = false, parameter_below = false, state = false, state_below = false;
+        for (const auto& [b, x] : m) {
+            if (m_parametric[static_cast<std::size_t>(b)])
+                (x > 0 ? parameter_above : parameter_below) = true;
+            else
+                state = true, state_below = state_below || x < 0;
+        }
+        if (parameter_above && parameter_below && state && !state_below) {
+            monomial parameters;
+            std::vector<int> num, pnum, pden;
+            for (const auto& [b, x] : m) {
+                if (!m_parametric[static_cast<std::size_t>(b)])
+                    num.push_back(power(b, x));
+                else if (x > 0)
+                    pnum.push_back(power(b, x)), parameters.emplace(b, x);
+                else
+                    pden.push_back(power(b, -x)), parameters.emplace(b, x);
+            }
+            const int quotient = product(std::move(pnum), std::move(pden));
+            m_monomial.emplace(quotient, parameters);
+            num.push_back(quotient);
+            const int id = product(std::move(num), {});
+            m_monomial.emplace(id, m);
+            return {c, id};
+        }
         std::vector<int> num, den;
         for (const auto& [b, x] : m) {
             if (x > 0) num.push_back(power(b, x));
@@ -590,7 +619,49 @@ class dag_builder {
         else
             factor(e);
         if (coef.is_zero()) return {0, -1};
+        if (const auto d = distribute(coef, expo)) return *d;
         return from_monomial(coef, expo);
+    }
+
+    // m S, S a sum every term of which cancels a factor with m: the sum of the products, which
+    // saves the divisions and multiplications that cancel. I3 phi_dot sin(theta) (1/I3 +
+    // cos(theta)^2/(I1 sin(theta)^2)) -> phi_dot sin(theta) + I3 cos(theta)^2 phi_dot/(I1
+    // sin(theta)): one division fewer, and no reciprocal of I3. (The same terms, each scaled:
+    // no new cancellation.)
+    std::optional<linear> distribute(const numeric& coef, const monomial& m) {
+        int sum_factor = -1;
+        for (const auto& [b, x] : m) {
+            if (x != 1 || m_p.nodes[static_cast<std::size_t>(b)].k != lowered_node::kind::sum)
+                continue;
+            if (sum_factor >= 0) return std::nullopt; // one sum at most
+            sum_factor = b;
+        }
+        if (sum_factor < 0) return std::nullopt;
+        const lowered_node s = m_p.nodes[static_cast<std::size_t>(sum_factor)];
+        if (!s.value.is_zero()) return std::nullopt;
+        monomial rest = m;
+        rest.erase(sum_factor);
+        std::vector<poly_term> terms;
+        for (const auto& [c, id] : s.terms) {
+            const monomial t = monomial_of(id);
+            bool cancels = false;
+            for (const auto& [b, x] : t) {
+                const auto r = rest.find(b);
+                if (r != rest.end() && (r->second > 0) != (x > 0)) cancels = true;
+            }
+            if (!cancels) return std::nullopt;
+            poly_term p{coef * c, rest};
+            for (const auto& [b, x] : t) {
+                long& e = p.m[b];
+                e += x;
+                if (e == 0) p.m.erase(b);
+            }
+            terms.push_back(std::move(p));
+        }
+        numeric k = 0;
+        combine_parameters(terms, k);
+        sort_poly(terms);
+        return horner(std::move(terms), k);
     }
 
     // x^k, k >= 1, by binary powering: shares x^2 between x^2, x^3, x^4, ...
@@ -604,6 +675,139 @@ class dag_builder {
     }
 
   public:
+    // The node `old` of another program (built from the same inputs) with its children already
+    // mapped into this one (`mapped`, indexed by the other program's node ids): the same
+    // structure, numbers folded. A sum's terms that became numbers join its constant; a product's
+    // number factors join its coefficient; a sum keeps its leading term positive and takes a
+    // common numeric factor outside where that saves multiplications (as plain_sum does); no
+    // factoring or combining is redone, so the sharing of the other program stays. Throws
+    // std::domain_error on a division by a number zero.
+    linear fold(const lowered_node& old, const std::vector<linear>& mapped) {
+        const auto at = [&](int id) { return mapped.at(static_cast<std::size_t>(id)); };
+        switch (old.k) {
+        case lowered_node::kind::input:
+        case lowered_node::kind::number:
+        case lowered_node::kind::constant:
+            throw std::logic_error("lower: fold of a leaf");
+        case lowered_node::kind::sum: {
+            std::map<int, numeric> acc;
+            numeric k = old.value;
+            for (const auto& [c, id] : old.terms) {
+                const linear v = at(id);
+                if (v.node < 0)
+                    k += c * v.c;
+                else
+                    acc[v.node] += c * v.c;
+            }
+            std::vector<poly_term> terms;
+            for (const auto& [node, c] : acc)
+                if (!c.is_zero()) terms.push_back({c, monomial{{node, 1}}});
+            sort_poly(terms);
+            return plain_sum(terms, k);
+        }
+        case lowered_node::kind::product: {
+            numeric coef = 1;
+            std::vector<int> num, den;
+            for (int id : old.numerator) {
+                const linear v = at(id);
+                coef *= v.c;
+                if (v.node >= 0) num.push_back(v.node);
+            }
+            for (int id : old.denominator) {
+                const linear v = at(id);
+                if (v.c.is_zero()) throw std::domain_error("lower: division by zero");
+                coef /= v.c;
+                if (v.node >= 0) den.push_back(v.node);
+            }
+            if (coef.is_zero()) return {0, -1};
+            if (num.empty() && den.empty()) return {coef, -1};
+            if (num.size() == 1 && den.empty()) return {coef, num[0]};
+            return {coef, product(std::move(num), std::move(den))};
+        }
+        case lowered_node::kind::call: {
+            std::vector<int> args;
+            for (int id : old.args)
+                args.push_back(materialize(at(id)));
+            return {1, call(old.name, args)};
+        }
+        }
+        throw std::logic_error("lower: unknown node kind");
+    }
+
+    int input_node(const ex& symbol) const { return m_input_of.at(symbol); }
+
+    // Common sub-products: a pair of factors that two or more products (reachable from
+    // `outputs`) multiply becomes one product node, shared: x y z and x y w -> (x y) z and (x y) w,
+    // k products with the pair: k - 1 multiplications fewer. Greedy, the most frequent pair first
+    // (ties: the smaller digests), until no pair is in two products. (Hash-consing shares equal
+    // products only; a product is flattened into one list of factors, so a part of it that other
+    // products have too, such as phi_dot sin(theta) in every omega, is found here.) A product's
+    // numerator changes in place (its digest stays that of its first content: the program is
+    // still the same for the same expressions) and the node list is left with parents possibly
+    // before children: renumber() afterwards.
+    void share_products(const std::vector<int>& outputs) {
+        for (;;) {
+            std::vector<char> reached(m_p.nodes.size(), 0);
+            std::vector<int> stack(outputs.begin(), outputs.end()), products;
+            while (!stack.empty()) {
+                const int id = stack.back();
+                stack.pop_back();
+                if (reached[static_cast<std::size_t>(id)]) continue;
+                reached[static_cast<std::size_t>(id)] = 1;
+                const lowered_node& n = m_p.nodes[static_cast<std::size_t>(id)];
+                if (n.k == lowered_node::kind::product && n.numerator.size() >= 2)
+                    products.push_back(id);
+                for (int c : children(n))
+                    stack.push_back(c);
+            }
+            // pair (by digest order) -> products that have it
+            std::map<std::pair<int, int>, std::vector<int>> have;
+            for (int id : products) {
+                const std::vector<int>& f = m_p.nodes[static_cast<std::size_t>(id)].numerator;
+                std::set<std::pair<int, int>> pairs;
+                for (std::size_t i = 0; i < f.size(); ++i)
+                    for (std::size_t j = i + 1; j < f.size(); ++j)
+                        pairs.insert(before(f[j], f[i]) ? std::make_pair(f[j], f[i])
+                                                        : std::make_pair(f[i], f[j]));
+                for (const auto& pr : pairs)
+                    have[pr].push_back(id);
+            }
+            const std::pair<int, int>* best = nullptr;
+            std::size_t best_count = 1;
+            for (const auto& [pr, ids] : have) {
+                if (ids.size() < best_count) continue;
+                const bool wins =
+                    ids.size() > best_count ||
+                    (best && std::make_pair(digest(pr.first), digest(pr.second)) <
+                                 std::make_pair(digest(best->first), digest(best->second)));
+                if (wins) best = &pr, best_count = ids.size();
+            }
+            if (!best) return;
+            const auto [a, b] = *best;
+            const std::vector<int> ids = have[*best];
+            const int pair = product({a, b}, {});
+            for (int id : ids) {
+                if (id == pair) continue;
+                std::vector<int> f = m_p.nodes[static_cast<std::size_t>(id)].numerator;
+                f.erase(std::find(f.begin(), f.end(), a));
+                f.erase(std::find(f.begin(), f.end(), b));
+                f.push_back(pair);
+                sort_nodes(f);
+                lowered_node& n = m_p.nodes[static_cast<std::size_t>(id)];
+                m_table.erase(product_key(n.numerator, n.denominator));
+                n.numerator = std::move(f);
+                m_table.emplace(product_key(n.numerator, n.denominator), id);
+            }
+        }
+    }
+
+    int constant_pi() {
+        lowered_node n;
+        n.k = lowered_node::kind::constant;
+        n.name = "pi";
+        return intern(std::move(n), "K|pi");
+    }
+
     int number(const numeric& v) {
         lowered_node n;
         n.k = lowered_node::kind::number;
@@ -623,15 +827,20 @@ class dag_builder {
         return intern(std::move(n), key);
     }
 
-    int product(std::vector<int> num, std::vector<int> den) {
-        sort_nodes(num);
-        sort_nodes(den);
+    static std::string product_key(const std::vector<int>& num, const std::vector<int>& den) {
         std::string key = "P";
         for (int id : num)
             key += "|" + std::to_string(id);
         key += "|/";
         for (int id : den)
             key += "|" + std::to_string(id);
+        return key;
+    }
+
+    int product(std::vector<int> num, std::vector<int> den) {
+        sort_nodes(num);
+        sort_nodes(den);
+        const std::string key = product_key(num, den);
         lowered_node n;
         n.k = lowered_node::kind::product;
         n.numerator = std::move(num);
@@ -783,12 +992,10 @@ class program_printer {
         case lowered_node::kind::input:
             return {n.name, {}, true};
         case lowered_node::kind::number: {
+            // A literal, negative or a fraction, is a constant expression the compiler folds:
+            // no operation at run time.
             const std::string lit = number_literal(abs(n.value), m_S);
-            if (n.value.is_negative()) {
-                op_count o;
-                o.add = 1;
-                return {"-" + lit, o, false};
-            }
+            if (n.value.is_negative()) return {"-" + lit, {}, false};
             return {lit, {}, n.value.is_integer()};
         }
         case lowered_node::kind::constant:
@@ -822,15 +1029,38 @@ class program_printer {
 
     static std::string paren(const printed& p) { return p.atomic ? p.text : "(" + p.text + ")"; }
 
+    // A quotient of parameters alone, (I3 - I1)/I2: printed as one factor, never spread over the
+    // product that uses it (it is computed apart from the state).
+    bool parameter_quotient(int id) const {
+        const lowered_node& n = node(id);
+        return n.k == lowered_node::kind::product && !n.numerator.empty() &&
+               !n.denominator.empty() && m_p.parametric.at(static_cast<std::size_t>(id));
+    }
+
     // Flattens inline products into one list of factors above and one below the bar.
+    // `negate`: if set, the first inline sum above the bar is printed negated (-(a - b) x ->
+    // (b - a) x), and `negate` is cleared.
     void factors(int id, bool above, std::vector<std::string>& num, std::vector<std::string>& den,
-                 op_count& ops) const {
-        if (inline_product(id)) {
+                 op_count& ops, bool* negate = nullptr) const {
+        if (inline_product(id) && !parameter_quotient(id)) {
             const lowered_node& n = node(id);
             for (int c : n.numerator)
-                factors(c, above, num, den, ops);
+                factors(c, above, num, den, ops, negate);
             for (int c : n.denominator)
                 factors(c, !above, num, den, ops);
+            return;
+        }
+        if (negate && *negate && above && inline_sum(id)) {
+            *negate = false;
+            const printed f = sum(node(id), -1);
+            ops += f.ops;
+            num.push_back(paren(f));
+            return;
+        }
+        if (negate && *negate && above && inline_product(id)) { // a parameter quotient
+            printed f = product(node(id), 1, negate);
+            ops += f.ops;
+            num.push_back(paren(f));
             return;
         }
         const printed f = ref(id);
@@ -839,11 +1069,11 @@ class program_printer {
     }
 
     // coefficient * product, the coefficient a non-negative number (1: none).
-    printed product(const lowered_node& n, const numeric& coef) const {
+    printed product(const lowered_node& n, const numeric& coef, bool* negate = nullptr) const {
         std::vector<std::string> num, den;
         printed r;
         for (int c : n.numerator)
-            factors(c, true, num, den, r.ops);
+            factors(c, true, num, den, r.ops, negate);
         for (int c : n.denominator)
             factors(c, false, num, den, r.ops);
         std::sort(num.begin(), num.end());
@@ -869,37 +1099,74 @@ class program_printer {
         return r;
     }
 
-    printed sum(const lowered_node& n) const {
-        struct entry {
-            bool negative;
-            std::string text;
-        };
-        std::vector<entry> entries;
-        printed r;
-        for (const auto& [c, id] : n.terms) {
+    struct entry {
+        bool negative;
+        std::string text;
+    };
+
+    bool inline_sum(int id) const {
+        return node(id).k == lowered_node::kind::sum && !m_p.temporary_name.count(id);
+    }
+
+    // c (a x + b y) printed as (c a) x + (c b) y when that needs no more multiplications than
+    // c (...) (the products c a are exact rationals, folded by the compiler): a negated sum loses
+    // its unary minus, and a number times a sum of terms with coefficients one multiplication.
+    static bool flattening_pays(const numeric& c, const lowered_node& inner) {
+        std::size_t now = abs(c).is_equal(1) ? 0 : 1, then = 0;
+        for (const auto& t : inner.terms) {
+            now += abs(t.first).is_equal(1) ? 0 : 1;
+            then += abs(c * t.first).is_equal(1) ? 0 : 1;
+        }
+        return then <= now;
+    }
+
+    // The terms of `n`, times `scale`, inline sums flattened into them where that pays.
+    void sum_entries(const lowered_node& n, const numeric& scale, std::vector<entry>& entries,
+                     numeric& constant, op_count& ops) const {
+        constant += scale * n.value;
+        for (const auto& [c0, id] : n.terms) {
+            const numeric c = scale * c0;
+            if (inline_sum(id) && flattening_pays(c, node(id))) {
+                sum_entries(node(id), c, entries, constant, ops);
+                continue;
+            }
             const numeric m = abs(c);
             std::string text;
             if (inline_product(id)) {
                 const printed p = product(node(id), m);
-                r.ops += p.ops;
+                ops += p.ops;
                 text = p.text;
             } else {
                 const printed p = ref(id);
-                r.ops += p.ops;
+                ops += p.ops;
                 if (m.is_equal(1)) {
                     text = p.text; // a term of a sum needs no parentheses unless it is a sum
-                    if (!p.atomic && node(id).k == lowered_node::kind::sum &&
-                        !m_p.temporary_name.count(id))
-                        text = "(" + text + ")";
+                    if (!p.atomic && inline_sum(id)) text = "(" + text + ")";
                 } else {
                     text = number_literal(m, m_S) + "*" + paren(p);
-                    r.ops.mul += 1;
+                    ops.mul += 1;
                 }
             }
             entries.push_back({c.is_negative(), text});
         }
-        if (!n.value.is_zero())
-            entries.push_back({n.value.is_negative(), number_literal(abs(n.value), m_S)});
+    }
+
+    printed sum(const lowered_node& n, const numeric& scale = 1) const {
+        std::vector<entry> entries;
+        printed r;
+        numeric constant = 0;
+        // -c P(S): a negated product with an inline sum among its factors negates that sum
+        // instead (no unary minus).
+        if (n.terms.size() == 1 && n.value.is_zero() && (scale * n.terms[0].first).is_negative() &&
+            inline_product(n.terms[0].second)) {
+            bool negate = true;
+            const printed p =
+                product(node(n.terms[0].second), abs(scale * n.terms[0].first), &negate);
+            if (!negate) return p;
+        }
+        sum_entries(n, scale, entries, constant, r.ops);
+        if (!constant.is_zero() || entries.empty())
+            entries.push_back({constant.is_negative(), number_literal(abs(constant), m_S)});
         // Positive terms first (no unary minus unless all are negative), then by text.
         std::sort(entries.begin(), entries.end(), [](const entry& a, const entry& b) {
             return a.negative != b.negative ? !a.negative : a.text < b.text;
@@ -995,18 +1262,23 @@ op_count count_ops(const ex& e) {
     return naive_counter()(e);
 }
 
-lowered_program lower(const std::vector<ex>& outputs, const std::vector<program_input>& inputs,
-                      const lower_options& options) {
-    lowered_program p;
-    p.inputs = inputs;
-    {
-        naive_counter naive;
-        for (const ex& e : outputs)
-            p.before += naive(e);
+namespace {
+
+// Temporaries, their names and the printed operation count of a program whose DAG and outputs
+// are built.
+void schedule(lowered_program& p, const lower_options& options) {
+    // Which nodes are of parameters and numbers alone (children before parents).
+    p.parametric.assign(p.nodes.size(), 0);
+    for (std::size_t i = 0; i < p.nodes.size(); ++i) {
+        const lowered_node& n = p.nodes[i];
+        bool parametric = n.k != lowered_node::kind::input;
+        if (n.k == lowered_node::kind::input)
+            for (const program_input& in : p.inputs)
+                if (in.name == n.name) parametric = in.parameter;
+        for (int c : children(n))
+            parametric = parametric && p.parametric[static_cast<std::size_t>(c)];
+        p.parametric[i] = parametric;
     }
-    dag_builder b(p);
-    for (const ex& e : outputs)
-        p.outputs.push_back(b.materialize(b.convert(e)));
 
     // Uses of each node reachable from the outputs (each occurrence in a parent counts).
     std::vector<int> uses(p.nodes.size(), 0);
@@ -1081,6 +1353,131 @@ lowered_program lower(const std::vector<ex>& outputs, const std::vector<program_
         p.after += printer.definition(s.node).ops;
     for (int o : p.outputs)
         p.after += printer.ref(o).ops;
+}
+
+// Orders the nodes children before parents again (after share_products), by a depth-first
+// post-order from each node in turn, and renames the children and outputs to match.
+void renumber(lowered_program& p) {
+    const std::size_t count = p.nodes.size();
+    std::vector<int> new_id(count, -1), order;
+    std::vector<char> on_stack(count, 0);
+    std::function<void(int)> visit = [&](int id) {
+        const auto u = static_cast<std::size_t>(id);
+        if (new_id[u] >= 0) return;
+        if (on_stack[u]) throw std::logic_error("lower: a cycle in the program");
+        on_stack[u] = 1;
+        for (int c : children(p.nodes[u]))
+            visit(c);
+        new_id[u] = static_cast<int>(order.size());
+        order.push_back(id);
+    };
+    for (std::size_t i = 0; i < count; ++i)
+        visit(static_cast<int>(i));
+    std::vector<lowered_node> nodes;
+    nodes.reserve(count);
+    const auto rename = [&](std::vector<int>& v) {
+        for (int& id : v)
+            id = new_id[static_cast<std::size_t>(id)];
+    };
+    for (int id : order) {
+        lowered_node n = std::move(p.nodes[static_cast<std::size_t>(id)]);
+        for (auto& t : n.terms)
+            t.second = new_id[static_cast<std::size_t>(t.second)];
+        rename(n.numerator);
+        rename(n.denominator);
+        rename(n.args);
+        nodes.push_back(std::move(n));
+    }
+    p.nodes = std::move(nodes);
+    rename(p.outputs);
+}
+
+op_count naive_ops(const std::vector<ex>& outputs) {
+    naive_counter naive;
+    op_count r;
+    for (const ex& e : outputs)
+        r += naive(e);
+    return r;
+}
+
+} // namespace
+
+lowered_program lower(const std::vector<ex>& outputs, const std::vector<program_input>& inputs,
+                      const lower_options& options) {
+    lowered_program p;
+    p.inputs = inputs;
+    p.before = naive_ops(outputs);
+    {
+        dag_builder b(p);
+        for (const ex& e : outputs)
+            p.outputs.push_back(b.materialize(b.convert(e)));
+        b.share_products(p.outputs);
+    }
+    renumber(p);
+    schedule(p, options);
+    return p;
+}
+
+std::optional<lowered_program> lower_folded(const std::vector<ex>& outputs,
+                                            const std::vector<program_input>& inputs,
+                                            const GiNaC::exmap& values,
+                                            const lower_options& options) {
+    // The runtime program: inputs in `values` are still inputs here.
+    lowered_program runtime;
+    runtime.inputs = inputs;
+    {
+        dag_builder b(runtime);
+        for (const ex& e : outputs)
+            runtime.outputs.push_back(b.materialize(b.convert(e)));
+    }
+    lowered_program p;
+    for (const program_input& in : inputs)
+        if (!values.count(in.symbol)) p.inputs.push_back(in);
+    dag_builder b(p);
+    std::vector<linear> mapped(runtime.nodes.size(), linear{0, -1});
+    try {
+        for (std::size_t i = 0; i < runtime.nodes.size(); ++i) {
+            const lowered_node& n = runtime.nodes[i];
+            switch (n.k) {
+            case lowered_node::kind::input: {
+                const program_input* in = nullptr;
+                for (const program_input& x : inputs)
+                    if (x.name == n.name) in = &x;
+                if (!in) throw std::logic_error("lower: unknown input '" + n.name + "'");
+                const auto v = values.find(in->symbol);
+                if (v == values.end()) {
+                    mapped[i] = {1, b.input_node(in->symbol)};
+                } else {
+                    if (!is_a<numeric>(v->second) || !ex_to<numeric>(v->second).is_real())
+                        throw std::logic_error("lower: folded input '" + n.name +
+                                               "' is not a real number");
+                    mapped[i] = {ex_to<numeric>(v->second), -1};
+                }
+                break;
+            }
+            case lowered_node::kind::number:
+                mapped[i] = {n.value, -1};
+                break;
+            case lowered_node::kind::constant:
+                mapped[i] = {1, b.constant_pi()};
+                break;
+            default:
+                mapped[i] = b.fold(n, mapped);
+            }
+        }
+    } catch (const std::domain_error&) {
+        return std::nullopt; // a folded value makes a denominator zero
+    }
+    for (int o : runtime.outputs)
+        p.outputs.push_back(b.materialize(mapped[static_cast<std::size_t>(o)]));
+    b.share_products(p.outputs);
+    // The substituted expressions, printed naively: what the header reports as "before".
+    std::vector<ex> substituted;
+    for (const ex& e : outputs)
+        substituted.push_back(e.subs(values));
+    p.before = naive_ops(substituted);
+    renumber(p);
+    schedule(p, options);
     return p;
 }
 

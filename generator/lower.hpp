@@ -19,12 +19,21 @@
 //     A linear combination of sums with like terms that involve parameters, or with terms that
 //     cancel, z (x + a y) - z (x + b y), becomes one sum first (x cancels exactly, a y - b y is
 //     (a - b) y); other sums stay nodes;
+//   * a product with one sum among its factors, each term of which cancels a factor with the
+//     rest, is distributed: I3 x (1/I3 + y/(I1 x^2)) -> x + I3 y/(I1 x) (divisions cancelled);
+//   * a pair of factors that two or more products share is one product node, the most frequent
+//     pair first: x y z, x y w -> (x y) z, (x y) w (hash-consing alone shares equal products
+//     only, and products are flat lists of factors);
+//   * parameters over parameters in a product of state factors are one factor of their own,
+//     ((I3 - I1)/I2) x y: the division is off the chain of operations on the state, and shared;
 //   * a denominator is one node (a reciprocal), shared by every product that divides by it;
 //   * sin and cos of each input (an angle) are computed once, named sin_<input>, cos_<input>;
 //   * numbers stay exact rationals; GiNaC folds numeric arithmetic as it builds expressions.
 //
 // A node used more than once becomes a temporary, and so does one that would print too long
-// inline; the rest print inline where they are used.
+// inline; the rest print inline where they are used. A sum printed inside another sum, or
+// multiplied by a number, prints as one sum with the numbers multiplied in where that needs no
+// more multiplications (c (a x + b y) -> (c a) x + (c b) y, exact; -(x - y) -> y - x).
 // The result has the shape of SymEngine's `cse`: an ordered list of (temporary, expression) plus
 // the outputs, each in terms of inputs and earlier temporaries.
 //
@@ -45,6 +54,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -93,6 +103,7 @@ struct lowered_program {
     };
     std::vector<step> steps;                   // the temporaries, in order
     std::map<int, std::string> temporary_name; // node -> its step's name
+    std::vector<char> parametric;              // node -> of parameters and numbers alone
     op_count before; // the outputs printed naively, each on its own (no sharing, no hoisting)
     op_count after;  // the program as printed: temporaries plus outputs
 };
@@ -106,6 +117,20 @@ struct lower_options {
 // Lowers `outputs` (in terms of the inputs' symbols; any other symbol is an internal error).
 lowered_program lower(const std::vector<GiNaC::ex>& outputs,
                       const std::vector<program_input>& inputs, const lower_options& options = {});
+
+// Lowers `outputs` as lower() does with every input a variable, then folds the inputs in
+// `values` (symbol -> exact number) into the program: every subexpression of numbers alone
+// becomes a number, computed exactly, and the rest keeps the runtime program's structure (its
+// sharing and factoring). So the folded program never has more operations than the runtime one
+// beyond a rare numeric coefficient at a use of a shared temporary. The program's inputs are
+// `inputs` without the folded ones. std::nullopt when a folded value makes a denominator zero.
+// (Folding before lowering, by substituting into the expressions, can lower to more operations:
+// GiNaC distributes a number over a sum, 2 (x + y) -> 2 x + 2 y, so sums a product of a parameter
+// and a sum shared are flattened and factored again another way.)
+std::optional<lowered_program> lower_folded(const std::vector<GiNaC::ex>& outputs,
+                                            const std::vector<program_input>& inputs,
+                                            const GiNaC::exmap& values,
+                                            const lower_options& options = {});
 
 // Operations in `e` printed naively (integer powers as repeated products, as c_printer does).
 op_count count_ops(const GiNaC::ex& e);

@@ -112,7 +112,7 @@ TEST_CASE("terms that differ only in parameters become one term over one fractio
     // (b - a)/(a b) has a difference of two inputs, exact when a ~ b.
     parameter_fixture f;
     const lowered_program p = lower({f.x * f.y / f.a - f.x * f.y / f.b}, f.inputs);
-    CHECK(program_text(p) == "out0 = -(p.a - p.b)*x*y/(p.a*p.b)\n");
+    CHECK(program_text(p) == "out0 = ((p.b - p.a)/(p.a*p.b))*x*y\n");
     // The constant joins the terms without a state factor: 1 - a/b -> (b - a)/b.
     const lowered_program q = lower({1 - f.a / f.b + f.x}, f.inputs);
     CHECK(program_text(q) == "out0 = x - (p.a - p.b)/p.b\n");
@@ -138,9 +138,13 @@ TEST_CASE("a combination of sums that share terms is one sum, like terms combine
     parameter_fixture f;
     const lowered_program p = lower({f.z * (f.x + f.a * f.y) - f.z * (f.x + f.b * f.y)}, f.inputs);
     CHECK(program_text(p) == "out0 = (p.a - p.b)*y*z\n");
-    // Sums that share no like terms stay apart (each may be shared with other outputs).
+    // Sums that share no like terms stay apart (each may be shared with other outputs); used
+    // once, they print as one sum (the negated one without a unary minus).
     const lowered_program q = lower({f.z * (f.x + f.y) - f.z * (f.a * f.x * f.y + f.b)}, f.inputs);
-    CHECK(program_text(q) == "out0 = ((x + y) - (p.a*x*y + p.b))*z\n");
+    CHECK(program_text(q) == "out0 = (x + y - p.a*x*y - p.b)*z\n");
+    const lowered_program r =
+        lower({f.z * (f.x + f.y) - f.z * (f.a * f.x * f.y + f.b), f.x + f.y}, f.inputs);
+    CHECK(program_text(r) == "t000 = x + y\nout0 = (t000 - p.a*x*y - p.b)*z\nout1 = t000\n");
 }
 
 TEST_CASE("a symbol that is not an input is an internal error", "[lower]") {
