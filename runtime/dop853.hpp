@@ -331,20 +331,20 @@ template <class T, class S> class dop853_stepper {
         using std::sqrt;
         const std::size_t n = detail::size_of(y0);
         m_y0 = y0;
+        const auto b_k = [&](std::size_t i) { // Σ b_j k_j, component i
+            return T(tab::b1) * k[0][i] + T(tab::b6) * k[5][i] + T(tab::b7) * k[6][i] +
+                   T(tab::b8) * k[7][i] + T(tab::b9) * k[8][i] + T(tab::b10) * k[9][i] +
+                   T(tab::b11) * k[10][i] + T(tab::b12) * k[11][i];
+        };
         if (m_fixed) { // no error control: y1 only
             for (std::size_t i = 0; i < n; ++i)
-                m_y1[i] = y0[i] + h * (T(tab::b1) * k[0][i] + T(tab::b6) * k[5][i] +
-                                       T(tab::b7) * k[6][i] + T(tab::b8) * k[7][i] +
-                                       T(tab::b9) * k[8][i] + T(tab::b10) * k[9][i] +
-                                       T(tab::b11) * k[10][i] + T(tab::b12) * k[11][i]);
+                m_y1[i] = y0[i] + h * b_k(i);
             return {detail::all_finite(m_y1) ? status::ok : status::non_finite, T(0)};
         }
         const T tiny = std::numeric_limits<T>::min();
         T err5 = T(0), err3 = T(0);
         for (std::size_t i = 0; i < n; ++i) {
-            const T bk = T(tab::b1) * k[0][i] + T(tab::b6) * k[5][i] + T(tab::b7) * k[6][i] +
-                         T(tab::b8) * k[7][i] + T(tab::b9) * k[8][i] + T(tab::b10) * k[9][i] +
-                         T(tab::b11) * k[10][i] + T(tab::b12) * k[11][i];
+            const T bk = b_k(i);
             const T e3 =
                 bk - T(tab::bhh1) * k[0][i] - T(tab::bhh2) * k[8][i] - T(tab::bhh3) * k[11][i];
             const T e5 = T(tab::er1) * k[0][i] + T(tab::er6) * k[5][i] + T(tab::er7) * k[6][i] +

@@ -161,21 +161,13 @@ template <class T, class S> class dopri5_stepper {
         stage(m_y1, y0, h, a(tab::a76, 6), a(tab::a71, 1), a(tab::a73, 3), a(tab::a74, 4),
               a(tab::a75, 5));
         f(7, 1.0L, m_y1);
-        // err_i = h Σ e_j k_j,i;  err = RMS_i err_i / (atol + rtol·max(|y0_i|, |y1_i|))
-        using std::abs;
-        using std::max;
-        using std::sqrt;
-        const T tiny = std::numeric_limits<T>::min();
-        const std::size_t n = detail::size_of(y0);
-        T sum = T(0);
-        for (std::size_t i = 0; i < n; ++i) {
-            const T e = h * (T(tab::e1) * k[0][i] + T(tab::e3) * k[2][i] + T(tab::e4) * k[3][i] +
-                             T(tab::e5) * k[4][i] + T(tab::e6) * k[5][i] + T(tab::e7) * k[6][i]);
-            const T r = e / max(m_atol + m_rtol * max(abs(y0[i]), abs(m_y1[i])), tiny);
-            sum += r * r;
-        }
+        // err_vec = h Σ e_j k_j (into arg, free now);  err = its RMS norm (step_control.hpp)
+        detail::combination(arg, a(tab::e1, 1), a(tab::e3, 3), a(tab::e4, 4), a(tab::e5, 5),
+                            a(tab::e6, 6), a(tab::e7, 7));
+        for (auto& e : arg)
+            e *= h;
+        const T err = detail::error_norm(arg, y0, m_y1, m_atol, m_rtol);
         m_y0 = y0;
-        const T err = sqrt(sum / T(n));
         using std::isfinite;
         if (!isfinite(err) || !detail::all_finite(m_y1) || !detail::all_finite(k[6]))
             return {status::non_finite, err};

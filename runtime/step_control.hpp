@@ -30,11 +30,13 @@ template <class T> struct adaptive_options {
 namespace detail {
 
 // Error norm (HNW I, (4.11)): RMS over i of err_i / sk_i, sk_i = atol + rtol·max(|y0_i|, |y1_i|).
-template <class T, class V> T error_norm(const V& err, const V& y0, const V& y1, T atol, T rtol) {
+// Any vectors with size() and operator[] (Eigen vectors, the explicit methods' work vectors).
+template <class T, class E, class V>
+T error_norm(const E& err, const V& y0, const V& y1, T atol, T rtol) {
     using std::sqrt;
     const T tiny = std::numeric_limits<T>::min();
     T sum = T(0);
-    for (Eigen::Index i = 0; i < err.size(); ++i) {
+    for (std::size_t i = 0; i < size_of(err); ++i) {
         using std::abs;
         using std::max;
         const T sk = max(atol + rtol * max(abs(y0[i]), abs(y1[i])), tiny);
