@@ -110,8 +110,8 @@ bench_options parse_arguments(const std::vector<std::string>& args) {
 
 // ---- where the harness and the runtime are ---------------------------------------------------
 
-// Where the harness (bench/workprecision) and the runtime headers are, in this order:
-// $ROTGEN_SOURCE_DIR (a source tree); the installed layout next to this executable
+// Where the harness (bench/workprecision) and the runtime headers are: $ROTGEN_SOURCE_DIR (a
+// source tree) when set; else the installed layout next to this executable
 // (<prefix>/share/rotgen/bench/workprecision and <prefix>/include/rotgen/runtime); the source tree
 // this file was compiled from (a build tree).
 struct bench_sources {
@@ -119,9 +119,20 @@ struct bench_sources {
 };
 
 bench_sources find_bench_sources() {
+    const auto complete = [](const bench_sources& c) {
+        std::error_code ec;
+        return fs::exists(c.harness / "harness.hpp", ec) && fs::exists(c.runtime / "rotgen.hpp", ec);
+    };
+    if (const char* d = std::getenv("ROTGEN_SOURCE_DIR"); d && *d) {
+        // asked for explicitly: that tree or an error, never a silent fallback
+        const bench_sources c{fs::path(d) / "bench/workprecision", fs::path(d) / "runtime"};
+        if (!complete(c))
+            throw user_error({"ROTGEN_SOURCE_DIR=" + std::string(d)},
+                             "not a rotgen source tree (no bench/workprecision/harness.hpp and "
+                             "runtime/rotgen.hpp there)");
+        return c;
+    }
     std::vector<bench_sources> candidates;
-    if (const char* d = std::getenv("ROTGEN_SOURCE_DIR"); d && *d)
-        candidates.push_back({fs::path(d) / "bench/workprecision", fs::path(d) / "runtime"});
     std::error_code ec;
     const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
     if (!ec) {
@@ -133,8 +144,7 @@ bench_sources find_bench_sources() {
     candidates.push_back({tree / "bench/workprecision", tree / "runtime"});
     std::string looked;
     for (const auto& c : candidates) {
-        if (fs::exists(c.harness / "harness.hpp", ec) && fs::exists(c.runtime / "rotgen.hpp", ec))
-            return c;
+        if (complete(c)) return c;
         looked += (looked.empty() ? "" : ", ") + c.harness.string();
     }
     throw user_error({"rotgen bench"}, "cannot find the harness (bench/workprecision/harness.hpp) "

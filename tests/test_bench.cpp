@@ -221,6 +221,16 @@ TEST_CASE("rotgen bench refuses bad arguments with a one-line message", "[bench]
     CHECK(r.err.find("/proc/no/such/dir") != std::string::npos);
     r = run_rotgen("bench /no/such/scene.yaml");
     CHECK(r.status == 2);
+    // an explicit harness location that has none: refused, before any output
+    const std::string no_out = std::string(ROTGEN_BINARY_DIR) + "/bench_no_tree_out";
+    std::filesystem::remove_all(no_out);
+    ::setenv("ROTGEN_SOURCE_DIR", "/proc/no/tree", 1); // inherited by the child only
+    r = run_rotgen("bench '" + scene + "' -o '" + no_out + "'");
+    ::unsetenv("ROTGEN_SOURCE_DIR");
+    CHECK(r.status == 2);
+    CHECK(r.err == "rotgen: error: ROTGEN_SOURCE_DIR=/proc/no/tree: not a rotgen source tree (no "
+                   "bench/workprecision/harness.hpp and runtime/rotgen.hpp there)\n");
+    CHECK_FALSE(std::filesystem::exists(no_out));
     // rates whose kinetic energy overflows double: refused at the `initial` key, nothing written
     const std::string dir = std::string(ROTGEN_BINARY_DIR) + "/bench_huge";
     std::filesystem::remove_all(dir);
