@@ -12,8 +12,8 @@
 //
 // Output, one line per model: text (default) for a person, tsv for bench/derive.sh:
 //   model <TAB> median_s <TAB> min_s <TAB> max_s <TAB> calls_per_repeat <TAB> repeats
-#include "derive.hpp"
-#include "spec.hpp"
+#include "derive/derive.hpp"
+#include "spec/spec.hpp"
 
 #include <algorithm>
 #include <chrono>

@@ -2,7 +2,7 @@
 // The name table is that of a torque: the angles, their rates, t, and a few parameters.
 // An accepted expression is also evaluated in double precision (as spec.cpp checks it): any value
 // will do, but the expression must consist of what the generated code knows (fuzz_support.hpp).
-#include "expr_parse.hpp"
+#include "expr/expr_parse.hpp"
 #include "fuzz_support.hpp"
 
 using namespace rotgen;

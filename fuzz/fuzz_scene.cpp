@@ -5,7 +5,7 @@
 // An accepted scene must have finite numbers in range, and its model must evaluate to finite real
 // numbers with the scene's parameter values.
 #include "fuzz_support.hpp"
-#include "scene.hpp"
+#include "scene/scene.hpp"
 
 #include <sys/stat.h>
 

@@ -4,9 +4,9 @@
 // A violation aborts with "rotgen-fuzz: CONTRACT VIOLATION: ..." so libFuzzer keeps the input.
 #pragma once
 
-#include "error.hpp"
-#include "spec.hpp"
-#include "symbols.hpp"
+#include "support/error.hpp"
+#include "spec/spec.hpp"
+#include "expr/symbols.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <ginac/ginac.h>

@@ -1,9 +1,9 @@
 // Shared helpers for the generator's tests.
 #pragma once
 
-#include "derive.hpp"
-#include "spec.hpp"
-#include "symbols.hpp"
+#include "derive/derive.hpp"
+#include "spec/spec.hpp"
+#include "expr/symbols.hpp"
 
 #include <ginac/ginac.h>
 

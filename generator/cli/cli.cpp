@@ -1,0 +1,67 @@
+#include "cli/cli.hpp"
+
+#include "cli/commands.hpp"
+#include "support/error.hpp"
+
+#include <cstdio>
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace rotgen {
+
+namespace {
+
+const char* const usage =
+    "usage: rotgen inspect MODEL.yaml [--format text|latex|json]\n"
+    "       rotgen emit MODEL.yaml -o DIR [--form lagrangian|hamiltonian|reduced|body]\n"
+    "                  [--outputs rhs,jacobian,...] [--specialise]\n"
+    "       rotgen simulate SCENE.yaml [-o out.csv] [--plot out.png]\n"
+    "       rotgen bench SCENE.yaml [-o DIR] [--quick] [--long-steps N]\n";
+
+// A diagnostic is one line whatever the input held: control characters (a newline in a quoted YAML
+// key, a NUL) are shown escaped.
+std::string one_line(const std::string& text) {
+    std::string out;
+    for (unsigned char c : text) {
+        if (c == '\n') out += "\\n";
+        else if (c == '\t') out += "\\t";
+        else if (c < 0x20 || c == 0x7f) {
+            char buf[8];
+            std::snprintf(buf, sizeof buf, "\\x%02x", c);
+            out += buf;
+        } else out += static_cast<char>(c);
+    }
+    return out;
+}
+
+} // namespace
+
+int run_cli(int argc, char** argv) {
+    std::vector<std::string> args(argv + 1, argv + argc);
+    try {
+        if (args.empty() || args[0] == "--help" || args[0] == "-h") {
+            std::cout << usage;
+            return args.empty() ? 2 : 0;
+        }
+        if (args[0] == "--version") {
+            std::cout << "rotgen " << ROTGEN_VERSION << "\n";
+            return 0;
+        }
+        const std::string command = args[0];
+        args.erase(args.begin());
+        if (command == "inspect") return cmd_inspect(args);
+        if (command == "emit") return cmd_emit(args);
+        if (command == "simulate") return cmd_simulate(args);
+        if (command == "bench") return cmd_bench(args);
+        throw user_error({"rotgen"}, "unknown command '" + command + "' (expected inspect, emit, simulate or bench; see rotgen --help)");
+    } catch (const user_error& e) {
+        std::cerr << "rotgen: error: " << one_line(e.message()) << "\n";
+        return 2;
+    } catch (const std::exception& e) {
+        std::cerr << "rotgen: internal error: " << one_line(e.what()) << "\n";
+        return 1;
+    }
+}
+
+} // namespace rotgen

@@ -1,0 +1,147 @@
+#include "derive/derive.hpp"
+
+#include "expr/symbols.hpp"
+
+namespace rotgen {
+
+using GiNaC::ex;
+
+ex canonical(const ex& e) {
+    const auto& s = symbols();
+    ex r = e.expand();
+    for (int i : {0, 2}) {
+        const ex sin2 = GiNaC::pow(GiNaC::sin(s.q[i]), 2);
+        r = r.subs(sin2 == 1 - GiNaC::pow(GiNaC::cos(s.q[i]), 2), GiNaC::subs_options::algebraic)
+                .expand();
+    }
+    return r;
+}
+
+ex time_derivative(const ex& e) {
+    const auto& s = symbols();
+    ex d = e.diff(s.t);
+    for (int i = 0; i < 3; ++i) d += e.diff(s.q[i]) * s.qd[i] + e.diff(s.qd[i]) * s.qdd[i];
+    return d;
+}
+
+namespace {
+
+// (5.30): omega = J(q) q_dot with
+//   J = [[sin(theta) sin(psi),  cos(psi), 0],
+//        [sin(theta) cos(psi), -sin(psi), 0],
+//        [cos(theta),           0,        1]].
+matrix3 omega_jacobian() {
+    const auto& s = symbols();
+    const ex st = GiNaC::sin(s.q[1]), ct = GiNaC::cos(s.q[1]);
+    const ex sp = GiNaC::sin(s.q[2]), cp = GiNaC::cos(s.q[2]);
+    return {{{st * sp, cp, 0}, {st * cp, -sp, 0}, {ct, 0, 1}}};
+}
+
+// J^{-1} (det J = -sin theta): phi_dot = (omega1 sin psi + omega2 cos psi) / sin theta,
+// theta_dot = omega1 cos psi - omega2 sin psi, psi_dot = omega3 - phi_dot cos theta.
+matrix3 inverse_omega_jacobian() {
+    const auto& s = symbols();
+    const ex st = GiNaC::sin(s.q[1]), ct = GiNaC::cos(s.q[1]);
+    const ex sp = GiNaC::sin(s.q[2]), cp = GiNaC::cos(s.q[2]);
+    return {{{sp / st, cp / st, 0}, {cp, -sp, 0}, {-sp * ct / st, -cp * ct / st, 1}}};
+}
+
+// I^{-1} by the adjugate: small and exact for a symbolic tensor; 1/I_ii when diagonal.
+matrix3 inverse_inertia(const model_spec& spec) {
+    const matrix3& I = spec.inertia;
+    matrix3 inv;
+    if (spec.inertia_diagonal) {
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) inv[i][j] = i == j ? 1 / I[i][i] : ex(0);
+        return inv;
+    }
+    matrix3 adj;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            // adj[i][j] = cofactor of I[j][i]
+            const int r0 = (j + 1) % 3, r1 = (j + 2) % 3, c0 = (i + 1) % 3, c1 = (i + 2) % 3;
+            adj[i][j] = (I[r0][c0] * I[r1][c1] - I[r0][c1] * I[r1][c0]).expand();
+        }
+    ex det = 0;
+    for (int k = 0; k < 3; ++k) det += I[0][k] * adj[k][0];
+    det = det.expand();
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) inv[i][j] = adj[i][j] / det;
+    return inv;
+}
+
+} // namespace
+
+derivation derive(const model_spec& spec) {
+    const auto& s = symbols();
+    derivation d;
+    d.omega_jacobian = omega_jacobian();
+    d.inverse_omega_jacobian = inverse_omega_jacobian();
+    d.inverse_inertia = inverse_inertia(spec);
+
+    // omega = J q_dot (5.30)
+    for (int i = 0; i < 3; ++i) {
+        ex w = 0;
+        for (int j = 0; j < 3; ++j) w += d.omega_jacobian[i][j] * s.qd[j];
+        d.omega[i] = canonical(w);
+    }
+    // T = 1/2 omega^T I omega (5.38)
+    ex T = 0;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) T += spec.inertia[i][j] * d.omega[i] * d.omega[j];
+    d.kinetic = canonical(T / 2);
+    d.potential = canonical(spec.potential);
+    d.lagrangian = canonical(d.kinetic - d.potential);
+    d.energy = canonical(d.kinetic + d.potential);
+
+    // p = dL/dq_dot, M = dp/dq_dot
+    for (int i = 0; i < 3; ++i) d.momenta[i] = canonical(d.lagrangian.diff(s.qd[i]));
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) d.mass_matrix[i][j] = canonical(d.momenta[i].diff(s.qd[j]));
+
+    // Q = -c q_dot + J^T tau (virtual work of a body torque: tau . J dq)
+    for (int i = 0; i < 3; ++i) {
+        ex Q = -spec.damping[i] * s.qd[i];
+        for (int k = 0; k < 3; ++k) Q += d.omega_jacobian[k][i] * spec.torque[k];
+        d.generalized_force[i] = canonical(Q);
+    }
+
+    // f_i = dL/dq_i - sum_j (dp_i/dq_j) q_dot_j + Q_i, so that d/dt p_i - dL/dq_i = Q_i reads
+    // M q_ddot = f.
+    for (int i = 0; i < 3; ++i) {
+        ex f = d.lagrangian.diff(s.q[i]) + d.generalized_force[i];
+        for (int j = 0; j < 3; ++j) f -= d.momenta[i].diff(s.q[j]) * s.qd[j];
+        d.forcing[i] = canonical(f);
+        ex el = -d.forcing[i];
+        for (int j = 0; j < 3; ++j) el += d.mass_matrix[i][j] * s.qdd[j];
+        d.euler_lagrange[i] = canonical(el);
+    }
+
+    // l = J^{-T} p; H = 1/2 l^T I^{-1} l + V
+    for (int i = 0; i < 3; ++i) {
+        ex l = 0;
+        for (int j = 0; j < 3; ++j) l += d.inverse_omega_jacobian[j][i] * s.p[j];
+        d.body_momentum[i] = canonical(l);
+    }
+    ex H = 0;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            H += d.body_momentum[i] * d.inverse_inertia[i][j] * d.body_momentum[j];
+    d.hamiltonian = canonical(H / 2 + d.potential);
+
+    GiNaC::exmap rates_of_p;
+    for (int i = 0; i < 3; ++i) {
+        d.hamilton_qdot[i] = canonical(d.hamiltonian.diff(s.p[i]));
+        rates_of_p[s.qd[i]] = d.hamilton_qdot[i];
+    }
+    for (int i = 0; i < 3; ++i)
+        d.hamilton_pdot[i] =
+            canonical(-d.hamiltonian.diff(s.q[i]) + d.generalized_force[i].subs(rates_of_p));
+
+    for (int i = 0; i < 3; ++i)
+        if (canonical(d.lagrangian.diff(s.q[i])).is_zero() && d.generalized_force[i].is_zero())
+            d.cyclic.push_back(i);
+    return d;
+}
+
+} // namespace rotgen

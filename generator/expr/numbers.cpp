@@ -1,0 +1,25 @@
+#include "expr/numbers.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace rotgen {
+
+GiNaC::numeric exact_rational(double x) {
+    if (!std::isfinite(x))
+        throw std::domain_error("exact_rational: " + std::to_string(x) + " is not a finite number");
+    if (x == 0) return 0;
+    // x = m 2^e with 1/2 <= |m| < 1 (frexp normalises subnormals too), and m 2^53 is an integer
+    // below 2^53 in magnitude: x = (m 2^53) 2^(e - 53) with no rounding anywhere.
+    int e = 0;
+    const double m = std::frexp(x, &e);
+    const auto mantissa = static_cast<long long>(std::ldexp(m, 53));
+    return GiNaC::numeric(mantissa) * GiNaC::numeric(2).power(e - 53);
+}
+
+GiNaC::numeric float_numeric(double x) {
+    return GiNaC::ex_to<GiNaC::numeric>(exact_rational(x).evalf());
+}
+
+} // namespace rotgen

@@ -1,0 +1,367 @@
+#include "expr/print.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <regex>
+#include <sstream>
+#include <stdexcept>
+
+namespace rotgen {
+
+using GiNaC::ex;
+using GiNaC::ex_to;
+using GiNaC::is_a;
+
+std::string format_double(double x) {
+    char buf[64];
+    const auto r = std::to_chars(buf, buf + sizeof buf, x);
+    std::string s(buf, r.ptr);
+    if (s.find_first_of(".e") == std::string::npos && s.find("inf") == std::string::npos &&
+        s.find("nan") == std::string::npos)
+        s += ".0";
+    return s;
+}
+
+namespace {
+
+std::string integer_text(const GiNaC::numeric& n) {
+    std::ostringstream os;
+    os << n;
+    return os.str();
+}
+
+bool is_negative_power(const ex& f) {
+    return is_a<GiNaC::power>(f) && is_a<GiNaC::numeric>(f.op(1)) &&
+           ex_to<GiNaC::numeric>(f.op(1)).is_negative();
+}
+
+bool has_negative_coefficient(const ex& term) {
+    if (is_a<GiNaC::numeric>(term)) return ex_to<GiNaC::numeric>(term).is_negative();
+    if (is_a<GiNaC::mul>(term))
+        for (std::size_t i = 0; i < term.nops(); ++i)
+            if (is_a<GiNaC::numeric>(term.op(i))) return ex_to<GiNaC::numeric>(term.op(i)).is_negative();
+    return false;
+}
+
+// GiNaC holds 1/(a - b) as -1/(b - a) or not, by hash order, which changes from run to run. The
+// printers therefore choose the sign of a sum in a denominator themselves: its first term in
+// printed order is made positive. True when `sum` must be negated for that.
+bool denominator_needs_flip(const ex& sum) {
+    std::string first;
+    bool negative = false;
+    for (std::size_t i = 0; i < sum.nops(); ++i) {
+        const ex term = sum.op(i);
+        const bool neg = has_negative_coefficient(term);
+        const std::string text = text_printer()(neg ? ex(-term) : term);
+        if (i == 0 || text < first) {
+            first = text;
+            negative = neg;
+        }
+    }
+    return negative;
+}
+
+// True when f is 1/(sum)^n whose sum the printers negate; `odd` tells if the sign changes.
+bool flipped_denominator(const ex& f, bool* odd = nullptr) {
+    if (is_negative_power(f) && is_a<GiNaC::add>(f.op(0)) &&
+        ex_to<GiNaC::numeric>(f.op(1)).is_integer() && denominator_needs_flip(f.op(0))) {
+        if (odd) *odd = ex_to<GiNaC::numeric>(f.op(1)).is_odd();
+        return true;
+    }
+    return false;
+}
+
+bool flips_sign(const ex& f) {
+    bool odd = false;
+    return flipped_denominator(f, &odd) && odd;
+}
+
+// A term of a sum, split into sign and magnitude as printed: -3*x -> (true, 3*x).
+std::pair<bool, ex> split_sign(const ex& term) {
+    bool negative = has_negative_coefficient(term);
+    if (is_a<GiNaC::mul>(term)) {
+        for (std::size_t i = 0; i < term.nops(); ++i) negative ^= flips_sign(term.op(i));
+    } else {
+        negative ^= flips_sign(term);
+    }
+    return {negative, negative ? ex(-term) : term};
+}
+
+} // namespace
+
+std::string expression_printer::print(const ex& e, int context) const {
+    if (is_a<GiNaC::numeric>(e)) return number(ex_to<GiNaC::numeric>(e), context);
+    if (is_a<GiNaC::symbol>(e)) return symbol(ex_to<GiNaC::symbol>(e));
+    if (is_a<GiNaC::constant>(e)) return constant(ex_to<GiNaC::constant>(e));
+    if (is_a<GiNaC::add>(e)) return sum(e, context);
+    if (is_a<GiNaC::mul>(e) || (is_negative_power(e) && is_a<GiNaC::add>(e.op(0))))
+        return product(e, context);
+    if (is_a<GiNaC::power>(e)) return power(e.op(0), e.op(1), context);
+    if (is_a<GiNaC::function>(e)) {
+        std::vector<std::string> args;
+        for (std::size_t i = 0; i < e.nops(); ++i) args.push_back(print(e.op(i), 0));
+        return function(function_name(ex_to<GiNaC::function>(e).get_name()), args);
+    }
+    std::ostringstream os;
+    os << e;
+    throw std::logic_error("rotgen printer: cannot print expression '" + os.str() + "'");
+}
+
+std::string expression_printer::number(const GiNaC::numeric& n, int context) const {
+    if (!n.is_real()) throw std::logic_error("rotgen printer: complex number");
+    std::string s;
+    if (n.is_integer()) {
+        s = integer_text(n);
+    } else if (n.is_rational()) {
+        s = fraction(integer_text(n.numer()), integer_text(n.denom()));
+        if (context >= 2) s = parenthesise(s);
+        return s;
+    } else {
+        s = format_double(n.to_double());
+    }
+    if (n.is_negative() && context >= 2) s = parenthesise(s);
+    return s;
+}
+
+std::string expression_printer::symbol(const GiNaC::symbol& s) const { return s.get_name(); }
+
+std::string expression_printer::constant(const GiNaC::constant& c) const {
+    if (ex(c).is_equal(GiNaC::Pi)) return "pi";
+    std::ostringstream os;
+    os << ex(c);
+    throw std::logic_error("rotgen printer: unknown constant " + os.str());
+}
+
+std::string expression_printer::sum(const ex& e, int context, bool negate) const {
+    std::vector<std::pair<std::string, bool>> terms;
+    for (std::size_t i = 0; i < e.nops(); ++i) {
+        const auto [negative, magnitude] = split_sign(e.op(i));
+        terms.emplace_back(print(magnitude, 1), negative != negate);
+    }
+    std::sort(terms.begin(), terms.end());
+    std::string s;
+    for (std::size_t i = 0; i < terms.size(); ++i) {
+        if (i == 0)
+            s = terms[i].second ? "-" + terms[i].first : terms[i].first;
+        else
+            s += (terms[i].second ? " - " : " + ") + terms[i].first;
+    }
+    return context >= 2 || (context == 1 && terms.front().second) ? parenthesise(s) : s;
+}
+
+std::string expression_printer::product(const ex& e, int context) const {
+    GiNaC::numeric coeff = 1;
+    std::vector<std::string> num, den;
+    const std::size_t count = is_a<GiNaC::mul>(e) ? e.nops() : 1;
+    for (std::size_t i = 0; i < count; ++i) {
+        const ex f = is_a<GiNaC::mul>(e) ? e.op(i) : e;
+        if (flipped_denominator(f)) {
+            // 1/(sum)^n printed as (-1)^n / (-sum)^n, the negated sum's terms printed negated.
+            const int n = -ex_to<GiNaC::numeric>(f.op(1)).to_int();
+            if (n % 2) coeff = -coeff;
+            den.push_back(integer_power(parenthesise(sum(f.op(0), 0, true)), n));
+            continue;
+        }
+        if (is_a<GiNaC::numeric>(f)) {
+            coeff *= ex_to<GiNaC::numeric>(f);
+        } else if (is_negative_power(f)) {
+            den.push_back(print(GiNaC::pow(f.op(0), -f.op(1)), 2));
+        } else {
+            num.push_back(print(f, 2));
+        }
+    }
+    const bool negative = coeff.is_negative();
+    if (negative) coeff = -coeff;
+    if (!coeff.is_real()) throw std::logic_error("rotgen printer: complex coefficient");
+    if (!coeff.is_rational()) {
+        num.insert(num.begin(), number(coeff, 2));
+    } else {
+        if (!coeff.numer().is_equal(1)) num.insert(num.begin(), integer_text(coeff.numer()));
+        if (!coeff.denom().is_equal(1)) den.insert(den.begin(), integer_text(coeff.denom()));
+    }
+    std::sort(num.begin() + (num.empty() || !std::isdigit(static_cast<unsigned char>(num[0][0])) ? 0 : 1),
+              num.end());
+    std::sort(den.begin() + (den.empty() || !std::isdigit(static_cast<unsigned char>(den[0][0])) ? 0 : 1),
+              den.end());
+    const auto join = [&](const std::vector<std::string>& v) {
+        std::string s;
+        for (std::size_t i = 0; i < v.size(); ++i) s += (i ? times() : "") + v[i];
+        return s;
+    };
+    std::string s = num.empty() ? "1" : join(num);
+    if (!den.empty()) s = fraction(s, den.size() == 1 && times() == "*" ? den[0] : join(den));
+    if (negative) s = "-" + s;
+    return (negative && context >= 1) || (!den.empty() && context >= 3) ? parenthesise(s) : s;
+}
+
+// True when s is one parenthesised group: "(a + b)" but not "(a)*(b)".
+static bool is_wrapped(const std::string& s) {
+    if (s.size() < 2 || s.front() != '(' || s.back() != ')') return false;
+    int depth = 0;
+    for (std::size_t i = 0; i < s.size(); ++i) {
+        depth += s[i] == '(' ? 1 : s[i] == ')' ? -1 : 0;
+        if (depth == 0 && i + 1 < s.size()) return false;
+    }
+    return true;
+}
+
+std::string expression_printer::fraction(const std::string& num, const std::string& den) const {
+    const bool simple = den.find_first_of("*/+- ") == std::string::npos || is_wrapped(den);
+    return num + "/" + (simple ? den : parenthesise(den));
+}
+
+std::string expression_printer::integer_power(const std::string& base, int n) const {
+    return n == 1 ? base : base + "**" + std::to_string(n);
+}
+
+std::string latex_printer::integer_power(const std::string& base, int n) const {
+    return n == 1 ? base : base + "^{" + std::to_string(n) + "}";
+}
+
+std::string c_printer::integer_power(const std::string& base, int n) const {
+    std::string s = base;
+    for (int i = 1; i < n; ++i) s += "*" + base;
+    return s;
+}
+
+std::string expression_printer::power(const ex& base, const ex& exponent, int context) const {
+    if (exponent.is_equal(GiNaC::numeric(1, 2))) return function("sqrt", {print(base, 0)});
+    std::string s = print(base, 3) + "**" + print(exponent, 3);
+    return context >= 3 ? parenthesise(s) : s;
+}
+
+std::string expression_printer::function(const std::string& name,
+                                         const std::vector<std::string>& args) const {
+    std::string s = name + "(";
+    for (std::size_t i = 0; i < args.size(); ++i) s += (i ? ", " : "") + args[i];
+    return s + ")";
+}
+
+// ---- LaTeX ----
+
+std::string latex_printer::number(const GiNaC::numeric& n, int context) const {
+    if (n.is_rational() && !n.is_integer()) {
+        const std::string s = fraction(integer_text(n.numer()), integer_text(n.denom()));
+        return n.is_negative() && context >= 1 ? "\\left(" + s + "\\right)" : s;
+    }
+    return expression_printer::number(n, context);
+}
+
+std::string latex_printer::symbol(const GiNaC::symbol& s) const {
+    const std::string tex = s.get_TeX_name();
+    if (!tex.empty() && tex != s.get_name()) return tex;
+    // Parameters: trailing digits become a subscript, multi-letter names upright.
+    static const std::regex with_index("([A-Za-z]+)_?([0-9]+)");
+    std::smatch m;
+    const std::string name = s.get_name();
+    if (std::regex_match(name, m, with_index)) return m[1].str() + "_{" + m[2].str() + "}";
+    if (name.size() == 1) return name;
+    static const std::vector<std::string> greek{"alpha", "beta",  "gamma", "delta", "epsilon",
+                                                "kappa", "lambda", "mu",   "nu",    "rho",
+                                                "sigma", "tau",   "omega", "Omega", "eta"};
+    if (std::find(greek.begin(), greek.end(), name) != greek.end()) return "\\" + name;
+    std::string escaped;
+    for (char c : name) escaped += c == '_' ? std::string("\\_") : std::string(1, c);
+    return "\\mathrm{" + escaped + "}";
+}
+
+std::string latex_printer::constant(const GiNaC::constant& c) const {
+    if (ex(c).is_equal(GiNaC::Pi)) return "\\pi";
+    return expression_printer::constant(c);
+}
+
+std::string latex_printer::power(const ex& base, const ex& exponent, int context) const {
+    if (exponent.is_equal(GiNaC::numeric(1, 2))) return "\\sqrt{" + print(base, 0) + "}";
+    // sin^2(theta) style for functions
+    if (is_a<GiNaC::function>(base) && is_a<GiNaC::numeric>(exponent) &&
+        ex_to<GiNaC::numeric>(exponent).is_pos_integer()) {
+        const std::string f = print(base, 0);
+        const auto paren = f.find("\\left(");
+        if (f[0] == '\\' && paren != std::string::npos)
+            return f.substr(0, paren) + "^{" + print(exponent, 0) + "}" + f.substr(paren);
+    }
+    std::string b = print(base, 3);
+    if (b.find("\\frac") == 0) b = "\\left(" + b + "\\right)";
+    const std::string s = b + "^{" + print(exponent, 0) + "}";
+    return context >= 3 ? "\\left(" + s + "\\right)" : s;
+}
+
+std::string latex_printer::function(const std::string& name,
+                                    const std::vector<std::string>& args) const {
+    static const std::vector<std::string> known{"sin", "cos", "tan", "exp", "log", "sinh",
+                                                "cosh", "tanh", "arcsin", "arccos", "arctan"};
+    std::string head;
+    if (name == "sqrt") return "\\sqrt{" + args.at(0) + "}";
+    if (name == "abs") return "\\left|" + args.at(0) + "\\right|";
+    if (name == "asin" || name == "acos" || name == "atan") head = "\\arc" + name.substr(1);
+    else if (std::find(known.begin(), known.end(), name) != known.end()) head = "\\" + name;
+    else head = "\\operatorname{" + name + "}";
+    std::string s = head + "\\left(";
+    for (std::size_t i = 0; i < args.size(); ++i) s += (i ? ", " : "") + args[i];
+    return s + "\\right)";
+}
+
+std::string latex_printer::fraction(const std::string& num, const std::string& den) const {
+    return "\\frac{" + num + "}{" + den + "}";
+}
+
+// ---- C ----
+
+std::string c_printer::number(const GiNaC::numeric& n, int context) const {
+    if (!n.is_real()) throw std::logic_error("rotgen printer: complex number");
+    std::string s;
+    if (n.is_integer()) {
+        s = m_scalar + "(" + integer_text(n) + ")";
+        return s; // a cast binds tighter than any operator
+    }
+    if (n.is_rational()) {
+        s = m_scalar + "(" + integer_text(n.numer()) + ")/" + m_scalar + "(" + integer_text(n.denom()) + ")";
+        return context >= 2 ? parenthesise(s) : s;
+    }
+    s = m_scalar + "(" + format_double(n.to_double()) + "L)";
+    return s;
+}
+
+std::string c_printer::symbol(const GiNaC::symbol& s) const {
+    auto it = m_names.find(s.get_name());
+    return it == m_names.end() ? s.get_name() : it->second;
+}
+
+std::string c_printer::constant(const GiNaC::constant& c) const {
+    if (ex(c).is_equal(GiNaC::Pi)) return m_scalar + "(3.141592653589793238462643383279502884L)";
+    return expression_printer::constant(c);
+}
+
+std::string c_printer::power(const ex& base, const ex& exponent, int context) const {
+    if (is_a<GiNaC::numeric>(exponent)) {
+        const GiNaC::numeric n = ex_to<GiNaC::numeric>(exponent);
+        if (n.is_integer() && n.is_positive() && n <= 8) {
+            // Small integer powers as products, for the compiler's CSE (as GiNaC's print_sym_pow).
+            const std::string b = print(base, 2);
+            std::string s = b;
+            for (int i = 1; i < n.to_int(); ++i) s += "*" + b;
+            return context >= 2 && n > 1 ? parenthesise(s) : s;
+        }
+        if (n.is_integer() && n.is_negative() && n >= -8) {
+            const std::string s = m_scalar + "(1)/" + print(GiNaC::pow(base, -n), 3);
+            return context >= 2 ? parenthesise(s) : s;
+        }
+        if (n.is_equal(GiNaC::numeric(1, 2))) return "sqrt(" + print(base, 0) + ")";
+        if (n.is_equal(GiNaC::numeric(-1, 2))) {
+            const std::string s = m_scalar + "(1)/sqrt(" + print(base, 0) + ")";
+            return context >= 2 ? parenthesise(s) : s;
+        }
+    }
+    return "pow(" + print(base, 0) + ", " + print(exponent, 0) + ")";
+}
+
+std::string c_printer::fraction(const std::string& num, const std::string& den) const {
+    // den arrives printed at product level; wrap anything compound.
+    const bool simple = den.find_first_of("*/+- ") == std::string::npos || is_wrapped(den);
+    return num + "/" + (simple ? den : parenthesise(den));
+}
+
+std::string to_text(const ex& e) { return text_printer()(e); }
+std::string to_latex(const ex& e) { return latex_printer()(e); }
+
+} // namespace rotgen

@@ -1,0 +1,15 @@
+#include "forms/form_kind.hpp"
+
+namespace rotgen {
+
+const char* to_string(form_kind f) {
+    switch (f) {
+    case form_kind::lagrangian: return "lagrangian";
+    case form_kind::hamiltonian: return "hamiltonian";
+    case form_kind::reduced: return "reduced";
+    case form_kind::body: return "body";
+    }
+    return "?";
+}
+
+} // namespace rotgen

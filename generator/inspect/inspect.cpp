@@ -1,0 +1,337 @@
+#include "inspect/inspect.hpp"
+
+#include "inertia/inertia.hpp"
+#include "expr/print.hpp"
+#include "expr/symbols.hpp"
+
+#include <sstream>
+
+namespace rotgen {
+
+using GiNaC::ex;
+
+std::string json_quote(const std::string& s) {
+    std::string out = "\"";
+    for (char c : s) {
+        switch (c) {
+        case '"': out += "\\\""; break;
+        case '\\': out += "\\\\"; break;
+        case '\n': out += "\\n"; break;
+        case '\t': out += "\\t"; break;
+        default:
+            if (static_cast<unsigned char>(c) < 0x20) {
+                char buf[8];
+                std::snprintf(buf, sizeof buf, "\\u%04x", c);
+                out += buf;
+            } else {
+                out += c;
+            }
+        }
+    }
+    return out + "\"";
+}
+
+namespace {
+
+const std::array<std::string, 3>& names() { return coordinate_names(); }
+
+std::string json_array(const vector3& v) {
+    std::string s = "[";
+    for (int i = 0; i < 3; ++i) s += (i ? ", " : "") + json_quote(to_text(v[i]));
+    return s + "]";
+}
+
+// ---- the inertia report (--inertia)
+// ---------------------------------------------------------------
+
+std::string short_number(double x) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.6g", x);
+    return buf;
+}
+
+// An exact value with its number at the defaults ("9/11 = 0.818182", "I1 = 1"); a numeric one
+// (from the eigensolver) as its number alone.
+std::string with_value(const GiNaC::ex& e, double value) {
+    if (GiNaC::is_a<GiNaC::numeric>(e)) {
+        const auto& n = GiNaC::ex_to<GiNaC::numeric>(e);
+        if (!n.is_rational()) return short_number(value);
+        return to_text(e) + (n.is_integer() ? "" : " = " + short_number(value));
+    }
+    return to_text(e) + " = " + short_number(value);
+}
+
+std::string text_vector(const vector3& v) {
+    return "(" + to_text(v[0]) + ", " + to_text(v[1]) + ", " + to_text(v[2]) + ")";
+}
+
+std::string class_description(top_class c) {
+    switch (c) {
+    case top_class::spherical:
+        return "spherical top (I1 = I2 = I3)";
+    case top_class::symmetric:
+        return "symmetric top (two equal principal moments)";
+    case top_class::asymmetric:
+        return "asymmetric top (three different principal moments)";
+    case top_class::rotor:
+        return "rotor (one principal moment zero, the other two equal)";
+    }
+    return "";
+}
+
+// One line per principal axis: what a small deviation from steady rotation about it does.
+std::string stability_text(const axis_stability& s, const inertia_report& r) {
+    const std::string n = std::to_string(s.axis);
+    switch (s.kind) {
+    case stability_kind::stable:
+        if (s.rate_value == 0)
+            return "stable: omega stays constant (" +
+                   std::string(r.kind == top_class::rotor ? "any axis across a rotor is principal"
+                                                          : "all moments equal") +
+                   ")";
+        return "stable: small deviations oscillate at Omega" + n + " = " +
+               with_value(s.rate, s.rate_value) + " (5.94)";
+    case stability_kind::unstable:
+        return "unstable: small deviations grow like exp(Omega" + n + " t), Omega" + n + " = " +
+               with_value(s.rate, s.rate_value) + " (5.100)";
+    case stability_kind::neutral:
+        return "neutral: Omega" + n +
+               "^2 = 0 (equal moments); no oscillation and no exponential "
+               "growth, the spin axis drifts in the plane of the equal moments";
+    case stability_kind::none:
+        return "none: the line of a rotor; rotation about it moves no mass (T = 0)";
+    }
+    return "";
+}
+
+std::string exactness(const principal_axes& p) {
+    if (p.exact_axes) return "exact";
+    if (p.exact_moments) return "moments exact, axes numeric at the parameters' defaults";
+    return "numeric, at the parameters' defaults";
+}
+
+std::string inertia_text(const model_spec& spec, const inertia_report& r) {
+    std::ostringstream os;
+    os << "inertia of " << spec.name << " (" << spec.file << ")\n";
+    if (spec.body) {
+        const auto& b = *spec.body;
+        os << "body: " << spec.parts.size() << (spec.parts.size() == 1 ? " part" : " parts")
+           << ", total mass " << to_text(b.mass) << ", centre of mass "
+           << text_vector(b.centre_of_mass) << ", pivot " << text_vector(b.pivot)
+           << (b.pivot_given ? "" : " (the centre of mass)") << "\n";
+    }
+    os << "\ntensor " << (spec.body ? "about the pivot" : "about the fixed point")
+       << ", body axes (5.39):\n";
+    for (int i = 0; i < 3; ++i)
+        os << "  " << text_vector(r.tensor[i]) << "\n";
+    os << "\nprincipal moments and axes (" << exactness(r.principal)
+       << "; the axes are the rows of A, A I A^T diagonal (5.69)):\n";
+    for (int k = 0; k < 3; ++k) {
+        os << "  I" << k + 1 << " = "
+           << with_value(r.principal.moments[k], r.principal.moment_values[k]) << "  along "
+           << text_vector(r.principal.axes[k]) << "\n";
+    }
+    os << "class: " << class_description(r.kind) << "\n";
+    os << "\nsteady rotation about each principal axis, force-free (5.87-5.89), per unit spin\n"
+       << "(rates scale with the spin omega; numbers at the parameters' defaults):\n";
+    for (const auto& s : r.stability)
+        os << "  axis " << s.axis << ": " << stability_text(s, r) << "\n";
+    return os.str();
+}
+
+std::string latex_vector(const vector3& v) {
+    return "\\left(" + to_latex(v[0]) + ", " + to_latex(v[1]) + ", " + to_latex(v[2]) + "\\right)";
+}
+
+std::string inertia_latex(const model_spec& spec, const inertia_report& r) {
+    std::ostringstream os;
+    os << "% rotgen inspect --inertia --format latex: model " << spec.name << " (" << spec.file
+       << ")\n";
+    os << "% principal axes: rows of A, A I A^T diagonal (5.69); " << exactness(r.principal)
+       << "\n";
+    os << "\\begin{align*}\n";
+    if (spec.body) {
+        os << "  M &= " << to_latex(spec.body->mass) << " \\\\\n";
+        os << "  \\vec{r}_{\\mathrm{cm}} &= " << latex_vector(spec.body->centre_of_mass)
+           << " \\\\\n";
+        os << "  \\vec{r}_{\\mathrm{pivot}} &= " << latex_vector(spec.body->pivot) << " \\\\\n";
+    }
+    os << "  I &= \\begin{pmatrix}";
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            os << " " << to_latex(r.tensor[i][j]) << (j < 2 ? " &" : i < 2 ? " \\\\" : " ");
+    os << "\\end{pmatrix} \\\\\n";
+    for (int k = 0; k < 3; ++k)
+        os << "  I_{" << k + 1 << "} &= " << to_latex(r.principal.moments[k]) << ", & \\hat{e}_{"
+           << k + 1 << "} &= " << latex_vector(r.principal.axes[k]) << " \\\\\n";
+    for (int k = 0; k < 3; ++k) {
+        const auto& s = r.stability[k];
+        os << "  \\Omega_{" << k + 1 << "} &= " << to_latex(s.rate) << " \\, \\omega & &\\text{"
+           << stability_kind_name(s.kind)
+           << (s.kind == stability_kind::stable && s.rate_value != 0 ? " (5.94)"
+               : s.kind == stability_kind::unstable                  ? " (5.100)"
+                                                                     : "")
+           << "}" << (k < 2 ? " \\\\" : "") << "\n";
+    }
+    os << "\\end{align*}\n";
+    os << "% class: " << class_description(r.kind) << "\n";
+    return os.str();
+}
+
+std::string inertia_json(const model_spec& spec, const inertia_report& r) {
+    std::ostringstream os;
+    const auto matrix = [](const matrix3& m) {
+        std::string s = "[";
+        for (int i = 0; i < 3; ++i)
+            s += (i ? ", " : "") + json_array(m[i]);
+        return s + "]";
+    };
+    os << "  \"inertia\": {\n";
+    os << "    \"tensor\": " << matrix(r.tensor) << ",\n";
+    os << "    \"principal_moments\": " << json_array(r.principal.moments) << ",\n";
+    os << "    \"principal_axes\": " << matrix(r.principal.axes) << ",\n";
+    os << "    \"class\": " << json_quote(top_class_name(r.kind)) << ",\n";
+    os << "    \"stability\": [";
+    for (int k = 0; k < 3; ++k) {
+        const auto& s = r.stability[k];
+        os << (k ? ",\n                  " : "") << "{\"axis\": " << s.axis
+           << ", \"stable\": " << (s.stable ? "true" : "false")
+           << ", \"rate\": " << format_double(s.rate_value)
+           << ", \"kind\": " << json_quote(stability_kind_name(s.kind))
+           << ", \"rate_expression\": " << json_quote(to_text(s.rate)) << "}";
+    }
+    os << "],\n    \"exact_moments\": " << (r.principal.exact_moments ? "true" : "false")
+       << ",\n    \"exact_axes\": " << (r.principal.exact_axes ? "true" : "false") << ",\n";
+    os << "    \"principal_moment_values\": [";
+    for (int k = 0; k < 3; ++k)
+        os << (k ? ", " : "") << format_double(r.principal.moment_values[k]);
+    os << "]";
+    if (spec.body) {
+        os << ",\n    \"mass\": " << json_quote(to_text(spec.body->mass));
+        os << ",\n    \"centre_of_mass\": " << json_array(spec.body->centre_of_mass);
+        os << ",\n    \"pivot\": " << json_array(spec.body->pivot);
+    }
+    os << "\n  }";
+    return os.str();
+}
+
+std::string as_json(const model_spec& spec, const derivation& d, const inertia_report* inertia) {
+    std::ostringstream os;
+    os << "{\n  \"model\": " << json_quote(spec.name) << ",\n  \"parameters\": {";
+    for (std::size_t i = 0; i < spec.parameters.size(); ++i)
+        os << (i ? ", " : "") << json_quote(spec.parameters[i].name) << ": "
+           << format_double(spec.parameters[i].value);
+    os << "},\n  \"coordinates\": [\"phi\", \"theta\", \"psi\"],\n";
+    os << "  \"kinetic\": " << json_quote(to_text(d.kinetic)) << ",\n";
+    os << "  \"potential\": " << json_quote(to_text(d.potential)) << ",\n";
+    os << "  \"lagrangian\": " << json_quote(to_text(d.lagrangian)) << ",\n";
+    os << "  \"momenta\": " << json_array(d.momenta) << ",\n";
+    os << "  \"mass_matrix\": [";
+    for (int i = 0; i < 3; ++i) os << (i ? ", " : "") << json_array(d.mass_matrix[i]);
+    os << "],\n  \"euler_lagrange\": " << json_array(d.euler_lagrange) << ",\n";
+    os << "  \"hamiltonian\": " << json_quote(to_text(d.hamiltonian)) << ",\n";
+    os << "  \"hamilton_equations\": {\"qdot\": " << json_array(d.hamilton_qdot)
+       << ", \"pdot\": " << json_array(d.hamilton_pdot) << "},\n";
+    os << "  \"cyclic\": [";
+    for (std::size_t i = 0; i < d.cyclic.size(); ++i)
+        os << (i ? ", " : "") << json_quote(names()[d.cyclic[i]]);
+    os << "],\n  \"energy\": " << json_quote(to_text(d.energy));
+    if (inertia) os << ",\n" << inertia_json(spec, *inertia);
+    os << "\n}\n";
+    return os.str();
+}
+
+std::string as_text(const model_spec& spec, const derivation& d) {
+    std::ostringstream os;
+    os << "model " << spec.name << " (" << spec.file << ")\n";
+    os << "coordinates: phi, theta, psi (z-x-z Euler angles; singular at theta = 0, pi)\n";
+    os << "parameters:";
+    if (spec.parameters.empty()) os << " none";
+    for (const auto& p : spec.parameters) os << " " << p.name << " = " << format_double(p.value);
+    os << "\n\nbody angular velocity (5.30):\n";
+    for (int i = 0; i < 3; ++i) os << "  omega" << i + 1 << " = " << to_text(d.omega[i]) << "\n";
+    os << "\nkinetic energy   T = " << to_text(d.kinetic) << "\n";
+    os << "potential energy V = " << to_text(d.potential) << "\n";
+    os << "Lagrangian       L = " << to_text(d.lagrangian) << "\n";
+    os << "\ncanonical momenta p = dL/dq_dot:\n";
+    for (int i = 0; i < 3; ++i) os << "  p_" << names()[i] << " = " << to_text(d.momenta[i]) << "\n";
+    os << "\nmass matrix M(q) (symmetric; M q_ddot = f):\n";
+    for (int i = 0; i < 3; ++i)
+        for (int j = i; j < 3; ++j)
+            os << "  M[" << names()[i] << "][" << names()[j] << "] = " << to_text(d.mass_matrix[i][j])
+               << "\n";
+    os << "\nf(q, q_dot, t):\n";
+    for (int i = 0; i < 3; ++i) os << "  f_" << names()[i] << " = " << to_text(d.forcing[i]) << "\n";
+    os << "\nEuler-Lagrange equations (each = 0):\n";
+    for (int i = 0; i < 3; ++i) os << "  " << to_text(d.euler_lagrange[i]) << " = 0\n";
+    os << "\nHamiltonian H(q, p) = " << to_text(d.hamiltonian) << "\n";
+    os << "\nHamilton's equations:\n";
+    for (int i = 0; i < 3; ++i)
+        os << "  " << names()[i] << "_dot = " << to_text(d.hamilton_qdot[i]) << "\n";
+    for (int i = 0; i < 3; ++i)
+        os << "  p_" << names()[i] << "_dot = " << to_text(d.hamilton_pdot[i]) << "\n";
+    os << "\ncyclic coordinates:";
+    if (d.cyclic.empty()) os << " none";
+    for (int i : d.cyclic) os << " " << names()[i] << " (p_" << names()[i] << " conserved)";
+    os << "\nenergy E = T + V = " << to_text(d.energy) << "\n";
+    return os.str();
+}
+
+std::string as_latex(const model_spec& spec, const derivation& d) {
+    const auto& s = symbols();
+    std::ostringstream os;
+    const auto tex = [](const ex& e) { return to_latex(e); };
+    os << "% rotgen inspect --format latex: model " << spec.name << " (" << spec.file << ")\n";
+    os << "% z-x-z Euler angles; singular at \\theta = 0, \\pi\n";
+    os << "\\begin{align*}\n";
+    for (int i = 0; i < 3; ++i)
+        os << "  \\omega_{" << i + 1 << "} &= " << tex(d.omega[i]) << " \\\\\n";
+    os << "  T &= " << tex(d.kinetic) << " \\\\\n";
+    os << "  V &= " << tex(d.potential) << " \\\\\n";
+    os << "  L &= " << tex(d.lagrangian) << " \\\\\n";
+    for (int i = 0; i < 3; ++i) os << "  " << tex(s.p[i]) << " &= " << tex(d.momenta[i]) << " \\\\\n";
+    for (int i = 0; i < 3; ++i)
+        for (int j = i; j < 3; ++j)
+            os << "  M_{" << tex(s.q[i]) << tex(s.q[j]) << "} &= " << tex(d.mass_matrix[i][j])
+               << " \\\\\n";
+    for (int i = 0; i < 3; ++i) os << "  0 &= " << tex(d.euler_lagrange[i]) << " \\\\\n";
+    os << "  H &= " << tex(d.hamiltonian) << " \\\\\n";
+    for (int i = 0; i < 3; ++i)
+        os << "  \\dot{" << tex(s.q[i]) << "} &= " << tex(d.hamilton_qdot[i]) << " \\\\\n";
+    for (int i = 0; i < 3; ++i)
+        os << "  \\dot{p}_{" << tex(s.q[i]) << "} &= " << tex(d.hamilton_pdot[i]) << " \\\\\n";
+    os << "  E &= " << tex(d.energy) << "\n";
+    os << "\\end{align*}\n";
+    if (!d.cyclic.empty()) {
+        os << "% cyclic coordinates (momentum conserved):";
+        for (int i : d.cyclic) os << " " << names()[i];
+        os << "\n";
+    }
+    return os.str();
+}
+
+} // namespace
+
+std::string inspect(const model_spec& spec, const derivation& d, output_format format,
+                    bool with_inertia) {
+    if (with_inertia) {
+        const inertia_report r = analyse_inertia(spec.inertia, spec.parameter_defaults());
+        switch (format) {
+        case output_format::json:
+            return as_json(spec, d, &r);
+        case output_format::latex:
+            return inertia_latex(spec, r);
+        case output_format::text:
+            return inertia_text(spec, r);
+        }
+    }
+    switch (format) {
+    case output_format::json:
+        return as_json(spec, d, nullptr);
+    case output_format::latex: return as_latex(spec, d);
+    case output_format::text: break;
+    }
+    return as_text(spec, d);
+}
+
+} // namespace rotgen

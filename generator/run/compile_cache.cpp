@@ -1,0 +1,106 @@
+#include "run/compile_cache.hpp"
+
+#include "support/hash.hpp"
+#include "support/process.hpp"
+
+#include <dlfcn.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace rotgen {
+
+namespace {
+
+const char* const flags = "-std=c++17 -O3 -fno-math-errno -fPIC -shared -Wall -Wextra";
+
+const std::string& compiler_identity() {
+    static const std::string id = [] {
+        int status = 0;
+        const std::string v = run_capture("'" + compiler() + "' --version", &status);
+        if (status != 0) throw std::runtime_error("no working C++ compiler ('" + compiler() + "'): " + v);
+        return v;
+    }();
+    return id;
+}
+
+void make_directories(const std::string& path) {
+    for (std::size_t i = 1; i <= path.size(); ++i)
+        if (i == path.size() || path[i] == '/') ::mkdir(path.substr(0, i).c_str(), 0755);
+}
+
+} // namespace
+
+std::string cache_directory() {
+    if (const char* d = std::getenv("ROTGEN_CACHE_DIR"); d && *d) return d;
+    if (const char* d = std::getenv("XDG_CACHE_HOME"); d && *d) return std::string(d) + "/rotgen";
+    if (const char* d = std::getenv("HOME"); d && *d) return std::string(d) + "/.cache/rotgen";
+    return "/tmp/rotgen-cache";
+}
+
+loaded_library::loaded_library(loaded_library&& other) noexcept
+    : m_handle(other.m_handle), m_path(std::move(other.m_path)), m_cached(other.m_cached) {
+    other.m_handle = nullptr;
+}
+
+loaded_library& loaded_library::operator=(loaded_library&& other) noexcept {
+    if (this != &other) {
+        if (m_handle) ::dlclose(m_handle);
+        m_handle = other.m_handle;
+        m_path = std::move(other.m_path);
+        m_cached = other.m_cached;
+        other.m_handle = nullptr;
+    }
+    return *this;
+}
+
+loaded_library::~loaded_library() {
+    if (m_handle) ::dlclose(m_handle);
+}
+
+void* loaded_library::symbol(const std::string& name) const {
+    void* p = ::dlsym(m_handle, name.c_str());
+    if (!p) throw std::runtime_error("compiled model " + m_path + " has no symbol " + name);
+    return p;
+}
+
+loaded_library compile_and_load(const std::string& source, const std::string& name) {
+    const std::string key =
+        hex(fnv1a(source + '\0' + compiler_identity() + '\0' + flags + '\0' + ROTGEN_VERSION));
+    const std::string dir = cache_directory();
+    make_directories(dir);
+    const std::string base = dir + "/" + name + "-" + key;
+    loaded_library lib;
+    lib.m_path = base + ".so";
+    lib.m_cached = ::access(lib.m_path.c_str(), R_OK) == 0;
+    if (!lib.m_cached) {
+        const std::string src = base + ".cpp";
+        const std::string tmp_src = src + ".tmp" + std::to_string(::getpid());
+        {
+            std::ofstream out(tmp_src, std::ios::binary);
+            out << source;
+            if (!out) throw std::runtime_error("cannot write " + tmp_src);
+        }
+        std::rename(tmp_src.c_str(), src.c_str());
+        const std::string tmp_so = base + ".so.tmp" + std::to_string(::getpid());
+        int status = 0;
+        const std::string log =
+            run_capture("'" + compiler() + "' " + flags + " '" + src + "' -o '" + tmp_so + "'", &status);
+        if (status != 0) {
+            std::remove(tmp_so.c_str());
+            throw std::runtime_error("compiling the generated model failed (" + src + "):\n" + log);
+        }
+        std::rename(tmp_so.c_str(), lib.m_path.c_str()); // atomic: no half-written library
+    }
+    lib.m_handle = ::dlopen(lib.m_path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!lib.m_handle) throw std::runtime_error(std::string("cannot load ") + lib.m_path + ": " + ::dlerror());
+    return lib;
+}
+
+} // namespace rotgen

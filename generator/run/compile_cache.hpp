@@ -1,0 +1,40 @@
+// rotgen — compile generated C++ with the system compiler into a cached shared object and load it.
+//
+// The cache key is a hash of the source, the compiler's identity (`$CXX --version`) and the flags,
+// so a changed model, option, generator or compiler builds anew. Cache directory: $ROTGEN_CACHE_DIR,
+// else $XDG_CACHE_HOME/rotgen, else ~/.cache/rotgen.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace rotgen {
+
+class loaded_library {
+  public:
+    loaded_library() = default;
+    loaded_library(const loaded_library&) = delete;
+    loaded_library& operator=(const loaded_library&) = delete;
+    loaded_library(loaded_library&& other) noexcept;
+    loaded_library& operator=(loaded_library&& other) noexcept;
+    ~loaded_library();
+
+    // The address of an exported (extern "C") symbol; throws if it is missing.
+    void* symbol(const std::string& name) const;
+    const std::string& path() const { return m_path; }
+    bool was_cached() const { return m_cached; }
+
+  private:
+    friend loaded_library compile_and_load(const std::string&, const std::string&);
+    void* m_handle = nullptr;
+    std::string m_path;
+    bool m_cached = false;
+};
+
+std::string cache_directory();
+
+// Compiles `source` (a complete translation unit) unless the cache has it, then loads it.
+// `name` labels the files in the cache. Throws std::runtime_error with the compiler's output.
+loaded_library compile_and_load(const std::string& source, const std::string& name);
+
+} // namespace rotgen

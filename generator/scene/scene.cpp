@@ -1,0 +1,296 @@
+#include "scene/scene.hpp"
+
+#include "expr/symbols.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <cmath>
+
+namespace rotgen {
+
+const std::vector<std::string>& recordable_names() {
+    static const std::vector<std::string> names{
+        "phi",    "theta",  "psi",    "phi_dot", "theta_dot", "psi_dot", "p_phi",  "p_theta",
+        "p_psi",  "omega1", "omega2", "omega3",  "energy",    "body_x",  "body_y", "body_z"};
+    return names;
+}
+
+std::vector<std::string> record_columns(const std::string& name) {
+    if (name.rfind("body_", 0) == 0) return {name + "_x", name + "_y", name + "_z"};
+    return {name};
+}
+
+namespace {
+
+// [+-]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][+-]?[0-9]+)?, matched by hand: libstdc++'s std::regex
+// recurses once per character and overflows the stack on a long scalar.
+bool is_decimal(const std::string& s) {
+    std::size_t i = 0;
+    const auto digits = [&] {
+        const std::size_t from = i;
+        while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i]))) ++i;
+        return i - from;
+    };
+    if (i < s.size() && (s[i] == '+' || s[i] == '-')) ++i;
+    std::size_t mantissa = digits();
+    if (i < s.size() && s[i] == '.') {
+        ++i;
+        mantissa += digits();
+    }
+    if (mantissa == 0) return false;
+    if (i < s.size() && (s[i] == 'e' || s[i] == 'E')) {
+        ++i;
+        if (i < s.size() && (s[i] == '+' || s[i] == '-')) ++i;
+        if (digits() == 0) return false;
+    }
+    return i == s.size();
+}
+
+class scene_reader {
+  public:
+    explicit scene_reader(std::string file) : m_file(std::move(file)) {}
+
+    scene_spec read() {
+        std::string source;
+        const YAML::Node root = load_yaml_file(m_file, &source);
+        check_keys(root, {"model", "parameters", "form", "initial", "time", "integrator", "record",
+                          "description", "switch_chart"},
+                   m_file, "the scene");
+        m_scene.file = m_file;
+        m_scene.where = {m_file, 1, 1};
+        m_scene.integrator_where = m_scene.where;
+        for (const char* key : {"model", "initial", "time"})
+            if (!root[key])
+                throw user_error({m_file, 1, 1}, std::string("missing field '") + key + "'");
+        read_model(root["model"], source);
+        read_parameters(root["parameters"]);
+        read_form(root["form"]);
+        read_initial(root["initial"]);
+        read_time(root["time"]);
+        if (root["integrator"]) read_integrator(root["integrator"]);
+        read_record(root["record"]);
+        if (const YAML::Node sw = root["switch_chart"]) {
+            if (!sw.IsScalar() || (sw.Scalar() != "true" && sw.Scalar() != "false"))
+                throw user_error(at(sw), "switch_chart must be true or false");
+            m_scene.switch_chart = sw.Scalar() == "true";
+        }
+        return std::move(m_scene);
+    }
+
+  private:
+    source_location at(const YAML::Node& n) const { return location_of(n, m_file); }
+
+    double number(const YAML::Node& n, const std::string& what) const {
+        if (!n.IsScalar() || !is_decimal(n.Scalar()))
+            throw user_error(at(n), what + " must be a finite number");
+        const double v = std::strtod(n.Scalar().c_str(), nullptr);
+        if (!std::isfinite(v)) throw user_error(at(n), what + " must be a finite number");
+        // GiNaC::numeric(double) throws CLN's underflow exception on a subnormal number.
+        if (std::fpclassify(v) == FP_SUBNORMAL)
+            throw user_error(at(n), what + " must be 0 or at least 2.2e-308 in magnitude");
+        return v;
+    }
+
+    void read_model(const YAML::Node& n, const std::string& source) {
+        if (n.IsMap()) {
+            m_scene.model = parse_model(n, m_file, source);
+            m_model_root = n;
+            m_model_file = m_file;
+            m_model_source = source;
+            return;
+        }
+        if (!n.IsScalar()) throw user_error(at(n), "'model' must be a file name or a model mapping");
+        std::string path = n.Scalar();
+        if (!path.empty() && path[0] != '/') {
+            const auto slash = m_file.find_last_of('/');
+            if (slash != std::string::npos) path = m_file.substr(0, slash + 1) + path;
+        }
+        m_model_root = load_yaml_file(path, &m_model_source);
+        m_model_file = path;
+        m_scene.model = parse_model(m_model_root, m_model_file, m_model_source);
+    }
+
+    void read_parameters(const YAML::Node& n) {
+        for (const auto& p : m_scene.model.parameters) m_scene.parameters.push_back(p.value);
+        if (!n) return;
+        if (!n.IsMap()) throw user_error(at(n), "'parameters' must be a mapping of name: value");
+        std::vector<std::string> names;
+        for (const auto& p : m_scene.model.parameters) names.push_back(p.name);
+        check_keys(n, names, m_file, "parameters (of model '" + m_scene.model.name + "')");
+        for (const auto& kv : n) {
+            const auto it = std::find(names.begin(), names.end(), kv.first.Scalar());
+            m_scene.parameters[static_cast<std::size_t>(it - names.begin())] =
+                number(kv.second, "parameter '" + kv.first.Scalar() + "'");
+        }
+        if (n.size() > 0) check_model_with_overrides(n);
+    }
+
+    // The model was checked with its defaults (finite expressions, a physical inertia); check it
+    // again with the scene's values by reading it with those as its defaults (a mass of 0 under a
+    // division, or a negative moment, would otherwise reach the integrator).
+    void check_model_with_overrides(const YAML::Node& overrides) const {
+        // A new parameters mapping (a value may be an alias shared with other nodes).
+        YAML::Node values(YAML::NodeType::Map);
+        for (std::size_t i = 0; i < m_scene.parameters.size(); ++i) {
+            char text[32];
+            std::snprintf(text, sizeof text, "%.17g", m_scene.parameters[i]);
+            values[m_scene.model.parameters[i].name] = std::string(text);
+        }
+        YAML::Node model = YAML::Clone(m_model_root);
+        model.remove("parameters");
+        model["parameters"] = values;
+        try {
+            (void)parse_model(model, m_model_file, m_model_source);
+        } catch (const user_error& e) {
+            throw user_error(at(overrides), "with these parameter values the model (" + m_model_file +
+                                                ") is not valid: " + e.problem());
+        }
+    }
+
+    void read_form(const YAML::Node& n) {
+        if (!n) return;
+        const std::string f = n.IsScalar() ? n.Scalar() : "";
+        if (f == "lagrangian") m_scene.form = form_kind::lagrangian;
+        else if (f == "hamiltonian") m_scene.form = form_kind::hamiltonian;
+        else if (f == "reduced") m_scene.form = form_kind::reduced;
+        else if (f == "body") m_scene.form = form_kind::body;
+        else
+            throw user_error(at(n), "unknown form '" + f +
+                                        "' (expected lagrangian, hamiltonian, reduced or body)");
+    }
+
+    void read_initial(const YAML::Node& n) {
+        if (!n.IsMap()) throw user_error(at(n), "'initial' must be a mapping of angles and rates");
+        m_scene.initial_where = at(n);
+        const std::vector<std::string> allowed{"phi",   "theta",   "psi",   "phi_dot", "theta_dot",
+                                               "psi_dot", "p_phi", "p_theta", "p_psi", "omega1",
+                                               "omega2",  "omega3"};
+        check_keys(n, allowed, m_file, "initial");
+        const auto& q = coordinate_names();
+        for (int i = 0; i < 3; ++i)
+            m_scene.angles[i] = n[q[i]] ? number(n[q[i]], "initial " + q[i]) : 0.0;
+        const std::array<std::array<std::string, 3>, 3> groups{
+            {{"phi_dot", "theta_dot", "psi_dot"}, {"p_phi", "p_theta", "p_psi"},
+             {"omega1", "omega2", "omega3"}}};
+        int chosen = -1;
+        for (int g = 0; g < 3; ++g)
+            for (const auto& key : groups[g])
+                if (n[key]) {
+                    if (chosen >= 0 && chosen != g)
+                        throw user_error(at(n[key]), "give the initial rates one way only: "
+                                                     "angle rates, momenta or body omega");
+                    chosen = g;
+                }
+        if (chosen < 0) chosen = 0;
+        m_scene.initial = static_cast<initial_kind>(chosen);
+        for (int i = 0; i < 3; ++i) {
+            const std::string& key = groups[chosen][i];
+            m_scene.initial_rates[i] = n[key] ? number(n[key], "initial " + key) : 0.0;
+        }
+        const double theta = m_scene.angles[1];
+        if (theta < 0 || theta > 3.141592653589793238)
+            throw user_error(at(n["theta"]), "initial theta = " + std::to_string(theta) +
+                                                 " is outside [0, pi] (z-x-z Euler angles)");
+    }
+
+    void read_time(const YAML::Node& n) {
+        if (!n.IsMap()) throw user_error(at(n), "'time' must be {start, end, samples}");
+        check_keys(n, {"start", "end", "samples"}, m_file, "time");
+        if (!n["end"]) throw user_error(at(n), "time needs 'end'");
+        m_scene.t_start = n["start"] ? number(n["start"], "time start") : 0.0;
+        m_scene.t_end = number(n["end"], "time end");
+        if (!(m_scene.t_end > m_scene.t_start))
+            throw user_error(at(n["end"]), "time end must be after time start");
+        if (!std::isfinite(m_scene.t_end - m_scene.t_start))
+            throw user_error(at(n["end"]), "the time span end - start is not a finite number");
+        if (n["samples"]) {
+            const double s = number(n["samples"], "time samples");
+            if (s < 2 || s > 1e8 || s != std::floor(s))
+                throw user_error(at(n["samples"]), "time samples must be a whole number from 2 to 1e8");
+            m_scene.samples = static_cast<long>(s);
+        }
+    }
+
+    void read_integrator(const YAML::Node& n) {
+        if (!n.IsMap())
+            throw user_error(at(n), "'integrator' must be {method, rtol, atol} or {method, step} "
+                                    "(a step: fixed steps, no error control)");
+        check_keys(n, {"method", "rtol", "atol", "step", "max_steps"}, m_file, "integrator");
+        m_scene.integrator_where = at(n);
+        integrator_spec& ig = m_scene.integrator;
+        if (n["method"]) {
+            const std::vector<std::string> methods{"rk4", "dopri5", "dop853", "implicit_midpoint",
+                                                   "rosenbrock"};
+            ig.method = n["method"].Scalar();
+            if (std::find(methods.begin(), methods.end(), ig.method) == methods.end()) {
+                const std::string best = closest_name(ig.method, methods);
+                throw user_error(at(n["method"]),
+                                 "unknown integrator '" + ig.method +
+                                     "' (expected rk4, dopri5, dop853, implicit_midpoint or rosenbrock)" +
+                                     (best.empty() ? "" : "; did you mean '" + best + "'?"));
+            }
+        }
+        const auto positive = [&](const char* key, double& value) {
+            if (!n[key]) return;
+            value = number(n[key], std::string("integrator ") + key);
+            if (!(value > 0)) throw user_error(at(n[key]), std::string("integrator ") + key + " must be positive");
+        };
+        positive("rtol", ig.rtol);
+        positive("atol", ig.atol);
+        positive("step", ig.step);
+        if (n["max_steps"]) {
+            double m = 0;
+            positive("max_steps", m);
+            if (m < 1 || m > 1e15 || m != std::floor(m))
+                throw user_error(at(n["max_steps"]), "integrator max_steps must be a whole number from 1 to 1e15");
+            ig.max_steps = static_cast<long>(m);
+        }
+        if (ig.fixed_step() && !n["step"])
+            throw user_error(at(n), "integrator " + ig.method + " is fixed-step and needs 'step'");
+        if (n["step"])
+            for (const char* key : {"rtol", "atol"})
+                if (n[key])
+                    throw user_error(at(n[key]), "integrator " + ig.method +
+                                                     " with a fixed step has no error control: "
+                                                     "give 'step' or '" + key + "', not both");
+        if (ig.rtol < 1e-15 && !ig.fixed_step())
+            throw user_error(at(n["rtol"]), "integrator rtol below 1e-15 cannot be met in double precision");
+        if (ig.step > 0 && ig.step > m_scene.t_end - m_scene.t_start)
+            throw user_error(at(n["step"]), "integrator step is longer than the time span");
+    }
+
+    void read_record(const YAML::Node& n) {
+        if (!n) {
+            m_scene.record = {"phi", "theta", "psi", "energy"};
+            m_scene.record_where.assign(m_scene.record.size(), m_scene.where);
+            return;
+        }
+        if (!n.IsSequence() || n.size() == 0)
+            throw user_error(at(n), "'record' must be a list of quantities");
+        const auto& allowed = recordable_names();
+        for (const auto& item : n) {
+            const std::string name = item.IsScalar() ? item.Scalar() : "";
+            if (std::find(allowed.begin(), allowed.end(), name) == allowed.end()) {
+                const std::string best = closest_name(name, allowed);
+                throw user_error(at(item), "cannot record '" + name + "'" +
+                                               (best.empty() ? "" : "; did you mean '" + best + "'?"));
+            }
+            if (std::find(m_scene.record.begin(), m_scene.record.end(), name) != m_scene.record.end())
+                throw user_error(at(item), "'" + name + "' is recorded twice");
+            m_scene.record.push_back(name);
+            m_scene.record_where.push_back(at(item));
+        }
+    }
+
+    std::string m_file;
+    scene_spec m_scene;
+    YAML::Node m_model_root; // the model's mapping, its file and text (for check_model_with_overrides)
+    std::string m_model_file, m_model_source;
+};
+
+} // namespace
+
+scene_spec load_scene(const std::string& path) { return scene_reader(path).read(); }
+
+} // namespace rotgen

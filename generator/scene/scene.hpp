@@ -1,0 +1,68 @@
+// rotgen — scene files: what `rotgen simulate` runs (DESIGN.md "Interfaces").
+//
+//   model: heavy_top.yaml        # path relative to the scene file, or an inline model mapping
+//   parameters: {M: 2.0}         # overrides of the model's defaults
+//   form: lagrangian             # lagrangian | hamiltonian | reduced | body
+//   initial: {phi: 0, theta: 0.5, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 10}
+//                                # angles with rates, or with p_phi.., or with omega1..3
+//   time: {start: 0, end: 100, samples: 1001}
+//   integrator: {method: dop853, rtol: 1e-10, atol: 1e-12}   # rk4/implicit_midpoint: {step: 1e-3}
+//   record: [theta, omega1, omega2, omega3, energy, p_phi, p_psi]
+//   switch_chart: true           # continue in the body form near theta = 0, pi (default true)
+//
+// Angles: z-x-z Euler angles in radians, theta in [0, pi]; rates in rad per time unit; omega in
+// body axes.
+#pragma once
+
+#include "forms/form_kind.hpp"
+#include "spec/spec.hpp"
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace rotgen {
+
+enum class initial_kind { rates, momenta, omega };
+
+
+struct integrator_spec {
+    std::string method = "dop853"; // rk4 | dopri5 | dop853 | implicit_midpoint | rosenbrock
+    double rtol = 1e-8, atol = 1e-10;
+    double step = 0; // the step of rk4 and implicit_midpoint; an adaptive method given a step
+                     // takes fixed steps of that size without error control (and no rtol, atol)
+    long max_steps = 10'000'000;
+    bool fixed_step() const { return method == "rk4" || method == "implicit_midpoint" || step > 0; }
+};
+
+struct scene_spec {
+    std::string file;
+    model_spec model;
+    std::vector<double> parameters; // the model's parameters, in model order, with overrides
+    form_kind form = form_kind::lagrangian;
+    std::array<double, 3> angles{};      // phi, theta, psi
+    initial_kind initial = initial_kind::rates;
+    std::array<double, 3> initial_rates{}; // q_dot, p, or omega, as `initial` says
+    double t_start = 0, t_end = 1;
+    long samples = 101;
+    integrator_spec integrator;
+    std::vector<std::string> record; // quantities, in order (body_z expands to 3 columns)
+    // Leave the Euler-angle chart for the body form near theta = 0, pi (lagrangian and
+    // hamiltonian forms); `switch_chart: false` keeps the chart (to measure its failure).
+    bool switch_chart = true;
+
+    // Where things were written, for errors found later (an unrecordable quantity, a failed run).
+    source_location where;            // the scene file itself
+    source_location initial_where;    // the `initial` mapping
+    source_location integrator_where; // the `integrator` mapping (or the file)
+    std::vector<source_location> record_where;
+};
+
+// The names `record` accepts, with the columns each one expands to.
+const std::vector<std::string>& recordable_names();
+std::vector<std::string> record_columns(const std::string& name);
+
+// Reads and validates a scene file (and the model it names). Throws user_error.
+scene_spec load_scene(const std::string& path);
+
+} // namespace rotgen

@@ -1,0 +1,88 @@
+// rotgen — stage 1: a model file, parsed and validated.
+//
+// Schema (DESIGN.md "Interfaces"): name, parameters, inertia (three principal moments or a full
+// symmetric 3x3 matrix in body axes, sign convention of (5.39)) or body {pivot, parts} (the
+// tensor computed exactly from point masses, boxes, rods, cylinders and spheres: inertia.hpp),
+// potential (any expression in phi, theta, psi and the parameters), gravity {mass, g, com}
+// shorthand, damping, torque. Keys beyond these are errors. Every error is a user_error naming
+// file, line and column.
+//
+// With `body:` the gravity shorthand may leave out `mass` (default: the parts' total mass) and
+// `com` (default: the parts' centre of mass relative to the pivot; 0 when the pivot is the
+// default, the centre of mass).
+#pragma once
+
+#include "support/error.hpp"
+#include "expr/expr_parse.hpp"
+#include "inertia/inertia.hpp"
+
+#include <ginac/ginac.h>
+#include <yaml-cpp/yaml.h>
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace rotgen {
+
+struct parameter {
+    std::string name;
+    double value = 0;        // the model's default
+    std::string description; // optional
+    GiNaC::realsymbol symbol;
+    source_location where;
+};
+
+// Uniform gravity: V = mass g (com . e_z), e_z the space vertical in body axes, i.e. the third
+// column of A (5.25): (sin(theta) sin(psi), sin(theta) cos(psi), cos(theta)).
+struct gravity_spec {
+    GiNaC::ex mass, g;
+    std::array<GiNaC::ex, 3> com; // centre of mass in body axes, relative to the fixed point
+};
+
+// matrix3, vector3: inertia.hpp
+
+struct model_spec {
+    std::string name;   // a C++ identifier: names the header and the namespace
+    std::string file;   // the path it was read from (as given)
+    std::string source; // the file's text, hashed into generated headers
+    std::vector<parameter> parameters; // in file order
+    matrix3 inertia;                   // body axes, symmetric
+    bool inertia_diagonal = true;
+    // `body:` (inertia from parts): the parts as read and what they add up to (body->tensor is
+    // `inertia`); empty when the model gives `inertia:`.
+    std::vector<part> parts;
+    std::optional<body_inertia> body;
+    GiNaC::ex potential;               // the `potential:` field plus the gravity shorthand
+    std::optional<gravity_spec> gravity;
+    vector3 damping;                   // generalised force -damping[i] * q_dot[i]
+    vector3 torque;                    // body-frame torque, may depend on t, q and q_dot
+    bool has_damping = false;
+    bool has_torque = false;
+
+    // parameter name -> symbol, for parsing further expressions (scenes) in this model's terms.
+    name_table parameter_names() const;
+    // symbol -> default value, for numeric evaluation.
+    GiNaC::exmap parameter_defaults() const;
+};
+
+// Reads and validates a model file. Throws user_error.
+model_spec load_model(const std::string& path);
+
+// Parses a model from an already-loaded YAML mapping (inline models in scene files);
+// `file` and `source` are those of the file that holds the mapping.
+model_spec parse_model(const YAML::Node& node, const std::string& file, const std::string& source);
+
+// Reads a file and parses it as YAML, turning I/O and syntax errors into user_errors.
+YAML::Node load_yaml_file(const std::string& path, std::string* source_out = nullptr);
+
+// The location of a YAML node in `file` (1-based line and column of its first character; for
+// quoted scalars, of the first character inside the quotes).
+source_location location_of(const YAML::Node& node, const std::string& file);
+
+// Checks that a mapping has only `allowed` keys and none twice (yaml-cpp keeps duplicates).
+void check_keys(const YAML::Node& map, const std::vector<std::string>& allowed,
+                const std::string& file, const std::string& what);
+
+} // namespace rotgen
