@@ -1,5 +1,6 @@
 #include "cli/cli.hpp"
 
+#include "bench/bench.hpp"
 #include "cli/commands.hpp"
 #include "support/error.hpp"
 

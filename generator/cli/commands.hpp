@@ -1,6 +1,7 @@
-// rotgen — the sub-commands behind the CLI, each in its own file (cli.cpp dispatches).
-// Each takes the arguments after the command name, writes results, and returns the exit status;
-// user errors are thrown as user_error (cli.cpp prints them and returns 2).
+// rotgen — the sub-commands behind the CLI (cli.cpp dispatches). Each parses the arguments after
+// the command name with the one option parser (options.hpp), calls the stage that does the work,
+// and returns the exit status; user errors are thrown as user_error (cli.cpp prints them and
+// returns 2).
 #pragma once
 
 #include <string>
@@ -8,9 +9,9 @@
 
 namespace rotgen {
 
-int cmd_inspect(const std::vector<std::string>& args);  // inspect.cpp
+int cmd_inspect(const std::vector<std::string>& args);  // inspect_command.cpp
 int cmd_emit(const std::vector<std::string>& args);     // emit_command.cpp
 int cmd_simulate(const std::vector<std::string>& args); // simulate_command.cpp
-int cmd_bench(const std::vector<std::string>& args);    // bench_command.cpp
+// cmd_bench: bench/bench.hpp
 
 } // namespace rotgen

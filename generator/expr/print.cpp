@@ -12,16 +12,6 @@ using GiNaC::ex;
 using GiNaC::ex_to;
 using GiNaC::is_a;
 
-std::string format_double(double x) {
-    char buf[64];
-    const auto r = std::to_chars(buf, buf + sizeof buf, x);
-    std::string s(buf, r.ptr);
-    if (s.find_first_of(".e") == std::string::npos && s.find("inf") == std::string::npos &&
-        s.find("nan") == std::string::npos)
-        s += ".0";
-    return s;
-}
-
 namespace {
 
 std::string integer_text(const GiNaC::numeric& n) {

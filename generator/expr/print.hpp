@@ -10,6 +10,8 @@
 //   c     — C++ for generated kernels: small integer powers as products, exact literals.
 #pragma once
 
+#include "support/format.hpp" // format_double
+
 #include <ginac/ginac.h>
 
 #include <functional>
@@ -84,7 +86,5 @@ class c_printer : public expression_printer {
 std::string to_text(const GiNaC::ex& e);
 std::string to_latex(const GiNaC::ex& e);
 
-// Shortest decimal that reads back as the same double.
-std::string format_double(double x);
 
 } // namespace rotgen

@@ -1,12 +1,20 @@
-// rotgen simulate: integrate one scene and record it (simulate_command.cpp).
+// rotgen simulate — integrate one scene (the run engine, run/engine.hpp) and write what it
+// recorded: a CSV with the header `t,<recorded columns>`, an optional plot, and a summary on
+// standard output (model, form, chart switch, method, steps, time, invariant drifts, files).
 #pragma once
 
 #include <string>
-#include <vector>
 
 namespace rotgen {
 
-// `rotgen simulate ARGS...`; returns the exit status, throws user_error for bad input.
-int cmd_simulate(const std::vector<std::string>& args);
+struct simulate_request {
+    std::string scene;   // the scene file
+    std::string csv;     // where to write the samples; empty: not written
+    std::string plot;    // a PNG of the recorded columns; empty: none
+    bool timings = false; // one line per pipeline stage to stderr
+};
+
+// Returns the exit status. Throws user_error for bad input (nothing is written then).
+int simulate(const simulate_request& request);
 
 } // namespace rotgen

@@ -1,0 +1,332 @@
+#include "run/engine.hpp"
+
+#include "expr/numbers.hpp"
+#include "expr/symbols.hpp"
+#include "run/kinematics.hpp"
+#include "support/error.hpp"
+#include "support/format.hpp"
+
+#include <cmath>
+#include <map>
+#include <optional>
+
+namespace rotgen {
+
+namespace {
+
+// Below this |sin theta| at a sample, an Euler-angle run continues in the body form.
+constexpr double switch_below = 0.1;
+
+// Thrown by the observer to leave an Euler-angle run near the singularity.
+struct leave_chart {};
+
+struct sample {
+    double t;
+    Eigen::VectorXd y;
+    std::size_t form; // index into scene_run::m_compiled
+};
+
+double number(const GiNaC::ex& e, const GiNaC::exmap& at) {
+    const GiNaC::ex v = GiNaC::evalf(e.subs(at));
+    if (!GiNaC::is_a<GiNaC::numeric>(v) || !GiNaC::ex_to<GiNaC::numeric>(v).is_real())
+        throw std::logic_error("run: expression did not evaluate to a real number");
+    return GiNaC::ex_to<GiNaC::numeric>(v).to_double();
+}
+
+// The sample times: samples points from t_start to t_end, the last exactly t_end.
+std::vector<double> sample_times(const scene_spec& scene) {
+    std::vector<double> times(static_cast<std::size_t>(scene.samples));
+    for (std::size_t i = 0; i < times.size(); ++i)
+        times[i] = i + 1 == times.size()
+                       ? scene.t_end
+                       : scene.t_start + (scene.t_end - scene.t_start) * double(i) / double(times.size() - 1);
+    return times;
+}
+
+// The initial kinematics of a continuation in the body form from an Euler-angle state (q, q_dot
+// from f): omega = J q_dot (5.30).
+initial_kinematics continuation(const Eigen::VectorXd& y, const Eigen::VectorXd& dydt) {
+    initial_kinematics k;
+    for (int i = 0; i < 3; ++i) k.q[i] = y[i], k.qd[i] = dydt[i];
+    const double st = std::sin(y[1]), ct = std::cos(y[1]), sp = std::sin(y[2]), cp = std::cos(y[2]);
+    const double qd0 = dydt[0], qd1 = dydt[1], qd2 = dydt[2];
+    k.omega = {qd0 * st * sp + qd1 * cp, qd0 * st * cp - qd1 * sp, qd0 * ct + qd2};
+    const Eigen::Quaterniond q = quaternion_from_euler(double(y[0]), double(y[1]), double(y[2]));
+    k.quat = Eigen::Quaternion<long double>(q.w(), q.x(), q.y(), q.z());
+    return k;
+}
+
+class scene_run {
+  public:
+    scene_run(const scene_spec& scene, stage_timings& timings) : m_scene(scene), m_timings(timings) {}
+    run_result run();
+
+  private:
+    const form_expressions& built(form_kind form, bool orientation);
+    void decide_chart();
+    void list_invariants();
+    compiled_form& compile(form_kind form, bool orientation);
+    Eigen::VectorXd state_of(const form_expressions& f, const initial_kinematics& k) const;
+    std::vector<double> parameters_of(const form_expressions& f, const initial_kinematics& k) const;
+    void check_finite_start(const initial_kinematics& k, const compiled_form& cf, const Eigen::VectorXd& y,
+                            const std::vector<double>& parameters) const;
+    bool integrate_segment(Eigen::VectorXd& y, double& t_from);
+    void switch_to_body(Eigen::VectorXd& y, std::vector<double>& parameters, double& t_from);
+    void record();
+
+    const scene_spec& m_scene;
+    stage_timings& m_timings;
+    derivation m_d;
+    Eigen::Matrix3d m_inertia;
+    std::map<std::pair<form_kind, bool>, form_expressions> m_forms; // each built once
+    std::vector<compiled_form> m_compiled;
+    std::vector<invariant> m_invariants;
+    bool m_leaving = false; // the last segment left the chart (rather than failed)
+    bool m_can_switch = false, m_start_in_body = false, m_orientation = false;
+    std::vector<double> m_times;
+    std::vector<sample> m_samples;
+    std::size_t m_next_sample = 0;
+    std::optional<any_method<double>> m_method;
+    integration_result<double> m_last;
+    run_result m_result;
+};
+
+const form_expressions& scene_run::built(form_kind form, bool orientation) {
+    const auto key = std::make_pair(form, form == form_kind::body && orientation);
+    auto it = m_forms.find(key);
+    if (it == m_forms.end())
+        it = m_forms.emplace(key, m_timings.time("forms", to_string(form), [&] {
+                        return build_form(m_scene.model, m_d, form, lagrangian_strategy::explicit_inverse, key.second);
+                    })).first;
+    return it->second;
+}
+
+// The chart switch: possible for the Euler-angle forms when the model's body form does not go
+// through the chart itself; a start near the singularity starts in the body form.
+void scene_run::decide_chart() {
+    const form_kind form = m_scene.form;
+    m_can_switch = m_scene.switch_chart && (form == form_kind::lagrangian || form == form_kind::hamiltonian) &&
+                   !built(form_kind::body, true).uses_euler_chart;
+    const bool euler_form = form != form_kind::body;
+    const double sin_theta0 = std::abs(std::sin(m_scene.angles[1]));
+    if (euler_form && sin_theta0 < 1e-10 && !m_can_switch)
+        throw user_error(m_scene.initial_where,
+                         "initial theta = " + format_number(m_scene.angles[1]) +
+                             " is the gimbal-lock singularity of the Euler-angle forms (sin theta = "
+                             "0); use form: body" +
+                             (form == form_kind::reduced || !m_scene.switch_chart
+                                  ? ""
+                                  : " (this model's body form goes through the Euler-angle chart too)"));
+    m_start_in_body = euler_form && m_can_switch && sin_theta0 < switch_below;
+    if (m_start_in_body)
+        m_result.chart_note = "started in the body form (initial |sin theta| = " + short_number(sin_theta0) +
+                              " < " + short_number(switch_below) + ")";
+}
+
+// The energy, and every momentum the derivation found conserved.
+void scene_run::list_invariants() {
+    const model_spec& spec = m_scene.model;
+    m_invariants = {{"energy", !spec.has_damping && !spec.has_torque}};
+    for (int i : m_d.cyclic)
+        if (m_scene.form != form_kind::reduced) m_invariants.push_back({"p_" + coordinate_names()[i], true});
+    m_orientation = needs_orientation(m_scene, m_can_switch) ||
+                    (m_scene.form == form_kind::body && m_invariants.size() > 1);
+}
+
+compiled_form& scene_run::compile(form_kind form, bool orientation) {
+    // The stamp in the compiled source names no path, so the same kernels are compiled once,
+    // whatever scene file asks for them.
+    const std::string command = "rotgen simulate (kernels of model '" + m_scene.model.name + "')";
+    m_compiled.push_back(compile_form(m_scene, m_d, built(form, orientation), orientation, m_invariants,
+                                      command, m_timings));
+    m_result.kernels_cached = m_result.kernels_cached && m_compiled.back().lib.was_cached();
+    return m_compiled.back();
+}
+
+// The state vector of a form from the initial kinematics (rounded to double).
+Eigen::VectorXd scene_run::state_of(const form_expressions& f, const initial_kinematics& k) const {
+    Eigen::VectorXd y(static_cast<Eigen::Index>(f.state.size()));
+    for (std::size_t s = 0; s < f.state.size(); ++s) {
+        const std::string& name = f.state[s].name;
+        const bool needs_rates = name.find("_dot") != std::string::npos || name.rfind("p_", 0) == 0;
+        if (needs_rates && !k.have_rates)
+            throw user_error(m_scene.initial_where, "at theta = 0 the " + std::string(to_string(m_scene.form)) +
+                                                        " form cannot start from body omega; use form: body");
+        y[static_cast<Eigen::Index>(s)] = static_cast<double>(state_value(k, name));
+    }
+    return y;
+}
+
+// The form's parameters: the scene's values of the model's, and the conserved momenta (reduced).
+std::vector<double> scene_run::parameters_of(const form_expressions& f, const initial_kinematics& k) const {
+    std::vector<double> values;
+    for (const auto& fp : f.parameters) values.push_back(static_cast<double>(scene_parameter_value(m_scene, k, fp.name)));
+    return values;
+}
+
+// Initial values the parser accepts (each finite) may still overflow double precision in what
+// the run computes from them: a rate of 1e300 squares to inf in the energy. Before the run: the
+// form's state and parameters, f(t0, y0), and the invariants at t0 must be finite — as the kernels
+// compute them — or the scene's `initial` is the error.
+void scene_run::check_finite_start(const initial_kinematics& k, const compiled_form& cf, const Eigen::VectorXd& y,
+                                   const std::vector<double>& parameters) const {
+    const auto check = [&](const std::string& what, double v, const std::string& in = "") {
+        if (std::isfinite(v)) return;
+        throw user_error(m_scene.initial_where,
+                         "initial values too large for double precision: " + what + " = " + format_number(v) + in +
+                             " at t = " + format_double(m_scene.t_start) +
+                             "; give smaller initial rates or momenta, or rescale the model's units");
+    };
+    const auto& q = coordinate_names();
+    if (k.have_rates)
+        for (std::size_t i = 0; i < 3; ++i) {
+            check(q[i] + "_dot", static_cast<double>(k.qd[i]));
+            check("p_" + q[i], static_cast<double>(k.p[i]));
+            check("omega" + std::to_string(i + 1), static_cast<double>(k.omega[i]));
+        }
+    const form_expressions& f = cf.f;
+    for (std::size_t i = 0; i < f.state.size(); ++i) check(f.state[i].name, y[static_cast<Eigen::Index>(i)]);
+    for (std::size_t i = 0; i < f.parameters.size(); ++i) check(f.parameters[i].name, parameters[i]);
+    Eigen::VectorXd dydt(y.size());
+    cf.sys.rhs(m_scene.t_start, y.data(), dydt.data());
+    for (std::size_t i = 0; i < f.rate_names.size(); ++i)
+        check(f.rate_names[i], dydt[static_cast<Eigen::Index>(i)], " in f(t0, y0)");
+    std::vector<double> out(cf.outputs);
+    cf.record(m_scene.t_start, y.data(), out.data());
+    std::optional<euler_angles<double>> e;
+    for (std::size_t i = 0; i < m_invariants.size(); ++i)
+        check(m_invariants[i].name, source_value(cf.invariants[i], y, out, m_inertia, e));
+}
+
+// Integrates the current form from t_from over the remaining sample times. Returns true when the
+// run should continue in the body form (the chart was left, or the Euler-angle run failed).
+bool scene_run::integrate_segment(Eigen::VectorXd& y, double& t_from) {
+    compiled_form& cf = m_compiled.back();
+    const bool in_euler_chart = cf.form == form_kind::lagrangian || cf.form == form_kind::hamiltonian;
+    const std::vector<double> times(m_times.begin() + static_cast<std::ptrdiff_t>(m_next_sample), m_times.end());
+    bool& leaving = m_leaving;
+    leaving = false;
+    m_timings.time("integrate", to_string(cf.form), [&] {
+        try {
+            m_last = integrate(cf.sys, *m_method, t_from, y, times, [&](double t, const Eigen::VectorXd& yt) {
+                m_samples.push_back({t, yt, m_compiled.size() - 1});
+                if (m_can_switch && in_euler_chart && std::abs(std::sin(yt[1])) < switch_below &&
+                    m_samples.size() > 1 && t < m_scene.t_end)
+                    throw leave_chart{};
+            });
+        } catch (const leave_chart&) {
+            leaving = true;
+        }
+    });
+    if (!leaving) {
+        step_stats& s = m_result.stats;
+        s.steps += m_last.stats.steps, s.accepted += m_last.stats.accepted;
+        s.rejected += m_last.stats.rejected, s.rhs_evals += m_last.stats.rhs_evals;
+        s.jac_evals += m_last.stats.jac_evals, s.factorisations += m_last.stats.factorisations;
+    }
+    const bool failed = !leaving && !m_last.ok();
+    return m_can_switch && in_euler_chart && (leaving || failed) && !m_samples.empty() &&
+           m_samples.back().t < m_scene.t_end;
+}
+
+// Continues from the last sample in the body form.
+void scene_run::switch_to_body(Eigen::VectorXd& y, std::vector<double>& parameters, double& t_from) {
+    const bool leaving = m_leaving;
+    const sample& last = m_samples.back();
+    Eigen::VectorXd dydt(last.y.size());
+    m_compiled.back().sys.rhs(last.t, last.y.data(), dydt.data());
+    const initial_kinematics k = continuation(last.y, dydt);
+    const double st = std::abs(std::sin(last.y[1]));
+    m_result.chart_note = "switched to the body form at t = " + short_number(last.t) + " (|sin theta| = " +
+                          short_number(st) +
+                          (leaving ? " < " + short_number(switch_below) + ")"
+                                   : "; the Euler-angle run failed: " + m_last.message + ")");
+    const compiled_form& body = compile(form_kind::body, true);
+    y = state_of(body.f, k);
+    parameters = parameters_of(body.f, k);
+    t_from = last.t;
+    m_next_sample = m_samples.size();
+}
+
+// Records and invariants at every sample, each by the form that integrated it.
+void scene_run::record() {
+    m_result.invariants.clear();
+    for (const auto& inv : m_invariants) m_result.invariants.push_back({inv, 0, 0});
+    for (std::size_t k = 0; k < m_samples.size(); ++k) {
+        const compiled_form& cf = m_compiled[m_samples[k].form];
+        const Eigen::VectorXd& ys = m_samples[k].y;
+        std::vector<double> out(cf.outputs);
+        cf.record(m_samples[k].t, ys.data(), out.data());
+        std::optional<euler_angles<double>> e;
+        std::vector<double> row{m_samples[k].t};
+        for (const auto& src : cf.columns) row.push_back(source_value(src, ys, out, m_inertia, e));
+        m_result.rows.push_back(std::move(row));
+        for (std::size_t i = 0; i < m_invariants.size(); ++i) {
+            invariant_drift& d = m_result.invariants[i];
+            const double v = source_value(cf.invariants[i], ys, out, m_inertia, e);
+            if (k == 0) d.first = v;
+            d.drift = std::max(d.drift, std::abs(v - d.first));
+        }
+    }
+}
+
+run_result scene_run::run() {
+    const model_spec& spec = m_scene.model;
+    m_d = m_timings.time("derive", spec.name, [&] { return derive(spec); });
+    GiNaC::exmap parameter_values;
+    for (std::size_t i = 0; i < spec.parameters.size(); ++i)
+        parameter_values[spec.parameters[i].symbol] = float_numeric(m_scene.parameters[i]);
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) m_inertia(i, j) = number(spec.inertia[i][j], parameter_values);
+    decide_chart();
+    const initial_kinematics k0 = initial_kinematics_of(m_scene, m_d);
+    if (m_scene.initial == initial_kind::momenta && !k0.have_rates)
+        throw user_error(m_scene.initial_where, "momenta cannot give the rates at theta = 0 or pi (the mass matrix is "
+                                                "singular there); give body omega1..3 instead");
+    list_invariants();
+    const compiled_form& first = compile(m_start_in_body ? form_kind::body : m_scene.form, m_orientation);
+    for (const auto& name : m_scene.record)
+        for (const auto& c : record_columns(name)) m_result.columns.push_back(c);
+    m_result.state_size = first.f.state.size();
+
+    const integrator_spec& ig = m_scene.integrator;
+    m_method = make_method<double>(ig.method, ig.rtol, ig.atol, ig.fixed_step() ? ig.step : 0.0);
+    if (!m_method) throw std::logic_error("run: unknown method " + ig.method);
+    std::visit([&](auto& m) { m.max_steps = ig.max_steps; }, *m_method);
+    if (auto* r = std::get_if<rodas4<double>>(&*m_method)) r->autonomous = !spec.has_torque;
+    m_times = sample_times(m_scene);
+    m_samples.reserve(m_times.size());
+
+    Eigen::VectorXd y = state_of(first.f, k0);
+    std::vector<double> parameters = parameters_of(first.f, k0);
+    first.set_parameters(parameters);
+    check_finite_start(k0, first, y, parameters);
+    double t_from = m_scene.t_start;
+    while (true) {
+        m_compiled.back().set_parameters(parameters);
+        if (!integrate_segment(y, t_from)) break;
+        switch_to_body(y, parameters, t_from);
+    }
+    m_result.ok = m_last.ok();
+    m_result.message = m_last.message;
+    m_result.integrate_seconds = m_timings.total("integrate");
+    record();
+    return m_result;
+}
+
+} // namespace
+
+run_result run_scene(const scene_spec& scene, stage_timings& timings) {
+    return scene_run(scene, timings).run();
+}
+
+bool needs_orientation(const scene_spec& scene, bool chart_switch) {
+    bool orientation = chart_switch;
+    for (const auto& name : scene.record)
+        orientation = orientation || name == "phi" || name == "theta" || name == "psi" ||
+                      name.rfind("body_", 0) == 0 || name.find("_dot") != std::string::npos ||
+                      name.rfind("p_", 0) == 0;
+    return orientation;
+}
+
+} // namespace rotgen

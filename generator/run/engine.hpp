@@ -1,0 +1,51 @@
+// rotgen — the run engine: scene -> derived model -> the form's kernels (emitted, compiled,
+// loaded) -> integrated with the runtime, sampled at the scene's times -> recorded columns and
+// invariant drifts. `rotgen simulate` writes what it returns; nothing here writes files.
+//
+// Gimbal lock: the Lagrangian and Hamiltonian forms are singular at theta = 0, pi (det J =
+// -sin theta, 5.30). Unless the scene says `switch_chart: false`, a run in those forms continues in
+// the body form (quaternion and omega, no singularity) from the first sample where |sin theta| <
+// 0.1, or from the last sample when the Euler-angle integration fails, provided the model's body
+// form does not itself go through the Euler-angle chart; a scene that starts there starts in the
+// body form.
+#pragma once
+
+#include "derive/derive.hpp"
+#include "run/kernels.hpp"
+#include "scene/scene.hpp"
+#include "support/timings.hpp"
+
+#include <string>
+#include <vector>
+
+namespace rotgen {
+
+struct invariant_drift {
+    invariant what;
+    double first = 0; // at the first sample
+    double drift = 0; // max |v(t) - v(t0)| over the samples
+};
+
+struct run_result {
+    std::size_t state_size = 0;       // of the scene's form (the first form run)
+    std::vector<std::string> columns; // the recorded columns, after t
+    std::vector<std::vector<double>> rows; // t, then one value per column, per sample
+    std::vector<invariant_drift> invariants;
+    step_stats stats;
+    std::string chart_note;         // the chart switch, if one happened (empty otherwise)
+    bool ok = true;                 // the integration reached the end time
+    std::string message;            // why not, when !ok
+    double integrate_seconds = 0;
+    bool kernels_cached = true;     // every compiled form came from the cache
+};
+
+// Runs the scene. Throws user_error for a scene the model cannot run (an unrecordable quantity,
+// a start at the singularity that cannot be left, initial values that overflow double).
+run_result run_scene(const scene_spec& scene, stage_timings& timings);
+
+// Whether the body form must keep the orientation (the quaternion) for this scene: a chart switch,
+// or a recorded angle, body axis, Euler-angle rate or momentum needs it. (A potential that needs
+// it makes the body form keep it anyway.) One rule for simulate and bench.
+bool needs_orientation(const scene_spec& scene, bool chart_switch);
+
+} // namespace rotgen

@@ -1,0 +1,79 @@
+// rotgen — one form of a scene's model as running code: its header emitted, compiled into a cached
+// shared object and loaded, with a record program that computes the scene's recorded columns and
+// monitored invariants from the form's state.
+//
+// Angles are z-x-z Euler angles (passive A = Az(psi) Ax(theta) Az(phi), 5.25), omega in body axes
+// (5.30); the body form's quaternion rotates body axes into space axes.
+#pragma once
+
+#include "derive/derive.hpp"
+#include "forms/forms.hpp"
+#include "run/compile_cache.hpp"
+#include "scene/scene.hpp"
+#include "support/timings.hpp"
+
+#include <rotgen.hpp> // runtime
+
+#include <Eigen/Dense>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace rotgen {
+
+// A system whose kernels were compiled and loaded at run time (runtime/system.hpp concept).
+struct loaded_system {
+    using kernel = void (*)(double, const double*, double*);
+    kernel f = nullptr, jac = nullptr;
+    std::size_t n = 0;
+    std::size_t size() const { return n; }
+    void rhs(double t, const double* y, double* dydt) const { f(t, y, dydt); }
+    void jacobian(double t, const double* y, double* J) const { jac(t, y, J); }
+};
+
+// Where a recorded column (or a monitored invariant) comes from in one compiled form.
+struct value_source {
+    enum kind_t {
+        compiled,           // an output of the compiled record program
+        angle,              // body form: Euler angle `index` of the quaternion
+        euler_rate,         // body form: q_dot = J^{-1} omega (5.30), undefined at theta = 0, pi
+        canonical_momentum, // body form: p = J^T I omega
+    } kind;
+    int index;
+};
+
+// A quantity to monitor along the run: the energy, or a momentum the derivation found conserved.
+struct invariant {
+    std::string name;
+    bool conserved;
+};
+
+struct compiled_form {
+    form_kind form = form_kind::lagrangian;
+    form_expressions f;
+    loaded_library lib;
+    loaded_system sys;
+    loaded_system::kernel record = nullptr;
+    std::vector<value_source> columns;    // one per quantity column (body_x expands to 3)
+    std::vector<value_source> invariants; // as the invariants are listed
+    std::size_t outputs = 0;              // of the record program
+
+    void set_parameters(const std::vector<double>& values) const;
+};
+
+// Emits, lowers and compiles (or loads from the cache) the built form `f` of the scene's model,
+// with the record program for the scene's `record` list and `invariants`. `command` stamps the
+// header. Throws user_error when the form cannot give a recorded quantity.
+compiled_form compile_form(const scene_spec& scene, const derivation& d, form_expressions f,
+                           bool orientation, const std::vector<invariant>& invariants,
+                           const std::string& command, stage_timings& timings);
+
+// A recorded column or monitored invariant at a sample (t, y): an output `out` of the form's
+// record program, or in the body form from the quaternion and omega: the Euler angles, their
+// rates q_dot = J^{-1} omega (5.30, undefined at theta = 0, pi), p = J^T I omega. `e` caches the
+// angles between calls at one sample.
+double source_value(const value_source& src, const Eigen::VectorXd& y, const std::vector<double>& out,
+                    const Eigen::Matrix3d& inertia, std::optional<euler_angles<double>>& e);
+
+} // namespace rotgen

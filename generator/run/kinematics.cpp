@@ -1,0 +1,163 @@
+#include "run/kinematics.hpp"
+
+#include "emit/emit.hpp" // exact_decimal
+#include "expr/symbols.hpp"
+#include "support/error.hpp"
+
+#include <rotation.hpp> // runtime: quaternion_from_euler
+
+#include <Eigen/Dense>
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <sstream>
+
+namespace rotgen {
+
+namespace {
+
+using GiNaC::ex;
+
+// GiNaC value -> long double, through its decimal text (at the caller's GiNaC::Digits).
+long double to_long_double(const ex& e) {
+    const ex v = GiNaC::evalf(e);
+    if (!GiNaC::is_a<GiNaC::numeric>(v) || !GiNaC::ex_to<GiNaC::numeric>(v).is_real())
+        throw std::logic_error("kinematics: expression did not evaluate to a real number");
+    std::ostringstream os;
+    os << v;
+    return std::stold(os.str());
+}
+
+// Sets GiNaC::Digits for a scope.
+class digits_scope {
+  public:
+    explicit digits_scope(long digits) : m_saved(GiNaC::Digits) { GiNaC::Digits = digits; }
+    ~digits_scope() { GiNaC::Digits = m_saved; }
+    digits_scope(const digits_scope&) = delete;
+    digits_scope& operator=(const digits_scope&) = delete;
+
+  private:
+    long m_saved;
+};
+
+// q_dot = M(q)^{-1} p, solved in long double.
+std::array<ex, 3> rates_from_momenta(const scene_spec& scene, const derivation& d, const GiNaC::exmap& at) {
+    Eigen::Matrix<long double, 3, 3> M;
+    Eigen::Matrix<long double, 3, 1> p;
+    for (int i = 0; i < 3; ++i) {
+        p[i] = to_long_double(exact_decimal(scene.initial_rates[i]));
+        for (int j = 0; j < 3; ++j) M(i, j) = to_long_double(d.mass_matrix[i][j].subs(at));
+    }
+    const Eigen::Matrix<long double, 3, 1> v = M.fullPivLu().solve(p);
+    std::array<ex, 3> qd;
+    for (int i = 0; i < 3; ++i) {
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "%.21Le", v[i]);
+        qd[i] = GiNaC::numeric(buf);
+    }
+    return qd;
+}
+
+// q_dot = J^{-1} omega (5.30).
+std::array<ex, 3> rates_from_omega(const scene_spec& scene, const derivation& d, const GiNaC::exmap& at) {
+    std::array<ex, 3> qd;
+    for (int i = 0; i < 3; ++i) {
+        ex r = 0;
+        for (int j = 0; j < 3; ++j)
+            r += d.inverse_omega_jacobian[i][j] * exact_decimal(scene.initial_rates[j]);
+        qd[i] = r.subs(at);
+    }
+    return qd;
+}
+
+} // namespace
+
+initial_kinematics initial_kinematics_of(const scene_spec& scene, const derivation& d) {
+    const auto& s = symbols();
+    const digits_scope digits(30);
+    initial_kinematics k;
+    GiNaC::exmap at;
+    for (std::size_t i = 0; i < scene.model.parameters.size(); ++i)
+        at[scene.model.parameters[i].symbol] = exact_decimal(scene.parameters[i]);
+    for (int i = 0; i < 3; ++i) {
+        at[s.q[i]] = exact_decimal(scene.angles[i]);
+        k.q[i] = to_long_double(exact_decimal(scene.angles[i]));
+    }
+    k.have_rates = std::abs(std::sin(scene.angles[1])) >= 1e-12;
+    std::array<ex, 3> qd;
+    if (scene.initial == initial_kind::rates)
+        for (int i = 0; i < 3; ++i) qd[i] = exact_decimal(scene.initial_rates[i]);
+    else if (k.have_rates)
+        qd = scene.initial == initial_kind::momenta ? rates_from_momenta(scene, d, at)
+                                                    : rates_from_omega(scene, d, at);
+    if (scene.initial == initial_kind::rates) k.have_rates = true;
+    if (k.have_rates) {
+        for (int i = 0; i < 3; ++i) at[s.qd[i]] = qd[i];
+        for (int i = 0; i < 3; ++i) {
+            k.qd[i] = to_long_double(qd[i]);
+            k.p[i] = to_long_double(d.momenta[i].subs(at));
+            k.omega[i] = to_long_double(d.omega[i].subs(at));
+        }
+    }
+    if (scene.initial == initial_kind::omega)
+        for (int i = 0; i < 3; ++i) k.omega[i] = to_long_double(exact_decimal(scene.initial_rates[i]));
+    k.quat = quaternion_from_euler<long double>(k.q[0], k.q[1], k.q[2]);
+    return k;
+}
+
+void check_double_range(const scene_spec& scene, const initial_kinematics& k) {
+    const long double big = std::numeric_limits<double>::max();
+    const auto check = [&](const std::string& what, long double v) {
+        if (std::isfinite(v) && std::abs(v) <= big) return;
+        throw user_error(scene.initial_where,
+                         "initial values too large for double precision: " + what + " = " +
+                             std::to_string(static_cast<double>(v)) +
+                             "; give smaller initial rates or momenta, or rescale the model's units");
+    };
+    const auto& q = coordinate_names();
+    long double twice_kinetic = 0;
+    for (std::size_t i = 0; i < 3; ++i) {
+        check("omega" + std::to_string(i + 1), k.omega[i]);
+        if (!k.have_rates) continue;
+        check(q[i] + "_dot", k.qd[i]);
+        check("p_" + q[i], k.p[i]);
+        twice_kinetic += k.p[i] * k.qd[i];
+    }
+    check("the kinetic energy", twice_kinetic / 2);
+}
+
+long double scene_parameter_value(const scene_spec& scene, const initial_kinematics& k,
+                                  const std::string& name) {
+    const model_spec& spec = scene.model;
+    for (std::size_t i = 0; i < spec.parameters.size(); ++i)
+        if (spec.parameters[i].name == name) {
+            const digits_scope digits(30);
+            return to_long_double(exact_decimal(scene.parameters[i]));
+        }
+    for (int i = 0; i < 3; ++i)
+        if (name == "p_" + coordinate_names()[i]) {
+            if (!k.have_rates)
+                throw user_error(scene.initial_where, "the reduced form needs the initial momenta");
+            return k.p[static_cast<std::size_t>(i)];
+        }
+    throw std::logic_error("no value for the form parameter " + name);
+}
+
+long double state_value(const initial_kinematics& k, const std::string& name) {
+    for (int i = 0; i < 3; ++i) {
+        const std::string& q = coordinate_names()[i];
+        const auto u = static_cast<std::size_t>(i);
+        if (name == q) return k.q[u];
+        if (name == q + "_dot") return k.qd[u];
+        if (name == "p_" + q) return k.p[u];
+        if (name == "omega" + std::to_string(i + 1)) return k.omega[u];
+    }
+    if (name == "qw") return k.quat.w();
+    if (name == "qx") return k.quat.x();
+    if (name == "qy") return k.quat.y();
+    if (name == "qz") return k.quat.z();
+    throw std::logic_error("unknown state variable " + name);
+}
+
+} // namespace rotgen

@@ -1,0 +1,43 @@
+// rotgen — the initial state of a scene in every coordinate the forms use, computed once, exactly.
+//
+// A scene gives the Euler angles (z-x-z, 5.3; radians) and one of: the rates q_dot, the momenta
+// p, or the body angular velocity omega (5.30). From those, with the scene's parameter values:
+//   q_dot = M(q)^{-1} p  (M = dp/dq_dot)   or   q_dot = J^{-1} omega  (J = d omega/d q_dot)
+//   p = dL/dq_dot (5.74-5.76 for the heavy top),   omega (5.30).
+// Computed with GiNaC at 30 significant digits from the exact decimals the scene file wrote, and
+// held in long double: `rotgen simulate` rounds to double, `rotgen bench` uses long double for its
+// long-double runs and its references. At theta = 0 or pi (|sin theta| < 1e-12) q_dot and p are
+// undefined: `have_rates` is false and only the angles, the quaternion and a given omega are set.
+#pragma once
+
+#include "derive/derive.hpp"
+#include "scene/scene.hpp"
+
+#include <Eigen/Geometry>
+
+#include <array>
+
+namespace rotgen {
+
+struct initial_kinematics {
+    std::array<long double, 3> q{}, qd{}, p{}, omega{};
+    bool have_rates = true;
+    Eigen::Quaternion<long double> quat; // body -> space, from the angles (scalar first: w x y z)
+};
+
+initial_kinematics initial_kinematics_of(const scene_spec& scene, const derivation& d);
+
+// Refuses (user_error at the scene's `initial`) initial values whose rates, momenta, omega or
+// kinetic energy (1/2 p . q_dot) overflow double: the runs are in double.
+void check_double_range(const scene_spec& scene, const initial_kinematics& k);
+
+// A parameter of the scene (a model parameter, with the scene's overrides) or a conserved momentum
+// p_<angle> (the reduced form's parameters), in long double. std::logic_error for another name.
+long double scene_parameter_value(const scene_spec& scene, const initial_kinematics& k,
+                                  const std::string& name);
+
+// A state variable of any form (phi .. psi, phi_dot .., p_phi .., omega1..3, qw qx qy qz) from
+// the initial kinematics. std::logic_error for another name.
+long double state_value(const initial_kinematics& k, const std::string& name);
+
+} // namespace rotgen

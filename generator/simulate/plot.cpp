@@ -1,0 +1,71 @@
+#include "simulate/plot.hpp"
+
+#include "scene/scene.hpp"
+#include "support/format.hpp"
+#include "support/gnuplot.hpp"
+
+#include <algorithm>
+#include <sstream>
+#include <utility>
+
+namespace rotgen {
+
+namespace {
+
+using panel_list = std::vector<std::pair<std::string, std::vector<std::string>>>;
+
+// The panel a recorded quantity goes into.
+std::string panel_of(const std::string& name) {
+    if (name == "phi" || name == "theta" || name == "psi") return "angles (rad)";
+    if (name.size() > 4 && name.substr(name.size() - 4) == "_dot") return "angle rates (rad/time)";
+    if (name.rfind("p_", 0) == 0) return "momenta";
+    if (name.rfind("omega", 0) == 0) return "body angular velocity";
+    if (name.rfind("body_", 0) == 0) return "body axis " + name.substr(5) + " in space";
+    if (name == "energy") return "energy - energy(0)";
+    return name;
+}
+
+// One panel per kind of quantity, in the order first recorded; each with its gnuplot plot terms.
+panel_list panels_of(const std::string& csv, const std::vector<std::string>& record, double energy0) {
+    panel_list panels;
+    int column = 2;
+    for (const auto& name : record) {
+        const std::string p = panel_of(name);
+        auto it = std::find_if(panels.begin(), panels.end(), [&](const auto& x) { return x.first == p; });
+        if (it == panels.end()) it = panels.insert(panels.end(), {p, {}});
+        for (const auto& c : record_columns(name)) {
+            const std::string y = name == "energy"
+                                      ? "($" + std::to_string(column) + " - (" + format_number(energy0) + "))"
+                                      : std::to_string(column);
+            it->second.push_back("'" + csv + "' using 1:" + y + " with lines title '" + c + "'");
+            ++column;
+        }
+    }
+    return panels;
+}
+
+} // namespace
+
+void plot_run(const std::string& png, const std::string& csv, const std::vector<std::string>& record,
+              const std::string& title, double energy0) {
+    const panel_list panels = panels_of(csv, record, energy0);
+    draw_with_gnuplot(png, [&](const std::string& output) {
+        std::ostringstream script;
+        script << "set terminal pngcairo size 1000," << 120 + 260 * panels.size() << " noenhanced\n"
+               << "set output '" << output << "'\n"
+               << "set datafile separator ','\nset key outside right\nset grid\n"
+               << "set multiplot layout " << panels.size() << ",1 title '" << title << "'\n";
+        for (std::size_t i = 0; i < panels.size(); ++i) {
+            script << "set ylabel '" << panels[i].first << "'\n";
+            script << (i + 1 == panels.size() ? "set xlabel 't'\n" : "unset xlabel\n");
+            script << "plot ";
+            for (std::size_t j = 0; j < panels[i].second.size(); ++j)
+                script << (j ? ", " : "") << panels[i].second[j];
+            script << "\n";
+        }
+        script << "unset multiplot\n";
+        return script.str();
+    });
+}
+
+} // namespace rotgen

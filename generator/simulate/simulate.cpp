@@ -1,0 +1,120 @@
+#include "simulate/simulate.hpp"
+
+#include "run/engine.hpp"
+#include "scene/scene.hpp"
+#include "simulate/plot.hpp"
+#include "support/atomic_file.hpp"
+#include "support/error.hpp"
+#include "support/format.hpp"
+#include "support/timings.hpp"
+
+#include <cmath>
+#include <iostream>
+#include <optional>
+
+namespace rotgen {
+
+namespace {
+
+void write_rows(std::ostream& os, const std::vector<std::vector<double>>& rows) {
+    for (const auto& row : rows) {
+        for (std::size_t i = 0; i < row.size(); ++i) os << (i ? "," : "") << format_number(row[i]);
+        os << "\n";
+    }
+}
+
+void write_csv(atomic_file& out, const run_result& r) {
+    std::ostream& os = out.stream();
+    os << "t";
+    for (const auto& c : r.columns) os << "," << c;
+    os << "\n";
+    write_rows(os, r.rows);
+    out.commit();
+}
+
+void print_invariants(std::ostream& os, const run_result& r) {
+    for (const auto& inv : r.invariants) {
+        const std::string& name = inv.what.name;
+        const bool conserved = inv.what.conserved;
+        const double scale = std::max(std::abs(inv.first), 1e-300);
+        os << "  " << (conserved ? "drift   " : "change  ") << name << ": max |" << name << "(t) - " << name
+           << "(0)| = " << short_number(inv.drift) << " (relative " << short_number(inv.drift / scale) << ")"
+           << (conserved ? "" : ", not conserved: the model is damped or driven") << "\n";
+    }
+    std::size_t non_finite = 0;
+    for (const auto& row : r.rows)
+        for (double v : row) non_finite += std::isfinite(v) ? 0 : 1;
+    if (non_finite > 0)
+        os << "  note    " << non_finite << " recorded values are not finite (inf or nan): "
+           << "Euler-angle rates are undefined at theta = 0 and pi\n";
+}
+
+void print_summary(std::ostream& os, const simulate_request& q, const scene_spec& scene, const run_result& r,
+                   const stage_timings& timings) {
+    const integrator_spec& ig = scene.integrator;
+    const double prepare = timings.total("derive") + timings.total("forms");
+    const double compile = timings.total("lower") + timings.total("emit") + timings.total("compile");
+    os << "rotgen simulate " << q.scene << "\n"
+       << "  model   " << scene.model.name << " (" << scene.model.file << "), " << to_string(scene.form)
+       << " form, " << r.state_size << " states\n";
+    if (!r.chart_note.empty()) os << "  chart   " << r.chart_note << "\n";
+    os << "  method  " << ig.method;
+    if (ig.fixed_step()) os << " step " << format_double(ig.step);
+    else os << " rtol " << format_double(ig.rtol) << " atol " << format_double(ig.atol);
+    os << ", t " << format_double(scene.t_start) << " .. "
+       << format_double(r.rows.empty() ? scene.t_start : r.rows.back()[0]) << "\n"
+       << "  steps   " << r.stats.accepted << " accepted, " << r.stats.rejected << " rejected; " << r.stats.rhs_evals
+       << " RHS and " << r.stats.jac_evals << " Jacobian evaluations, " << r.stats.factorisations
+       << " factorisations\n"
+       << "  time    " << short_number(r.integrate_seconds * 1e3) << " ms integrating; " << short_number(prepare)
+       << " s deriving, " << short_number(compile) << " s "
+       << (r.kernels_cached ? "emitting and loading the cached kernels" : "emitting and compiling the kernels")
+       << "\n";
+    print_invariants(os, r);
+}
+
+// The plot, from the CSV written (or from a scratch CSV beside the PNG when none was asked for).
+void draw_plot(const simulate_request& q, const scene_spec& scene, const run_result& r) {
+    std::string csv = q.csv;
+    std::optional<atomic_file> scratch;
+    if (csv.empty()) {
+        scratch.emplace(q.plot + ".csv");
+        write_rows(scratch->stream(), r.rows);
+        scratch->stream().flush();
+        csv = scratch->temporary();
+    }
+    double energy0 = 0;
+    for (std::size_t i = 0; i < r.columns.size(); ++i)
+        if (r.columns[i] == "energy" && !r.rows.empty()) energy0 = r.rows[0][i + 1];
+    plot_run(q.plot, csv, scene.record,
+             scene.model.name + " (" + to_string(scene.form) + " form, " + scene.integrator.method + ")", energy0);
+}
+
+} // namespace
+
+int simulate(const simulate_request& q) {
+    const scene_spec scene = load_scene(q.scene);
+    // Output paths are checked before any work (no partial output, early clear error).
+    std::optional<atomic_file> csv_out;
+    if (!q.csv.empty()) csv_out.emplace(q.csv);
+    if (!q.plot.empty()) atomic_file probe(q.plot);
+
+    stage_timings timings;
+    const run_result r = run_scene(scene, timings);
+    timings.time("write", q.csv.empty() ? "" : q.csv, [&] {
+        if (csv_out) write_csv(*csv_out, r);
+    });
+    print_summary(std::cout, q, scene, r, timings);
+    if (csv_out) std::cout << "  wrote   " << q.csv << " (" << r.rows.size() << " samples)\n";
+    if (!q.plot.empty()) {
+        timings.time("plot", q.plot, [&] { draw_plot(q, scene, r); });
+        std::cout << "  wrote   " << q.plot << "\n";
+    }
+    if (q.timings) timings.print(std::cerr);
+    if (!r.ok)
+        throw user_error(scene.integrator_where, "the integration stopped: " + r.message +
+                                                     (csv_out ? " (the samples up to there were written)" : ""));
+    return 0;
+}
+
+} // namespace rotgen

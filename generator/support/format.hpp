@@ -1,0 +1,18 @@
+// rotgen — numbers as text, the same way everywhere (CSV, summaries, headers, messages).
+#pragma once
+
+#include <string>
+
+namespace rotgen {
+
+// The shortest decimal that reads back as the same double, with a ".0" on integers ("9.81",
+// "1e-10", "3.0"): for generated code, headers and messages that quote a value.
+std::string format_double(double x);
+
+// 17 significant digits (printf "%.17g"): every double round-trips; the CSV number format.
+std::string format_number(double x);
+
+// `digits` significant digits (printf "%.<digits>g"): for summaries and tables.
+std::string short_number(double x, int digits = 3);
+
+} // namespace rotgen

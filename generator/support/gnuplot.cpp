@@ -1,0 +1,36 @@
+#include "support/gnuplot.hpp"
+
+#include "support/atomic_file.hpp"
+#include "support/error.hpp"
+#include "support/process.hpp"
+
+#include <unistd.h>
+
+#include <cstdio>
+
+namespace rotgen {
+
+std::string gnuplot_temporary(const std::string& output) {
+    return output + ".tmp" + std::to_string(::getpid());
+}
+
+void run_gnuplot(const std::string& output, const std::string& temporary, const std::string& script) {
+    const std::string script_path = temporary + ".gp";
+    write_file_atomically(script_path, script);
+    int status = 0;
+    const std::string log = run_capture("gnuplot " + shell_quote(script_path), &status);
+    std::remove(script_path.c_str());
+    if (status != 0 || std::rename(temporary.c_str(), output.c_str()) != 0) {
+        std::remove(temporary.c_str());
+        throw user_error({output}, "gnuplot failed to draw the plot (is gnuplot-nox installed?)" +
+                                       (log.empty() ? std::string() : ": " + log.substr(0, 400)));
+    }
+}
+
+std::string gnuplot_escape(const std::string& s) {
+    std::string r;
+    for (char c : s) r += c == '\'' ? std::string("''") : std::string(1, c);
+    return r;
+}
+
+} // namespace rotgen

@@ -1,0 +1,32 @@
+// rotgen — drawing plots with gnuplot (Debian's gnuplot-nox), the one way both `simulate` and
+// `bench` do it.
+#pragma once
+
+#include <string>
+
+namespace rotgen {
+
+// Runs the gnuplot `script`, which must `set output` to `output`'s temporary name given by
+// `script_for(temporary)`, and renames the result into place only if gnuplot succeeded.
+// Throws user_error naming `output` (with gnuplot's first messages) when gnuplot fails.
+//
+//   draw_with_gnuplot("axis.png", [&](const std::string& file) {
+//       return "set terminal pngcairo\nset output '" + file + "'\nplot sin(x)\n";
+//   });
+template <class ScriptFor> void draw_with_gnuplot(const std::string& output, ScriptFor script_for);
+
+// The same with the script text already made for the temporary `output + ".tmp<pid>"`.
+void run_gnuplot(const std::string& output, const std::string& temporary, const std::string& script);
+
+// A temporary name for `output` (beside it).
+std::string gnuplot_temporary(const std::string& output);
+
+template <class ScriptFor> void draw_with_gnuplot(const std::string& output, ScriptFor script_for) {
+    const std::string temporary = gnuplot_temporary(output);
+    run_gnuplot(output, temporary, script_for(temporary));
+}
+
+// s with single quotes doubled, for a gnuplot single-quoted string.
+std::string gnuplot_escape(const std::string& s);
+
+} // namespace rotgen
