@@ -14,11 +14,17 @@ namespace rotgen {
 namespace {
 
 const char* const usage =
-    "usage: rotgen inspect MODEL.yaml [--format text|latex|json]\n"
-    "       rotgen emit MODEL.yaml -o DIR [--form lagrangian|hamiltonian|reduced|body]\n"
-    "                  [--outputs rhs,jacobian,...] [--specialise]\n"
-    "       rotgen simulate SCENE.yaml [-o out.csv] [--plot out.png]\n"
-    "       rotgen bench SCENE.yaml [-o DIR] [--quick] [--long-steps N]\n";
+    "usage: rotgen <command> [options]   (rotgen <command> --help for each command's options)\n"
+    "\n"
+    "  inspect MODEL.yaml   the derived equations (text, LaTeX or JSON)\n"
+    "  emit MODEL.yaml -o DIR\n"
+    "                       a C++ header with the model's kernels (rhs, jacobian, energy, ...)\n"
+    "  simulate SCENE.yaml  integrate a scene: CSV, plot, invariant drifts\n"
+    "  bench SCENE.yaml     the work-precision report of a scene (rotgen against peers)\n"
+    "\n"
+    "  --version            the version; --help this text\n"
+    "exit status: 0 success, 2 input rejected (one line on stderr names the file and place),\n"
+    "1 internal error\n";
 
 // A diagnostic is one line whatever the input held: control characters (a newline in a quoted YAML
 // key, a NUL) are shown escaped.

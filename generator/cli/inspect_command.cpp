@@ -1,6 +1,7 @@
+// rotgen inspect MODEL.yaml [--format text|latex|json] [--inertia]
 #include "cli/commands.hpp"
+#include "cli/options.hpp"
 #include "derive/derive.hpp"
-#include "support/error.hpp"
 #include "inspect/inspect.hpp"
 #include "spec/spec.hpp"
 
@@ -9,36 +10,36 @@
 namespace rotgen {
 
 namespace {
-user_error usage_error(const std::string& problem) { return user_error({"rotgen inspect"}, problem); }
+
+const command_spec inspect_command{
+    "inspect",
+    "model file",
+    "MODEL.yaml [--format text|latex|json] [--inertia]",
+    "Prints the derived equations of the model: kinetic and potential energy, Lagrangian, momenta,\n"
+    "mass matrix, Euler-Lagrange equations, Hamiltonian and Hamilton's equations, cyclic\n"
+    "coordinates and the energy, as text, LaTeX or JSON (expressions SymPy can parse).",
+    {{"--format", "text|latex|json", "the output format (default text)", {}},
+     {"--inertia", "", "also the inertia tensor, principal moments and axes, class and stability", {}}}};
+
+output_format format_of(const std::string& f) {
+    if (f.empty() || f == "text") return output_format::text;
+    if (f == "latex") return output_format::latex;
+    if (f == "json") return output_format::json;
+    usage_error(inspect_command, "unknown format '" + f + "' (expected text, latex or json)");
+}
+
 } // namespace
 
 int cmd_inspect(const std::vector<std::string>& args) {
-    std::string model;
-    output_format format = output_format::text;
-    bool with_inertia = false;
-    for (std::size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        if (a == "--format") {
-            if (i + 1 >= args.size()) throw usage_error("--format needs a value (text|latex|json)");
-            const std::string f = args[++i];
-            if (f == "text") format = output_format::text;
-            else if (f == "latex") format = output_format::latex;
-            else if (f == "json") format = output_format::json;
-            else throw usage_error("unknown format '" + f + "' (expected text, latex or json)");
-        } else if (a == "--inertia") {
-            with_inertia = true;
-        } else if (!a.empty() && a[0] == '-') {
-            throw usage_error("unknown option '" + a + "' for inspect");
-        } else if (model.empty()) {
-            model = a;
-        } else {
-            throw usage_error("inspect takes one model file, got '" + model + "' and '" + a + "'");
-        }
+    const parsed_options o = parse_options(inspect_command, args);
+    if (o.help) {
+        std::cout << help_text(inspect_command);
+        return 0;
     }
-    if (model.empty()) throw usage_error("inspect needs a model file");
-    const model_spec spec = load_model(model);
+    const output_format format = format_of(o.value("--format"));
+    const model_spec spec = load_model(o.operand);
     const derivation d = derive(spec);
-    std::cout << inspect(spec, d, format, with_inertia);
+    std::cout << inspect(spec, d, format, o.has("--inertia"));
     return 0;
 }
 
