@@ -1,5 +1,6 @@
 #include "run/compile_cache.hpp"
 
+#include "support/atomic_file.hpp"
 #include "support/hash.hpp"
 #include "support/process.hpp"
 
@@ -82,21 +83,26 @@ loaded_library compile_and_load(const std::string& source, const std::string& na
     if (!lib.m_cached) {
         const std::string src = base + ".cpp";
         const std::string tmp_src = src + ".tmp" + std::to_string(::getpid());
+        register_temporary(tmp_src);
         {
             std::ofstream out(tmp_src, std::ios::binary);
             out << source;
             if (!out) throw std::runtime_error("cannot write " + tmp_src);
         }
         std::rename(tmp_src.c_str(), src.c_str());
+        forget_temporary(tmp_src);
         const std::string tmp_so = base + ".so.tmp" + std::to_string(::getpid());
+        register_temporary(tmp_so);
         int status = 0;
         const std::string log =
             run_capture("'" + compiler() + "' " + flags + " '" + src + "' -o '" + tmp_so + "'", &status);
         if (status != 0) {
             std::remove(tmp_so.c_str());
+            forget_temporary(tmp_so);
             throw std::runtime_error("compiling the generated model failed (" + src + "):\n" + log);
         }
         std::rename(tmp_so.c_str(), lib.m_path.c_str()); // atomic: no half-written library
+        forget_temporary(tmp_so);
     }
     lib.m_handle = ::dlopen(lib.m_path.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (!lib.m_handle) throw std::runtime_error(std::string("cannot load ") + lib.m_path + ": " + ::dlerror());

@@ -14,10 +14,11 @@ namespace rotgen {
 
 namespace {
 
-// Below this |sin theta| at a sample, an Euler-angle run continues in the body form.
-constexpr double switch_below = 0.1;
+// Below this |sin theta| at a sample, an Euler-angle run continues in the body form; above
+// switch_back_above it returns to the Euler-angle form (hysteresis: no switching to and fro).
+constexpr double switch_below = 0.1, switch_back_above = 0.2;
 
-// Thrown by the observer to leave an Euler-angle run near the singularity.
+// Thrown by the observer to change chart at a sample.
 struct leave_chart {};
 
 struct sample {
@@ -56,6 +57,11 @@ initial_kinematics continuation(const Eigen::VectorXd& y, const Eigen::VectorXd&
     return k;
 }
 
+void add_stats(step_stats& s, const step_stats& more) {
+    s.steps += more.steps, s.accepted += more.accepted, s.rejected += more.rejected;
+    s.rhs_evals += more.rhs_evals, s.jac_evals += more.jac_evals, s.factorisations += more.factorisations;
+}
+
 class scene_run {
   public:
     scene_run(const scene_spec& scene, stage_timings& timings) : m_scene(scene), m_timings(timings) {}
@@ -70,8 +76,9 @@ class scene_run {
     std::vector<double> parameters_of(const form_expressions& f, const initial_kinematics& k) const;
     void check_finite_start(const initial_kinematics& k, const compiled_form& cf, const Eigen::VectorXd& y,
                             const std::vector<double>& parameters) const;
-    bool integrate_segment(Eigen::VectorXd& y, double& t_from);
-    void switch_to_body(Eigen::VectorXd& y, std::vector<double>& parameters, double& t_from);
+    enum class next { done, body, euler }; // after a segment: finished, or continue in that chart
+    next integrate_segment(Eigen::VectorXd& y, double t_from);
+    void switch_chart(next to, Eigen::VectorXd& y, std::vector<double>& parameters, double& t_from);
     void record();
 
     const scene_spec& m_scene;
@@ -81,7 +88,9 @@ class scene_run {
     std::map<std::pair<form_kind, bool>, form_expressions> m_forms; // each built once
     std::vector<compiled_form> m_compiled;
     std::vector<invariant> m_invariants;
-    bool m_leaving = false; // the last segment left the chart (rather than failed)
+    bool m_left_chart = false; // the last segment stopped at a sample to change chart (not failed)
+    std::size_t m_current = 0; // the form integrating now (index into m_compiled)
+    std::size_t m_switches = 0; // changes of chart so far
     bool m_can_switch = false, m_start_in_body = false, m_orientation = false;
     std::vector<double> m_times;
     std::vector<sample> m_samples;
@@ -134,6 +143,12 @@ void scene_run::list_invariants() {
 }
 
 compiled_form& scene_run::compile(form_kind form, bool orientation) {
+    for (std::size_t i = 0; i < m_compiled.size(); ++i)
+        if (m_compiled[i].form == form) {
+            m_current = i;
+            return m_compiled[i];
+        }
+    m_current = m_compiled.size();
     // The stamp in the compiled source names no path, so the same kernels are compiled once,
     // whatever scene file asks for them.
     const std::string command = "rotgen simulate (kernels of model '" + m_scene.model.name + "')";
@@ -198,52 +213,80 @@ void scene_run::check_finite_start(const initial_kinematics& k, const compiled_f
         check(m_invariants[i].name, source_value(cf.invariants[i], y, out, m_inertia, e));
 }
 
-// Integrates the current form from t_from over the remaining sample times. Returns true when the
-// run should continue in the body form (the chart was left, or the Euler-angle run failed).
-bool scene_run::integrate_segment(Eigen::VectorXd& y, double& t_from) {
-    compiled_form& cf = m_compiled.back();
-    const bool in_euler_chart = cf.form == form_kind::lagrangian || cf.form == form_kind::hamiltonian;
+// The initial kinematics in the Euler-angle chart from a body-form state (quaternion, omega):
+// q_dot = J^{-1} omega, p = J^T I omega (5.30); needs |sin theta| away from 0.
+initial_kinematics from_body(const Eigen::VectorXd& y, const Eigen::Matrix3d& inertia) {
+    const euler_angles<double> e = euler_from_quaternion(Eigen::Quaterniond(y[0], y[1], y[2], y[3]));
+    initial_kinematics k;
+    k.q = {e.phi, e.theta, e.psi};
+    const Eigen::Vector3d w(y[4], y[5], y[6]), l = inertia * w;
+    const double st = std::sin(e.theta), ct = std::cos(e.theta), sp = std::sin(e.psi), cp = std::cos(e.psi);
+    const double phi_dot = (w[0] * sp + w[1] * cp) / st;
+    k.qd = {phi_dot, w[0] * cp - w[1] * sp, w[2] - phi_dot * ct};
+    k.p = {st * sp * l[0] + st * cp * l[1] + ct * l[2], cp * l[0] - sp * l[1], l[2]};
+    k.omega = {w[0], w[1], w[2]};
+    k.quat = Eigen::Quaternion<long double>(y[0], y[1], y[2], y[3]);
+    return k;
+}
+
+// |sin theta| of a state of the given form (Euler-angle forms: theta is y[1]).
+double sin_theta_of(form_kind form, const Eigen::VectorXd& y) {
+    if (form != form_kind::body) return std::abs(std::sin(y[1]));
+    return std::abs(std::sin(euler_from_quaternion(Eigen::Quaterniond(y[0], y[1], y[2], y[3])).theta));
+}
+
+// Integrates the current form from t_from over the remaining sample times, and says where to go
+// on: the Euler-angle forms leave for the body form at a sample with |sin theta| < switch_below,
+// or when the integration fails with the state that close to the singularity (only then: a
+// run that exhausts max_steps elsewhere just stops); the body form returns to the scene's form at
+// a sample with |sin theta| > switch_back_above.
+scene_run::next scene_run::integrate_segment(Eigen::VectorXd& y, double t_from) {
+    compiled_form& cf = m_compiled[m_current];
+    const bool euler_chart = cf.form == form_kind::lagrangian || cf.form == form_kind::hamiltonian;
     const std::vector<double> times(m_times.begin() + static_cast<std::ptrdiff_t>(m_next_sample), m_times.end());
-    bool& leaving = m_leaving;
-    leaving = false;
+    const std::size_t first_sample = m_samples.size();
+    m_left_chart = false;
     m_timings.time("integrate", to_string(cf.form), [&] {
         try {
             m_last = integrate(cf.sys, *m_method, t_from, y, times, [&](double t, const Eigen::VectorXd& yt) {
-                m_samples.push_back({t, yt, m_compiled.size() - 1});
-                if (m_can_switch && in_euler_chart && std::abs(std::sin(yt[1])) < switch_below &&
-                    m_samples.size() > 1 && t < m_scene.t_end)
-                    throw leave_chart{};
+                m_samples.push_back({t, yt, m_current});
+                if (!m_can_switch || m_samples.size() <= first_sample + 1 || t >= m_scene.t_end) return;
+                const double st = sin_theta_of(cf.form, yt);
+                if (euler_chart ? st < switch_below : st > switch_back_above) throw leave_chart{};
             });
         } catch (const leave_chart&) {
-            leaving = true;
+            m_left_chart = true;
         }
     });
-    if (!leaving) {
-        step_stats& s = m_result.stats;
-        s.steps += m_last.stats.steps, s.accepted += m_last.stats.accepted;
-        s.rejected += m_last.stats.rejected, s.rhs_evals += m_last.stats.rhs_evals;
-        s.jac_evals += m_last.stats.jac_evals, s.factorisations += m_last.stats.factorisations;
-    }
-    const bool failed = !leaving && !m_last.ok();
-    return m_can_switch && in_euler_chart && (leaving || failed) && !m_samples.empty() &&
-           m_samples.back().t < m_scene.t_end;
+    if (!m_left_chart) add_stats(m_result.stats, m_last.stats);
+    if (!m_can_switch || m_samples.empty() || m_samples.back().t >= m_scene.t_end) return next::done;
+    if (m_left_chart) return euler_chart ? next::body : next::euler;
+    return euler_chart && !m_last.ok() && sin_theta_of(cf.form, y) < switch_below ? next::body : next::done;
 }
 
-// Continues from the last sample in the body form.
-void scene_run::switch_to_body(Eigen::VectorXd& y, std::vector<double>& parameters, double& t_from) {
-    const bool leaving = m_leaving;
+// Continues from the last sample in the other chart.
+void scene_run::switch_chart(next to, Eigen::VectorXd& y, std::vector<double>& parameters, double& t_from) {
     const sample& last = m_samples.back();
-    Eigen::VectorXd dydt(last.y.size());
-    m_compiled.back().sys.rhs(last.t, last.y.data(), dydt.data());
-    const initial_kinematics k = continuation(last.y, dydt);
-    const double st = std::abs(std::sin(last.y[1]));
-    m_result.chart_note = "switched to the body form at t = " + short_number(last.t) + " (|sin theta| = " +
-                          short_number(st) +
-                          (leaving ? " < " + short_number(switch_below) + ")"
-                                   : "; the Euler-angle run failed: " + m_last.message + ")");
-    const compiled_form& body = compile(form_kind::body, true);
-    y = state_of(body.f, k);
-    parameters = parameters_of(body.f, k);
+    const compiled_form& from = m_compiled[m_current];
+    initial_kinematics k;
+    if (to == next::body) {
+        Eigen::VectorXd dydt(last.y.size());
+        from.sys.rhs(last.t, last.y.data(), dydt.data());
+        k = continuation(last.y, dydt);
+    } else {
+        k = from_body(last.y, m_inertia);
+    }
+    const double st = sin_theta_of(from.form, last.y);
+    const std::string why = !m_left_chart ? "; the Euler-angle run failed: " + m_last.message
+                            : to == next::body ? " < " + short_number(switch_below)
+                                               : " > " + short_number(switch_back_above);
+    if (m_switches++ == 0)
+        m_result.chart_note += std::string(m_result.chart_note.empty() ? "" : "; ") + "switched to the " +
+                               (to == next::body ? "body" : to_string(m_scene.form)) + " form at t = " +
+                               short_number(last.t) + " (|sin theta| = " + short_number(st) + why + ")";
+    const compiled_form& next_form = to == next::body ? compile(form_kind::body, true) : compile(m_scene.form, m_orientation);
+    y = state_of(next_form.f, k);
+    parameters = parameters_of(next_form.f, k);
     t_from = last.t;
     m_next_sample = m_samples.size();
 }
@@ -266,6 +309,7 @@ void scene_run::record() {
             const double v = source_value(cf.invariants[i], ys, out, m_inertia, e);
             if (k == 0) d.first = v;
             d.drift = std::max(d.drift, std::abs(v - d.first));
+            d.largest = std::max(d.largest, std::abs(v));
         }
     }
 }
@@ -302,11 +346,14 @@ run_result scene_run::run() {
     first.set_parameters(parameters);
     check_finite_start(k0, first, y, parameters);
     double t_from = m_scene.t_start;
-    while (true) {
-        m_compiled.back().set_parameters(parameters);
-        if (!integrate_segment(y, t_from)) break;
-        switch_to_body(y, parameters, t_from);
+    for (next to = next::body; to != next::done;) {
+        m_compiled[m_current].set_parameters(parameters);
+        to = integrate_segment(y, t_from);
+        if (to != next::done) switch_chart(to, y, parameters, t_from);
     }
+    if (m_switches > 1)
+        m_result.chart_note += "; " + std::to_string(m_switches) + " changes of chart in all (to the body form below " +
+                               short_number(switch_below) + ", back above " + short_number(switch_back_above) + ")";
     m_result.ok = m_last.ok();
     m_result.message = m_last.message;
     m_result.integrate_seconds = m_timings.total("integrate");

@@ -24,6 +24,7 @@ struct invariant_drift {
     invariant what;
     double first = 0; // at the first sample
     double drift = 0; // max |v(t) - v(t0)| over the samples
+    double largest = 0; // max |v(t)| over the samples: the scale `first` is compared with
 };
 
 struct run_result {

@@ -1,10 +1,12 @@
 #include "simulate/plot.hpp"
 
 #include "scene/scene.hpp"
+#include "support/error.hpp"
 #include "support/format.hpp"
 #include "support/gnuplot.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <sstream>
 #include <utility>
 
@@ -46,12 +48,24 @@ panel_list panels_of(const std::string& csv, const std::vector<std::string>& rec
 
 } // namespace
 
+std::string plot_terminal(const std::string& file, std::size_t panels) {
+    const std::size_t dot = file.rfind('.');
+    std::string ext = dot == std::string::npos ? "" : file.substr(dot + 1);
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const std::size_t height = 120 + 260 * panels; // pixels (PNG, SVG); PDF: the same at 100 per inch
+    if (ext == "png") return "pngcairo size 1000," + std::to_string(height) + " noenhanced";
+    if (ext == "svg") return "svg size 1000," + std::to_string(height) + " noenhanced";
+    if (ext == "pdf") return "pdfcairo size 10in," + std::to_string(height / 100.0).substr(0, 4) + "in noenhanced";
+    throw user_error({file}, "cannot tell the plot format from the extension '" + (ext.empty() ? "" : "." + ext) +
+                                 "' (expected .png, .svg or .pdf)");
+}
+
 void plot_run(const std::string& png, const std::string& csv, const std::vector<std::string>& record,
               const std::string& title, double energy0) {
     const panel_list panels = panels_of(csv, record, energy0);
     draw_with_gnuplot(png, [&](const std::string& output) {
         std::ostringstream script;
-        script << "set terminal pngcairo size 1000," << 120 + 260 * panels.size() << " noenhanced\n"
+        script << "set terminal " << plot_terminal(png, panels.size()) << "\n"
                << "set output '" << output << "'\n"
                << "set datafile separator ','\nset key outside right\nset grid\n"
                << "set multiplot layout " << panels.size() << ",1 title '" << title << "'\n";

@@ -32,13 +32,17 @@ void write_csv(atomic_file& out, const run_result& r) {
     out.commit();
 }
 
+// max |v(t) - v(0)|, relative to |v(0)| unless v starts near 0 (below 1e-9 of its largest value
+// along the run): a relative drift of a momentum that starts at 0 means nothing.
 void print_invariants(std::ostream& os, const run_result& r) {
     for (const auto& inv : r.invariants) {
         const std::string& name = inv.what.name;
         const bool conserved = inv.what.conserved;
-        const double scale = std::max(std::abs(inv.first), 1e-300);
+        const bool near_zero = std::abs(inv.first) <= 1e-9 * inv.largest || std::abs(inv.first) < 1e-300;
         os << "  " << (conserved ? "drift   " : "change  ") << name << ": max |" << name << "(t) - " << name
-           << "(0)| = " << short_number(inv.drift) << " (relative " << short_number(inv.drift / scale) << ")"
+           << "(0)| = " << short_number(inv.drift)
+           << (near_zero ? " (absolute: " + name + "(0) is near 0)"
+                         : " (relative " + short_number(inv.drift / std::abs(inv.first)) + ")")
            << (conserved ? "" : ", not conserved: the model is damped or driven") << "\n";
     }
     std::size_t non_finite = 0;
@@ -74,10 +78,9 @@ void print_summary(std::ostream& os, const simulate_request& q, const scene_spec
 }
 
 // The plot, from the CSV written (or from a scratch CSV beside the PNG when none was asked for).
-void draw_plot(const simulate_request& q, const scene_spec& scene, const run_result& r) {
-    std::string csv = q.csv;
+void draw_plot(const simulate_request& q, std::string csv, const scene_spec& scene, const run_result& r) {
     std::optional<atomic_file> scratch;
-    if (csv.empty()) {
+    if (csv.empty() || csv == "-") {
         scratch.emplace(q.plot + ".csv");
         write_rows(scratch->stream(), r.rows);
         scratch->stream().flush();
@@ -90,30 +93,60 @@ void draw_plot(const simulate_request& q, const scene_spec& scene, const run_res
              scene.model.name + " (" + to_string(scene.form) + " form, " + scene.integrator.method + ")", energy0);
 }
 
+// Where the samples go: the requested file, "-" for standard output, or by default
+// <scene name>.csv in the current folder.
+std::string csv_path(const simulate_request& q) {
+    if (!q.csv.empty()) return q.csv;
+    std::string stem = q.scene.substr(q.scene.find_last_of('/') + 1);
+    if (const auto dot = stem.rfind('.'); dot != std::string::npos && dot > 0) stem.erase(dot);
+    return stem + ".csv";
+}
+
+// A run that could not finish: the rows so far go to <output stem>.partial.csv (never under the
+// requested name); exit status 3.
+int report_partial(const simulate_request& q, const std::string& csv, const scene_spec& scene, const run_result& r,
+                   std::ostream& summary) {
+    std::string base = csv == "-" ? csv_path({q.scene, "", "", false}) : csv;
+    if (base.size() > 4 && base.compare(base.size() - 4, 4, ".csv") == 0) base.erase(base.size() - 4);
+    const std::string partial = base + ".partial.csv";
+    atomic_file out(partial, {q.scene, scene.model.file});
+    write_csv(out, r);
+    summary << "  wrote   " << partial << " (" << r.rows.size() << " samples, partial)\n";
+    const double t = r.rows.empty() ? scene.t_start : r.rows.back()[0];
+    std::cerr << "rotgen: error: " << to_string(scene.integrator_where) << ": the run stopped at t = "
+              << format_double(t) << " of " << format_double(scene.t_end) << ": " << r.message << "; the "
+              << r.rows.size() << " samples computed so far are in " << partial << "\n";
+    return 3;
+}
+
 } // namespace
 
 int simulate(const simulate_request& q) {
     const scene_spec scene = load_scene(q.scene);
+    const std::vector<std::string> inputs{q.scene, scene.model.file};
+    const std::string csv = csv_path(q);
     // Output paths are checked before any work (no partial output, early clear error).
-    std::optional<atomic_file> csv_out;
-    if (!q.csv.empty()) csv_out.emplace(q.csv);
-    if (!q.plot.empty()) atomic_file probe(q.plot);
+    if (!q.plot.empty()) plot_terminal(q.plot, 1);
+    atomic_file csv_out(csv, inputs);
+    if (!q.plot.empty()) atomic_file probe(q.plot, inputs);
+    std::ostream& summary = csv_out.is_stdout() ? std::cerr : std::cout;
 
     stage_timings timings;
     const run_result r = run_scene(scene, timings);
-    timings.time("write", q.csv.empty() ? "" : q.csv, [&] {
-        if (csv_out) write_csv(*csv_out, r);
-    });
-    print_summary(std::cout, q, scene, r, timings);
-    if (csv_out) std::cout << "  wrote   " << q.csv << " (" << r.rows.size() << " samples)\n";
+    print_summary(summary, q, scene, r, timings);
+    if (!r.ok) {
+        const int status = report_partial(q, csv, scene, r, summary);
+        if (q.timings) timings.print(std::cerr);
+        return status;
+    }
+    timings.time("write", csv, [&] { write_csv(csv_out, r); });
+    summary << "  wrote   " << (csv == "-" ? "standard output" : csv) << " (" << r.rows.size() << " samples"
+            << (q.csv.empty() ? ", the default name: -o chooses another" : "") << ")\n";
     if (!q.plot.empty()) {
-        timings.time("plot", q.plot, [&] { draw_plot(q, scene, r); });
-        std::cout << "  wrote   " << q.plot << "\n";
+        timings.time("plot", q.plot, [&] { draw_plot(q, csv, scene, r); });
+        summary << "  wrote   " << q.plot << "\n";
     }
     if (q.timings) timings.print(std::cerr);
-    if (!r.ok)
-        throw user_error(scene.integrator_where, "the integration stopped: " + r.message +
-                                                     (csv_out ? " (the samples up to there were written)" : ""));
     return 0;
 }
 

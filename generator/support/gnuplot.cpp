@@ -15,12 +15,17 @@ std::string gnuplot_temporary(const std::string& output) {
 }
 
 void run_gnuplot(const std::string& output, const std::string& temporary, const std::string& script) {
+    register_temporary(temporary);
     const std::string script_path = temporary + ".gp";
     write_file_atomically(script_path, script);
+    register_temporary(script_path);
     int status = 0;
     const std::string log = run_capture("gnuplot " + shell_quote(script_path), &status);
     std::remove(script_path.c_str());
-    if (status != 0 || std::rename(temporary.c_str(), output.c_str()) != 0) {
+    forget_temporary(script_path);
+    const bool drawn = status == 0 && std::rename(temporary.c_str(), output.c_str()) == 0;
+    forget_temporary(temporary);
+    if (!drawn) {
         std::remove(temporary.c_str());
         throw user_error({output}, "gnuplot failed to draw the plot (is gnuplot-nox installed?)" +
                                        (log.empty() ? std::string() : ": " + log.substr(0, 400)));

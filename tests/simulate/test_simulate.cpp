@@ -268,18 +268,23 @@ TEST_CASE("an unwritable output path is a clear error before any work", "[simula
     CHECK(r.err == "rotgen: error: /nonexistent/dir/out.csv: cannot write: No such file or directory\n");
 }
 
-TEST_CASE("an integration that cannot go on stops with a message and keeps the samples", "[simulate][errors]") {
+TEST_CASE("an integration that cannot go on exits 3 and keeps its samples in a partial file", "[simulate][errors]") {
     // The damped top falls to theta = pi, where the Euler-angle forms are singular.
     const scratch_file scene(
         "falling_scene.yaml",
         scene_text("damped_driven_top", "initial: {theta: 1.0, psi_dot: 5}\ntime: {end: 40, samples: 401}\n"
                                         "integrator: {method: dopri5, rtol: 1e-8, atol: 1e-10}\nrecord: [theta]\n"));
-    const std::string csv = scratch("falling.csv");
+    const std::string csv = scratch("falling.csv"), partial = scratch("falling.partial.csv");
+    std::remove(csv.c_str());
+    std::remove(partial.c_str());
     const run_result r = run_rotgen("simulate '" + scene.path + "' -o '" + csv + "'");
     INFO(r.out << r.err);
-    CHECK(r.status == 2);
-    CHECK(r.err.find("falling_scene.yaml:4:13: the integration stopped: ") != std::string::npos);
-    const csv_table t = read_csv(csv);
+    CHECK(r.status == 3);
+    CHECK(r.err.find("falling_scene.yaml:4:13: the run stopped at t = ") != std::string::npos);
+    CHECK(r.err.find("samples computed so far are in " + partial) != std::string::npos);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    CHECK_FALSE(std::ifstream(csv).good()); // never under the requested name
+    const csv_table t = read_csv(partial);
     REQUIRE(t.rows.size() > 100);
     CHECK(t.rows.size() < 401);
     CHECK(t.values("theta").back() > 3.0); // it got close to pi before stopping
