@@ -22,9 +22,12 @@ const char* const usage =
     "  simulate SCENE.yaml  integrate a scene: CSV, plot, invariant drifts\n"
     "  bench SCENE.yaml     the work-precision report of a scene (rotgen against peers)\n"
     "\n"
-    "  --version            the version; --help this text\n"
-    "exit status: 0 success, 2 input rejected (one line on stderr names the file and place),\n"
-    "1 internal error\n";
+    "  help [COMMAND]       this text, or a command's options (also rotgen COMMAND --help)\n"
+    "  --version            the version\n"
+    "\n"
+    "exit status: 0 success; 2 input rejected, nothing written (one line on stderr names the file\n"
+    "and the place); 3 a run started but could not finish (its rows in <output>.partial.csv);\n"
+    "130/143 interrupted (SIGINT/SIGTERM), nothing left behind; 1 internal error\n";
 
 // A diagnostic is one line whatever the input held: control characters (a newline in a quoted YAML
 // key, a NUL) are shown escaped.
@@ -47,10 +50,11 @@ std::string one_line(const std::string& text) {
 int run_cli(int argc, char** argv) {
     std::vector<std::string> args(argv + 1, argv + argc);
     try {
-        if (args.empty() || args[0] == "--help" || args[0] == "-h") {
+        if (args.empty() || args[0] == "--help" || args[0] == "-h" || (args[0] == "help" && args.size() == 1)) {
             std::cout << usage;
             return args.empty() ? 2 : 0;
         }
+        if (args[0] == "help") args = {args[1], "--help"}; // rotgen help CMD = rotgen CMD --help
         if (args[0] == "--version") {
             std::cout << "rotgen " << ROTGEN_VERSION << "\n";
             return 0;

@@ -15,9 +15,12 @@ const command_spec simulate_command{
     "SCENE.yaml [-o out.csv] [--plot out.png] [--timings]",
     "Integrates the scene: derives the model's equations, emits and compiles the scene's form\n"
     "(cached), integrates it and records the scene's quantities at its sample times. Prints a\n"
-    "summary (steps, evaluations, invariant drifts) on standard output.",
-    {{"-o", "FILE", "write the samples as CSV (header t,<recorded columns>)", {"--output"}},
-     {"--plot", "FILE", "draw the recorded quantities against t into a PNG (gnuplot)", {}},
+    "summary (steps, evaluations, invariant drifts) on standard output. A run that cannot finish\n"
+    "exits 3 with its rows in <output>.partial.csv.\n\n"
+    "example: rotgen simulate models/scenes/heavy_top_nutation.yaml -o nutation.csv --plot nutation.png",
+    {{"-o", "FILE", "the samples as CSV (header t,<recorded columns>); - for standard output;\n"
+                    "                     default <scene name>.csv", {"--output"}},
+     {"--plot", "FILE", "the recorded quantities against t (gnuplot): .png, .svg or .pdf", {}},
      {"--timings", "", "print the wall time of each pipeline stage to standard error", {}}}};
 
 } // namespace
