@@ -1,5 +1,9 @@
 #include "scene/scene.hpp"
 
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+
 #include "expr/symbols.hpp"
 
 #include <algorithm>
@@ -106,6 +110,9 @@ class scene_reader {
             const auto slash = m_file.find_last_of('/');
             if (slash != std::string::npos) path = m_file.substr(0, slash + 1) + path;
         }
+        std::ifstream probe(path);
+        if (!probe) // located at the scene's `model:` key, which names the file
+            throw user_error(at(n), "cannot open the model file '" + path + "': " + std::strerror(errno));
         m_model_root = load_yaml_file(path, &m_model_source);
         m_model_file = path;
         m_scene.model = parse_model(m_model_root, m_model_file, m_model_source);
