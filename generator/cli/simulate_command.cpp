@@ -12,7 +12,7 @@ namespace {
 const command_spec simulate_command{
     "simulate",
     "scene file",
-    "SCENE.yaml [-o out.csv] [--plot out.png] [--timings]",
+    "SCENE.yaml [-o out.csv] [--plot out.png] [--timings] [--quiet]",
     "Integrates the scene: derives the model's equations, emits and compiles the scene's form\n"
     "(cached), integrates it and records the scene's quantities at its sample times. Prints a\n"
     "summary (steps, evaluations, invariant drifts) on standard output. A run that cannot finish\n"
@@ -21,7 +21,8 @@ const command_spec simulate_command{
     {{"-o", "FILE", "the samples as CSV (header t,<recorded columns>); - for standard output;\n"
                     "                     default <scene name>.csv", {"--output"}},
      {"--plot", "FILE", "the recorded quantities against t (gnuplot): .png, .svg or .pdf", {}},
-     {"--timings", "", "print the wall time of each pipeline stage to standard error", {}}}};
+     {"--timings", "", "print the wall time of each pipeline stage to standard error", {}},
+     {"--quiet", "", "no summary and no progress line (errors are still reported)", {"-q"}}}};
 
 } // namespace
 
@@ -31,7 +32,7 @@ int cmd_simulate(const std::vector<std::string>& args) {
         std::cout << help_text(simulate_command);
         return 0;
     }
-    return simulate({o.operand, o.value("-o"), o.value("--plot"), o.has("--timings")});
+    return simulate({o.operand, o.value("-o"), o.value("--plot"), o.has("--timings"), o.has("--quiet")});
 }
 
 } // namespace rotgen

@@ -64,7 +64,8 @@ void add_stats(step_stats& s, const step_stats& more) {
 
 class scene_run {
   public:
-    scene_run(const scene_spec& scene, stage_timings& timings) : m_scene(scene), m_timings(timings) {}
+    scene_run(const scene_spec& scene, stage_timings& timings, const sample_callback& on_sample)
+        : m_scene(scene), m_timings(timings), m_on_sample(on_sample) {}
     run_result run();
 
   private:
@@ -83,6 +84,7 @@ class scene_run {
 
     const scene_spec& m_scene;
     stage_timings& m_timings;
+    const sample_callback& m_on_sample;
     derivation m_d;
     Eigen::Matrix3d m_inertia;
     std::map<std::pair<form_kind, bool>, form_expressions> m_forms; // each built once
@@ -250,6 +252,7 @@ scene_run::next scene_run::integrate_segment(Eigen::VectorXd& y, double t_from) 
         try {
             m_last = integrate(cf.sys, *m_method, t_from, y, times, [&](double t, const Eigen::VectorXd& yt) {
                 m_samples.push_back({t, yt, m_current});
+                if (m_on_sample) m_on_sample(t);
                 if (!m_can_switch || m_samples.size() <= first_sample + 1 || t >= m_scene.t_end) return;
                 const double st = sin_theta_of(cf.form, yt);
                 if (euler_chart ? st < switch_below : st > switch_back_above) throw leave_chart{};
@@ -363,8 +366,8 @@ run_result scene_run::run() {
 
 } // namespace
 
-run_result run_scene(const scene_spec& scene, stage_timings& timings) {
-    return scene_run(scene, timings).run();
+run_result run_scene(const scene_spec& scene, stage_timings& timings, const sample_callback& on_sample) {
+    return scene_run(scene, timings, on_sample).run();
 }
 
 bool needs_orientation(const scene_spec& scene, bool chart_switch) {

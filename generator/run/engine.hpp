@@ -15,6 +15,7 @@
 #include "scene/scene.hpp"
 #include "support/timings.hpp"
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -40,9 +41,12 @@ struct run_result {
     bool kernels_cached = true;     // every compiled form came from the cache
 };
 
+// Called at each sample with its time (e.g. to show progress); may be empty.
+using sample_callback = std::function<void(double t)>;
+
 // Runs the scene. Throws user_error for a scene the model cannot run (an unrecordable quantity,
 // a start at the singularity that cannot be left, initial values that overflow double).
-run_result run_scene(const scene_spec& scene, stage_timings& timings);
+run_result run_scene(const scene_spec& scene, stage_timings& timings, const sample_callback& on_sample = {});
 
 // Whether the body form must keep the orientation (the quaternion) for this scene: a chart switch,
 // or a recorded angle, body axis, Euler-angle rate or momentum needs it. (A potential that needs

@@ -6,11 +6,13 @@
 #include "support/atomic_file.hpp"
 #include "support/error.hpp"
 #include "support/format.hpp"
+#include "support/progress.hpp"
 #include "support/timings.hpp"
 
 #include <cmath>
 #include <iostream>
 #include <optional>
+#include <sstream>
 
 namespace rotgen {
 
@@ -106,7 +108,7 @@ std::string csv_path(const simulate_request& q) {
 // requested name); exit status 3.
 int report_partial(const simulate_request& q, const std::string& csv, const scene_spec& scene, const run_result& r,
                    std::ostream& summary) {
-    std::string base = csv == "-" ? csv_path({q.scene, "", "", false}) : csv;
+    std::string base = csv == "-" ? csv_path({q.scene, "", "", false, false}) : csv;
     if (base.size() > 4 && base.compare(base.size() - 4, 4, ".csv") == 0) base.erase(base.size() - 4);
     const std::string partial = base + ".partial.csv";
     atomic_file out(partial, {q.scene, scene.model.file});
@@ -129,10 +131,13 @@ int simulate(const simulate_request& q) {
     if (!q.plot.empty()) plot_terminal(q.plot, 1);
     atomic_file csv_out(csv, inputs);
     if (!q.plot.empty()) atomic_file probe(q.plot, inputs);
-    std::ostream& summary = csv_out.is_stdout() ? std::cerr : std::cout;
 
     stage_timings timings;
-    const run_result r = run_scene(scene, timings);
+    std::ostringstream discarded;
+    std::ostream& summary = q.quiet ? discarded : (csv_out.is_stdout() ? std::cerr : std::cout);
+    progress_line progress(scene.t_start, scene.t_end, !q.quiet);
+    const run_result r = run_scene(scene, timings, [&](double t) { progress.update(t); });
+    progress.finish();
     print_summary(summary, q, scene, r, timings);
     if (!r.ok) {
         const int status = report_partial(q, csv, scene, r, summary);

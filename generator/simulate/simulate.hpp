@@ -12,6 +12,7 @@ struct simulate_request {
     std::string csv;     // where to write the samples; empty: not written
     std::string plot;    // a PNG of the recorded columns; empty: none
     bool timings = false; // one line per pipeline stage to stderr
+    bool quiet = false;   // no summary and no progress line
 };
 
 // Returns the exit status. Throws user_error for bad input (nothing is written then).
