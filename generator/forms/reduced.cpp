@@ -95,6 +95,11 @@ void ignored_momenta(const std::vector<int>& dropped, form_expressions& f) {
         "ignored_rates (integrate them to recover the angles).");
 }
 
+// Why an output that mentions the ignored coordinate q is unavailable.
+std::string depends_on_ignored(const std::string& q) {
+    return "it depends on the ignored coordinate " + q + "; use --form hamiltonian";
+}
+
 // An output, or the reason it is unavailable: it mentions an ignored angle.
 void offer(form_expressions& f, const std::vector<int>& dropped, const std::string& name,
            std::vector<ex> values, std::vector<std::string> names) {
@@ -102,10 +107,14 @@ void offer(form_expressions& f, const std::vector<int>& dropped, const std::stri
     if (q.empty())
         add_output(f, name, std::move(values), std::move(names));
     else
-        f.unavailable[name] =
-            "it depends on the ignored coordinate " + q + "; use --form hamiltonian";
+        f.unavailable[name] = depends_on_ignored(q);
 }
 
+// The outputs the reduced state determines. Three need no test: the ignored rates are
+// d.hamilton_qdot of the ignored coordinates, which mention no ignored angle (ignored_coordinates
+// chose them so), and the momenta are the symbols p: both are always available; the rotation A
+// (5.25) always mentions every angle (A_11 = cos psi cos phi - cos theta sin phi sin psi), so it
+// is never available. Energy, omega and M(q) depend on the model.
 void reduced_outputs(const derivation& d, const hamilton_parts& h, const std::vector<int>& dropped,
                      form_expressions& f) {
     const auto& s = symbols();
@@ -115,16 +124,15 @@ void reduced_outputs(const derivation& d, const hamilton_parts& h, const std::ve
         rates.push_back(d.hamilton_qdot[i]);
         names.push_back(coordinate_names()[i] + "_dot");
     }
-    offer(f, dropped, "ignored_rates", rates, names);
+    add_output(f, "ignored_rates", rates, names);
     offer(f, dropped, "energy", {d.hamiltonian}, {"energy"});
     const ex energy = dot(h.w, h.l) / 2 + d.potential;
     if (f.outputs.count("energy") && mentioned_ignored({energy}, dropped).empty())
         f.outputs["energy"].alternatives.push_back({energy});
-    offer(f, dropped, "momenta", {s.p[0], s.p[1], s.p[2]}, {"p_phi", "p_theta", "p_psi"});
+    add_output(f, "momenta", {s.p[0], s.p[1], s.p[2]}, {"p_phi", "p_theta", "p_psi"});
     offer(f, dropped, "omega", {h.w[0], h.w[1], h.w[2]}, {"omega1", "omega2", "omega3"});
     offer(f, dropped, "mass_matrix", flat(d.mass_matrix), matrix_names("M"));
-    const auto A = rotation_matrix();
-    offer(f, dropped, "rotation", std::vector<ex>(A.begin(), A.end()), matrix_names("A"));
+    f.unavailable["rotation"] = depends_on_ignored(coordinate_names()[dropped.front()]);
 }
 
 } // namespace
