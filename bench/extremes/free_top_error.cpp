@@ -36,41 +36,30 @@ static std::array<real, 3> read3(char** a) {
             real(std::strtod(a[2], nullptr))};
 }
 
-int main(int argc, char** argv) {
-    if (argc == 10 && std::strcmp(argv[1], "--floor") == 0) {
-        const std::array<real, 3> I = read3(argv + 2), w = read3(argv + 5);
-        const real T = std::strtold(argv[8], nullptr);
-        const int n = std::atoi(argv[9]);
-        const rotgen::free_top_exact<real> exact(I, w);
-        const real u = std::ldexp(real(1), -53);
-        real worst = 0;
-        for (int k = 0; k < 6; ++k) {
-            std::array<real, 3> Ik = I, wk = w;
-            (k < 3 ? Ik[k] : wk[k - 3]) *= 1 + u;
-            const rotgen::free_top_exact<real> moved(Ik, wk);
-            for (int i = 0; i <= n; ++i) {
-                const real t = T * i / n;
-                const auto a = exact(t), b = moved(t);
-                for (int j = 0; j < 3; ++j) worst = std::max(worst, std::abs(a[j] - b[j]));
-            }
-        }
-        std::printf("%.2Le\n", worst);
-        return 0;
-    }
-    if (argc != 8) {
-        std::fprintf(stderr, "usage: free_top_error I1 I2 I3 W1 W2 W3 CSV\n"
-                             "       free_top_error --floor I1 I2 I3 W1 W2 W3 T N\n");
-        return 2;
-    }
-    const std::array<real, 3> I = read3(argv + 1), w = read3(argv + 4);
+// --floor: the largest change of the exact omega over n + 1 times in [0, T] when one of I, w
+// moves by u |x|, u = 2^-53.
+static real data_floor(const std::array<real, 3>& I, const std::array<real, 3>& w, real T, int n) {
     const rotgen::free_top_exact<real> exact(I, w);
-    std::ifstream in(argv[7]);
-    std::string line;
-    if (!std::getline(in, line)) {
-        std::fprintf(stderr, "free_top_error: cannot read %s\n", argv[7]);
-        return 1;
+    const real u = std::ldexp(real(1), -53);
+    real worst = 0;
+    for (int k = 0; k < 6; ++k) {
+        std::array<real, 3> Ik = I, wk = w;
+        (k < 3 ? Ik[k] : wk[k - 3]) *= 1 + u;
+        const rotgen::free_top_exact<real> moved(Ik, wk);
+        for (int i = 0; i <= n; ++i) {
+            const real t = T * i / n;
+            const auto a = exact(t), b = moved(t);
+            for (int j = 0; j < 3; ++j) worst = std::max(worst, std::abs(a[j] - b[j]));
+        }
     }
-    std::vector<std::array<real, 4>> rows;
+    return worst;
+}
+
+// The CSV's rows after its header: t, omega1, omega2, omega3; false if it cannot be read.
+static bool read_rows(const char* path, std::vector<std::array<real, 4>>& rows) {
+    std::ifstream in(path);
+    std::string line;
+    if (!std::getline(in, line)) return false;
     while (std::getline(in, line)) {
         std::istringstream row(line);
         std::string cell;
@@ -78,7 +67,14 @@ int main(int argc, char** argv) {
         for (int j = 0; j < 4 && std::getline(row, cell, ','); ++j) v[j] = std::strtold(cell.c_str(), nullptr);
         rows.push_back(v);
     }
-    // The long-double run, sampled at the CSV's times.
+    return true;
+}
+
+// The rows against the exact solution and against a long-double run of the body-form kernels
+// (dop853 at rtol 3e-18) sampled at the CSV's times; prints "exact run swing".
+static int compare_with_exact(const std::array<real, 3>& I, const std::array<real, 3>& w,
+                              const std::vector<std::array<real, 4>>& rows) {
+    const rotgen::free_top_exact<real> exact(I, w);
     namespace model = rotgen::models::free_asymmetric_top_body;
     auto sys = ROTGEN_GENERATED_SYSTEM(model, real);
     sys.params.I1 = I[0], sys.params.I2 = I[1], sys.params.I3 = I[2];
@@ -105,4 +101,24 @@ int main(int argc, char** argv) {
         return 1;
     }
     std::printf("%.2Le %.2Le %.2Le\n", worst, worst_run, swing);
+    return 0;
+}
+
+int main(int argc, char** argv) {
+    if (argc == 10 && std::strcmp(argv[1], "--floor") == 0) {
+        std::printf("%.2Le\n", data_floor(read3(argv + 2), read3(argv + 5),
+                                          std::strtold(argv[8], nullptr), std::atoi(argv[9])));
+        return 0;
+    }
+    if (argc != 8) {
+        std::fprintf(stderr, "usage: free_top_error I1 I2 I3 W1 W2 W3 CSV\n"
+                             "       free_top_error --floor I1 I2 I3 W1 W2 W3 T N\n");
+        return 2;
+    }
+    std::vector<std::array<real, 4>> rows;
+    if (!read_rows(argv[7], rows)) {
+        std::fprintf(stderr, "free_top_error: cannot read %s\n", argv[7]);
+        return 1;
+    }
+    return compare_with_exact(read3(argv + 1), read3(argv + 4), rows);
 }

@@ -343,74 +343,71 @@ void drift_one(const std::string& method, double tol, double step, const driver_
     out << "drift_failed " << label << " not_compiled\n";
 }
 
-// ---- the driver
-// ----------------------------------------------------------------------------------
+// ---- the driver ---------------------------------------------------------------------------------
 
-template <class Variants> int run_driver(int argc, char** argv) {
-    if (argc != 3) {
-        std::cerr << "usage: " << argv[0] << " PLAN OUT\n";
-        return 2;
-    }
-    std::ifstream plan(argv[1]);
-    std::ofstream out(argv[2]);
-    if (!plan || !out) {
-        std::cerr << "cannot open the plan or the output\n";
-        return 2;
-    }
+struct drift_spec {
+    int variant;
+    std::string method;
+    double tol, step, t_end;
+    int samples;
+    std::string label;
+};
+
+// The plan's directives (see the top of this file).
+struct driver_plan {
     driver_settings s;
     std::optional<free_body_exact<long double>> exact;
     int ref_variant = -1;
     double ref_rtol = 0, ref_check = 0;
     std::vector<run_spec> runs;
-    struct drift_spec {
-        int variant;
-        std::string method;
-        double tol, step, t_end;
-        int samples;
-        std::string label;
-    };
     std::vector<drift_spec> drift_runs;
-    std::string line;
-    while (std::getline(plan, line)) {
-        std::istringstream in(line);
-        std::string what;
-        if (!(in >> what) || what[0] == '#') continue;
-        if (what == "span") {
-            in >> s.t0 >> s.t1;
-        } else if (what == "timing") {
-            in >> s.target >> s.repeats;
-        } else if (what == "autonomous") {
-            int a = 1;
-            in >> a;
-            s.autonomous = a != 0;
-        } else if (what == "exact") {
-            std::array<long double, 3> I{}, w{};
-            long double phi = 0, theta = 0, psi = 0;
-            in >> I[0] >> I[1] >> I[2] >> w[0] >> w[1] >> w[2] >> phi >> theta >> psi;
-            exact.emplace(I, w, euler_matrix(phi, theta, psi));
-        } else if (what == "reference") {
-            in >> ref_variant >> ref_rtol >> ref_check;
-        } else if (what == "run") {
-            run_spec r;
-            in >> r.variant >> r.peer >> r.method >> r.scalar >> r.tol >> r.step;
-            runs.push_back(r);
-        } else if (what == "drift") {
-            drift_spec d;
-            in >> d.variant >> d.method >> d.tol >> d.step >> d.t_end >> d.samples >> d.label;
-            drift_runs.push_back(d);
-        }
-        if (!in) {
-            std::cerr << "bad plan line: " << line << "\n";
-            return 2;
-        }
-    }
+};
 
-    // The compared quantities: those every variant in the plan determines.
-    std::array<bool, n_quantities> compared;
+using compared_set = std::array<bool, n_quantities>;
+
+// One directive into p; false (after a message) on a malformed line.
+inline bool read_plan_line(const std::string& line, driver_plan& p) {
+    std::istringstream in(line);
+    std::string what;
+    if (!(in >> what) || what[0] == '#') return true;
+    if (what == "span") {
+        in >> p.s.t0 >> p.s.t1;
+    } else if (what == "timing") {
+        in >> p.s.target >> p.s.repeats;
+    } else if (what == "autonomous") {
+        int a = 1;
+        in >> a;
+        p.s.autonomous = a != 0;
+    } else if (what == "exact") {
+        std::array<long double, 3> I{}, w{};
+        long double phi = 0, theta = 0, psi = 0;
+        in >> I[0] >> I[1] >> I[2] >> w[0] >> w[1] >> w[2] >> phi >> theta >> psi;
+        p.exact.emplace(I, w, euler_matrix(phi, theta, psi));
+    } else if (what == "reference") {
+        in >> p.ref_variant >> p.ref_rtol >> p.ref_check;
+    } else if (what == "run") {
+        run_spec r;
+        in >> r.variant >> r.peer >> r.method >> r.scalar >> r.tol >> r.step;
+        p.runs.push_back(r);
+    } else if (what == "drift") {
+        drift_spec d;
+        in >> d.variant >> d.method >> d.tol >> d.step >> d.t_end >> d.samples >> d.label;
+        p.drift_runs.push_back(d);
+    }
+    if (!in) {
+        std::cerr << "bad plan line: " << line << "\n";
+        return false;
+    }
+    return true;
+}
+
+// The compared quantities: those every variant in the plan determines. Writes `compared ...`.
+template <class Variants> compared_set write_compared(const driver_plan& p, std::ostream& out) {
+    compared_set compared;
     compared.fill(true);
     bool all_have_A = true;
     std::vector<bool> used(std::tuple_size_v<Variants>, false);
-    for (const auto& r : runs)
+    for (const auto& r : p.runs)
         used[static_cast<std::size_t>(r.variant)] = true;
     for (std::size_t v = 0; v < used.size(); ++v) {
         if (!used[v]) continue;
@@ -427,43 +424,63 @@ template <class Variants> int run_driver(int argc, char** argv) {
     for (int q = 0; q < n_quantities; ++q)
         if (compared[static_cast<std::size_t>(q)]) out << " " << quantity_name(q);
     out << (all_have_A ? " (attitude everywhere)" : "") << "\n";
+    return compared;
+}
 
-    // The reference at the end time.
+// DOP853 in long double on the reference variant at ref_rtol (into ref) and ref_check (into
+// check); false when that variant has no long double DOP853.
+template <class Variants>
+bool long_double_reference(const driver_plan& p, common_state& ref, common_state& check,
+                           std::ostream& out) {
+    bool have_check = false;
+    with_variant<Variants>(p.ref_variant, [&](auto* tag) {
+        using V = std::remove_pointer_t<decltype(tag)>;
+        if constexpr ((V::long_double_methods & dop853_bit) != 0) {
+            using system = variant_system<V, long double>;
+            const system sys{V::template parameters<long double>()};
+            for (int pass = 0; pass < 2; ++pass) {
+                auto y = initial_state<V, long double>();
+                const double rtol = pass ? p.ref_check : p.ref_rtol;
+                dop853<long double> m(rtol, rtol);
+                m.max_steps = 100000000;
+                const auto r = integrate(sys, m, (long double)p.s.t0, y, (long double)p.s.t1);
+                std::vector<long double> yl(y.data(), y.data() + y.size());
+                (pass ? check : ref) = common_of<V>(yl);
+                out << "reference_run " << rtol << " " << status_name(r.code) << " "
+                    << r.stats.steps << "\n";
+            }
+            have_check = true;
+        }
+    });
+    return have_check;
+}
+
+// The free body's exact state at t1.
+inline common_state exact_state(const free_body_exact<long double>& exact, double t1) {
+    common_state e;
+    const auto w = exact.omega((long double)t1);
+    e.set(q_omega1, w[0]);
+    e.set(q_omega2, w[1]);
+    e.set(q_omega3, w[2]);
+    e.set_rotation(exact.rotation((long double)t1));
+    e.angles_from_rotation();
+    e.rates_from_omega();
+    return e;
+}
+
+// The reference at the end time, and the line `reference SOURCE ERROR ORIENTATION`.
+template <class Variants>
+common_state write_reference(const driver_plan& p, const compared_set& compared,
+                             std::ostream& out) {
     common_state ref, check;
     bool have_check = false;
-    if (ref_variant >= 0) {
-        with_variant<Variants>(ref_variant, [&](auto* tag) {
-            using V = std::remove_pointer_t<decltype(tag)>;
-            if constexpr ((V::long_double_methods & dop853_bit) != 0) {
-                using system = variant_system<V, long double>;
-                const system sys{V::template parameters<long double>()};
-                for (int pass = 0; pass < 2; ++pass) {
-                    auto y = initial_state<V, long double>();
-                    dop853<long double> m(pass ? ref_check : ref_rtol, pass ? ref_check : ref_rtol);
-                    m.max_steps = 100000000;
-                    const auto r = integrate(sys, m, (long double)s.t0, y, (long double)s.t1);
-                    std::vector<long double> yl(y.data(), y.data() + y.size());
-                    (pass ? check : ref) = common_of<V>(yl);
-                    out << "reference_run " << (pass ? ref_check : ref_rtol) << " "
-                        << status_name(r.code) << " " << r.stats.steps << "\n";
-                }
-                have_check = true;
-            }
-        });
-    }
-    if (exact) {
+    if (p.ref_variant >= 0) have_check = long_double_reference<Variants>(p, ref, check, out);
+    if (p.exact) {
         // the exact reference; the DOP853 run above, if any, is its cross-check
-        common_state e;
-        const auto w = exact->omega((long double)s.t1);
-        e.set(q_omega1, w[0]);
-        e.set(q_omega2, w[1]);
-        e.set(q_omega3, w[2]);
-        e.set_rotation(exact->rotation((long double)s.t1));
-        e.angles_from_rotation();
-        e.rates_from_omega();
-        if (ref_variant >= 0) check = ref;
+        const common_state e = exact_state(*p.exact, p.s.t1);
+        if (p.ref_variant >= 0) check = ref;
         ref = e;
-        out << "reference exact_" << exact->kind_name() << " "
+        out << "reference exact_" << p.exact->kind_name() << " "
             << number(have_check ? state_error(check, ref, compared) : NAN) << " "
             << number(have_check ? attitude_error(check, ref) : NAN) << "\n";
     } else if (have_check) {
@@ -472,52 +489,81 @@ template <class Variants> int run_driver(int argc, char** argv) {
     } else {
         out << "reference none nan nan\n";
     }
-    out.flush();
+    return ref;
+}
 
-    // The sweep: every configuration run once (final state, counters), then timed in rounds.
+// One `row ...` line: the configuration, its errors against ref, counters, times, drifts, state.
+template <class V>
+void write_row(const run_record& rec, const common_state& ref, const compared_set& compared,
+               std::ostream& out) {
+    const run_spec& spec = rec.spec;
+    const common_state c = common_of<V>(rec.y);
+    const long double nan = std::numeric_limits<long double>::quiet_NaN();
+    const bool ok = rec.status == "ok";
+    const long double err = ok ? state_error(c, ref, compared) : nan;
+    const long double orient = ok ? attitude_error(c, ref) : nan;
+    const auto [ed, md] = ok ? drifts<V>(rec.y) : std::pair<long double, long double>{nan, nan};
+    out << "row " << spec.variant << " " << spec.peer << " " << spec.method << " " << V::form << " "
+        << spec.scalar << " " << number(spec.tol) << " " << number(spec.step) << " " << rec.status
+        << " " << number(err) << " " << number(orient) << " " << rec.rhs_evals << " "
+        << rec.jac_evals << " " << rec.steps << " " << number(rec.time.median) << " "
+        << number(rec.time.min) << " " << number(rec.time.max) << " " << number(ed) << " "
+        << number(md) << " " << rec.y.size();
+    for (long double v : rec.y)
+        out << " " << number(v);
+    out << "\n";
+}
+
+// The sweep: every configuration run once (final state, counters), then timed in rounds.
+template <class Variants>
+void run_sweep(const driver_plan& p, const common_state& ref, const compared_set& compared,
+               std::ostream& out) {
     std::vector<run_record> records;
-    records.reserve(runs.size());
-    for (const auto& spec : runs)
+    records.reserve(p.runs.size());
+    for (const auto& spec : p.runs)
         with_variant<Variants>(spec.variant, [&](auto* tag) {
             using V = std::remove_pointer_t<decltype(tag)>;
-            records.push_back(run_one<V>(spec, s));
-            calibrate(records.back().job, s.target);
+            records.push_back(run_one<V>(spec, p.s));
+            calibrate(records.back().job, p.s.target);
         });
-    for (int round = 0; round < s.repeats; ++round)
+    for (int round = 0; round < p.s.repeats; ++round)
         for (auto& rec : records)
             sample(rec.job);
     for (auto& rec : records) {
         rec.time = summary(rec.job);
         rec.job.once = nullptr; // release the configuration's state (CVODE memory, ...)
-        const run_spec& spec = rec.spec;
-        with_variant<Variants>(spec.variant, [&](auto* tag) {
-            using V = std::remove_pointer_t<decltype(tag)>;
-            const common_state c = common_of<V>(rec.y);
-            const long double nan = std::numeric_limits<long double>::quiet_NaN();
-            const bool ok = rec.status == "ok";
-            const long double err = ok ? state_error(c, ref, compared) : nan;
-            const long double orient = ok ? attitude_error(c, ref) : nan;
-            const auto [ed, md] =
-                ok ? drifts<V>(rec.y) : std::pair<long double, long double>{nan, nan};
-            out << "row " << spec.variant << " " << spec.peer << " " << spec.method << " "
-                << V::form << " " << spec.scalar << " " << number(spec.tol) << " "
-                << number(spec.step) << " " << rec.status << " " << number(err) << " "
-                << number(orient) << " " << rec.rhs_evals << " " << rec.jac_evals << " "
-                << rec.steps << " " << number(rec.time.median) << " " << number(rec.time.min) << " "
-                << number(rec.time.max) << " " << number(ed) << " " << number(md) << " "
-                << rec.y.size();
-            for (long double v : rec.y)
-                out << " " << number(v);
-            out << "\n";
+        with_variant<Variants>(rec.spec.variant, [&](auto* tag) {
+            write_row<std::remove_pointer_t<decltype(tag)>>(rec, ref, compared, out);
         });
     }
-    out.flush();
+}
 
+template <class Variants> int run_driver(int argc, char** argv) {
+    if (argc != 3) {
+        std::cerr << "usage: " << argv[0] << " PLAN OUT\n";
+        return 2;
+    }
+    std::ifstream plan(argv[1]);
+    std::ofstream out(argv[2]);
+    if (!plan || !out) {
+        std::cerr << "cannot open the plan or the output\n";
+        return 2;
+    }
+    driver_plan p;
+    std::string line;
+    while (std::getline(plan, line))
+        if (!read_plan_line(line, p)) return 2;
+
+    const compared_set compared = write_compared<Variants>(p, out);
+    const common_state ref = write_reference<Variants>(p, compared, out);
+    out.flush();
+    run_sweep<Variants>(p, ref, compared, out);
+    out.flush();
     // Long runs.
-    for (const auto& d : drift_runs) {
+    for (const auto& d : p.drift_runs) {
         with_variant<Variants>(d.variant, [&](auto* tag) {
             using V = std::remove_pointer_t<decltype(tag)>;
-            drift_one<V>(d.method, d.tol, d.step, s, d.t_end, d.samples, d.label, out);
+            drift_one<V>(d.method, d.tol, d.step, p.s, d.t_end, d.samples, d.label, out);
         });
         out.flush();
     }

@@ -161,8 +161,57 @@ struct cvode_context {
     }
 };
 
-template <class V> run_record run_cvode(const run_spec& spec, double t0, double t1) {
+// The CVODE memory of one configuration, with the variant's parameters as user data.
+template <class V> struct cvode_variant_context : cvode_context {
+    cvode_user<V> user;
+};
+
+// y0 from the variant, CVODE created and set up (BDF with the dense solver and the generated
+// Jacobian, or Adams with fixed-point iteration), tolerances spec.tol; the first failing flag.
+template <class V>
+int cvode_setup(cvode_variant_context<V>& c, bool bdf, const run_spec& spec, double t0) {
     constexpr std::size_t n = V::state_size;
+    const auto y0l = V::initial();
+    c.y = N_VNew_Serial(static_cast<sunindextype>(n), c.ctx);
+    c.y0 = N_VNew_Serial(static_cast<sunindextype>(n), c.ctx);
+    for (std::size_t i = 0; i < n; ++i)
+        N_VGetArrayPointer(c.y0)[i] = static_cast<double>(y0l[i]);
+    N_VScale(1.0, c.y0, c.y);
+    c.mem = CVodeCreate(bdf ? CV_BDF : CV_ADAMS, c.ctx);
+    int flag = CVodeInit(c.mem, cvode_rhs<V>, t0, c.y);
+    if (flag == CV_SUCCESS) flag = CVodeSetUserData(c.mem, &c.user);
+    if (flag == CV_SUCCESS) flag = CVodeSStolerances(c.mem, spec.tol, spec.tol);
+    if (flag == CV_SUCCESS) flag = CVodeSetMaxNumSteps(c.mem, 100000000L);
+    if (flag == CV_SUCCESS) flag = CVodeSetMaxHnilWarns(c.mem, -1);
+    if (flag == CV_SUCCESS && bdf) {
+        c.A = SUNDenseMatrix(static_cast<sunindextype>(n), static_cast<sunindextype>(n), c.ctx);
+        c.LS = SUNLinSol_Dense(c.y, c.A, c.ctx);
+        flag = CVodeSetLinearSolver(c.mem, c.LS, c.A);
+        if (flag == CV_SUCCESS) flag = CVodeSetJacFn(c.mem, cvode_jacobian<V>);
+    } else if (flag == CV_SUCCESS) {
+        c.NLS = SUNNonlinSol_FixedPoint(c.y, 0, c.ctx);
+        flag = CVodeSetNonlinearSolver(c.mem, c.NLS);
+    }
+    return flag;
+}
+
+// The counters of the last run and its final state into rec.
+inline void cvode_counters(const cvode_context& c, bool bdf, std::size_t n, run_record& rec) {
+    long nfe = 0, nfels = 0, nje = 0, nst = 0;
+    CVodeGetNumRhsEvals(c.mem, &nfe);
+    if (bdf) {
+        CVodeGetNumLinRhsEvals(c.mem, &nfels);
+        CVodeGetNumJacEvals(c.mem, &nje);
+    }
+    CVodeGetNumSteps(c.mem, &nst);
+    rec.rhs_evals = static_cast<std::size_t>(nfe + nfels);
+    rec.jac_evals = static_cast<std::size_t>(nje);
+    rec.steps = static_cast<std::size_t>(nst);
+    for (std::size_t i = 0; i < n; ++i)
+        rec.y.push_back(N_VGetArrayPointer(c.y)[i]);
+}
+
+template <class V> run_record run_cvode(const run_spec& spec, double t0, double t1) {
     run_record rec;
     rec.spec = spec;
     const bool bdf = spec.method == "bdf";
@@ -170,37 +219,13 @@ template <class V> run_record run_cvode(const run_spec& spec, double t0, double 
         rec.status = "unknown_method";
         return rec;
     }
-    struct context : cvode_context {
-        cvode_user<V> user;
-    };
-    const auto c = std::make_shared<context>();
+    const auto c = std::make_shared<cvode_variant_context<V>>();
     c->user.p = V::template parameters<double>();
     if (SUNContext_Create(nullptr, &c->ctx) != 0) {
         rec.status = "cvode_context";
         return rec;
     }
-    const auto y0l = V::initial();
-    c->y = N_VNew_Serial(static_cast<sunindextype>(n), c->ctx);
-    c->y0 = N_VNew_Serial(static_cast<sunindextype>(n), c->ctx);
-    for (std::size_t i = 0; i < n; ++i)
-        N_VGetArrayPointer(c->y0)[i] = static_cast<double>(y0l[i]);
-    N_VScale(1.0, c->y0, c->y);
-    c->mem = CVodeCreate(bdf ? CV_BDF : CV_ADAMS, c->ctx);
-    int flag = CVodeInit(c->mem, cvode_rhs<V>, t0, c->y);
-    if (flag == CV_SUCCESS) flag = CVodeSetUserData(c->mem, &c->user);
-    if (flag == CV_SUCCESS) flag = CVodeSStolerances(c->mem, spec.tol, spec.tol);
-    if (flag == CV_SUCCESS) flag = CVodeSetMaxNumSteps(c->mem, 100000000L);
-    if (flag == CV_SUCCESS) flag = CVodeSetMaxHnilWarns(c->mem, -1);
-    if (flag == CV_SUCCESS && bdf) {
-        c->A = SUNDenseMatrix(static_cast<sunindextype>(n), static_cast<sunindextype>(n), c->ctx);
-        c->LS = SUNLinSol_Dense(c->y, c->A, c->ctx);
-        flag = CVodeSetLinearSolver(c->mem, c->LS, c->A);
-        if (flag == CV_SUCCESS) flag = CVodeSetJacFn(c->mem, cvode_jacobian<V>);
-    } else if (flag == CV_SUCCESS) {
-        c->NLS = SUNNonlinSol_FixedPoint(c->y, 0, c->ctx);
-        flag = CVodeSetNonlinearSolver(c->mem, c->NLS);
-    }
-    if (flag != CV_SUCCESS) {
+    if (const int flag = cvode_setup<V>(*c, bdf, spec, t0); flag != CV_SUCCESS) {
         rec.status = "cvode_setup_" + std::to_string(flag);
         return rec;
     }
@@ -212,18 +237,7 @@ template <class V> run_record run_cvode(const run_spec& spec, double t0, double 
         return N_VGetArrayPointer(c->y)[0];
     };
     once();
-    long nfe = 0, nfels = 0, nje = 0, nst = 0;
-    CVodeGetNumRhsEvals(c->mem, &nfe);
-    if (bdf) {
-        CVodeGetNumLinRhsEvals(c->mem, &nfels);
-        CVodeGetNumJacEvals(c->mem, &nje);
-    }
-    CVodeGetNumSteps(c->mem, &nst);
-    rec.rhs_evals = static_cast<std::size_t>(nfe + nfels);
-    rec.jac_evals = static_cast<std::size_t>(nje);
-    rec.steps = static_cast<std::size_t>(nst);
-    for (std::size_t i = 0; i < n; ++i)
-        rec.y.push_back(N_VGetArrayPointer(c->y)[i]);
+    cvode_counters(*c, bdf, V::state_size, rec);
     if (c->last < 0)
         rec.status = "cvode_flag_" + std::to_string(c->last);
     else
