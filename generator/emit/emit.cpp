@@ -218,6 +218,13 @@ class body_writer {
         lines.insert(lines.end(), aliases.begin(), aliases.end());
         lines.insert(lines.end(), steps.begin(), steps.end());
         lines.insert(lines.end(), assigns.begin(), assigns.end());
+        // The operation counts in the header are lowering's, counted without printing: they must
+        // be those of the text printed here.
+        const op_count printed = printed_op_count(prog);
+        if (printed.add != prog.after.add || printed.mul != prog.after.mul ||
+            printed.div != prog.after.div || printed.call != prog.after.call)
+            throw std::logic_error("emit: the printed program has other operation counts than "
+                                   "lowering's");
         function_body b;
         b.text = join(lines, "\n");
         b.before = prog.before;

@@ -28,6 +28,7 @@
 #pragma once
 
 #include "derive/derive.hpp"
+#include "emit/printer.hpp"
 #include "forms/forms.hpp"
 #include "lower/lower.hpp"
 #include "spec/spec.hpp"

@@ -6,6 +6,7 @@
 
 #include "emit/emit.hpp"
 #include "support/error.hpp"
+#include "emit/printer.hpp"
 #include "lower/lower.hpp"
 
 #include <catch2/catch.hpp>
