@@ -281,8 +281,8 @@ op_count printed_op_count(const lowered_program& program) {
 }
 
 std::string print_outputs_inline(const lowered_program& program,
-                                 const std::vector<std::string>& targets,
-                                 const std::string& scalar, const std::string& indent) {
+                                 const std::vector<std::string>& targets, const std::string& scalar,
+                                 const std::string& indent) {
     if (targets.size() != program.outputs.size())
         throw std::logic_error("emit: " + std::to_string(targets.size()) + " targets for " +
                                std::to_string(program.outputs.size()) + " outputs");
@@ -312,7 +312,8 @@ std::string print_rhs_inline(const form_expressions& f, const GiNaC::exmap& fold
         targets.push_back("dydt[" + std::to_string(i) + "]");
     }
     for (const auto& p : f.parameters)
-        if (!folded.count(p.symbol)) inputs.push_back({p.symbol, "p." + p.name, "", p.specialisable});
+        if (!folded.count(p.symbol))
+            inputs.push_back({p.symbol, "p." + p.name, "", p.specialisable});
     inputs.push_back({f.time, "t", ""});
     std::vector<GiNaC::ex> rates;
     for (const auto& e : f.rates)

@@ -74,7 +74,6 @@ template <class Child> ex node_expression(const lowered_node& n, const ex& input
     throw std::logic_error("lower: unknown node kind");
 }
 
-
 // The children of a node: sum terms, numerator, denominator, call arguments.
 std::vector<int> children(const lowered_node& n);
 

@@ -141,8 +141,7 @@ linear dag_builder::convert_product(const ex& e) {
 std::optional<linear> dag_builder::distribute(const numeric& coef, const monomial& m) {
     int sum_factor = -1;
     for (const auto& [b, x] : m) {
-        if (x != 1 || m_p.nodes[static_cast<std::size_t>(b)].k != lowered_node::kind::sum)
-            continue;
+        if (x != 1 || m_p.nodes[static_cast<std::size_t>(b)].k != lowered_node::kind::sum) continue;
         if (sum_factor >= 0) return std::nullopt; // one sum at most
         sum_factor = b;
     }

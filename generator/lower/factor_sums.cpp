@@ -251,7 +251,8 @@ linear dag_builder::plain_sum(const std::vector<poly_term>& poly, const numeric&
     return {scale, sum(std::move(terms), constant / scale)};
 }
 
-bool dag_builder::all_rational(const std::vector<std::pair<numeric, int>>& terms, const numeric& k) {
+bool dag_builder::all_rational(const std::vector<std::pair<numeric, int>>& terms,
+                               const numeric& k) {
     for (const auto& t : terms)
         if (!t.first.is_rational()) return false;
     return k.is_rational();

@@ -340,12 +340,13 @@ lowered_form lower_form(const model_spec& spec, const form_expressions& runtime_
             }
         } else {
             const form_output& out = f.outputs.at(name);
-            const candidates runtime = choose.folding()
-                                           ? candidates_of(runtime_f.outputs.at(name))
-                                           : candidates{};
-            static const std::map<std::string, std::string> array{
-                {"momenta", "momentum"}, {"mass_matrix", "M"}, {"omega", "w"},
-                {"rotation", "A"},       {"ignored_rates", "rates"}};
+            const candidates runtime =
+                choose.folding() ? candidates_of(runtime_f.outputs.at(name)) : candidates{};
+            static const std::map<std::string, std::string> array{{"momenta", "momentum"},
+                                                                  {"mass_matrix", "M"},
+                                                                  {"omega", "w"},
+                                                                  {"rotation", "A"},
+                                                                  {"ignored_rates", "rates"}};
             const std::vector<std::string> targets =
                 name == "energy" ? std::vector<std::string>{"return"}
                                  : indexed(array.at(name), out.values.size());

@@ -38,11 +38,11 @@ struct lowered_rates {
 
 lowered_rates lower_rates(const std::string& model, form_kind form) {
     const model_spec spec = load_model(model_path(model));
-    lowered_rates r{build_form(spec, derive(spec), form, lagrangian_strategy::explicit_inverse,
-                               false),
-                    {},
-                    {},
-                    {}};
+    lowered_rates r{
+        build_form(spec, derive(spec), form, lagrangian_strategy::explicit_inverse, false),
+        {},
+        {},
+        {}};
     std::vector<program_input> inputs;
     int k = 0;
     const auto add = [&](const GiNaC::ex& symbol, const std::string& name, bool parameter) {
@@ -65,12 +65,13 @@ double number_at(const GiNaC::ex& e, const GiNaC::exmap& point) {
 
 } // namespace
 
-TEST_CASE("the inline print gives the numbers of the normal print and of GiNaC", "[emit][printer]") {
-    const auto [model, form] = GENERATE(table<std::string, form_kind>(
-        {{"heavy_top", form_kind::lagrangian},
-         {"full_tensor_top", form_kind::lagrangian},
-         {"full_tensor_top", form_kind::hamiltonian},
-         {"heavy_top", form_kind::body}}));
+TEST_CASE("the inline print gives the numbers of the normal print and of GiNaC",
+          "[emit][printer]") {
+    const auto [model, form] =
+        GENERATE(table<std::string, form_kind>({{"heavy_top", form_kind::lagrangian},
+                                                {"full_tensor_top", form_kind::lagrangian},
+                                                {"full_tensor_top", form_kind::hamiltonian},
+                                                {"heavy_top", form_kind::body}}));
     INFO(model << ", " << to_string(form));
     const lowered_rates r = lower_rates(model, form);
     const lowered_program& p = r.program;
@@ -95,7 +96,8 @@ TEST_CASE("the inline print gives the numbers of the normal print and of GiNaC",
         const std::string lhs = targets[i] + " = ";
         REQUIRE(line.rfind(lhs, 0) == 0);
         const double exact = number_at(r.f.rates[i], r.point);
-        const double normal = number_at(read_back(print_node(p, p.outputs[i]), with_steps), r.point);
+        const double normal =
+            number_at(read_back(print_node(p, p.outputs[i]), with_steps), r.point);
         const double all_inline = number_at(read_back(line.substr(lhs.size()), r.inputs), r.point);
         INFO("output " << i << ": " << line);
         CHECK_THAT(normal, Catch::Matchers::WithinRel(exact, 1e-12) ||
@@ -107,9 +109,8 @@ TEST_CASE("the inline print gives the numbers of the normal print and of GiNaC",
 
 TEST_CASE("print_rhs_inline writes dydt[i] in y[i], p.<name> and t", "[emit][printer]") {
     const model_spec spec = load_model(model_path("heavy_top"));
-    const form_expressions f =
-        build_form(spec, derive(spec), form_kind::lagrangian, lagrangian_strategy::explicit_inverse,
-                   false);
+    const form_expressions f = build_form(spec, derive(spec), form_kind::lagrangian,
+                                          lagrangian_strategy::explicit_inverse, false);
     const std::string text = print_rhs_inline(f);
     for (std::size_t i = 0; i < f.state.size(); ++i)
         CHECK_THAT(text, Contains("    dydt[" + std::to_string(i) + "] = "));
