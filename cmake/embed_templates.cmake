@@ -1,6 +1,6 @@
 # Embeds templates/*.in into the generator as C++ raw string literals (CasADi's
 # generate_runtime.cmake does the same for its runtime): writes
-# ${PROJECT_BINARY_DIR}/generator/rotgen_templates.inc, which generator/emit.cpp includes.
+# ${PROJECT_BINARY_DIR}/generator/rotgen_templates.inc, which generator/emit/emit.cpp includes.
 #
 # Runs at configure time; every template is a configure dependency, so editing one (or adding or
 # removing one) re-runs CMake on the next build and the generator is recompiled. The file is only

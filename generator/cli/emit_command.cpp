@@ -97,7 +97,10 @@ void write_atomically(const std::filesystem::path& dir, const std::string& file,
 
 int cmd_emit(const std::vector<std::string>& args) {
     std::string model, dir;
-    emit_options o;
+    form_kind form = form_kind::lagrangian;
+    lagrangian_strategy strategy = lagrangian_strategy::explicit_inverse;
+    kernel_request request;
+    header_options header;
     bool form_given = false, strategy_given = false, outputs_given = false;
     std::string specialise_text;
     const auto value = [&](std::size_t& i, const std::string& option, const std::string& expected) {
@@ -118,13 +121,13 @@ int cmd_emit(const std::vector<std::string>& args) {
             form_given = true;
             const std::string f = value(i, a, "lagrangian, hamiltonian, reduced or body");
             if (f == "lagrangian")
-                o.form = form_kind::lagrangian;
+                form = form_kind::lagrangian;
             else if (f == "hamiltonian")
-                o.form = form_kind::hamiltonian;
+                form = form_kind::hamiltonian;
             else if (f == "reduced")
-                o.form = form_kind::reduced;
+                form = form_kind::reduced;
             else if (f == "body")
-                o.form = form_kind::body;
+                form = form_kind::body;
             else {
                 const std::string best =
                     closest_name(f, {"lagrangian", "hamiltonian", "reduced", "body"});
@@ -137,27 +140,27 @@ int cmd_emit(const std::vector<std::string>& args) {
             strategy_given = true;
             const std::string s = value(i, a, "explicit or solve");
             if (s == "explicit")
-                o.strategy = lagrangian_strategy::explicit_inverse;
+                strategy = lagrangian_strategy::explicit_inverse;
             else if (s == "solve")
-                o.strategy = lagrangian_strategy::solve;
+                strategy = lagrangian_strategy::solve;
             else
                 throw usage_error("unknown strategy '" + s + "' (expected explicit or solve)");
         } else if (a == "--outputs") {
             if (outputs_given) throw usage_error("--outputs given twice");
             outputs_given = true;
-            o.outputs = split_list(value(i, a, "a comma-separated list such as rhs,jacobian"), a);
+            request.outputs = split_list(value(i, a, "a comma-separated list such as rhs,jacobian"), a);
         } else if (a == "--name") {
-            if (!o.name.empty()) throw usage_error("--name given twice");
-            o.name = value(i, a, "a C++ identifier");
+            if (!header.name.empty()) throw usage_error("--name given twice");
+            header.name = value(i, a, "a C++ identifier");
             static const std::regex identifier("[A-Za-z_][A-Za-z0-9_]*");
-            if (!std::regex_match(o.name, identifier))
-                throw usage_error("--name '" + o.name + "' is not a C++ identifier");
+            if (!std::regex_match(header.name, identifier))
+                throw usage_error("--name '" + header.name + "' is not a C++ identifier");
         } else if (a == "--specialise" || a == "--specialize") {
-            o.specialise_all = true;
+            request.specialise_all = true;
             specialise_text = "--specialise";
         } else if (a.rfind("--specialise=", 0) == 0 || a.rfind("--specialize=", 0) == 0) {
             const std::string list = a.substr(a.find('=') + 1);
-            o.specialise = split_list(list, "--specialise");
+            request.specialise = split_list(list, "--specialise");
             specialise_text = "--specialise=" + list;
         } else if (a.size() > 1 && a[0] == '-') {
             const std::string best = closest_name(
@@ -173,28 +176,29 @@ int cmd_emit(const std::vector<std::string>& args) {
     if (model.empty())
         throw usage_error("emit needs a model file: rotgen emit MODEL.yaml -o DIR [options]");
     if (dir.empty()) throw usage_error("emit needs an output directory: -o DIR");
-    if (strategy_given && o.form != form_kind::lagrangian)
+    if (strategy_given && form != form_kind::lagrangian)
         throw usage_error("--strategy applies to the Lagrangian form only (got --form " +
-                          std::string(to_string(o.form)) + ")");
+                          std::string(to_string(form)) + ")");
 
     // The command that regenerates exactly this header.
     std::string command = "rotgen emit " + shell_quote(model) + " -o " + shell_quote(dir) +
-                          " --form " + to_string(o.form);
-    if (o.form == form_kind::lagrangian)
-        command += std::string(" --strategy ") + to_string(o.strategy);
+                          " --form " + to_string(form);
+    if (form == form_kind::lagrangian)
+        command += std::string(" --strategy ") + to_string(strategy);
     if (outputs_given) {
         std::string list;
-        for (const auto& s : o.outputs)
+        for (const auto& s : request.outputs)
             list += (list.empty() ? "" : ",") + s;
         command += " --outputs " + shell_quote(list);
     }
     if (!specialise_text.empty()) command += " " + shell_quote(specialise_text);
-    if (!o.name.empty()) command += " --name " + o.name;
-    o.command = command;
+    if (!header.name.empty()) command += " --name " + header.name;
+    header.command = command;
 
     const model_spec spec = load_model(model);
     const derivation d = derive(spec);
-    const emitted_header h = emit_header(spec, d, o);
+    const form_expressions f = build_requested_form(spec, d, form, strategy, request);
+    const emitted_header h = emit_header(spec, lower_form(spec, f, request), header);
     write_atomically(dir, h.file_name, h.text);
 
     std::string summary;

@@ -7,8 +7,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <random>
-#include <regex>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -20,22 +18,6 @@ using GiNaC::numeric;
 
 std::string unit_name(const std::string& model, form_kind form) {
     return form == form_kind::lagrangian ? model : model + "_" + to_string(form);
-}
-
-numeric exact_decimal(double x) {
-    // format_double gives the shortest text that reads back as x: "9.81", "1e-12", "-0.3", "2.0".
-    const std::string s = format_double(x);
-    static const std::regex decimal("([+-]?)([0-9]*)\\.?([0-9]*)(?:[eE]([+-]?[0-9]+))?");
-    std::smatch m;
-    if (!std::regex_match(s, m, decimal))
-        throw std::logic_error("exact_decimal: cannot read back '" + s + "'");
-    std::string digits = m[2].str() + m[3].str();
-    digits.erase(0, std::min(digits.find_first_not_of('0'), digits.size()));
-    long exponent = m[4].matched ? std::stol(m[4].str()) : 0;
-    exponent -= static_cast<long>(m[3].length());
-    numeric v(digits.empty() ? std::string("0").c_str() : digits.c_str());
-    v *= numeric(10).power(numeric(exponent));
-    return m[1].str() == "-" ? -v : v;
 }
 
 std::string fill_template(const std::string& name,
@@ -129,152 +111,74 @@ struct function_body {
     std::size_t temporaries = 0;
 };
 
-class body_writer {
-  public:
-    explicit body_writer(const std::vector<program_input>& inputs) : m_inputs(inputs) {}
-
-    // With specialisation: `runtime_inputs` has the folded parameters as inputs too, `folded`
-    // their values; the candidates' runtime-parameter versions are lowered and then folded
-    // (lower_folded), and compete with the substituted ones.
-    body_writer(const std::vector<program_input>& inputs,
-                const std::vector<program_input>& runtime_inputs, const GiNaC::exmap& folded)
-        : m_inputs(inputs), m_runtime_inputs(&runtime_inputs), m_folded(folded) {}
-
-    // `targets[i]` receives output i: "dydt[0]", "J[7]", or "return" for a returned value.
-    // `arguments` are the function's arguments that may go unused (t, y, p).
-    // Of several equivalent candidates, the cheapest after lowering (the first of equals), an
-    // operation weighted by its rough cost in cycles: +-* 1, / 4, a call (sin, cos, sqrt) 20.
-    // With specialisation, `runtime_candidates` are the same candidates before the parameters
-    // were substituted: each is also lowered with the parameters as inputs and folded afterwards,
-    // which keeps the runtime program's sharing (substituting first can lower to more operations:
-    // GiNaC distributes numbers over sums). The substituted candidates come first and win ties.
-    function_body write(const std::vector<std::vector<ex>>& candidates,
-                        const std::vector<std::string>& targets,
-                        const std::vector<std::string>& arguments,
-                        const std::vector<std::vector<ex>>& runtime_candidates = {}) const {
-        const auto cost = [](const op_count& o) { return o.add + o.mul + 4 * o.div + 20 * o.call; };
-        const auto better = [&](const op_count& a, const op_count& b) {
-            return cost(a) < cost(b) || (cost(a) == cost(b) && a.total() < b.total());
-        };
-        std::size_t best = 0;
-        std::vector<lowered_program> programs;
-        for (std::size_t i = 0; i < candidates.size(); ++i) {
-            programs.push_back(lower(candidates[i], m_inputs));
-            if (better(programs.back().after, programs[best].after)) best = programs.size() - 1;
+// What the printed lines use: the names (not members) and the functions called.
+void names_used(const std::vector<std::string>& lines, std::set<std::string>& names,
+                std::set<std::string>& calls) {
+    for (const auto& line : lines)
+        for (const token& t : tokens(line)) {
+            if (t.member) continue;
+            names.insert(t.name);
+            if (t.call) calls.insert(t.name);
         }
-        if (m_runtime_inputs && !m_folded.empty())
-            for (const auto& c : runtime_candidates) {
-                std::optional<lowered_program> p = lower_folded(c, *m_runtime_inputs, m_folded);
-                if (!p) continue;
-                programs.push_back(std::move(*p));
-                if (better(programs.back().after, programs[best].after)) best = programs.size() - 1;
-            }
-        return write(programs[best], targets, arguments);
-    }
-
-    function_body write(const lowered_program& prog, const std::vector<std::string>& targets,
-                        const std::vector<std::string>& arguments) const {
-        std::vector<std::string> steps, assigns;
-        for (const auto& s : prog.steps)
-            steps.push_back("    const T " + s.name + " = " + print_definition(prog, s.node) + ";");
-        for (std::size_t i = 0; i < prog.outputs.size(); ++i) {
-            const int o = prog.outputs[i];
-            std::string v = print_node(prog, o);
-            const auto k = prog.nodes[static_cast<std::size_t>(o)].k;
-            if (k == lowered_node::kind::number || k == lowered_node::kind::constant)
-                v = "T(" + v + ")";
-            assigns.push_back(targets[i] == "return" ? "    return " + v + ";"
-                                                     : "    " + targets[i] + " = " + v + ";");
-        }
-        // What the printed code uses.
-        std::set<std::string> names, calls;
-        for (const auto* group : {&steps, &assigns})
-            for (const auto& line : *group)
-                for (const token& t : tokens(line)) {
-                    if (t.member) continue;
-                    names.insert(t.name);
-                    if (t.call) calls.insert(t.name);
-                }
-        std::vector<std::string> lines;
-        static const std::vector<std::string> math{"abs", "acos", "asin", "atan", "atan2",
-                                                   "cos", "cosh", "exp",  "log",  "pow",
-                                                   "sin", "sinh", "sqrt", "tan",  "tanh"};
-        for (const auto& f : math)
-            if (calls.count(f)) lines.push_back("    using std::" + f + ";");
-        if (names.count("S")) lines.push_back("    using S = typename detail::scalar_of<T>::type;");
-        const std::vector<bool> used = used_inputs(prog);
-        bool y_used = false;
-        std::vector<std::string> aliases;
-        for (std::size_t i = 0; i < m_inputs.size(); ++i)
-            if (used[i] && !m_inputs[i].definition.empty()) {
-                aliases.push_back("    const T " + m_inputs[i].name + " = " +
-                                  m_inputs[i].definition + ";");
-                y_used = true;
-            }
-        for (const auto& a : arguments) {
-            const bool is_used = a == "y" ? y_used : names.count(a) > 0;
-            if (!is_used) lines.push_back("    (void)" + a + ";");
-        }
-        lines.insert(lines.end(), aliases.begin(), aliases.end());
-        lines.insert(lines.end(), steps.begin(), steps.end());
-        lines.insert(lines.end(), assigns.begin(), assigns.end());
-        function_body b;
-        b.text = join(lines, "\n");
-        b.before = prog.before;
-        b.after = prog.after;
-        b.temporaries = prog.steps.size();
-        return b;
-    }
-
-  private:
-    const std::vector<program_input>& m_inputs;
-    const std::vector<program_input>* m_runtime_inputs = nullptr;
-    GiNaC::exmap m_folded;
-};
-
-// Which entries of a (row-major, n columns) matrix of expressions vanish identically: evaluated
-// with 40 significant digits at 4 fixed pseudo-random points (every input drawn, parameters too),
-// an entry below 1e-28 of its row's largest is taken for zero. A non-zero analytic expression is
-// that small at four random points with probability nil; the points are fixed, so the answer is
-// the same in every run.
-std::vector<bool> identically_zero(const std::vector<ex>& entries,
-                                   const std::vector<program_input>& inputs, std::size_t n) {
-    const lowered_program prog = lower(entries, inputs);
-    std::vector<bool> zero(entries.size(), true);
-    std::vector<numeric> scale(entries.size() / n, numeric(0));
-    std::vector<std::vector<numeric>> values;
-    const long saved = GiNaC::Digits;
-    GiNaC::Digits = 40;
-    std::mt19937 rng(20240607);
-    std::uniform_int_distribution<int> draw(300, 2800); // thousandths: angles in (0.3, 2.8)
-    try {
-        for (int point = 0; point < 4; ++point) {
-            GiNaC::exmap at;
-            for (const auto& in : inputs)
-                at[in.symbol] = numeric(draw(rng), 1000);
-            values.push_back(evaluate(prog, at));
-        }
-    } catch (...) {
-        GiNaC::Digits = saved;
-        throw;
-    }
-    GiNaC::Digits = saved;
-    for (const auto& v : values)
-        for (std::size_t i = 0; i < entries.size(); ++i) {
-            const numeric a = abs(v[i]);
-            if (a > scale[i / n]) scale[i / n] = a;
-        }
-    for (const auto& v : values)
-        for (std::size_t i = 0; i < entries.size(); ++i)
-            if (abs(v[i]) > numeric(1, 10).power(28) * std::max(scale[i / n], numeric(1)))
-                zero[i] = false;
-    return zero;
 }
 
-std::vector<std::vector<ex>> candidates_of(const form_output& out) {
-    std::vector<std::vector<ex>> c{out.values};
-    c.insert(c.end(), out.alternatives.begin(), out.alternatives.end());
-    return c;
+// The statements: temporaries, then `target = output;` (or `return output;`).
+void statements(const lowered_function& fn, std::vector<std::string>& steps,
+                std::vector<std::string>& assigns) {
+    const lowered_program& prog = fn.program;
+    for (const auto& s : prog.steps)
+        steps.push_back("    const T " + s.name + " = " + print_definition(prog, s.node) + ";");
+    for (std::size_t i = 0; i < prog.outputs.size(); ++i) {
+        const int o = prog.outputs[i];
+        std::string v = print_node(prog, o);
+        const auto k = prog.nodes[static_cast<std::size_t>(o)].k;
+        if (k == lowered_node::kind::number || k == lowered_node::kind::constant)
+            v = "T(" + v + ")";
+        assigns.push_back(fn.targets[i] == "return" ? "    return " + v + ";"
+                                                    : "    " + fn.targets[i] + " = " + v + ";");
+    }
+}
+
+// The body: using-declarations for the maths called, the scalar type of literals, (void) for
+// the arguments left unused, the inputs' aliases (const T theta = y[1];), the statements.
+function_body write_body(const lowered_function& fn) {
+    const lowered_program& prog = fn.program;
+    std::vector<std::string> steps, assigns;
+    statements(fn, steps, assigns);
+    std::set<std::string> names, calls;
+    names_used(steps, names, calls);
+    names_used(assigns, names, calls);
+    std::vector<std::string> lines;
+    static const std::vector<std::string> math{"abs", "acos", "asin", "atan", "atan2",
+                                               "cos", "cosh", "exp",  "log",  "pow",
+                                               "sin", "sinh", "sqrt", "tan",  "tanh"};
+    for (const auto& f : math)
+        if (calls.count(f)) lines.push_back("    using std::" + f + ";");
+    if (names.count("S")) lines.push_back("    using S = typename detail::scalar_of<T>::type;");
+    const std::vector<bool> used = used_inputs(prog);
+    bool y_used = false;
+    std::vector<std::string> aliases;
+    for (std::size_t i = 0; i < prog.inputs.size(); ++i)
+        if (used[i] && !prog.inputs[i].definition.empty()) {
+            aliases.push_back("    const T " + prog.inputs[i].name + " = " +
+                              prog.inputs[i].definition + ";");
+            y_used = true;
+        }
+    for (const auto& a : fn.arguments) {
+        const bool is_used = a == "y" ? y_used : names.count(a) > 0;
+        if (!is_used) lines.push_back("    (void)" + a + ";");
+    }
+    lines.insert(lines.end(), aliases.begin(), aliases.end());
+    lines.insert(lines.end(), steps.begin(), steps.end());
+    lines.insert(lines.end(), assigns.begin(), assigns.end());
+    // The operation counts in the header are lowering's, counted without printing: they must
+    // be those of the text printed here.
+    const op_count printed = printed_op_count(prog);
+    if (printed.add != prog.after.add || printed.mul != prog.after.mul ||
+        printed.div != prog.after.div || printed.call != prog.after.call)
+        throw std::logic_error("emit: the printed program has other operation counts than "
+                               "lowering's");
+    return {join(lines, "\n"), prog.before, prog.after, prog.steps.size()};
 }
 
 std::string guard_of(const std::string& unit) {
@@ -284,7 +188,7 @@ std::string guard_of(const std::string& unit) {
     return g + "_HPP";
 }
 
-std::string form_title(const form_expressions& f) {
+std::string form_title(const lowered_form& f) {
     switch (f.form) {
     case form_kind::lagrangian:
         return f.strategy == lagrangian_strategy::solve
@@ -295,7 +199,7 @@ std::string form_title(const form_expressions& f) {
     case form_kind::reduced:
         return "reduced (Routh) form, cyclic coordinates ignored";
     case form_kind::body:
-        return f.state.size() == 7
+        return f.state_names.size() == 7
                    ? "body form, Euler's equations with a quaternion, y = (q, omega)"
                    : "body form, Euler's equations, y = omega";
     }
@@ -329,292 +233,120 @@ std::string literal(const numeric& v, const std::string& scalar) {
     return print_definition(p, 0, scalar);
 }
 
-} // namespace
 
-emitted_header emit_header(const model_spec& spec, const derivation& d, const emit_options& o) {
-    const auto& all = output_names();
-    std::vector<std::string> requested = o.outputs;
-    const std::string where = "rotgen emit";
-    for (const auto& r : requested)
-        if (std::find(all.begin(), all.end(), r) == all.end()) {
-            const std::string best = closest_name(r, all);
-            throw user_error({where}, "unknown output '" + r + "' (expected some of " +
-                                          join(all, ", ") + ")" +
-                                          (best.empty() ? "" : "; did you mean '" + best + "'?"));
-        }
-    const auto wants = [&](const std::string& name) {
-        return std::find(requested.begin(), requested.end(), name) != requested.end();
-    };
-    form_expressions f = build_form(spec, d, o.form, o.strategy, wants("rotation"));
+std::string layout_of(const lowered_form& lf) {
+    return "(" + join(lf.state_names, ", ") + ")";
+}
 
-    if (requested.empty()) {
-        requested = {"rhs", "jacobian"};
-        for (const auto& name : all)
-            if (f.outputs.count(name)) requested.push_back(name);
+std::map<std::string, std::string> common_values(const lowered_form& lf, const function_body& b) {
+    return {{"n", std::to_string(lf.state_names.size())},
+            {"layout", layout_of(lf)},
+            {"body", b.text},
+            {"ops", ops_text(b.before, b.after)},
+            {"rate_names", join(lf.rate_names, ", ")}};
+}
+
+std::string energy_text(const lowered_form& lf, const function_body& b) {
+    auto v = common_values(lf, b);
+    v["doc"] = lf.form == form_kind::body || lf.form == form_kind::lagrangian
+                   ? "The energy T + V (conserved without damping and driving torques)."
+                   : "The energy, the Hamiltonian H = T + V (conserved without damping and "
+                     "driving torques).";
+    return fill_template("energy.hpp.in", v);
+}
+
+// momenta, mass_matrix, omega, rotation, ignored_rates: output.hpp.in.
+std::string output_text(const lowered_form& lf, const lowered_function& fn,
+                        const function_body& b) {
+    static const std::map<std::string, std::pair<std::string, std::string>> info{
+        {"momenta", {"momentum", "The conjugate momenta p = dL/dq_dot (5.74)-(5.76)."}},
+        {"mass_matrix",
+         {"M", "The mass matrix M(q) = J^T I J of the Euler-angle rates, row-major (p = M "
+               "q_dot)."}},
+        {"omega", {"w", "The body angular velocity (5.30)."}},
+        {"rotation",
+         {"A", "The rotation matrix A (5.25), passive, body <- space, row-major: x_body = "
+               "A x_space."}},
+        {"ignored_rates",
+         {"rates", "The rates of the ignored (cyclic) coordinates; integrate them to "
+                   "recover the angles."}}};
+    const std::string& name = fn.name;
+    std::string arg = info.at(name).first, doc = info.at(name).second;
+    if (lf.form == form_kind::body && name == "momenta")
+        doc = "The body angular momentum l = I omega (body axes).";
+    if (lf.form == form_kind::body && name == "mass_matrix")
+        doc = "The inertia tensor I in body axes, row-major (l = I omega).";
+    if (lf.form == form_kind::body && name == "rotation")
+        doc = "The rotation matrix A (5.25), passive, body <- space, row-major: A = R(q)^T "
+              "/ |q|^2.";
+    const std::size_t size = fn.targets.size();
+    auto v = common_values(lf, b);
+    v["doc"] = doc;
+    v["arg"] = arg;
+    v["arg_doc"] = arg + std::string(arg.size() < 5 ? 5 - arg.size() : 0, ' ');
+    v["function"] = name;
+    v["dim"] = size == 9 ? "3 x 3 (row-major)" : std::to_string(size);
+    v["names"] = join(fn.entry_names, ", ");
+    return fill_template("output.hpp.in", v);
+}
+
+std::string function_text(const lowered_form& lf, const lowered_function& fn,
+                          const function_body& b) {
+    if (fn.name == "rhs") return fill_template("rhs.hpp.in", common_values(lf, b));
+    if (fn.name == "jacobian") return fill_template("jacobian.hpp.in", common_values(lf, b));
+    if (fn.name == "rhs_and_jacobian")
+        return fill_template("rhs_and_jacobian.hpp.in", common_values(lf, b));
+    if (fn.name == "energy") return energy_text(lf, b);
+    return output_text(lf, fn, b);
+}
+
+// constexpr jacobian_pattern: 1 where the Jacobian may be non-zero, row-major.
+std::string pattern_text(const lowered_form& lf) {
+    if (lf.jacobian_zero.empty()) return "";
+    const std::size_t n = lf.state_names.size();
+    std::string rows;
+    for (std::size_t i = 0; i < n; ++i) {
+        rows += "   ";
+        for (std::size_t k = 0; k < n; ++k)
+            rows += std::string(" ") + (lf.jacobian_zero[i * n + k] ? "0" : "1") +
+                    (i + 1 < n || k + 1 < n ? "," : "");
+        rows += "\n";
     }
-    for (const auto& r : requested)
-        if (r != "rhs" && r != "jacobian" && !f.outputs.count(r)) {
-            const auto why = f.unavailable.find(r);
-            throw user_error(
-                {where}, std::string("the ") + to_string(o.form) + " form of '" + spec.name +
-                             "' cannot give '" + r +
-                             "': " + (why != f.unavailable.end() ? why->second : "not available"));
-        }
-    // In a fixed order, whatever order the command gave.
-    std::vector<std::string> outputs;
-    for (const auto& name : all)
-        if (wants(name) || std::find(requested.begin(), requested.end(), name) != requested.end())
-            outputs.push_back(name);
+    return fill_template("jacobian_pattern.hpp.in",
+                         {{"nn", std::to_string(n * n)}, {"pattern", rows}});
+}
 
-    // Specialisation: fold parameters (never the reduced form's conserved momenta) into the code.
-    GiNaC::exmap folded;
-    std::vector<std::string> folded_text;
-    std::vector<std::string> names;
-    for (const auto& p : f.parameters)
-        if (p.specialisable) names.push_back(p.name);
-    for (const auto& s : o.specialise)
-        if (std::find(names.begin(), names.end(), s) == names.end()) {
-            const std::string best = closest_name(s, names);
-            throw user_error({where}, "--specialise: model '" + spec.name + "' has no parameter '" +
-                                          s + "'" +
-                                          (best.empty() ? "" : "; did you mean '" + best + "'?"));
-        }
-    std::vector<form_parameter> runtime;
-    for (const auto& p : f.parameters) {
-        const bool fold = p.specialisable &&
-                          (o.specialise_all || std::find(o.specialise.begin(), o.specialise.end(),
-                                                         p.name) != o.specialise.end());
-        if (fold) {
-            folded[p.symbol] = exact_decimal(p.value);
-            folded_text.push_back(p.name + " = " + format_double(p.value));
-        } else {
-            runtime.push_back(p);
-        }
+// The members of params<T>.
+std::string params_members(const lowered_form& lf) {
+    if (lf.runtime_parameters.empty())
+        return "    // none: every parameter is folded into the code (" + join(lf.folded, ", ") +
+               ")";
+    std::string members = "    using rg_scalar = typename detail::scalar_of<T>::type;";
+    for (const auto& p : lf.runtime_parameters) {
+        members +=
+            "\n    T " + p.name + " = T(" + literal(exact_decimal(p.value), "rg_scalar") + ");";
+        if (!p.description.empty()) members += " // " + one_line(p.description);
     }
-    // The form before substitution: its candidates are lowered with the parameters as inputs and
-    // folded afterwards, and compete with the substituted ones (body_writer::write).
-    const form_expressions runtime_f = f;
-    if (!folded.empty()) {
-        for (auto& e : f.rates)
-            e = e.subs(folded);
-        for (auto& alt : f.alternative_rates)
-            for (auto& e : alt)
-                e = e.subs(folded);
-        for (auto& row : f.mass)
-            for (auto& e : row)
-                e = e.subs(folded);
-        for (auto& e : f.forcing)
-            e = e.subs(folded);
-        for (auto& [name, out] : f.outputs) {
-            for (auto& e : out.values)
-                e = e.subs(folded);
-            for (auto& alt : out.alternatives)
-                for (auto& e : alt)
-                    e = e.subs(folded);
-        }
-    }
+    return members;
+}
 
-    std::vector<program_input> inputs;
-    for (std::size_t i = 0; i < f.state.size(); ++i)
-        inputs.push_back({f.state[i].symbol, f.state[i].name, "y[" + std::to_string(i) + "]"});
-    // Model constants are parameters of the lowering (their coefficients become single
-    // fractions); the reduced form's conserved momenta are initial data, like the state.
-    for (const auto& p : runtime)
-        inputs.push_back({p.symbol, "p." + p.name, "", p.specialisable});
-    std::vector<program_input> runtime_inputs = inputs;
-    for (const auto& p : f.parameters)
-        if (folded.count(p.symbol)) runtime_inputs.push_back({p.symbol, "p." + p.name, "", true});
-    inputs.push_back({f.time, "t", ""});
-    runtime_inputs.push_back({f.time, "t", ""});
-
-    const std::size_t n = f.state.size();
-    std::vector<std::string> state_names, layout;
-    for (const auto& s : f.state)
-        state_names.push_back(s.name);
-    const std::string layout_text = "(" + join(state_names, ", ") + ")";
-
-    emitted_header h;
-    h.unit = o.name.empty() ? unit_name(spec.name, o.form) : o.name;
-    h.file_name = h.unit + ".hpp";
-    const body_writer writer(inputs, runtime_inputs, folded);
-    std::string functions;
-    std::vector<std::vector<ex>> rate_candidates{f.rates};
-    rate_candidates.insert(rate_candidates.end(), f.alternative_rates.begin(),
-                           f.alternative_rates.end());
-    // The same before substitution (empty without specialisation).
-    std::vector<std::vector<ex>> runtime_rates, runtime_jac, runtime_both;
-    if (!folded.empty()) {
-        runtime_rates.push_back(runtime_f.rates);
-        runtime_rates.insert(runtime_rates.end(), runtime_f.alternative_rates.begin(),
-                             runtime_f.alternative_rates.end());
-    }
-    const auto runtime_candidates_of = [&](const std::string& name) {
-        return folded.empty() ? std::vector<std::vector<ex>>{}
-                              : candidates_of(runtime_f.outputs.at(name));
-    };
-    std::vector<std::vector<ex>> jac_candidates, both_candidates;
-    std::vector<std::string> dydt_targets, jac_targets;
-    for (std::size_t i = 0; i < n; ++i)
-        dydt_targets.push_back("dydt[" + std::to_string(i) + "]");
-    for (std::size_t i = 0; i < n * n; ++i)
-        jac_targets.push_back("J[" + std::to_string(i) + "]");
-    const bool want_jacobian =
-        std::find(outputs.begin(), outputs.end(), "jacobian") != outputs.end();
-    const bool want_rhs = std::find(outputs.begin(), outputs.end(), "rhs") != outputs.end();
-    // The Jacobian's structural zeros: an entry that is exactly 0 by any route is 0, and so is an
-    // entry that vanishes identically (an identity such as sin^2 + cos^2 = 1 cancels it).
-    std::vector<bool> zero(n * n, false);
-    if (want_jacobian) {
-        for (const auto& r : rate_candidates)
-            jac_candidates.push_back(jacobian(f, r));
-        for (const auto& J : jac_candidates)
-            for (std::size_t i = 0; i < n * n; ++i)
-                zero[i] = zero[i] || J[i].is_zero();
-        const std::vector<bool> vanishing = identically_zero(jac_candidates[0], inputs, n);
-        for (std::size_t i = 0; i < n * n; ++i)
-            zero[i] = zero[i] || vanishing[i];
-        for (auto& J : jac_candidates)
-            for (std::size_t i = 0; i < n * n; ++i)
-                if (zero[i]) J[i] = 0;
-        for (std::size_t c = 0; c < rate_candidates.size(); ++c) {
-            std::vector<ex> both = rate_candidates[c];
-            both.insert(both.end(), jac_candidates[c].begin(), jac_candidates[c].end());
-            both_candidates.push_back(both);
-        }
-        // Entries zero for the folded values are zero in the runtime versions too.
-        for (const auto& r : runtime_rates) {
-            std::vector<ex> J = jacobian(runtime_f, r);
-            for (std::size_t i = 0; i < n * n; ++i)
-                if (zero[i]) J[i] = 0;
-            std::vector<ex> both = r;
-            both.insert(both.end(), J.begin(), J.end());
-            runtime_jac.push_back(std::move(J));
-            runtime_both.push_back(std::move(both));
-        }
-    }
-    const auto common = [&](const function_body& b) {
-        return std::map<std::string, std::string>{{"n", std::to_string(n)},
-                                                  {"layout", layout_text},
-                                                  {"body", b.text},
-                                                  {"ops", ops_text(b.before, b.after)},
-                                                  {"rate_names", join(f.rate_names, ", ")}};
-    };
-    const auto record = [&](const std::string& name, const function_body& b) {
-        h.stats.push_back({name, b.before, b.after, b.temporaries});
-    };
-    std::string pattern_piece;
-    for (const auto& name : outputs) {
-        if (name == "rhs") {
-            const function_body b =
-                writer.write(rate_candidates, dydt_targets, {"t", "y", "p"}, runtime_rates);
-            record(name, b);
-            functions += fill_template("rhs.hpp.in", common(b));
-        } else if (name == "jacobian") {
-            const function_body b =
-                writer.write(jac_candidates, jac_targets, {"t", "y", "p"}, runtime_jac);
-            record(name, b);
-            functions += fill_template("jacobian.hpp.in", common(b));
-            std::string rows;
-            for (std::size_t i = 0; i < n; ++i) {
-                rows += "   ";
-                for (std::size_t k = 0; k < n; ++k)
-                    rows += std::string(" ") + (zero[i * n + k] ? "0" : "1") +
-                            (i + 1 < n || k + 1 < n ? "," : "");
-                rows += "\n";
-            }
-            pattern_piece = fill_template("jacobian_pattern.hpp.in",
-                                          {{"nn", std::to_string(n * n)}, {"pattern", rows}});
-            if (want_rhs) {
-                std::vector<std::string> targets = dydt_targets;
-                targets.insert(targets.end(), jac_targets.begin(), jac_targets.end());
-                const function_body bj =
-                    writer.write(both_candidates, targets, {"t", "y", "p"}, runtime_both);
-                record("rhs_and_jacobian", bj);
-                functions += fill_template("rhs_and_jacobian.hpp.in", common(bj));
-            }
-        } else if (name == "energy") {
-            const function_body b = writer.write(candidates_of(f.outputs.at(name)), {"return"},
-                                                 {"y", "p"}, runtime_candidates_of(name));
-            record(name, b);
-            auto v = common(b);
-            v["doc"] = o.form == form_kind::body || o.form == form_kind::lagrangian
-                           ? "The energy T + V (conserved without damping and driving torques)."
-                           : "The energy, the Hamiltonian H = T + V (conserved without damping and "
-                             "driving torques).";
-            functions += fill_template("energy.hpp.in", v);
-        } else {
-            const form_output& out = f.outputs.at(name);
-            std::vector<std::string> targets;
-            static const std::map<std::string, std::pair<std::string, std::string>> info{
-                {"momenta", {"momentum", "The conjugate momenta p = dL/dq_dot (5.74)-(5.76)."}},
-                {"mass_matrix",
-                 {"M", "The mass matrix M(q) = J^T I J of the Euler-angle rates, row-major (p = M "
-                       "q_dot)."}},
-                {"omega", {"w", "The body angular velocity (5.30)."}},
-                {"rotation",
-                 {"A", "The rotation matrix A (5.25), passive, body <- space, row-major: x_body = "
-                       "A x_space."}},
-                {"ignored_rates",
-                 {"rates", "The rates of the ignored (cyclic) coordinates; integrate them to "
-                           "recover the angles."}}};
-            std::string arg = info.at(name).first, doc = info.at(name).second;
-            if (o.form == form_kind::body && name == "momenta")
-                doc = "The body angular momentum l = I omega (body axes).";
-            if (o.form == form_kind::body && name == "mass_matrix")
-                doc = "The inertia tensor I in body axes, row-major (l = I omega).";
-            if (o.form == form_kind::body && name == "rotation")
-                doc = "The rotation matrix A (5.25), passive, body <- space, row-major: A = R(q)^T "
-                      "/ |q|^2.";
-            for (std::size_t i = 0; i < out.values.size(); ++i)
-                targets.push_back(arg + "[" + std::to_string(i) + "]");
-            const function_body b =
-                writer.write(candidates_of(out), targets, {"y", "p"}, runtime_candidates_of(name));
-            record(name, b);
-            auto v = common(b);
-            v["doc"] = doc;
-            v["arg"] = arg;
-            v["arg_doc"] = arg + std::string(arg.size() < 5 ? 5 - arg.size() : 0, ' ');
-            v["function"] = name;
-            v["dim"] =
-                out.values.size() == 9 ? "3 x 3 (row-major)" : std::to_string(out.values.size());
-            v["names"] = join(out.names, ", ");
-            functions += fill_template("output.hpp.in", v);
-        }
-    }
-    if (o.form == form_kind::body && f.state.size() == 7)
-        functions += fill_template("quaternion.hpp.in", {});
-
-    // params<T>
-    std::string members;
-    if (runtime.empty()) {
-        members = "    // none: every parameter is folded into the code (" +
-                  join(folded_text, ", ") + ")";
-    } else {
-        members = "    using rg_scalar = typename detail::scalar_of<T>::type;";
-        for (const auto& p : runtime) {
-            members +=
-                "\n    T " + p.name + " = T(" + literal(exact_decimal(p.value), "rg_scalar") + ");";
-            if (!p.description.empty()) members += " // " + one_line(p.description);
-        }
-    }
-    std::vector<std::string> param_names;
-    for (const auto& p : runtime)
-        param_names.push_back(p.name);
-
-    // The description block of the header comment.
+// The description block of the header comment: form, state, angles, singularities, parameters,
+// operation counts.
+std::string description(const lowered_form& lf, const std::vector<function_stats>& stats) {
+    const std::size_t n = lf.state_names.size();
     std::string desc;
-    desc += comment_block("Form: " + form_title(f) + ".");
-    for (const auto& note : f.notes)
+    desc += comment_block("Form: " + form_title(lf) + ".");
+    for (const auto& note : lf.notes)
         desc += comment_block(note, "  ");
     desc += "//\n";
-    desc +=
-        comment_block("State y (dim " + std::to_string(n) + "): " + join(state_names, ", ") + ".");
-    if (o.form != form_kind::body || n == 7)
+    desc += comment_block("State y (dim " + std::to_string(n) + "): " +
+                          join(lf.state_names, ", ") + ".");
+    if (lf.form != form_kind::body || n == 7)
         desc += comment_block(
             "Angles: z-x-z Euler angles (5.3), phi about z, theta about the new x, psi about the "
             "new z; phi, psi in [0, 2 pi), theta in [0, pi], in radians. A = Az(psi) Ax(theta) "
             "Az(phi) is passive, body <- space (5.25); omega is in body axes (5.30).");
-    if (o.form == form_kind::body)
+    if (lf.form == form_kind::body)
         desc += comment_block(
             "Singularities: none from the coordinates (unless a warning above says otherwise).");
     else
@@ -624,50 +356,81 @@ emitted_header emit_header(const model_spec& spec, const derivation& d, const em
             "q_dot): rates and Jacobian grow like 1/sin(theta) there. Keep theta away from 0 and "
             "pi, or use the body form (--form body).");
     desc += "//\n";
-    if (runtime.empty())
-        desc += comment_block(
-            "Parameters: none at run time; folded in: " + join(folded_text, ", ") + ".");
-    else {
+    if (lf.runtime_parameters.empty()) {
+        desc += comment_block("Parameters: none at run time; folded in: " + join(lf.folded, ", ") +
+                              ".");
+    } else {
         std::vector<std::string> defaults;
-        for (const auto& p : runtime)
+        for (const auto& p : lf.runtime_parameters)
             defaults.push_back(p.name + " = " + format_double(p.value));
         desc += comment_block(
             "Parameters (params<T>, defaults from the model file): " + join(defaults, ", ") + "." +
-            (folded_text.empty() ? "" : " Folded in: " + join(folded_text, ", ") + "."));
+            (lf.folded.empty() ? "" : " Folded in: " + join(lf.folded, ", ") + "."));
     }
     desc += "//\n// Operations (+ - * / and calls), before lowering -> after:\n";
-    for (const auto& s : h.stats)
+    for (const auto& s : stats)
         desc += "//   " + s.function + ": " + std::to_string(s.before.total()) + " -> " +
                 std::to_string(s.after.total()) + " (" + std::to_string(s.temporaries) +
                 " temporaries)\n";
     if (!desc.empty() && desc.back() == '\n') desc.pop_back();
+    return desc;
+}
 
-    const std::map<std::string, std::string> constants{
-        {"model", spec.name},
-        {"form", to_string(o.form)},
-        {"n", std::to_string(n)},
-        {"layout", layout_text},
-        {"state_names", quoted_list(state_names)},
-        {"np", std::to_string(runtime.size())},
-        {"parameter_names", runtime.empty() ? "" : "{" + quoted_list(param_names) + "}"}};
+std::string constants_text(const model_spec& spec, const lowered_form& lf) {
+    std::vector<std::string> param_names;
+    for (const auto& p : lf.runtime_parameters)
+        param_names.push_back(p.name);
+    const std::size_t np = lf.runtime_parameters.size();
+    return fill_template(
+        "constants.hpp.in",
+        {{"model", spec.name},
+         {"form", to_string(lf.form)},
+         {"n", std::to_string(lf.state_names.size())},
+         {"layout", layout_of(lf)},
+         {"state_names", quoted_list(lf.state_names)},
+         {"np", std::to_string(np)},
+         {"parameter_names", np == 0 ? "" : "{" + quoted_list(param_names) + "}"}});
+}
 
-    h.text =
-        fill_template("header.hpp.in",
-                      {{"file_name", h.file_name},
-                       {"model", spec.name},
-                       {"form_title", form_title(f)},
-                       {"version", ROTGEN_VERSION},
-                       {"model_file", one_line(spec.file)},
-                       {"model_hash", "0x" + hex(fnv1a(spec.source))},
-                       {"command", one_line(o.command)},
-                       {"description", desc},
-                       {"guard", guard_of(h.unit)},
-                       {"unit", h.unit},
-                       {"params", fill_template("params.hpp.in",
-                                                {{"model_file", one_line(spec.file)}, {"members", members}})},
-                       {"constants", fill_template("constants.hpp.in", constants) + pattern_piece},
-                       {"functions", functions}});
+} // namespace
+
+emitted_header emit_header(const model_spec& spec, const lowered_form& lf,
+                           const header_options& o) {
+    emitted_header h;
+    h.unit = o.name.empty() ? unit_name(spec.name, lf.form) : o.name;
+    h.file_name = h.unit + ".hpp";
+    std::string functions;
+    for (const lowered_function& fn : lf.functions) {
+        const function_body b = write_body(fn);
+        h.stats.push_back({fn.name, b.before, b.after, b.temporaries});
+        functions += function_text(lf, fn, b);
+    }
+    if (lf.form == form_kind::body && lf.state_names.size() == 7)
+        functions += fill_template("quaternion.hpp.in", {});
+    const std::string params = fill_template(
+        "params.hpp.in", {{"model_file", one_line(spec.file)}, {"members", params_members(lf)}});
+    h.text = fill_template("header.hpp.in",
+                           {{"file_name", h.file_name},
+                            {"model", spec.name},
+                            {"form_title", form_title(lf)},
+                            {"version", ROTGEN_VERSION},
+                            {"model_file", one_line(spec.file)},
+                            {"model_hash", "0x" + hex(fnv1a(spec.source))},
+                            {"command", one_line(o.command)},
+                            {"description", description(lf, h.stats)},
+                            {"guard", guard_of(h.unit)},
+                            {"unit", h.unit},
+                            {"params", params},
+                            {"constants", constants_text(spec, lf) + pattern_text(lf)},
+                            {"functions", functions}});
     return h;
+}
+
+// transitional: removed when simulate and bench are ported
+emitted_header emit_header(const model_spec& spec, const derivation& d, const emit_options& o) {
+    const kernel_request request{o.outputs, o.specialise_all, o.specialise};
+    const form_expressions f = build_requested_form(spec, d, o.form, o.strategy, request);
+    return emit_header(spec, lower_form(spec, f, request), {o.command, o.name});
 }
 
 } // namespace rotgen

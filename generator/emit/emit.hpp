@@ -1,4 +1,5 @@
-// rotgen — stage 5: emission. A form's expressions, lowered, become one C++ header.
+// rotgen — stage 5: emission. A lowered form (lower/lower_form.hpp) becomes one C++ header. The
+// emitter prints: it never builds or lowers a form (emit/printer.hpp prints each program).
 //
 // The header's skeleton is templates/*.in (embedded at build time by cmake/embed_templates.cmake);
 // this module fills their @placeholders@ and writes only the pieces that were asked for.
@@ -28,8 +29,10 @@
 #pragma once
 
 #include "derive/derive.hpp"
+#include "emit/printer.hpp"
 #include "forms/forms.hpp"
 #include "lower/lower.hpp"
+#include "lower/lower_form.hpp"
 #include "spec/spec.hpp"
 
 #include <string>
@@ -37,12 +40,8 @@
 
 namespace rotgen {
 
-struct emit_options {
-    form_kind form = form_kind::lagrangian;
-    lagrangian_strategy strategy = lagrangian_strategy::explicit_inverse;
-    std::vector<std::string> outputs;    // empty: every output the form can give
-    bool specialise_all = false;         // fold every model parameter into the code
-    std::vector<std::string> specialise; // or these
+// What the header says about itself and what it is called.
+struct header_options {
     std::string command; // the command that regenerates the header (for its comment)
     std::string name;    // the unit (namespace and file stem); empty: unit_name()
 };
@@ -63,14 +62,28 @@ struct emitted_header {
 // "heavy_top" for the Lagrangian form, "heavy_top_hamiltonian", ... for the others.
 std::string unit_name(const std::string& model, form_kind form);
 
-// The header. Throws user_error for an output the form cannot give, or an unknown parameter name
-// in `specialise`; std::logic_error for internal failures.
+// The header of a lowered form; std::logic_error for internal failures. The caller builds and
+// lowers the form:
+//   const kernel_request request{outputs, specialise_all, specialise};
+//   const form_expressions f = build_requested_form(spec, d, form, strategy, request);
+//   const emitted_header h = emit_header(spec, lower_form(spec, f, request), {command, name});
+emitted_header emit_header(const model_spec& spec, const lowered_form& form,
+                           const header_options& options);
+
+// transitional: removed when simulate and bench are ported (they call the sequence above).
+struct emit_options {
+    form_kind form = form_kind::lagrangian;
+    lagrangian_strategy strategy = lagrangian_strategy::explicit_inverse;
+    std::vector<std::string> outputs;    // empty: every output the form can give
+    bool specialise_all = false;         // fold every model parameter into the code
+    std::vector<std::string> specialise; // or these
+    std::string command; // the command that regenerates the header (for its comment)
+    std::string name;    // the unit (namespace and file stem); empty: unit_name()
+};
+// transitional: removed when simulate and bench are ported. Builds and lowers the form, then
+// emit_header(spec, lowered, {command, name}); user_error as lower_form() throws it.
 emitted_header emit_header(const model_spec& spec, const derivation& d,
                            const emit_options& options);
-
-// The exact rational a parameter default stands for: the shortest decimal that reads back as the
-// double (9.81 -> 981/100), so that folded constants are exact in every scalar type.
-GiNaC::numeric exact_decimal(double x);
 
 // Fills the @name@ placeholders of templates/<name>; a placeholder without a value is an error.
 std::string fill_template(const std::string& name,

@@ -30,7 +30,8 @@
 //   * sin and cos of each input (an angle) are computed once, named sin_<input>, cos_<input>;
 //   * numbers stay exact rationals; GiNaC folds numeric arithmetic as it builds expressions.
 //
-// A node used more than once becomes a temporary, and so does one that would print too long
+// Lowering prints nothing: emit/printer.hpp prints a program as C++. A node used more than once
+// becomes a temporary, and so does one that would print too long
 // inline; the rest print inline where they are used. A sum printed inside another sum, or
 // multiplied by a number, prints as one sum with the numbers multiplied in where that needs no
 // more multiplications (c (a x + b y) -> (c a) x + (c b) y, exact; -(x - y) -> y - x).
@@ -41,8 +42,8 @@
 // so nothing here depends on it. Each node gets a 64-bit digest computed by rotgen from its content
 // alone (kind, printed names and exact numbers, children's digests, commutative children sorted);
 // children are ordered by digest, temporaries are numbered t000, t001, ... in a depth-first
-// traversal from the outputs in that order, and the printer sorts the terms of sums and factors of
-// products by their printed text. Same expressions in, same program (and same bytes) out. (Two
+// traversal from the outputs in that order, and the printer (emit/printer.hpp) sorts the terms of
+// sums and factors of products by their printed text. Same expressions in, same program (and same bytes) out. (Two
 // different nodes with one digest would be a collision: lowering throws rather than guess.)
 // normal()'s output also changes from run to run, but only by a constant factor of numerator and
 // denominator, which lowering fixes (expanded, the denominator's integer content 1, the sign by
@@ -135,21 +136,11 @@ std::optional<lowered_program> lower_folded(const std::vector<GiNaC::ex>& output
 // Operations in `e` printed naively (integer powers as repeated products, as c_printer does).
 op_count count_ops(const GiNaC::ex& e);
 
-// C++ text of a node as used in an expression: temporaries and inputs by name, anything else
-// inline; `scalar` names the type of literals (`S(1)/S(3)`, folded by the compiler).
-std::string print_node(const lowered_program& program, int node, const std::string& scalar = "S");
-// The expression a node stands for (a temporary's right-hand side).
-std::string print_definition(const lowered_program& program, int node,
-                             const std::string& scalar = "S");
-
 // The program's value at a point, computed node by node with GiNaC floats (to check lowering
 // against the original expressions). `values` maps input symbols to numbers; returns the outputs.
 std::vector<GiNaC::numeric> evaluate(const lowered_program& program, const GiNaC::exmap& values);
 
 // Which inputs the printed program uses (to emit only the definitions it needs).
 std::vector<bool> used_inputs(const lowered_program& program);
-
-// True if the node is the number zero.
-bool is_zero_node(const lowered_program& program, int node);
 
 } // namespace rotgen

@@ -6,6 +6,7 @@
 
 #include "emit/emit.hpp"
 #include "support/error.hpp"
+#include "emit/printer.hpp"
 #include "lower/lower.hpp"
 
 #include <catch2/catch.hpp>
@@ -18,6 +19,24 @@ using namespace rotgen;
 using namespace rotgen::test;
 
 namespace {
+
+// What a test asks of the emitter: the form, the request, the header's options; emitted as
+// `rotgen emit` does (build the form, lower it, print it).
+struct emit_request {
+    form_kind form = form_kind::lagrangian;
+    lagrangian_strategy strategy = lagrangian_strategy::explicit_inverse;
+    std::vector<std::string> outputs;
+    bool specialise_all = false;
+    std::vector<std::string> specialise;
+    std::string command;
+    std::string name;
+};
+
+emitted_header emit_with(const model_spec& spec, const derivation& d, const emit_request& o) {
+    const kernel_request request{o.outputs, o.specialise_all, o.specialise};
+    const form_expressions f = build_requested_form(spec, d, o.form, o.strategy, request);
+    return emit_header(spec, lower_form(spec, f, request), {o.command, o.name});
+}
 
 std::vector<std::string> shipped_models() {
     std::vector<std::string> names;
@@ -63,19 +82,19 @@ TEST_CASE("specialising never makes a kernel bigger than the runtime-parameter o
         const model_spec spec = load_model(model_path(model));
         const derivation d = derive(spec);
         for (const variant& v : variants) {
-            emit_options o;
+            emit_request o;
             o.form = v.form;
             o.strategy = v.strategy;
             o.outputs = {}; // every output the form can give
             emitted_header runtime;
             try {
-                runtime = emit_header(spec, d, o);
+                runtime = emit_with(spec, d, o);
             } catch (const user_error&) {
                 REQUIRE(v.form == form_kind::reduced); // a model without a cyclic coordinate
                 continue;
             }
             o.specialise_all = true;
-            const emitted_header folded = emit_header(spec, d, o);
+            const emitted_header folded = emit_with(spec, d, o);
             const auto r = ops_of(runtime), f = ops_of(folded);
             REQUIRE(r.size() == f.size());
             for (const auto& [function, ops] : r) {
@@ -149,12 +168,12 @@ TEST_CASE("kernels are no bigger than the hand-written ones of bench/kernels", "
     // a runtime-parameter bound adds what that kernel precomputes from the parameters, which a
     // kernel reading the parameters at run time must compute in every call.
     const auto rhs_ops = [](const std::string& model, form_kind form, bool specialise) {
-        emit_options o;
+        emit_request o;
         o.form = form;
         o.outputs = {"rhs"};
         o.specialise_all = specialise;
         const model_spec spec = load_model(model_path(model));
-        const emitted_header h = emit_header(spec, derive(spec), o);
+        const emitted_header h = emit_with(spec, derive(spec), o);
         return h.stats.at(0).after.total();
     };
     // heavy_top_hand, (5.73), M g h precomputed: sin, cos (2); w3 = phi_dot cos + psi_dot (2);

@@ -3,6 +3,7 @@
 #include "support.hpp"
 
 #include "forms/forms.hpp"
+#include "emit/printer.hpp"
 #include "lower/lower.hpp"
 
 #include <catch2/catch.hpp>
