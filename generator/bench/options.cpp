@@ -20,7 +20,7 @@ user_error usage_error(const std::string& problem) {
 
 } // namespace
 
-// shared with simulate: to be replaced by cli/'s one option parser
+// shared with simulate: to be replaced by the one option parser (support/ or cli/)
 bench_options parse_arguments(const std::vector<std::string>& args) {
     bench_options o;
     for (std::size_t i = 0; i < args.size(); ++i) {

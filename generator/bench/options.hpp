@@ -16,7 +16,7 @@ struct bench_options {
 
 // The options of `rotgen bench ARGS...`, with the defaults filled in (DIR: bench-out/<scene>);
 // throws user_error for an unknown option, a missing value or a missing scene.
-// shared with simulate: to be replaced by cli/'s one option parser
+// shared with simulate: to be replaced by the one option parser (support/ or cli/)
 bench_options parse_arguments(const std::vector<std::string>& args);
 
 } // namespace rotgen::bench
