@@ -1,4 +1,4 @@
-// rotgen bench: the work-precision report of one scene (bench_command.cpp).
+// rotgen bench: the work-precision report of one scene (generator/bench/bench.cpp).
 #pragma once
 
 #include <string>

@@ -1,0 +1,177 @@
+// rotgen bench SCENE.yaml [-o DIR] [--quick] [--long-steps N]
+//
+// The speed-accuracy trade of one scene, measured (DESIGN.md "Measuring the speed-accuracy
+// trade"): derive -> emit every variant of the scene's equations (formulation x code generation,
+// variants.hpp) -> fill bench/workprecision/driver.cpp.in -> compile it once (-O3, cached by a
+// hash of the source, the harness, the runtime, the compiler and the flags; driver.hpp) -> run
+// the driver on a plan of configurations (integrator x tolerance or step x scalar type x variant,
+// and the peers Boost.Odeint and SUNDIALS CVODE on the same kernels; plan.hpp) -> results.csv,
+// results.md, final_states.csv, drift.csv (report_tables.cpp) and the plots
+// work_precision_time.png, work_precision_evals.png, invariant_drift.png (report_plots.cpp) in
+// DIR (default bench-out/<scene>).
+#include "bench/bench.hpp"
+
+#include "bench/bench_internal.hpp"
+#include "bench/files.hpp"
+#include "bench/numbers.hpp"
+#include "support/error.hpp"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+
+namespace rotgen {
+
+namespace bench {
+
+namespace {
+
+namespace fs = std::filesystem;
+using clock_type = std::chrono::steady_clock;
+
+double seconds_since(clock_type::time_point t) {
+    return std::chrono::duration<double>(clock_type::now() - t).count();
+}
+
+// The output directory, created, and refused unless writable.
+void make_output_directory(const fs::path& dir) {
+    std::error_code ec;
+    if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+        throw user_error({dir.string()}, "the output path exists and is not a directory");
+    fs::create_directories(dir, ec);
+    if (ec) throw user_error({dir.string()}, "cannot create the output directory: " + ec.message());
+    const fs::path probe = dir / (".probe" + std::to_string(::getpid()));
+    std::ofstream p(probe);
+    if (!p) throw user_error({dir.string()}, std::string("cannot write: ") + std::strerror(errno));
+    p.close();
+    fs::remove(probe, ec);
+}
+
+// One `rotgen bench` run: its state (bench_context), and the stages, in the order run() calls
+// them, that fill it.
+class bench_run {
+  public:
+    int run(const std::vector<std::string>& args) {
+        m_wall0 = clock_type::now();
+        prepare(args);     // options, scene, output directory
+        choose_variants(); // derive; the forms and code-generation variants
+        m_ctx.plan = make_plan(m_ctx.scene, m_ctx.spec, m_ctx.parameter_values, m_ctx.k0, m_ctx.opt,
+                               m_ctx.conservative, m_ctx.variants);
+        write_file(m_ctx.dir / "plan.txt", m_ctx.plan.text); // the configurations -> plan.txt
+        m_ctx.source = driver_source(m_ctx.variants.variants, m_ctx.scene, m_ctx.spec, m_ctx.d,
+                                     m_ctx.k0, m_ctx.opt, m_ctx.src); // emit every variant
+        m_ctx.generate_seconds = seconds_since(m_t_gen);
+        m_ctx.driver = compile_driver(m_ctx.source, m_ctx.src, m_ctx.scene_name,
+                                      m_ctx.variants.variants.size()); // once per source, cached
+        m_ctx.run = run_driver(m_ctx.driver.exe, m_ctx.dir, m_ctx.plan.lines); // -> raw.txt
+        m_ctx.output = read_output(m_ctx.run.raw);
+        write_tables(m_ctx);                          // results.csv, final_states.csv, drift.csv
+        m_ctx.summary = summarise(m_ctx.output.rows); // the best configuration per accuracy
+        std::string markdown = write_markdown(m_ctx, seconds_since(m_wall0));
+        draw_plots(m_ctx);
+        finish(markdown); // results.md, the summary on stdout
+        return 0;
+    }
+
+  private:
+    void prepare(const std::vector<std::string>& args);
+    void choose_variants();
+    void finish(std::string& markdown);
+    void print_summary(double wall_seconds) const;
+
+    bench_context m_ctx;
+    clock_type::time_point m_wall0, m_t_gen;
+};
+
+void bench_run::prepare(const std::vector<std::string>& args) {
+    bench_context& c = m_ctx;
+    c.opt = parse_arguments(args);
+    c.scene = load_scene(c.opt.scene);
+    c.spec = c.scene.model; // with the scene's parameter values
+    for (std::size_t i = 0; i < c.spec.parameters.size(); ++i)
+        c.spec.parameters[i].value = c.scene.parameters[i];
+    c.src = find_bench_sources();
+    c.dir = c.opt.dir;
+    make_output_directory(c.dir);
+    c.euler_ok = std::abs(std::sin(c.scene.angles[1])) > 1e-10;
+    if (!c.euler_ok && c.scene.form != form_kind::body)
+        throw user_error(c.scene.initial_where,
+                         "initial theta is the gimbal-lock singularity of the "
+                         "Euler-angle forms (sin theta = 0); use form: body");
+}
+
+void bench_run::choose_variants() {
+    bench_context& c = m_ctx;
+    m_t_gen = clock_type::now();
+    c.d = derive(c.spec);
+    for (std::size_t i = 0; i < c.spec.parameters.size(); ++i)
+        c.parameter_values[c.spec.parameters[i].symbol] = exact_decimal(c.scene.parameters[i]);
+    c.k0 = initial_kinematics(c.scene, c.d, c.parameter_values);
+    check_double_range(c.scene, c.k0);
+    c.conservative = !c.spec.has_damping && !c.spec.has_torque;
+    c.scene_name = fs::path(c.opt.scene).stem().string();
+    c.variants = bench::choose_variants(c.scene, c.spec, c.d, c.euler_ok && c.k0.have_rates,
+                                        records_orientation(c.scene), c.opt.quick);
+}
+
+void bench_run::finish(std::string& markdown) {
+    const double wall_seconds = seconds_since(m_wall0);
+    markdown +=
+        "\nWall time of the whole `rotgen bench` run: " + short_number(wall_seconds) + " s.\n";
+    write_file(m_ctx.dir / "results.md", markdown);
+    print_summary(wall_seconds);
+}
+
+void bench_run::print_summary(double wall_seconds) const {
+    const bench_context& c = m_ctx;
+    const driver_output& out = c.output;
+    std::size_t failed = 0;
+    for (const auto& r : out.rows)
+        failed += r.status != "ok";
+    std::cout << "rotgen bench " << c.opt.scene << "\n"
+              << "  variants  ";
+    for (std::size_t i = 0; i < c.variants.variants.size(); ++i)
+        std::cout << (i ? ", " : "") << c.variants.variants[i].label;
+    std::cout << "\n  reference " << out.reference_source << " (check "
+              << short_number(out.reference_error) << ")\n  compared  " << out.compared << "\n"
+              << "  runs      " << out.rows.size() << " configurations (" << failed << " failed), "
+              << c.plan.drift_labels.size() << " long runs\n"
+              << "  time      " << short_number(c.generate_seconds) << " s generating, "
+              << (c.driver.cached ? std::string("cached driver")
+                                  : short_number(c.driver.seconds) + " s compiling")
+              << ", " << short_number(c.run.seconds) << " s sweeping, "
+              << short_number(wall_seconds) << " s in all\n"
+              << "  harness   " << c.src.harness.string() << ", runtime " << c.src.runtime.string()
+              << "\n";
+    std::cout << "  fastest to reach an error (interpolated along each curve; median times):\n";
+    for (std::size_t l = 0; l < c.summary.levels.size(); ++l) {
+        const reach& a = c.summary.reached[l].first;
+        const reach& b = c.summary.reached[l].second;
+        if (!std::isfinite(a.time) && !std::isfinite(b.time)) continue;
+        std::cout << "  " << tol_text(c.summary.levels[l]) << "  rotgen "
+                  << (std::isfinite(a.time) ? short_number(a.time * 1e6) + " us (" + a.curve + ")"
+                                            : "-")
+                  << "  peer "
+                  << (std::isfinite(b.time) ? short_number(b.time * 1e6) + " us (" + b.curve + ")"
+                                            : "-")
+                  << "\n";
+    }
+    std::cout << "  wrote     " << (c.dir / "results.csv").string()
+              << ", results.md, final_states.csv, "
+              << "drift.csv, work_precision_time.png, work_precision_evals.png"
+              << (c.plan.drift_labels.empty() ? "" : ", invariant_drift.png") << "\n";
+}
+
+} // namespace
+
+} // namespace bench
+
+int cmd_bench(const std::vector<std::string>& args) {
+    return bench::bench_run().run(args);
+}
+
+} // namespace rotgen

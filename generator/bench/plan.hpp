@@ -1,0 +1,33 @@
+// rotgen bench: the plan the driver runs (plan.txt): the configurations (integrator x tolerance or
+// step x scalar type x variant, and the peers Boost.Odeint and SUNDIALS CVODE on the same
+// kernels), the reference and the long runs.
+#pragma once
+
+#include "bench/initial_state.hpp"
+#include "bench/options.hpp"
+#include "bench/variants.hpp"
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace rotgen::bench {
+
+struct bench_plan {
+    double t0 = 0, t1 = 0;
+    double nu = 1;         // the fastest rate of the motion; fixed steps are h = c / nu
+    double target = 0.02;  // seconds per timed loop
+    int repeats = 7;       // timed loops per configuration (>= 5)
+    std::string text;      // plan.txt
+    std::size_t lines = 0; // configurations
+    std::size_t ref_variant = 0;
+    std::vector<std::string> drift_labels; // the long runs, in order
+};
+
+// The plan for the scene's variants; sets each variant's method bits (what the driver compiles
+// for it). `conservative`: no damping and no torque.
+bench_plan make_plan(const scene_spec& scene, const model_spec& spec,
+                     const GiNaC::exmap& parameter_values, const kinematics& k0,
+                     const bench_options& opt, bool conservative, variant_set& set);
+
+} // namespace rotgen::bench

@@ -1,0 +1,119 @@
+// rotgen bench: the best configuration per accuracy.
+#include "bench/summary.hpp"
+
+#include "bench/numbers.hpp"
+
+#include <algorithm>
+#include <map>
+
+namespace rotgen::bench {
+
+namespace {
+
+bool is_peer(const result_row& r) {
+    return r.peer != "rotgen";
+}
+
+// The fastest measured point (by median) at or below each level, per kind of peer.
+std::vector<best_entry> best_measured(const std::vector<result_row>& rows,
+                                      const std::vector<double>& levels) {
+    std::vector<best_entry> best(levels.size(), best_entry{});
+    for (std::size_t l = 0; l < levels.size(); ++l)
+        for (const auto& r : rows) {
+            if (!r.ok() || !(r.error <= levels[l]) || !std::isfinite(r.median)) continue;
+            const result_row*& slot = is_peer(r) ? best[l].peer : best[l].rotgen;
+            if (!slot || r.median < slot->median) slot = &r;
+        }
+    return best;
+}
+
+// The time a curve (points sorted by tolerance or step, coarsest first) needs to reach `level`:
+// between two neighbouring points whose errors straddle the level, log(time) and log(RHS
+// evaluations) are interpolated linearly in log(error); a point at or below the level counts as
+// it is. NaN time if the curve never gets there.
+reach reach_on_curve(const std::string& name, const std::vector<const result_row*>& points,
+                     double level) {
+    reach best_here;
+    best_here.curve = name;
+    best_here.peer = points.front()->peer != "rotgen";
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        const result_row& b = *points[i];
+        if (b.error <= level && !(b.median >= best_here.time))
+            best_here.time = b.median, best_here.rhs = double(b.rhs);
+        if (i == 0) continue;
+        const result_row& a = *points[i - 1];
+        if (!(a.error > level && b.error <= level)) continue;
+        const double w =
+            (std::log(level) - std::log(a.error)) / (std::log(b.error) - std::log(a.error));
+        const double t =
+            std::exp(std::log(a.median) + w * (std::log(b.median) - std::log(a.median)));
+        const double n = std::exp(std::log(double(a.rhs)) +
+                                  w * (std::log(double(b.rhs)) - std::log(double(a.rhs))));
+        if (!(t >= best_here.time)) best_here.time = t, best_here.rhs = n;
+    }
+    return best_here;
+}
+
+// The fastest curve (interpolated) per level, per kind of peer.
+std::vector<std::pair<reach, reach>> best_interpolated(const std::vector<result_row>& rows,
+                                                       const std::vector<double>& levels) {
+    std::map<std::string, std::vector<const result_row*>> curves_by_name;
+    for (const auto& r : rows)
+        if (r.ok() && std::isfinite(r.median) && r.error > 0)
+            curves_by_name[(r.peer == "rotgen" ? "rotgen " : r.peer + " ") + method_key(r) + " " +
+                           r.scalar + " " + r.form]
+                .push_back(&r);
+    std::vector<std::pair<reach, reach>> reached(levels.size()); // (rotgen, peer)
+    for (auto& [name, points] : curves_by_name) {
+        std::sort(points.begin(), points.end(), [](const result_row* a, const result_row* b) {
+            return a->tol > 0 ? a->tol > b->tol : a->step > b->step;
+        });
+        for (std::size_t l = 0; l < levels.size(); ++l) {
+            const reach best_here = reach_on_curve(name, points, levels[l]);
+            if (!std::isfinite(best_here.time)) continue;
+            reach& slot = best_here.peer ? reached[l].second : reached[l].first;
+            if (!(best_here.time >= slot.time)) slot = best_here;
+        }
+    }
+    return reached;
+}
+
+} // namespace
+
+std::string method_key(const result_row& r) {
+    const bool adaptive = r.method == "dop853" || r.method == "dopri5" || r.method == "rkf78";
+    return adaptive && r.step > 0 ? r.method + " fixed" : r.method;
+}
+
+std::string method_title(const result_row& r) {
+    return r.peer == "rotgen" ? method_key(r) : r.peer + " " + method_key(r);
+}
+
+std::string config_name(const result_row* r) {
+    if (!r) return std::string("—");
+    std::string s = (r->peer == "rotgen" ? "rotgen " : r->peer + " ") + r->method + " " +
+                    r->scalar + " " + r->form;
+    s += r->tol > 0 ? " tol " + tol_text(r->tol) : " h " + short_number(r->step, 3);
+    return s;
+}
+
+bench_summary summarise(const std::vector<result_row>& rows) {
+    bench_summary s;
+    for (int e = 3; e <= 13; ++e)
+        s.levels.push_back(std::pow(10.0, -e));
+    s.best = best_measured(rows, s.levels);
+    s.reached = best_interpolated(rows, s.levels);
+    return s;
+}
+
+const result_row* fewest(const std::vector<result_row>& rows, const std::string& peer,
+                         const std::string& method, double level) {
+    const result_row* b = nullptr;
+    for (const auto& r : rows)
+        if (r.ok() && r.peer == peer && method_key(r) == method && r.scalar == "double" &&
+            r.variant == 0 && r.error <= level && (!b || r.rhs < b->rhs))
+            b = &r;
+    return b;
+}
+
+} // namespace rotgen::bench

@@ -1,0 +1,50 @@
+// rotgen bench: the best configuration per accuracy, measured and interpolated, and the names the
+// tables and plots give configurations.
+#pragma once
+
+#include "bench/driver.hpp"
+
+#include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace rotgen::bench {
+
+// The method of a configuration as the tables and plots name it: an adaptive method run with a
+// fixed step (rotgen's DOP853, Odeint's Fehlberg 7(8)) is a curve of its own, "dop853 fixed".
+std::string method_key(const result_row& r);
+
+// "dop853", "odeint rkf78 fixed", ...
+std::string method_title(const result_row& r);
+
+// The name of a configuration, for the tables ("—" for none).
+std::string config_name(const result_row* r);
+
+// The fastest configuration at or below an error level: a measured point, per kind of peer.
+struct best_entry {
+    const result_row* rotgen = nullptr;
+    const result_row* peer = nullptr;
+};
+
+// The time (and RHS evaluations) a configuration's curve needs to reach an error level.
+struct reach {
+    std::string curve;
+    double time = NAN, rhs = NAN;
+    bool peer = false;
+};
+
+struct bench_summary {
+    std::vector<double> levels;                   // 1e-3 .. 1e-13
+    std::vector<best_entry> best;                 // per level
+    std::vector<std::pair<reach, reach>> reached; // (rotgen, peer) per level
+};
+
+// The summary of the rows (which must outlive it).
+bench_summary summarise(const std::vector<result_row>& rows);
+
+// The fewest RHS evaluations of a method (double, main form) at or below an error level.
+const result_row* fewest(const std::vector<result_row>& rows, const std::string& peer,
+                         const std::string& method, double level);
+
+} // namespace rotgen::bench
