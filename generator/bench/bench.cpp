@@ -14,6 +14,8 @@
 #include "bench/bench_internal.hpp"
 #include "bench/files.hpp"
 #include "bench/numbers.hpp"
+#include "run/engine.hpp"
+#include "run/kinematics.hpp"
 #include "support/error.hpp"
 
 #include <unistd.h>
@@ -110,12 +112,12 @@ void bench_run::choose_variants() {
     c.d = derive(c.spec);
     for (std::size_t i = 0; i < c.spec.parameters.size(); ++i)
         c.parameter_values[c.spec.parameters[i].symbol] = exact_decimal(c.scene.parameters[i]);
-    c.k0 = initial_kinematics(c.scene, c.d, c.parameter_values);
+    c.k0 = initial_kinematics_of(c.scene, c.d);
     check_double_range(c.scene, c.k0);
     c.conservative = !c.spec.has_damping && !c.spec.has_torque;
     c.scene_name = fs::path(c.opt.scene).stem().string();
     c.variants = bench::choose_variants(c.scene, c.spec, c.d, c.euler_ok && c.k0.have_rates,
-                                        records_orientation(c.scene), c.opt.quick);
+                                        needs_orientation(c.scene, false), c.opt.quick);
 }
 
 void bench_run::finish(std::string& markdown) {

@@ -1,6 +1,8 @@
 // rotgen bench: the driver's source, and compiling it.
 #include "bench/driver.hpp"
 
+#include "support/template.hpp"
+
 #include "bench/files.hpp"
 #include "run/compile_cache.hpp"
 #include "support/error.hpp"
@@ -21,17 +23,13 @@ namespace fs = std::filesystem;
 
 // Every variant's header (and unlowered rhs), labelled.
 std::string emit_kernels(std::vector<variant>& variants, const model_spec& spec,
-                         const derivation& d, const bench_options& opt) {
+                         const bench_options& opt) {
     std::string kernels;
     for (auto& v : variants) {
-        emit_options eo;
-        eo.form = v.form;
-        eo.strategy = v.strategy;
-        eo.outputs = v.outputs;
-        eo.specialise_all = v.specialised;
-        eo.name = v.unit;
-        eo.command = "rotgen bench " + opt.scene;
-        v.header = emit_header(spec, d, eo);
+        // v.f is the form emit_header would build: the body form keeps its quaternion exactly
+        // when `rotation` is among the outputs (variants.cpp)
+        const kernel_request request{v.outputs, v.specialised, {}};
+        v.header = emit_header(spec, lower_form(spec, v.f, request), {"rotgen bench " + opt.scene, v.unit});
         kernels += "// ==== " + v.label + " ====\n" + v.header.text + "\n" + v.naive + "\n";
     }
     return kernels;
@@ -46,12 +44,13 @@ std::string eigen_flags() {
     return f;
 }
 
-// The headers the driver includes, in name order (part of the cache key).
+// The headers the driver includes, in path order, subfolders too (runtime/steppers/, ...): part of
+// the cache key, so an edit to any of them compiles the driver anew.
 std::string harness_text(const bench_sources& src) {
     std::string text;
     for (const auto& d : {src.harness, src.runtime}) {
         std::vector<fs::path> headers;
-        for (const auto& e : fs::directory_iterator(d))
+        for (const auto& e : fs::recursive_directory_iterator(d))
             if (e.path().extension() == ".hpp") headers.push_back(e.path());
         std::sort(headers.begin(), headers.end());
         for (const auto& h : headers)
@@ -112,7 +111,7 @@ void compile_into(const compiled_driver& c, const std::string& source, const std
 std::string driver_source(std::vector<variant>& variants, const scene_spec& scene,
                           const model_spec& spec, const derivation& d, const kinematics& k0,
                           const bench_options& opt, const bench_sources& src) {
-    const std::string kernels = emit_kernels(variants, spec, d, opt);
+    const std::string kernels = emit_kernels(variants, spec, opt);
     std::string structs, list;
     for (std::size_t i = 0; i < variants.size(); ++i) {
         structs += variant_struct(variants[i], i, scene, k0, d) + "\n";
@@ -124,31 +123,8 @@ std::string driver_source(std::vector<variant>& variants, const scene_spec& scen
         {"kernels", kernels},
         {"variants", structs},
         {"variant_list", list}};
-    return fill_driver_template(read_file(src.harness / "driver.cpp.in"), fills);
-}
-
-// shared with simulate: to be replaced by support/'s one template filler
-std::string fill_driver_template(const std::string& text,
-                                 const std::map<std::string, std::string>& fills) {
-    std::string out;
-    for (std::size_t i = 0; i < text.size();) {
-        const std::size_t at = text.find('@', i);
-        if (at == std::string::npos) {
-            out += text.substr(i);
-            break;
-        }
-        const std::size_t end = text.find('@', at + 1);
-        const auto it =
-            end == std::string::npos ? fills.end() : fills.find(text.substr(at + 1, end - at - 1));
-        if (it == fills.end()) {
-            out += text.substr(i, at + 1 - i);
-            i = at + 1;
-            continue;
-        }
-        out += text.substr(i, at - i) + it->second;
-        i = end + 1;
-    }
-    return out;
+    return fill_placeholders(read_file(src.harness / "driver.cpp.in"), fills, "driver.cpp.in",
+                             placeholders::known_only);
 }
 
 // shared with simulate: to be replaced by run/'s one compile cache

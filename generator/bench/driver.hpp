@@ -25,9 +25,6 @@ std::string driver_source(std::vector<variant>& variants, const scene_spec& scen
 
 // `text` with each @name@ whose name is in `fills` replaced by its value; other @ left as they
 // are.
-// shared with simulate: to be replaced by support/'s one template filler
-std::string fill_driver_template(const std::string& text,
-                                 const std::map<std::string, std::string>& fills);
 
 struct compiled_driver {
     std::filesystem::path cache, exe; // the cache directory, and the driver in it

@@ -1,7 +1,7 @@
 // rotgen bench: reading and writing whole files.
 #include "bench/files.hpp"
 
-#include "support/error.hpp"
+#include "support/atomic_file.hpp"
 
 #include <unistd.h>
 
@@ -23,21 +23,6 @@ std::string read_file(const fs::path& p) {
     return s.str();
 }
 
-// shared with simulate: to be replaced by support/'s atomic file writer
-void write_file(const fs::path& path, const std::string& text) {
-    const fs::path tmp = path.string() + ".tmp" + std::to_string(::getpid());
-    {
-        std::ofstream out(tmp, std::ios::binary);
-        out << text;
-        if (!out) {
-            std::error_code ec;
-            fs::remove(tmp, ec);
-            throw user_error({path.string()}, std::string("cannot write: ") + std::strerror(errno));
-        }
-    }
-    std::error_code ec;
-    fs::rename(tmp, path, ec);
-    if (ec) throw user_error({path.string()}, "cannot write: " + ec.message());
-}
+void write_file(const fs::path& path, const std::string& text) { write_file_atomically(path.string(), text); }
 
 } // namespace rotgen::bench

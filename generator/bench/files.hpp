@@ -9,9 +9,8 @@ namespace rotgen::bench {
 // The bytes of a file; throws std::runtime_error if it cannot be read.
 std::string read_file(const std::filesystem::path& p);
 
-// Written to a temporary beside the target, then renamed: never a partial file. Throws
-// user_error naming the path.
-// shared with simulate: to be replaced by support/'s atomic file writer
+// support/atomic_file.hpp's write_file_atomically (never a partial file; user_error naming the
+// path).
 void write_file(const std::filesystem::path& path, const std::string& text);
 
 } // namespace rotgen::bench

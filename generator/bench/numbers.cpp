@@ -51,13 +51,4 @@ std::string tol_text(double x) {
     return s;
 }
 
-long double to_long_double(const GiNaC::ex& e) {
-    const GiNaC::ex v = GiNaC::evalf(e);
-    if (!GiNaC::is_a<GiNaC::numeric>(v) || !GiNaC::ex_to<GiNaC::numeric>(v).is_real())
-        throw std::logic_error("bench: expression did not evaluate to a real number");
-    std::ostringstream os;
-    os << v;
-    return std::stold(os.str());
-}
-
 } // namespace rotgen::bench

@@ -2,6 +2,8 @@
 // into long double.
 #pragma once
 
+#include "expr/numbers.hpp"
+
 #include <ginac/ginac.h>
 
 #include <string>
@@ -16,20 +18,6 @@ std::string short_number(double x, int digits = 3); // "" for NaN
 std::string csv_number(double x);                   // 6 digits, "" unless finite
 std::string tol_text(double x);                     // "1e-09" -> "1e-9"
 
-// GiNaC's Digits set for the lifetime of this object, restored afterwards (also on an exception).
-class scoped_digits {
-  public:
-    explicit scoped_digits(long digits) : m_saved(GiNaC::Digits) { GiNaC::Digits = digits; }
-    scoped_digits(const scoped_digits&) = delete;
-    scoped_digits& operator=(const scoped_digits&) = delete;
-    ~scoped_digits() { GiNaC::Digits = m_saved; }
-
-  private:
-    long m_saved;
-};
-
-// GiNaC value -> long double, through its decimal text (callers set Digits = 30); throws
-// std::logic_error unless it evaluates to a real number.
-long double to_long_double(const GiNaC::ex& e);
+// scoped_digits and to_long_double: expr/numbers.hpp
 
 } // namespace rotgen::bench

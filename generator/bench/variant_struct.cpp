@@ -12,35 +12,6 @@ namespace rotgen::bench {
 
 namespace {
 
-// Value of a run-time parameter of a variant: the scene's, or a conserved momentum.
-long double parameter_value(const std::string& name, const scene_spec& scene, const kinematics& k) {
-    const model_spec& spec = scene.model;
-    for (std::size_t i = 0; i < spec.parameters.size(); ++i)
-        if (spec.parameters[i].name == name) {
-            const scoped_digits digits(30);
-            return to_long_double(exact_decimal(scene.parameters[i]));
-        }
-    for (int i = 0; i < 3; ++i)
-        if (name == "p_" + coordinate_names()[i]) return k.p[static_cast<std::size_t>(i)];
-    throw std::logic_error("bench: no value for parameter " + name);
-}
-
-long double state_value(const std::string& name, const kinematics& k) {
-    for (int i = 0; i < 3; ++i) {
-        const std::string& q = coordinate_names()[i];
-        const auto u = static_cast<std::size_t>(i);
-        if (name == q) return k.q[u];
-        if (name == q + "_dot") return k.qd[u];
-        if (name == "p_" + q) return k.p[u];
-        if (name == "omega" + std::to_string(i + 1)) return k.omega[u];
-    }
-    if (name == "qw") return k.quat.w();
-    if (name == "qx") return k.quat.x();
-    if (name == "qy") return k.quat.y();
-    if (name == "qz") return k.quat.z();
-    throw std::logic_error("bench: unknown state variable " + name);
-}
-
 // Its label, sizes and method bits; its run-time parameters and initial state.
 void write_data(std::ostream& s, const variant& v, std::size_t index, const std::string& ns,
                 const scene_spec& scene, const kinematics& k) {
@@ -56,12 +27,12 @@ void write_data(std::ostream& s, const variant& v, std::size_t index, const std:
     s << "    template <class T> static params<T> parameters() {\n        params<T> p;\n";
     for (const auto& p : v.f.parameters)
         if (!v.specialised || !p.specialisable)
-            s << "        p." << p.name << " = T(" << ld_literal(parameter_value(p.name, scene, k))
+            s << "        p." << p.name << " = T(" << ld_literal(scene_parameter_value(scene, k, p.name))
               << ");\n";
     s << "        return p;\n    }\n";
     s << "    static std::array<long double, " << n << "> initial() {\n        return {{";
     for (std::size_t i = 0; i < n; ++i)
-        s << (i ? ", " : "") << ld_literal(state_value(v.f.state[i].name, k));
+        s << (i ? ", " : "") << ld_literal(state_value(k, v.f.state[i].name));
     s << "}};\n    }\n";
 }
 

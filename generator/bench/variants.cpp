@@ -111,14 +111,6 @@ std::optional<std::size_t> hamiltonian_variant(const std::vector<variant>& varia
 } // namespace
 
 // shared with simulate: to be replaced by run/'s one orientation rule
-bool records_orientation(const scene_spec& scene) {
-    bool orientation = false; // as `simulate`: the body form keeps the quaternion if recorded
-    for (const auto& name : scene.record)
-        orientation = orientation || name == "phi" || name == "theta" || name == "psi" ||
-                      name.rfind("body_", 0) == 0;
-    return orientation;
-}
-
 std::string form_label(form_kind form, lagrangian_strategy strategy, bool quaternion) {
     switch (form) {
     case form_kind::lagrangian:
@@ -146,13 +138,6 @@ variant_set choose_variants(const scene_spec& scene, const model_spec& spec, con
 }
 
 std::string naive_rhs(const variant& v, const GiNaC::exmap& folded) {
-    std::map<std::string, std::string> names;
-    for (std::size_t i = 0; i < v.f.state.size(); ++i)
-        names[v.f.state[i].name] = "y[" + std::to_string(i) + "]";
-    for (const auto& p : v.f.parameters)
-        names[p.name] = "p." + p.name;
-    names["t"] = "t";
-    const c_printer print(names, "T");
     std::ostringstream os;
     os << "namespace rotgen {\nnamespace models {\nnamespace " << v.unit << "_naive {\n"
        << "// The rates printed expression by expression: no common subexpressions shared, no\n"
@@ -160,11 +145,10 @@ std::string naive_rhs(const variant& v, const GiNaC::exmap& folded) {
        << "template <class T>\nvoid rhs(T t, const T* y, T* dydt, const " << v.unit
        << "::params<T>& p) {\n"
        << "    using std::sin; using std::cos; using std::tan; using std::sqrt; using std::pow;\n"
-       << "    using std::exp; using std::log; using std::abs; using std::atan2;\n"
-       << "    (void)t; (void)y; (void)p;\n";
-    for (std::size_t i = 0; i < v.f.rates.size(); ++i)
-        os << "    dydt[" << i << "] = " << print(v.f.rates[i].subs(folded)) << ";\n";
-    os << "}\n} // namespace " << v.unit
+       << "    using std::exp; using std::log; using std::abs; using std::atan2; using std::asin;\n"
+       << "    using std::acos; using std::atan; using std::sinh; using std::cosh; using std::tanh;\n"
+       << "    (void)t; (void)y; (void)p;\n"
+       << print_rhs_inline(v.f, folded, "T") << "}\n} // namespace " << v.unit
        << "_naive\n} // namespace models\n} // namespace rotgen\n";
     return os.str();
 }

@@ -70,20 +70,6 @@ std::string unit_name(const std::string& model, form_kind form);
 emitted_header emit_header(const model_spec& spec, const lowered_form& form,
                            const header_options& options);
 
-// transitional: removed when simulate and bench are ported (they call the sequence above).
-struct emit_options {
-    form_kind form = form_kind::lagrangian;
-    lagrangian_strategy strategy = lagrangian_strategy::explicit_inverse;
-    std::vector<std::string> outputs;    // empty: every output the form can give
-    bool specialise_all = false;         // fold every model parameter into the code
-    std::vector<std::string> specialise; // or these
-    std::string command; // the command that regenerates the header (for its comment)
-    std::string name;    // the unit (namespace and file stem); empty: unit_name()
-};
-// transitional: removed when simulate and bench are ported. Builds and lowers the form, then
-// emit_header(spec, lowered, {command, name}); user_error as lower_form() throws it.
-emitted_header emit_header(const model_spec& spec, const derivation& d,
-                           const emit_options& options);
 
 // Fills the @name@ placeholders of templates/<name>; a placeholder without a value is an error.
 std::string fill_template(const std::string& name,

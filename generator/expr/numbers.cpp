@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <sstream>
 #include <string>
 
 namespace rotgen {
@@ -20,6 +21,15 @@ GiNaC::numeric exact_rational(double x) {
 
 GiNaC::numeric float_numeric(double x) {
     return GiNaC::ex_to<GiNaC::numeric>(exact_rational(x).evalf());
+}
+
+long double to_long_double(const GiNaC::ex& e) {
+    const GiNaC::ex v = GiNaC::evalf(e);
+    if (!GiNaC::is_a<GiNaC::numeric>(v) || !GiNaC::ex_to<GiNaC::numeric>(v).is_real())
+        throw std::logic_error("expression did not evaluate to a real number");
+    std::ostringstream os;
+    os << v;
+    return std::stold(os.str());
 }
 
 } // namespace rotgen

@@ -21,4 +21,20 @@ GiNaC::numeric exact_rational(double x);
 // where a float keeps GiNaC from carrying exact fractions through every operation.
 GiNaC::numeric float_numeric(double x);
 
+// A real GiNaC value (evalf'd at the caller's GiNaC::Digits) as a long double, through its decimal
+// text; std::logic_error unless it evaluates to a real number.
+long double to_long_double(const GiNaC::ex& e);
+
+// GiNaC::Digits set for the lifetime of this object, restored afterwards (also on an exception).
+class scoped_digits {
+  public:
+    explicit scoped_digits(long digits) : m_saved(GiNaC::Digits) { GiNaC::Digits = digits; }
+    scoped_digits(const scoped_digits&) = delete;
+    scoped_digits& operator=(const scoped_digits&) = delete;
+    ~scoped_digits() { GiNaC::Digits = m_saved; }
+
+  private:
+    long m_saved;
+};
+
 } // namespace rotgen

@@ -208,11 +208,6 @@ std::string latex_printer::integer_power(const std::string& base, int n) const {
     return n == 1 ? base : base + "^{" + std::to_string(n) + "}";
 }
 
-std::string c_printer::integer_power(const std::string& base, int n) const {
-    std::string s = base;
-    for (int i = 1; i < n; ++i) s += "*" + base;
-    return s;
-}
 
 std::string expression_printer::power(const ex& base, const ex& exponent, int context) const {
     if (exponent.is_equal(GiNaC::numeric(1, 2))) return function("sqrt", {print(base, 0)});
@@ -295,61 +290,6 @@ std::string latex_printer::fraction(const std::string& num, const std::string& d
     return "\\frac{" + num + "}{" + den + "}";
 }
 
-// ---- C ----
-
-std::string c_printer::number(const GiNaC::numeric& n, int context) const {
-    if (!n.is_real()) throw std::logic_error("rotgen printer: complex number");
-    std::string s;
-    if (n.is_integer()) {
-        s = m_scalar + "(" + integer_text(n) + ")";
-        return s; // a cast binds tighter than any operator
-    }
-    if (n.is_rational()) {
-        s = m_scalar + "(" + integer_text(n.numer()) + ")/" + m_scalar + "(" + integer_text(n.denom()) + ")";
-        return context >= 2 ? parenthesise(s) : s;
-    }
-    s = m_scalar + "(" + format_double(n.to_double()) + "L)";
-    return s;
-}
-
-std::string c_printer::symbol(const GiNaC::symbol& s) const {
-    auto it = m_names.find(s.get_name());
-    return it == m_names.end() ? s.get_name() : it->second;
-}
-
-std::string c_printer::constant(const GiNaC::constant& c) const {
-    if (ex(c).is_equal(GiNaC::Pi)) return m_scalar + "(3.141592653589793238462643383279502884L)";
-    return expression_printer::constant(c);
-}
-
-std::string c_printer::power(const ex& base, const ex& exponent, int context) const {
-    if (is_a<GiNaC::numeric>(exponent)) {
-        const GiNaC::numeric n = ex_to<GiNaC::numeric>(exponent);
-        if (n.is_integer() && n.is_positive() && n <= 8) {
-            // Small integer powers as products, for the compiler's CSE (as GiNaC's print_sym_pow).
-            const std::string b = print(base, 2);
-            std::string s = b;
-            for (int i = 1; i < n.to_int(); ++i) s += "*" + b;
-            return context >= 2 && n > 1 ? parenthesise(s) : s;
-        }
-        if (n.is_integer() && n.is_negative() && n >= -8) {
-            const std::string s = m_scalar + "(1)/" + print(GiNaC::pow(base, -n), 3);
-            return context >= 2 ? parenthesise(s) : s;
-        }
-        if (n.is_equal(GiNaC::numeric(1, 2))) return "sqrt(" + print(base, 0) + ")";
-        if (n.is_equal(GiNaC::numeric(-1, 2))) {
-            const std::string s = m_scalar + "(1)/sqrt(" + print(base, 0) + ")";
-            return context >= 2 ? parenthesise(s) : s;
-        }
-    }
-    return "pow(" + print(base, 0) + ", " + print(exponent, 0) + ")";
-}
-
-std::string c_printer::fraction(const std::string& num, const std::string& den) const {
-    // den arrives printed at product level; wrap anything compound.
-    const bool simple = den.find_first_of("*/+- ") == std::string::npos || is_wrapped(den);
-    return num + "/" + (simple ? den : parenthesise(den));
-}
 
 std::string to_text(const ex& e) { return text_printer()(e); }
 std::string to_latex(const ex& e) { return latex_printer()(e); }

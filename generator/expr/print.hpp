@@ -7,7 +7,7 @@
 //
 //   text  — SymPy-parsable: `**` for powers, `*` everywhere, pi, standard function names.
 //   latex — for documents: \frac, \sin, \dot{\theta}, I_{1}.
-//   c     — C++ for generated kernels: small integer powers as products, exact literals.
+//   (C++ is printed from lowered programs by emit/printer.hpp, the one C++ printer.)
 #pragma once
 
 #include "support/format.hpp" // format_double
@@ -62,26 +62,6 @@ class latex_printer : public expression_printer {
     std::string fraction(const std::string& num, const std::string& den) const override;
 };
 
-// C++ for templated kernels. Symbols print through `names` (e.g. theta -> "y[1]", I1 -> "p.I1");
-// a symbol missing from the table prints as its own name. Non-integer rationals print as
-// `S(p)/S(q)` (folded by the compiler, correctly rounded for every scalar type S).
-class c_printer : public expression_printer {
-  public:
-    explicit c_printer(std::map<std::string, std::string> names = {}, std::string scalar = "T")
-        : m_names(std::move(names)), m_scalar(std::move(scalar)) {}
-
-  protected:
-    std::string number(const GiNaC::numeric& n, int context) const override;
-    std::string symbol(const GiNaC::symbol& s) const override;
-    std::string constant(const GiNaC::constant& c) const override;
-    std::string power(const GiNaC::ex& base, const GiNaC::ex& exponent, int context) const override;
-    std::string fraction(const std::string& num, const std::string& den) const override;
-    std::string integer_power(const std::string& base, int n) const override;
-
-  private:
-    std::map<std::string, std::string> m_names;
-    std::string m_scalar;
-};
 
 std::string to_text(const GiNaC::ex& e);
 std::string to_latex(const GiNaC::ex& e);

@@ -133,7 +133,7 @@ std::optional<lowered_program> lower_folded(const std::vector<GiNaC::ex>& output
                                             const GiNaC::exmap& values,
                                             const lower_options& options = {});
 
-// Operations in `e` printed naively (integer powers as repeated products, as c_printer does).
+// Operations in `e` printed naively (integer powers as repeated products).
 op_count count_ops(const GiNaC::ex& e);
 
 // The program's value at a point, computed node by node with GiNaC floats (to check lowering

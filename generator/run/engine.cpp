@@ -154,7 +154,7 @@ compiled_form& scene_run::compile(form_kind form, bool orientation) {
     // The stamp in the compiled source names no path, so the same kernels are compiled once,
     // whatever scene file asks for them.
     const std::string command = "rotgen simulate (kernels of model '" + m_scene.model.name + "')";
-    m_compiled.push_back(compile_form(m_scene, m_d, built(form, orientation), orientation, m_invariants,
+    m_compiled.push_back(compile_form(m_scene, built(form, orientation), orientation, m_invariants,
                                       command, m_timings));
     m_result.kernels_cached = m_result.kernels_cached && m_compiled.back().lib.was_cached();
     return m_compiled.back();

@@ -118,20 +118,20 @@ void compiled_form::set_parameters(const std::vector<double>& values) const {
     reinterpret_cast<set_fn>(lib.symbol("rotgen_set_parameters"))(values.data());
 }
 
-compiled_form compile_form(const scene_spec& scene, const derivation& d, form_expressions f,
+compiled_form compile_form(const scene_spec& scene, form_expressions f,
                            bool orientation, const std::vector<invariant>& invariants,
                            const std::string& command, stage_timings& timings) {
     const model_spec& spec = scene.model;
     compiled_form c;
     c.form = f.form;
     c.f = std::move(f);
-    emit_options eo;
-    eo.form = c.form;
-    eo.outputs = {"rhs", "jacobian"};
-    if (c.form == form_kind::body && orientation) eo.outputs.push_back("rotation");
-    eo.command = command;
+    kernel_request request;
+    request.outputs = {"rhs", "jacobian"};
+    if (c.form == form_kind::body && orientation) request.outputs.push_back("rotation");
+    const lowered_form lowered =
+        timings.time("lower", to_string(c.form), [&] { return lower_form(spec, c.f, request); });
     const emitted_header header =
-        timings.time("emit", to_string(c.form), [&] { return emit_header(spec, d, eo); });
+        timings.time("emit", to_string(c.form), [&] { return emit_header(spec, lowered, {command, ""}); });
     // The compiled kernels and the state built here must agree on the layout.
     const std::string size_decl = "state_size = " + std::to_string(c.f.state.size()) + ";";
     if (header.text.find(size_decl) == std::string::npos)

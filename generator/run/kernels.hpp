@@ -65,7 +65,7 @@ struct compiled_form {
 // Emits, lowers and compiles (or loads from the cache) the built form `f` of the scene's model,
 // with the record program for the scene's `record` list and `invariants`. `command` stamps the
 // header. Throws user_error when the form cannot give a recorded quantity.
-compiled_form compile_form(const scene_spec& scene, const derivation& d, form_expressions f,
+compiled_form compile_form(const scene_spec& scene, form_expressions f,
                            bool orientation, const std::vector<invariant>& invariants,
                            const std::string& command, stage_timings& timings);
 

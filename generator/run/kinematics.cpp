@@ -1,6 +1,7 @@
 #include "run/kinematics.hpp"
 
 #include "emit/emit.hpp" // exact_decimal
+#include "expr/numbers.hpp"
 #include "expr/symbols.hpp"
 #include "support/error.hpp"
 
@@ -18,28 +19,6 @@ namespace rotgen {
 namespace {
 
 using GiNaC::ex;
-
-// GiNaC value -> long double, through its decimal text (at the caller's GiNaC::Digits).
-long double to_long_double(const ex& e) {
-    const ex v = GiNaC::evalf(e);
-    if (!GiNaC::is_a<GiNaC::numeric>(v) || !GiNaC::ex_to<GiNaC::numeric>(v).is_real())
-        throw std::logic_error("kinematics: expression did not evaluate to a real number");
-    std::ostringstream os;
-    os << v;
-    return std::stold(os.str());
-}
-
-// Sets GiNaC::Digits for a scope.
-class digits_scope {
-  public:
-    explicit digits_scope(long digits) : m_saved(GiNaC::Digits) { GiNaC::Digits = digits; }
-    ~digits_scope() { GiNaC::Digits = m_saved; }
-    digits_scope(const digits_scope&) = delete;
-    digits_scope& operator=(const digits_scope&) = delete;
-
-  private:
-    long m_saved;
-};
 
 // q_dot = M(q)^{-1} p, solved in long double.
 std::array<ex, 3> rates_from_momenta(const scene_spec& scene, const derivation& d, const GiNaC::exmap& at) {
@@ -75,7 +54,7 @@ std::array<ex, 3> rates_from_omega(const scene_spec& scene, const derivation& d,
 
 initial_kinematics initial_kinematics_of(const scene_spec& scene, const derivation& d) {
     const auto& s = symbols();
-    const digits_scope digits(30);
+    const scoped_digits digits(30);
     initial_kinematics k;
     GiNaC::exmap at;
     for (std::size_t i = 0; i < scene.model.parameters.size(); ++i)
@@ -132,7 +111,7 @@ long double scene_parameter_value(const scene_spec& scene, const initial_kinemat
     const model_spec& spec = scene.model;
     for (std::size_t i = 0; i < spec.parameters.size(); ++i)
         if (spec.parameters[i].name == name) {
-            const digits_scope digits(30);
+            const scoped_digits digits(30);
             return to_long_double(exact_decimal(scene.parameters[i]));
         }
     for (int i = 0; i < 3; ++i)
