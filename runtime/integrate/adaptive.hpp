@@ -25,13 +25,18 @@
 
 namespace rotgen::detail {
 
-// The controlled loop from (t0, y); y holds the final state on return.
-template <class S, class Method, class St, class Sampler, class T>
-integration_result<T> run_adaptive(const S& sys, const Method& method, St& st, T t0, T t_end,
-                                   state_vector<T, S>& y, const Sampler& sampler_in,
-                                   step_stats& stats) {
+// The controlled loop from (t0, y); y holds the final state on return. The stepper and the
+// counters are locals here (see fixed.hpp).
+template <class S, class Method, class Sampler, class T>
+ROTGEN_NOINLINE integration_result<T> run_adaptive(const S& sys, const Method& method, T t0,
+                                                   T t_end, state_vector<T, S>& y,
+                                                   const Sampler& sampler_in) {
     using std::abs;
     using std::min;
+    using St = typename Method::template stepper<S>;
+    St st(method, system_size(sys));
+    step_stats stats;
+    if (!st.start(sys, t0, y, stats)) return start_failure(t0, stats);
     const T eps = std::numeric_limits<T>::epsilon();
     const T dir = t_end >= t0 ? T(1) : T(-1);
     const T span = abs(t_end - t0);

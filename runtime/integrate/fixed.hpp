@@ -54,12 +54,19 @@ template <class T> class fixed_grid {
 };
 
 // The fixed-step loop from (t0, y) with nominal step h; y holds the final state on return.
-template <class S, class St, class Sampler, class T>
-integration_result<T> run_fixed(const S& sys, St& st, T t0, T t_end, T h_nominal,
-                                std::size_t max_steps, state_vector<T, S>& y,
-                                const Sampler& sampler_in, step_stats& stats) {
+// The stepper and the counters are locals of the loop's function (not references from the
+// caller): the compiler then knows that the stepper's stores do not alias the system's parameters
+// and keeps them, and the counters, in registers.
+template <class S, class Method, class Sampler, class T>
+ROTGEN_NOINLINE integration_result<T> run_fixed(const S& sys, const Method& method, T t0, T t_end,
+                                                T h_nominal, state_vector<T, S>& y,
+                                                const Sampler& sampler_in) {
     using std::abs;
     const T eps = std::numeric_limits<T>::epsilon();
+    typename Method::template stepper<S> st(method, system_size(sys));
+    step_stats stats;
+    if (!st.start(sys, t0, y, stats)) return start_failure(t0, stats);
+    const std::size_t max_steps = method.max_steps;
     const fixed_grid<T> grid(t0, t_end, h_nominal, max_steps);
     integration_result<T> res;
     // The current state lives in a local copy while stepping (registers, for small static sizes;

@@ -91,7 +91,6 @@ integrate(const S& sys, const Method& method, detail::identity_t<typename Method
     const T dir = t_end >= t0 ? T(1) : T(-1);
     detail::sampler<T, Times, std::remove_reference_t<Observer>> samples(sample_times, dir,
                                                                          observer);
-    step_stats stats;
     integration_result<T> res;
     res.t = t0;
     if (!samples.deliver_at(t0, static_cast<const vector&>(y))) {
@@ -100,20 +99,12 @@ integrate(const S& sys, const Method& method, detail::identity_t<typename Method
         return res;
     }
     if (samples.done()) return res;
-
-    typename Method::template stepper<S> st(method, system_size(sys));
-    if (!st.start(sys, t0, y, stats))
-        return detail::fail<T>(status::non_finite,
-                               "f(t0, y0) is not finite at t = " + detail::format_time(t0), t0,
-                               stats);
     if constexpr (Method::adaptive) {
         if (method.fixed_step == T(0))
-            return detail::run_adaptive(sys, method, st, t0, t_end, y, samples, stats);
-        return detail::run_fixed(sys, st, t0, t_end, method.fixed_step, method.max_steps, y,
-                                 samples, stats);
+            return detail::run_adaptive(sys, method, t0, t_end, y, samples);
+        return detail::run_fixed(sys, method, t0, t_end, method.fixed_step, y, samples);
     } else {
-        return detail::run_fixed(sys, st, t0, t_end, method.step, method.max_steps, y, samples,
-                                 stats);
+        return detail::run_fixed(sys, method, t0, t_end, method.step, y, samples);
     }
 }
 

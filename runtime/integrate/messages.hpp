@@ -50,4 +50,9 @@ integration_result<T> fail(status code, std::string msg, T t, const step_stats& 
     return r;
 }
 
+// f(t0, y0) not finite: the stepper's start() failed.
+template <class T> ROTGEN_COLD integration_result<T> start_failure(T t0, const step_stats& s) {
+    return fail<T>(status::non_finite, "f(t0, y0) is not finite at t = " + format_time(t0), t0, s);
+}
+
 } // namespace rotgen::detail

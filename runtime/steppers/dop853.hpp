@@ -328,8 +328,12 @@ template <class T, class S> class dop853_stepper {
               a(tab::a126, 6), a(tab::a127, 7), a(tab::a128, 8), a(tab::a129, 9),
               a(tab::a1210, 10));
         f(12, 1.0L);
-        // y1 = y0 + h Σ b_i k_i (8th order) and the error estimate:
-        //   e3 = Σ b k − (bhh1 k1 + bhh2 k9 + bhh3 k12),  e5 = Σ er_j k_j
+        return solution_and_error(y0, h, k);
+    }
+
+    // y1 = y0 + h Σ b_i k_i (8th order) and the error estimate:
+    //   e3 = Σ b k − (bhh1 k1 + bhh2 k9 + bhh3 k12),  e5 = Σ er_j k_j
+    ROTGEN_ALWAYS_INLINE outcome solution_and_error(const work& y0, T h, const stages& k) {
         using std::abs;
         using std::max;
         using std::sqrt;
@@ -367,7 +371,6 @@ template <class T, class S> class dop853_stepper {
         if (!isfinite(err) || !detail::all_finite(m_y1)) return {status::non_finite, err};
         return {status::ok, err};
     }
-
 
     ROTGEN_COLD outcome attempt_keeping_stages(const S& sys, T t, const vector& y, T h,
                                                step_stats& stats) {
