@@ -8,26 +8,22 @@
 //   integrate(system, any_method, t0, y, sample_times, observer)   dispatches with std::visit.
 #pragma once
 
-#include <array>
 #include <optional>
 #include <string_view>
 #include <utility>
 #include <variant>
 
-#include "dop853.hpp"
-#include "dopri5.hpp"
-#include "implicit_midpoint.hpp"
-#include "integrate.hpp"
-#include "rk4.hpp"
-#include "rosenbrock.hpp"
+#include "integrate/integrate.hpp"
+#include "steppers/dop853.hpp"
+#include "steppers/dopri5.hpp"
+#include "steppers/implicit_midpoint.hpp"
+#include "steppers/rk4.hpp"
+#include "steppers/rosenbrock.hpp"
 
 namespace rotgen {
 
 template <class T>
 using any_method = std::variant<rk4<T>, dopri5<T>, dop853<T>, implicit_midpoint<T>, rodas4<T>>;
-
-inline constexpr std::array<std::string_view, 5> method_names = {"rk4", "dopri5", "dop853",
-                                                                 "implicit_midpoint", "rodas4"};
 
 template <class T>
 std::optional<any_method<T>> make_method(std::string_view name, T rtol, T atol, T step) {

@@ -16,7 +16,8 @@ enum class status {
     newton_failure,      // the implicit solve (implicit midpoint) did not converge
     max_steps,           // the step budget (`max_steps`) was used up before the end time
     non_finite,          // NaN/Inf in the state or its derivative; stopped at the last good state
-    invalid_argument // bad options or sample times (non-positive tolerance, unsorted times, …)
+    invalid_argument,    // bad options or sample times (non-positive tolerance, unsorted times, …)
+    stopped_by_observer  // the observer returned false at the sample t (integrate/observer.hpp)
 };
 
 inline const char* status_name(status s) {
@@ -33,6 +34,8 @@ inline const char* status_name(status s) {
         return "non_finite";
     case status::invalid_argument:
         return "invalid_argument";
+    case status::stopped_by_observer:
+        return "stopped_by_observer";
     }
     return "unknown";
 }
@@ -54,7 +57,8 @@ struct step_stats {
 };
 
 // Result of `integrate`. On return the caller's state vector holds the state at `t`:
-// the end time when `code == status::ok`, otherwise the last good (accepted, finite) state.
+// the end time when `code == status::ok`, the state delivered at the sample `t` when
+// `code == status::stopped_by_observer`, otherwise the last good (accepted, finite) state.
 template <class T> struct integration_result {
     status code = status::ok;
     std::string message; // one line, empty when ok

@@ -1,29 +1,40 @@
 // rotgen runtime — umbrella header: everything a program driving generated models needs.
 // Header-only C++17 on Eigen; never includes GiNaC or the generator.
 //
-//   result.hpp             status, step_stats, integration_result
-//   system.hpp             the system concept, lambda_system, generated_system (+ macros)
-//   derivatives.hpp        f, ∂f/∂y (analytic or finite differences), ∂f/∂t with counters
-//   step_control.hpp       adaptive_options, error norm, PI controller, initial step
-//   integrate.hpp          integrate(system, method, t0, y, sample_times, observer)
-//   rk4.hpp                classic RK4, fixed step
-//   dopri5.hpp             Dormand–Prince 5(4), dense output of order 4
-//   dop853.hpp             Dormand–Prince 8(5,3), dense output of order 7
-//   implicit_midpoint.hpp  symplectic implicit midpoint rule, Newton with Eigen LU
-//   rosenbrock.hpp         RODAS4, L-stable Rosenbrock 4(3) for stiff problems
-//   method.hpp             run-time choice of a method by name
-//   rotation.hpp           z-x-z Euler angles, passive matrices (5.25), quaternions, angle errors
+//   result.hpp                   status, step_stats, integration_result
+//   system.hpp                   the system concept, lambda_system, generated_system (+ macros)
+//   stepper.hpp                  the method and stepper concepts, is_stepper_v, check_stepper
+//   combine.hpp                  the explicit methods' vector arithmetic (work vectors, stages)
+//   derivatives.hpp              f, ∂f/∂y (analytic or finite differences), ∂f/∂t with counters
+//   step_control.hpp             adaptive_options, error norm, PI controller, initial step
+//   steppers/rk4.hpp             classic RK4, fixed step
+//   steppers/dopri5.hpp          Dormand–Prince 5(4), dense output of order 4
+//   steppers/dop853.hpp          Dormand–Prince 8(5,3), dense output of order 7
+//   steppers/implicit_midpoint.hpp  symplectic implicit midpoint rule, Newton with Eigen LU
+//   steppers/rosenbrock.hpp      RODAS4, L-stable Rosenbrock 4(3) for stiff problems
+//   integrate/integrate.hpp      integrate(system, method, t0, y, sample_times, observer)
+//                                (fixed.hpp, adaptive.hpp, sampling.hpp, observer.hpp)
+//   integrate/monitor.hpp        invariant_monitor: first value and max drift of invariants
+//   integrate/chart_switch.hpp   chart_switch: stop a run near gimbal lock (|sin θ| < threshold)
+//   method.hpp                   run-time choice of a method by name
+//   rotation.hpp                 z-x-z Euler angles, passive matrices (5.25), quaternions, angle errors
+// (exact_free_top.hpp, the exact free top, needs Boost.Math and is included separately.)
 #pragma once
 
+#include "combine.hpp"
 #include "derivatives.hpp"
-#include "dop853.hpp"
-#include "dopri5.hpp"
-#include "implicit_midpoint.hpp"
-#include "integrate.hpp"
+#include "integrate/chart_switch.hpp"
+#include "integrate/integrate.hpp"
+#include "integrate/monitor.hpp"
+#include "integrate/observer.hpp"
 #include "method.hpp"
 #include "result.hpp"
-#include "rk4.hpp"
-#include "rosenbrock.hpp"
 #include "rotation.hpp"
 #include "step_control.hpp"
+#include "stepper.hpp"
+#include "steppers/dop853.hpp"
+#include "steppers/dopri5.hpp"
+#include "steppers/implicit_midpoint.hpp"
+#include "steppers/rk4.hpp"
+#include "steppers/rosenbrock.hpp"
 #include "system.hpp"

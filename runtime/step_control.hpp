@@ -117,23 +117,6 @@ template <class T> class pi_controller {
     bool m_rejected = false;
 };
 
-// Stand-in controller of the fixed-step methods (never consulted: they accept every step).
-template <class T> struct no_controller {
-    T accepted(T h, T) const { return h; }
-    T rejected(T h, T) const { return h; }
-};
-
-template <class Method> auto make_controller(const Method& m, int q) {
-    using T = typename Method::scalar;
-    if constexpr (Method::adaptive) {
-        return pi_controller<T>(m, q);
-    } else {
-        (void)m;
-        (void)q;
-        return no_controller<T>{};
-    }
-}
-
 // Initial step (HNW I, §II.4, "Starting step size"; the routine HINIT of DOPRI5), with `order`
 // the order of the method. `f0` = f(t0, y0), `dir` = ±1, `hmax` > 0.
 //   d0 = ‖y0‖, d1 = ‖f0‖ (weighted RMS norms);  h = 0.01·d0/d1 (or 1e-6 if either is tiny)

@@ -14,9 +14,9 @@
 
 #include "../../generated/free_asymmetric_top_body.hpp"
 
-#include <dop853.hpp>
 #include <exact_free_top.hpp>
-#include <integrate.hpp>
+#include <integrate/integrate.hpp>
+#include <steppers/dop853.hpp>
 #include <system.hpp>
 
 #include <catch2/catch.hpp>

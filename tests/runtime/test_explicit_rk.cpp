@@ -8,12 +8,13 @@
 // Set ROTGEN_VERBOSE=1 to print the measured slopes and errors.
 #include <catch2/catch.hpp>
 
-#include "dop853.hpp"
-#include "dopri5.hpp"
-#include "rk4.hpp"
+#include "integrate/integrate.hpp"
+#include "steppers/dop853.hpp"
+#include "steppers/dopri5.hpp"
+#include "steppers/rk4.hpp"
 
 #include "exact_free_top.hpp"
-#include "rosenbrock.hpp"
+#include "steppers/rosenbrock.hpp"
 
 #include <algorithm>
 #include <array>

@@ -4,10 +4,11 @@
 // Set ROTGEN_VERBOSE=1 to print the measured slopes, errors and step counts.
 #include <catch2/catch.hpp>
 
-#include "dop853.hpp"
-#include "dopri5.hpp"
-#include "implicit_midpoint.hpp"
-#include "rosenbrock.hpp"
+#include "integrate/integrate.hpp"
+#include "steppers/dop853.hpp"
+#include "steppers/dopri5.hpp"
+#include "steppers/implicit_midpoint.hpp"
+#include "steppers/rosenbrock.hpp"
 
 #include <boost/math/special_functions/ellint_1.hpp>
 #include <boost/math/special_functions/jacobi_elliptic.hpp>

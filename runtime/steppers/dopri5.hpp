@@ -10,6 +10,7 @@
 //   y(θ) = r1 + θ(r2 + (1−θ)(r3 + θ(r4 + (1−θ) r5)))
 //   r1 = y0, r2 = y1 − y0, r3 = h k1 − r2, r4 = r2 − h k7 − r3, r5 = h Σ d_i k_i
 // a continuous extension of order 4 (local error O(h^5)), at no extra evaluations of f.
+// Stepper concept (stepper.hpp): order 5, error estimate, own dense output of order 4, no Jacobian.
 #pragma once
 
 #include <array>
@@ -17,11 +18,10 @@
 #include <limits>
 #include <string>
 
-#include "combine.hpp"
-#include "derivatives.hpp"
-#include "integrate.hpp"
-#include "step_control.hpp"
-#include "system.hpp"
+#include "../combine.hpp"
+#include "../derivatives.hpp"
+#include "../step_control.hpp"
+#include "../stepper.hpp"
 
 namespace rotgen {
 
@@ -69,9 +69,19 @@ template <class T> struct dopri5 : adaptive_options<T> {
 
 template <class T, class S> class dopri5_stepper {
   public:
+    using scalar = T;
+    using system_type = S;
     using vector = state_vector<T, S>;
     using work = detail::work_vector<T, S>; // see combine.hpp
     using tab = dopri5_tableau;
+
+    using outcome = step_outcome<T>;
+
+    static constexpr int order = 5;
+    static constexpr bool error_estimate = true;
+    static constexpr dense_kind dense_output = dense_kind::continuous_extension;
+    static constexpr int dense_order = 4;
+    static constexpr bool uses_jacobian = false;
 
     dopri5_stepper(const dopri5<T>& m, std::size_t n) : m_atol(m.atol), m_rtol(m.rtol) {
         const auto zero = detail::make_work_vector<work>(n);
@@ -79,7 +89,6 @@ template <class T, class S> class dopri5_stepper {
         m_k.fill(zero);
     }
 
-    int order() const { return 5; }
     const work& f_start() const { return m_k[0]; }
     const work& y_new() const { return m_y1; }
 
@@ -89,11 +98,6 @@ template <class T, class S> class dopri5_stepper {
         detail::eval_rhs(sys, t0, y, m_k[0], stats); // k1 = f(t0, y0)
         return detail::all_finite(m_k[0]);
     }
-
-    struct outcome {
-        status code;
-        T err;
-    };
 
     // One step of size h from (t, y): stages 2..7 (k7 = f(t + h, y1), FSAL), y1 and the error
     // estimate (see combine.hpp for where the stages are kept).
@@ -191,5 +195,7 @@ template <class T, class S> class dopri5_stepper {
     work m_y0, m_y1, m_r2, m_r3, m_r4, m_r5;
     stages m_k; // the last step's stages (static size: k1 and k7, all in steps with samples)
 };
+
+static_assert(check_method<dopri5<double>>());
 
 } // namespace rotgen

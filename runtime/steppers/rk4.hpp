@@ -7,19 +7,20 @@
 //   y1 = y + h/6 (k1 + 2 k2 + 2 k3 + k4)                     (global error O(h^4))
 //
 // Steps lie on the grid t0 + k·h; the last step is shortened to end exactly at the end time
-// (see integrate.hpp). Samples between grid points are filled by cubic Hermite interpolation
-// from y and f at both ends of the step (local error O(h^4), so the samples keep order 4);
-// f at the step end is the next step's k1, so the interpolation costs no extra evaluations.
+// (see integrate/fixed.hpp). Samples between grid points are filled by the driver's cubic Hermite
+// interpolation from y and f at both ends of the step (local error O(h^4), so the samples keep
+// order 4); f at the step end is the next step's k1, so the interpolation costs no extra
+// evaluations.
+// Stepper concept (stepper.hpp): order 4, no error estimate, Hermite dense output, no Jacobian.
 #pragma once
 
 #include <cmath>
 #include <cstddef>
 #include <string>
 
-#include "combine.hpp"
-#include "derivatives.hpp"
-#include "integrate.hpp"
-#include "system.hpp"
+#include "../combine.hpp"
+#include "../derivatives.hpp"
+#include "../stepper.hpp"
 
 namespace rotgen {
 
@@ -43,13 +44,21 @@ template <class T> struct rk4 {
 
 template <class T, class S> class rk4_stepper {
   public:
+    using scalar = T;
+    using system_type = S;
     using vector = state_vector<T, S>;
     using work = detail::work_vector<T, S>; // see combine.hpp
+    using outcome = step_outcome<T>;
+
+    static constexpr int order = 4;
+    static constexpr bool error_estimate = false;
+    static constexpr dense_kind dense_output = dense_kind::hermite;
+    static constexpr int dense_order = 3;
+    static constexpr bool uses_jacobian = false;
 
     rk4_stepper(const rk4<T>&, std::size_t n)
         : m_y0(detail::make_work_vector<work>(n)), m_y1(m_y0), m_k1(m_y0), m_f1(m_y0) {}
 
-    int order() const { return 4; }
     const work& f_start() const { return m_f1; }
     const work& y_new() const { return m_y1; }
 
@@ -60,11 +69,6 @@ template <class T, class S> class rk4_stepper {
         m_f1_valid = true;
         return detail::all_finite(m_f1);
     }
-
-    struct outcome {
-        status code;
-        T err;
-    };
 
     // One step; y0 and k1 are kept for the Hermite interpolant only when the step holds samples.
     ROTGEN_ALWAYS_INLINE outcome attempt(const S& sys, T t, const vector& y, T h, step_stats& stats,
@@ -106,14 +110,15 @@ template <class T, class S> class rk4_stepper {
         return true;
     }
 
-    void dense(T theta, vector& out) const {
-        detail::hermite(theta, m_h, m_y0, m_k1, m_y1, m_f1, out);
-    }
+    // The Hermite data of the last accepted step with samples: y0, k1 = f(t, y0), y1, f(t + h, y1).
+    step_ends<T, work> hermite_ends() const { return {m_h, m_y0, m_k1, m_y1, m_f1}; }
 
   private:
     T m_h = T(0), m_t1 = T(0);
     bool m_f1_valid = false;
     work m_y0, m_y1, m_k1, m_f1;
 };
+
+static_assert(check_method<rk4<double>>());
 
 } // namespace rotgen

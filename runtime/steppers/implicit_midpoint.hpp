@@ -20,6 +20,7 @@
 // Samples between grid points: cubic Hermite interpolation from y and f at the step ends (the
 // f at the end costs one evaluation in steps that hold samples). The trajectory itself does not
 // depend on the samples.
+// Stepper concept (stepper.hpp): order 2, no error estimate, Hermite dense output, Jacobian.
 #pragma once
 
 #include <Eigen/LU>
@@ -29,9 +30,8 @@
 #include <limits>
 #include <string>
 
-#include "derivatives.hpp"
-#include "integrate.hpp"
-#include "system.hpp"
+#include "../derivatives.hpp"
+#include "../stepper.hpp"
 
 namespace rotgen {
 
@@ -60,8 +60,18 @@ template <class T> struct implicit_midpoint {
 
 template <class T, class S> class implicit_midpoint_stepper {
   public:
+    using scalar = T;
+    using system_type = S;
     using vector = state_vector<T, S>;
     using matrix = jacobian_matrix<T, S>;
+
+    using outcome = step_outcome<T>;
+
+    static constexpr int order = 2;
+    static constexpr bool error_estimate = false;
+    static constexpr dense_kind dense_output = dense_kind::hermite;
+    static constexpr int dense_order = 3;
+    static constexpr bool uses_jacobian = true;
 
     implicit_midpoint_stepper(const implicit_midpoint<T>& m, std::size_t n)
         : m_tol(m.newton_tol > T(0) ? m.newton_tol : T(10) * std::numeric_limits<T>::epsilon()),
@@ -69,7 +79,6 @@ template <class T, class S> class implicit_midpoint_stepper {
           m_g(m_y0), m_dz(m_y0), m_k(m_y0), m_f0(m_y0), m_f1(m_y0), m_jac(matrix::Zero(n, n)),
           m_iter(matrix::Identity(n, n)) {}
 
-    int order() const { return 2; }
     const vector& f_start() const { return m_f0; }
     const vector& y_new() const { return m_y1; }
 
@@ -79,11 +88,6 @@ template <class T, class S> class implicit_midpoint_stepper {
         m_k = m_f1; // first predictor slope
         return m_f1.allFinite();
     }
-
-    struct outcome {
-        status code;
-        T err;
-    };
 
     outcome attempt(const S& sys, T t, const vector& y, T h, step_stats& stats, bool) {
         m_y0 = y;
@@ -142,9 +146,8 @@ template <class T, class S> class implicit_midpoint_stepper {
         return true;
     }
 
-    void dense(T theta, vector& out) const {
-        detail::hermite(theta, m_h, m_y0, m_f0, m_y1, m_f1, out);
-    }
+    // The Hermite data of the last accepted step with samples: y0, f(t, y0), y1, f(t + h, y1).
+    step_ends<T, vector> hermite_ends() const { return {m_h, m_y0, m_f0, m_y1, m_f1}; }
 
   private:
     // max_i |d_i| / (tol + tol·|z_i|)
@@ -165,5 +168,7 @@ template <class T, class S> class implicit_midpoint_stepper {
     matrix m_jac, m_iter;
     Eigen::PartialPivLU<Eigen::Matrix<T, state_dim<S>(), state_dim<S>()>> m_lu;
 };
+
+static_assert(check_method<implicit_midpoint<double>>());
 
 } // namespace rotgen

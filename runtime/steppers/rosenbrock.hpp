@@ -19,6 +19,7 @@
 // the step's O(h^5); RODAS's own 3rd-order stage-based extension is not implemented).
 // The coefficients are those of Hairer & Wanner's RODAS (subroutine RODAS4 of rodas.f, as also
 // used by KPP's Rodas4); tests check order 4 on a non-autonomous nonlinear problem and R(−∞) = 0.
+// Stepper concept (stepper.hpp): order 4, error estimate, Hermite dense output, Jacobian.
 #pragma once
 
 #include <Eigen/LU>
@@ -28,10 +29,9 @@
 #include <cstddef>
 #include <string>
 
-#include "derivatives.hpp"
-#include "integrate.hpp"
-#include "step_control.hpp"
-#include "system.hpp"
+#include "../derivatives.hpp"
+#include "../step_control.hpp"
+#include "../stepper.hpp"
 
 namespace rotgen {
 
@@ -98,9 +98,19 @@ template <class T> using rosenbrock = rodas4<T>;
 
 template <class T, class S> class rodas4_stepper {
   public:
+    using scalar = T;
+    using system_type = S;
     using vector = state_vector<T, S>;
     using matrix = jacobian_matrix<T, S>;
     using tab = rodas4_tableau;
+
+    using outcome = step_outcome<T>;
+
+    static constexpr int order = 4;
+    static constexpr bool error_estimate = true;
+    static constexpr dense_kind dense_output = dense_kind::hermite;
+    static constexpr int dense_order = 3;
+    static constexpr bool uses_jacobian = true;
 
     rodas4_stepper(const rodas4<T>& m, std::size_t n)
         : m_atol(m.atol), m_rtol(m.rtol), m_autonomous(m.autonomous), m_y0(vector::Zero(n)),
@@ -110,7 +120,6 @@ template <class T, class S> class rodas4_stepper {
             k = m_y0;
     }
 
-    int order() const { return 4; }
     const vector& f_start() const { return m_f0; }
     const vector& y_new() const { return m_y1; }
 
@@ -119,11 +128,6 @@ template <class T, class S> class rodas4_stepper {
         m_jac_valid = false;
         return m_f0.allFinite();
     }
-
-    struct outcome {
-        status code;
-        T err;
-    };
 
     outcome attempt(const S& sys, T t, const vector& y, T h, step_stats& stats, bool) {
         m_y0 = y;
@@ -174,9 +178,9 @@ template <class T, class S> class rodas4_stepper {
         return m_f0.allFinite();
     }
 
-    void dense(T theta, vector& out) const {
-        detail::hermite(theta, m_h, m_y0, m_f1, m_y1, m_f0, out);
-    }
+    // The Hermite data of the last accepted step: y0, f(t, y0) (in m_f1 after the swap in
+    // accept), y1, f(t + h, y1) (in m_f0).
+    step_ends<T, vector> hermite_ends() const { return {m_h, m_y0, m_f1, m_y1, m_f0}; }
 
   private:
     T m_atol, m_rtol;
@@ -188,5 +192,7 @@ template <class T, class S> class rodas4_stepper {
     matrix m_jac, m_iter;
     Eigen::PartialPivLU<Eigen::Matrix<T, state_dim<S>(), state_dim<S>()>> m_lu;
 };
+
+static_assert(check_method<rodas4<double>>());
 
 } // namespace rotgen

@@ -16,6 +16,7 @@
 // a continuous extension of order 7 (local error O(h^8)).
 // The coefficients are Hairer's published constants (30 digits); tests check the consistency
 // conditions Σ_j a_ij = c_i, Σ b = 1, Σ er = 0 and the orders 8 and 7 numerically.
+// Stepper concept (stepper.hpp): order 8, error estimate, own dense output of order 7, no Jacobian.
 #pragma once
 
 #include <array>
@@ -23,11 +24,10 @@
 #include <limits>
 #include <string>
 
-#include "combine.hpp"
-#include "derivatives.hpp"
-#include "integrate.hpp"
-#include "step_control.hpp"
-#include "system.hpp"
+#include "../combine.hpp"
+#include "../derivatives.hpp"
+#include "../step_control.hpp"
+#include "../stepper.hpp"
 
 namespace rotgen {
 
@@ -217,9 +217,19 @@ template <class T> struct dop853 : adaptive_options<T> {
 
 template <class T, class S> class dop853_stepper {
   public:
+    using scalar = T;
+    using system_type = S;
     using vector = state_vector<T, S>;
     using work = detail::work_vector<T, S>;
     using tab = dop853_tableau;
+
+    using outcome = step_outcome<T>;
+
+    static constexpr int order = 8;
+    static constexpr bool error_estimate = true;
+    static constexpr dense_kind dense_output = dense_kind::continuous_extension;
+    static constexpr int dense_order = 7;
+    static constexpr bool uses_jacobian = false;
 
     dop853_stepper(const dop853<T>& m, std::size_t n)
         : m_atol(m.atol), m_rtol(m.rtol), m_fixed(m.fixed_step > T(0)) {
@@ -229,7 +239,6 @@ template <class T, class S> class dop853_stepper {
         m_r.fill(zero);
     }
 
-    int order() const { return 8; }
     const work& f_start() const { return m_k1; }
     const work& y_new() const { return m_y1; }
 
@@ -239,11 +248,6 @@ template <class T, class S> class dop853_stepper {
         detail::eval_rhs(sys, t0, y, m_k1, stats);
         return detail::all_finite(m_k1);
     }
-
-    struct outcome {
-        status code;
-        T err;
-    };
 
     // One step of size h from (t, y): stages 2..12, y1 and the error estimate (see combine.hpp
     // for where the stages are kept).
@@ -324,8 +328,12 @@ template <class T, class S> class dop853_stepper {
               a(tab::a126, 6), a(tab::a127, 7), a(tab::a128, 8), a(tab::a129, 9),
               a(tab::a1210, 10));
         f(12, 1.0L);
-        // y1 = y0 + h Σ b_i k_i (8th order) and the error estimate:
-        //   e3 = Σ b k − (bhh1 k1 + bhh2 k9 + bhh3 k12),  e5 = Σ er_j k_j
+        return solution_and_error(y0, h, k);
+    }
+
+    // y1 = y0 + h Σ b_i k_i (8th order) and the error estimate:
+    //   e3 = Σ b k − (bhh1 k1 + bhh2 k9 + bhh3 k12),  e5 = Σ er_j k_j
+    ROTGEN_ALWAYS_INLINE outcome solution_and_error(const work& y0, T h, const stages& k) {
         using std::abs;
         using std::max;
         using std::sqrt;
@@ -363,7 +371,6 @@ template <class T, class S> class dop853_stepper {
         if (!isfinite(err) || !detail::all_finite(m_y1)) return {status::non_finite, err};
         return {status::ok, err};
     }
-
 
     ROTGEN_COLD outcome attempt_keeping_stages(const S& sys, T t, const vector& y, T h,
                                                step_stats& stats) {
@@ -436,5 +443,7 @@ template <class T, class S> class dop853_stepper {
     stages m_k;            // the stages of the last step (with a static size: steps with samples)
     std::array<work, 7> m_r; // r2..r8
 };
+
+static_assert(check_method<dop853<double>>());
 
 } // namespace rotgen

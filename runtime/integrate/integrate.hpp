@@ -1,0 +1,127 @@
+// rotgen runtime — the driver: integrate(system, method, t0, y, sample_times, observer).
+//
+//   t0            start time
+//   y             in: state at t0 (state_vector<T, S>); out: state at result.t
+//   sample_times  any container with size() and operator[] (std::vector<T>, Eigen vector …),
+//                 non-decreasing in the direction of integration, all on the same side of t0;
+//                 the last one is the end time (backward integration when it is before t0)
+//   observer      callable observer(T t, const state_vector<T, S>& y), called once per sample,
+//                 in order; samples equal to t0 get the initial state. It returns void, or bool
+//                 to stop the run after a sample (false; see observer.hpp)
+//
+// The parts: the stepper concept in ../stepper.hpp; fixed.hpp, the fixed-step loop on the grid
+// t_k = t0 + k·h; adaptive.hpp, the controlled loop; sampling.hpp, the samples between step
+// boundaries (the stepper's continuous extension or cubic Hermite); observer.hpp, observers that
+// stop a run and their combination; monitor.hpp and chart_switch.hpp, two ready-made observers.
+//
+// Guards (status values, never exceptions): invalid arguments → invalid_argument; non-finite
+// initial state or f(t0, y0) → non_finite; the loops' own guards are listed in fixed.hpp and
+// adaptive.hpp; an observer returning false → stopped_by_observer.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <type_traits>
+#include <utility>
+
+#include "../result.hpp"
+#include "../stepper.hpp"
+#include "../system.hpp"
+#include "adaptive.hpp"
+#include "fixed.hpp"
+#include "messages.hpp"
+#include "observer.hpp"
+#include "sampling.hpp"
+
+namespace rotgen {
+
+namespace detail {
+
+// The validation of integrate()'s arguments: a failed result, or nothing when they are valid.
+template <class T, class S, class Method, class Times>
+std::optional<integration_result<T>> check_arguments(const S& sys, const Method& method, T t0,
+                                                     const state_vector<T, S>& y,
+                                                     const Times& sample_times) {
+    using std::isfinite;
+    const step_stats none;
+    const std::size_t n = system_size(sys);
+    if (n == 0 || static_cast<std::size_t>(y.size()) != n)
+        return fail<T>(status::invalid_argument,
+                       "state has " + std::to_string(y.size()) + " components, system expects " +
+                           std::to_string(n),
+                       t0, none);
+    if (std::string why = method.check(); !why.empty())
+        return fail<T>(status::invalid_argument, method.name() + std::string(": ") + why, t0, none);
+    const std::size_t ns = static_cast<std::size_t>(sample_times.size());
+    if (ns == 0) return fail<T>(status::invalid_argument, "no sample times given", t0, none);
+    if (!isfinite(t0))
+        return fail<T>(status::invalid_argument, "start time is not finite", t0, none);
+    const T dir = T(sample_times[ns - 1]) >= t0 ? T(1) : T(-1);
+    for (std::size_t i = 0; i < ns; ++i) {
+        const T s = T(sample_times[i]);
+        const T prev = i == 0 ? t0 : T(sample_times[i - 1]);
+        if (!isfinite(s))
+            return fail<T>(status::invalid_argument,
+                           "sample time " + std::to_string(i) + " is not finite", t0, none);
+        if (dir * (s - prev) < T(0))
+            return fail<T>(status::invalid_argument,
+                           "sample times must be monotone in the direction of integration "
+                           "(sample " +
+                               std::to_string(i) + " = " + format_time(s) + ")",
+                           t0, none);
+    }
+    if (!y.allFinite()) return fail<T>(status::non_finite, "initial state is not finite", t0, none);
+    return std::nullopt;
+}
+
+} // namespace detail
+
+template <class S, class Method, class Times, class Observer,
+          std::enable_if_t<is_method_v<Method>, int> = 0>
+integration_result<typename Method::scalar>
+integrate(const S& sys, const Method& method, detail::identity_t<typename Method::scalar> t0,
+          state_vector<typename Method::scalar, S>& y, const Times& sample_times,
+          Observer&& observer) {
+    using T = typename Method::scalar;
+    using vector = state_vector<T, S>;
+    if (auto failed = detail::check_arguments<T>(sys, method, t0, y, sample_times)) return *failed;
+    const T t_end = T(sample_times[static_cast<std::size_t>(sample_times.size()) - 1]);
+    const T dir = t_end >= t0 ? T(1) : T(-1);
+    detail::sampler<T, Times, std::remove_reference_t<Observer>> samples(sample_times, dir,
+                                                                         observer);
+    integration_result<T> res;
+    res.t = t0;
+    if (!samples.deliver_at(t0, static_cast<const vector&>(y))) {
+        res.code = status::stopped_by_observer;
+        res.message = detail::stopped_message(t0);
+        return res;
+    }
+    if (samples.done()) return res;
+    if constexpr (Method::adaptive) {
+        if (method.fixed_step == T(0))
+            return detail::run_adaptive(sys, method, t0, t_end, y, samples);
+        return detail::run_fixed(sys, method, t0, t_end, method.fixed_step, y, samples);
+    } else {
+        return detail::run_fixed(sys, method, t0, t_end, method.step, y, samples);
+    }
+}
+
+// Integrate to t_end without samples; y holds the state at result.t on return.
+template <class S, class Method, std::enable_if_t<is_method_v<Method>, int> = 0>
+integration_result<typename Method::scalar>
+integrate(const S& sys, const Method& method, detail::identity_t<typename Method::scalar> t0,
+          state_vector<typename Method::scalar, S>& y,
+          detail::identity_t<typename Method::scalar> t_end) {
+    using T = typename Method::scalar;
+    const T times[1] = {t_end};
+    struct one_sample {
+        const T* p;
+        std::size_t size() const { return 1; }
+        T operator[](std::size_t) const { return *p; }
+    };
+    return integrate(sys, method, t0, y, one_sample{times}, [](T, const state_vector<T, S>&) {});
+}
+
+} // namespace rotgen
