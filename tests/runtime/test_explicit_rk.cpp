@@ -340,7 +340,7 @@ TEST_CASE(
 // ---- the free asymmetric top over many periods, adaptive
 // -----------------------------------------
 
-TEST_CASE("free asymmetric top over t in [0, 100]: DOPRI5 and DOP853 against the exact solution",
+TEST_CASE("free asymmetric top from t = 0 to 100: DOPRI5 and DOP853 against the exact solution",
           "[dopri5][dop853][free_top]") {
     // I = (1, 2, 3), ω0 = (1, 0.1, 0.5): 2E = 1.77, L² = 3.29, L²/2E = 1.859 < I2: the body
     // tumbles about axis 1 with k² = 1.52/2.02 (k = 0.867), λ² = 2.02/6 and period 4K(k)/λ = 14.9
@@ -385,7 +385,7 @@ TEST_CASE("free asymmetric top over t in [0, 100]: DOPRI5 and DOP853 against the
     CHECK(e8[4] < e8[3]);
 }
 
-TEST_CASE("free asymmetric top over t in [0, 100]: RODAS4 against the exact solution",
+TEST_CASE("free asymmetric top from t = 0 to 100: RODAS4 against the exact solution",
           "[rodas4][free_top]") {
     // The linearly implicit method on the same non-stiff problem: 4th order with an embedded
     // 3rd-order estimate, so the global error is again roughly proportional to rtol (HNW II,

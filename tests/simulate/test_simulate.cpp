@@ -408,7 +408,7 @@ TEST_CASE("an adaptive method given a step takes fixed steps: no rejections, err
     CHECK(error[0] / error[1] < 512);
 }
 
-TEST_CASE("near gimbal lock the Hamiltonian chart loses accuracy; the switch keeps it",
+TEST_CASE("near gimbal lock the Hamiltonian chart loses accuracy and the switch keeps it",
           "[simulate][gimbal]") {
     // A free symmetric top (I = 2, 2, 1) whose symmetry axis starts 1e-4 from the vertical
     // (its closest approach; see bench/extremes/gimbal_lock.sh for 1e-1 ... 1e-8).
