@@ -492,11 +492,25 @@ void check_finite_start(const scene_spec& scene, const initial_state& k0, const 
         check(invariants[i].name, source_value(cf.invariants[i], y, out, inertia, e));
 }
 
+// Without `record:` the scene records phi, theta, psi and energy; the reduced form has no ignored
+// angle to record, so the default keeps only what the form gives (an explicit record is checked
+// in compile_form, and an angle the form lacks is an error there).
+void default_record_follows_form(scene_spec& scene, const derivation& d) {
+    if (!scene.record_default || scene.form != form_kind::reduced) return;
+    const form_expressions f = build_form(scene.model, d, form_kind::reduced,
+                                          lagrangian_strategy::explicit_inverse, false);
+    for (std::size_t r = scene.record.size(); r-- > 0;)
+        if (!record_expression(f, scene.record[r])) {
+            scene.record.erase(scene.record.begin() + static_cast<std::ptrdiff_t>(r));
+            scene.record_where.erase(scene.record_where.begin() + static_cast<std::ptrdiff_t>(r));
+        }
+}
+
 } // namespace
 
 int cmd_simulate(const std::vector<std::string>& args) {
     const simulate_options opt = parse_arguments(args);
-    const scene_spec scene = load_scene(opt.scene);
+    scene_spec scene = load_scene(opt.scene);
     const model_spec& spec = scene.model;
 
     // Output paths are checked before any work (no partial output, early clear error).
@@ -541,6 +555,8 @@ int cmd_simulate(const std::vector<std::string>& args) {
     std::vector<invariant> invariants{{"energy", !spec.has_damping && !spec.has_torque}};
     for (int i : d.cyclic)
         if (scene.form != form_kind::reduced) invariants.push_back({"p_" + coordinate_names()[i], true});
+
+    default_record_follows_form(scene, d);
 
     // The body form keeps the quaternion only when something needs the orientation (a potential,
     // a recorded angle or body axis, a switch of chart); a free body is then integrated as omega.
