@@ -200,7 +200,8 @@ TEST_CASE("a free top tumbling through theta ~ 0 stays on the exact solution (ch
             for (int k = 0; k < 3; ++k)
                 worst = std::max(worst, std::abs(t.rows[i][1 + k] - w[static_cast<std::size_t>(k)]));
         }
-        CHECK(worst < 1e-8);
+        // measured 3.1e-10 (from theta = 0.5) and 2.1e-10 (from theta = 0); the issue's goal was 1e-8
+        CHECK(worst < 1e-9);
     }
 }
 
