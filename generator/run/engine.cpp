@@ -72,6 +72,7 @@ class scene_run {
     const form_expressions& built(form_kind form, bool orientation);
     void decide_chart();
     void list_invariants();
+    void default_record_follows_form();
     compiled_form& compile(form_kind form, bool orientation);
     Eigen::VectorXd state_of(const form_expressions& f, const initial_kinematics& k) const;
     std::vector<double> parameters_of(const form_expressions& f, const initial_kinematics& k) const;
@@ -82,7 +83,7 @@ class scene_run {
     void switch_chart(next to, Eigen::VectorXd& y, std::vector<double>& parameters, double& t_from);
     void record();
 
-    const scene_spec& m_scene;
+    scene_spec m_scene; // the scene, with its default record fitted to the form
     stage_timings& m_timings;
     const sample_callback& m_on_sample;
     derivation m_d;
@@ -132,6 +133,19 @@ void scene_run::decide_chart() {
     if (m_start_in_body)
         m_result.chart_note = "started in the body form (initial |sin theta| = " + short_number(sin_theta0) +
                               " < " + short_number(switch_below) + ")";
+}
+
+// Without `record:` the scene records phi, theta, psi and energy; the reduced form has no ignored
+// angle to record, so the default keeps only what the form gives (an explicit record is checked
+// in compile_form, and an angle the form lacks is an error there).
+void scene_run::default_record_follows_form() {
+    if (!m_scene.record_default || m_scene.form != form_kind::reduced) return;
+    const form_expressions& f = built(form_kind::reduced, false);
+    for (std::size_t r = m_scene.record.size(); r-- > 0;)
+        if (!form_gives(f, m_scene.record[r])) {
+            m_scene.record.erase(m_scene.record.begin() + static_cast<std::ptrdiff_t>(r));
+            m_scene.record_where.erase(m_scene.record_where.begin() + static_cast<std::ptrdiff_t>(r));
+        }
 }
 
 // The energy, and every momentum the derivation found conserved.
@@ -330,7 +344,9 @@ run_result scene_run::run() {
     if (m_scene.initial == initial_kind::momenta && !k0.have_rates)
         throw user_error(m_scene.initial_where, "momenta cannot give the rates at theta = 0 or pi (the mass matrix is "
                                                 "singular there); give body omega1..3 instead");
+    default_record_follows_form();
     list_invariants();
+    m_result.record = m_scene.record;
     const compiled_form& first = compile(m_start_in_body ? form_kind::body : m_scene.form, m_orientation);
     for (const auto& name : m_scene.record)
         for (const auto& c : record_columns(name)) m_result.columns.push_back(c);

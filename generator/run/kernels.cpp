@@ -113,6 +113,8 @@ std::string entry_points(const form_expressions& f, const std::string& unit, con
 
 } // namespace
 
+bool form_gives(const form_expressions& f, const std::string& name) { return record_expression(f, name).has_value(); }
+
 void compiled_form::set_parameters(const std::vector<double>& values) const {
     using set_fn = void (*)(const double*);
     reinterpret_cast<set_fn>(lib.symbol("rotgen_set_parameters"))(values.data());

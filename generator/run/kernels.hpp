@@ -69,6 +69,9 @@ compiled_form compile_form(const scene_spec& scene, form_expressions f,
                            bool orientation, const std::vector<invariant>& invariants,
                            const std::string& command, stage_timings& timings);
 
+// Whether the form itself gives the quantity `name` (a state, an output or a rate).
+bool form_gives(const form_expressions& f, const std::string& name);
+
 // A recorded column or monitored invariant at a sample (t, y): an output `out` of the form's
 // record program, or in the body form from the quaternion and omega: the Euler angles, their
 // rates q_dot = J^{-1} omega (5.30, undefined at theta = 0, pi), p = J^T I omega. `e` caches the

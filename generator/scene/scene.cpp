@@ -270,6 +270,7 @@ class scene_reader {
     void read_record(const YAML::Node& n) {
         if (!n) {
             m_scene.record = {"phi", "theta", "psi", "energy"};
+            m_scene.record_default = true;
             m_scene.record_where.assign(m_scene.record.size(), m_scene.where);
             return;
         }

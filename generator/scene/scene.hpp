@@ -47,6 +47,7 @@ struct scene_spec {
     long samples = 101;
     integrator_spec integrator;
     std::vector<std::string> record; // quantities, in order (body_z expands to 3 columns)
+    bool record_default = false;     // no `record:`: phi, theta, psi, energy, as the form gives them
     // Leave the Euler-angle chart for the body form near theta = 0, pi (lagrangian and
     // hamiltonian forms); `switch_chart: false` keeps the chart (to measure its failure).
     bool switch_chart = true;

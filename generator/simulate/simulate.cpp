@@ -91,7 +91,7 @@ void draw_plot(const simulate_request& q, std::string csv, const scene_spec& sce
     double energy0 = 0;
     for (std::size_t i = 0; i < r.columns.size(); ++i)
         if (r.columns[i] == "energy" && !r.rows.empty()) energy0 = r.rows[0][i + 1];
-    plot_run(q.plot, csv, scene.record,
+    plot_run(q.plot, csv, r.record,
              scene.model.name + " (" + to_string(scene.form) + " form, " + scene.integrator.method + ")", energy0);
 }
 

@@ -129,7 +129,7 @@ TEST_CASE("free top: the Euler-Lagrange equations are Euler's equations (5.87)-(
     }
 }
 
-TEST_CASE("H equals T + V and Hamilton's equations agree with Euler-Lagrange", "[derive]") {
+TEST_CASE("H and E equal 1/2 w.I.w (5.30, 5.38) + V, and Hamilton agrees with Euler-Lagrange", "[derive]") {
     const std::string name =
         GENERATE("heavy_top", "free_asymmetric_top", "full_tensor_top", "damped_driven_top");
     const model_spec spec = load_model(model_path(name));
@@ -147,7 +147,19 @@ TEST_CASE("H equals T + V and Hamilton's equations agree with Euler-Lagrange", "
         INFO(name << " state " << k);
         const double E = eval(d.energy, pt.values, spec);
         CHECK(eval(d.hamiltonian, phase, spec) == Approx(E).epsilon(1e-12).margin(1e-12));
-        const double T = eval(d.kinetic, pt.values, spec), V = eval(d.potential, pt.values, spec);
+        // The energy against T computed here in doubles, independently of the derivation: the
+        // body rates (5.30) from the angles and rates, T = 1/2 sum_ij I_ij w_i w_j (5.38) with the
+        // model's tensor; V is the model's potential as written (the input, not the derivation).
+        const double ph = eval(s.qd[0], pt.values, spec), th = eval(s.qd[1], pt.values, spec),
+                     ps = eval(s.qd[2], pt.values, spec), theta = eval(s.q[1], pt.values, spec),
+                     psi = eval(s.q[2], pt.values, spec);
+        const Eigen::Vector3d w(ph * std::sin(theta) * std::sin(psi) + th * std::cos(psi),
+                                ph * std::sin(theta) * std::cos(psi) - th * std::sin(psi),
+                                ph * std::cos(theta) + ps);
+        Eigen::Matrix3d I;
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) I(i, j) = eval(spec.inertia[i][j], pt.values, spec);
+        const double T = 0.5 * w.dot(I * w), V = eval(spec.potential, pt.values, spec);
         CHECK(E == Approx(T + V).epsilon(1e-12).margin(1e-12));
         for (int i = 0; i < 3; ++i) {
             const double qd = eval(s.qd[i], pt.values, spec);

@@ -212,9 +212,11 @@ TEST_CASE("heavy symmetric top: generated forms follow (5.73)-(5.79)", "[emit][c
         const double u = p_phi - p_psi * ct;
         const double H = p_theta * p_theta / (2 * v.I1) + p_psi * p_psi / (2 * v.I3) +
                          u * u / (2 * v.I1 * st * st) + Mgh * ct;
+        // The generated energy against E = T + V with T and V read off (5.73) (in the rates), and
+        // against H (5.79) (in the momenta (5.74)-(5.76)).
         const double T =
             v.I1 * (s.thetad * s.thetad + s.phid * s.phid * st * st) / 2 + v.I3 * w3 * w3 / 2;
-        CHECK(H == Approx(T + Mgh * ct).epsilon(1e-12));
+        CHECK(lag::energy(yl, pl) == Approx(T + Mgh * ct).epsilon(1e-12));
         CHECK(lag::energy(yl, pl) == Approx(H).epsilon(1e-12));
         const double phid = u / (v.I1 * st * st), psid = p_psi / v.I3 - ct * u / (v.I1 * st * st);
         const double pthetad =
@@ -239,5 +241,24 @@ TEST_CASE("heavy symmetric top: generated forms follow (5.73)-(5.79)", "[emit][c
         CHECK(rates[0] == Approx(phid).epsilon(1e-12).margin(1e-12));
         CHECK(rates[1] == Approx(psid).epsilon(1e-12).margin(1e-12));
         CHECK(red::energy(yr, pr) == Approx(H).epsilon(1e-12));
+    }
+    SECTION("a point worked by hand") {
+        // theta = pi/3, phi_dot = 2, theta_dot = 0.5, psi_dot = 1, with I1 = 1.3, I3 = 0.45,
+        // M g h = 0.8 * 9.81 * 0.12 = 0.94176; cos theta = 1/2, sin^2 theta = 3/4:
+        //   omega3 = phi_dot cos theta + psi_dot = 2;
+        //   (5.74) p_phi = 1.3 * 2 * 3/4 + 0.45 * 1/2 * 2 = 2.4, (5.75) p_theta = 1.3 * 0.5 = 0.65,
+        //   (5.76) p_psi = 0.45 * 2 = 0.9;
+        //   (5.79) H = 0.65^2 / 2.6 + 0.9^2 / 0.9 + (2.4 - 0.45)^2 / (2.6 * 3/4) + 0.94176 / 2
+        //            = 0.1625 + 0.9 + 1.95 + 0.47088 = 3.48338.
+        const double third_pi = 3.141592653589793 / 3;
+        const double yl[6] = {0.1, third_pi, 0.2, 2, 0.5, 1};
+        double p[3];
+        lag::momenta(yl, p, pl);
+        CHECK(p[0] == Approx(2.4).epsilon(1e-14));
+        CHECK(p[1] == Approx(0.65).epsilon(1e-14));
+        CHECK(p[2] == Approx(0.9).epsilon(1e-14));
+        CHECK(lag::energy(yl, pl) == Approx(3.48338).epsilon(1e-14));
+        const double yh[6] = {0.1, third_pi, 0.2, 2.4, 0.65, 0.9};
+        CHECK(ham::energy(yh, ph) == Approx(3.48338).epsilon(1e-14));
     }
 }

@@ -94,7 +94,7 @@ TEST_CASE("implicit midpoint converges with order 2 on the pendulum", "[midpoint
     CHECK(s == Approx(2.0).margin(0.3));
 }
 
-TEST_CASE("implicit midpoint keeps the energy error bounded over 1e5 steps; DOPRI5 drifts",
+TEST_CASE("implicit midpoint keeps the energy error bounded over 1e5 steps while DOPRI5 drifts",
           "[midpoint][dopri5][energy]") {
     // Pendulum from rest at q0 = 1 (period 6.7), h = 0.1, 1e5 steps to t = 1e4 (~1500 periods).
     // The midpoint rule is symplectic: it conserves a modified energy H + O(h²) exactly, so

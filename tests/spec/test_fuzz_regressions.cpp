@@ -2,7 +2,9 @@
 // kept in fuzz/regressions/TARGET/) or written for the hostile cases the fuzzer cannot reach in
 // a few kilobytes (deep nesting, huge numbers, files over 1 MiB). Each must now give one user error
 // line and exit status 2 (model and scene files, through the CLI), or a result or a user error
-// (expressions, in process) — never a crash, an abort, a hang or another exception.
+// (expressions, in process) — never a crash, an abort, a hang or another exception. Every case
+// names its expected outcome: the error message (with its place), or the value parsed; a kept
+// input without an expected outcome in the tables below fails the test.
 #include "expr/expr_parse.hpp"
 #include "support.hpp"
 
@@ -10,6 +12,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <map>
 #include <tuple>
 #include <vector>
 
@@ -52,14 +55,57 @@ const rotgen::name_table& fuzz_names() {
     return table;
 }
 
-// A result or a user_error with a one-line message; any other exception fails the test.
-void parse_or_user_error(const std::string& text) {
+GiNaC::ex parse_fuzz(const std::string& text) {
+    return rotgen::parse_expression(text, fuzz_names(), {"fuzz.yaml", 3, 12}, "torque");
+}
+
+// A user_error whose one-line message is `message` exactly ("fuzz.yaml:3:COL: problem"); any
+// other exception, or a result, fails the test.
+void expect_user_error(const std::string& text, const std::string& message) {
     try {
-        (void)rotgen::parse_expression(text, fuzz_names(), {"fuzz.yaml", 3, 12}, "torque");
+        (void)parse_fuzz(text);
+        FAIL("parsed, expected the error " << message);
     } catch (const rotgen::user_error& e) {
-        INFO(e.message());
+        CHECK(e.message() == message);
         CHECK(printable_line(e.message()));
     }
+}
+
+// The expressions fuzz/regressions/expr/ keeps, with the error each must give.
+const std::map<std::string, std::string>& kept_expression_errors() {
+    const std::string range = "exponent out of range (its magnitude must be at most 1000) in torque";
+    static const std::map<std::string, std::string> m{
+        {"slow_long_number_to_huge_power", "fuzz.yaml:3:86: " + range},
+        {"timeout_decimal_base_huge_exponent", "fuzz.yaml:3:47: " + range},
+        {"timeout_decimal_to_huge_negative_power", "fuzz.yaml:3:22: " + range},
+        {"timeout_huge_exponent_20_55555555550", "fuzz.yaml:3:16: " + range},
+        {"timeout_huge_exponent_33_33333333333334", "fuzz.yaml:3:14: " + range},
+        {"timeout_huge_exponent_5555", "fuzz.yaml:3:26: " + range},
+        {"timeout_huge_negative_exponent_in_abs", "fuzz.yaml:3:25: " + range},
+        {"timeout_power_tower_3_3_40", "fuzz.yaml:3:14: " + range},
+        {"timeout_power_tower_555_55_5e308", "fuzz.yaml:3:19: " + range},
+        {"timeout_power_tower_8_88_8", "fuzz.yaml:3:13: " + range},
+    };
+    return m;
+}
+
+// The model and scene files fuzz/regressions/ keeps, with the place and problem each must give.
+const std::map<std::string, std::string>& kept_file_errors() {
+    const std::string finite = " must be a finite number (0, or 2.2e-308 to 1.8e308 in magnitude)";
+    static const std::map<std::string, std::string> m{
+        {"subnormal_parameter_default.yaml", ":6:6: the default of parameter 'c'" + finite},
+        {"subnormal_parameter_default_full_tensor_top.yaml",
+         ":7:8: the default of parameter 'Izz'" + finite},
+        {"subnormal_parameter_default_inline_model.yaml", ":3:19: the default of parameter 'A'" + finite},
+        {"nul_in_yaml_error_message.yaml", ":1:5: malformed YAML: unknown escape character: \\x04"},
+    };
+    return m;
+}
+
+std::string expected_for(const std::map<std::string, std::string>& table, const fs::path& file) {
+    const auto it = table.find(file.filename().string());
+    if (it == table.end()) FAIL("no expected outcome for the kept input " << file.filename());
+    return it == table.end() ? std::string() : it->second;
 }
 
 // `rotgen ARGS` with a time limit (exit status 124 if it is reached).
@@ -86,7 +132,8 @@ void check_one_user_error(const run_result& r, const std::string& problem) {
     CHECK(r.err.rfind("rotgen: error: ", 0) == 0);
     CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
     CHECK(printable_line(r.err.substr(0, r.err.size() - 1)));
-    if (!problem.empty()) CHECK(r.err.find(problem) != std::string::npos);
+    CHECK(!problem.empty());
+    CHECK(r.err.find(problem) != std::string::npos);
 }
 
 // A directory laid out like models/: DIR/*.yaml are the shipped models, scenes go in DIR/scenes/
@@ -113,48 +160,71 @@ const std::string start = "initial: {theta: 0.5, psi_dot: 30}\ntime: {end: 1}\n"
 
 } // namespace
 
-TEST_CASE("fuzz regressions: kept expression inputs parse or give a user error", "[fuzz][errors]") {
-    for (const auto& file : kept_inputs("expr")) {
+TEST_CASE("fuzz regressions: kept expression inputs give their user error", "[fuzz][errors]") {
+    const auto files = kept_inputs("expr");
+    CHECK(files.size() == kept_expression_errors().size());
+    for (const auto& file : files) {
         INFO(file.filename().string());
-        parse_or_user_error(read_file(file.string()));
+        expect_user_error(read_file(file.string()), expected_for(kept_expression_errors(), file));
     }
 }
 
-TEST_CASE("fuzz regressions: kept model inputs give one user error line", "[fuzz][errors]") {
-    for (const auto& file : kept_inputs("model")) {
+TEST_CASE("fuzz regressions: kept model inputs give their user error line", "[fuzz][errors]") {
+    const auto files = kept_inputs("model");
+    CHECK(files.size() == 2);
+    for (const auto& file : files) {
         INFO(file.filename().string());
-        check_one_user_error(run_limited("inspect '" + file.string() + "'"), "");
+        check_one_user_error(run_limited("inspect '" + file.string() + "'"),
+                             file.string() + expected_for(kept_file_errors(), file));
     }
 }
 
-TEST_CASE("fuzz regressions: kept scene inputs give one user error line", "[fuzz][errors]") {
+TEST_CASE("fuzz regressions: kept scene inputs give their user error line", "[fuzz][errors]") {
     const fs::path dir = scene_dir("kept");
-    for (const auto& file : kept_inputs("scene")) {
+    const auto files = kept_inputs("scene");
+    CHECK(files.size() == 1);
+    for (const auto& file : files) {
         INFO(file.filename().string());
         const fs::path copy = dir / "scenes" / file.filename();
         fs::copy_file(file, copy, fs::copy_options::overwrite_existing);
-        check_one_user_error(run_limited("simulate '" + copy.string() + "'"), "");
+        check_one_user_error(run_limited("simulate '" + copy.string() + "'"),
+                             copy.string() + expected_for(kept_file_errors(), file));
     }
 }
 
 TEST_CASE("fuzz regressions: hostile expressions are bounded", "[fuzz][errors]") {
     // Each used to overflow the stack, run for minutes or exhaust the memory.
-    parse_or_user_error(repeat("(", 100000) + "phi" + repeat(")", 100000));
-    parse_or_user_error(repeat("sin(", 50000) + "phi" + repeat(")", 50000));
-    parse_or_user_error(repeat("phi^", 50000) + "2");
-    parse_or_user_error(repeat("-", 200000) + "phi"); // accepted: signs are not nesting
-    parse_or_user_error("9^9^9^9");
-    parse_or_user_error("pow(7, 99999999)");
-    parse_or_user_error("2^(99999999/2)");
-    parse_or_user_error("((phi + 1)^1000)^1000");
-    parse_or_user_error(repeat("1e4000*", 20000) + "1");
-    parse_or_user_error(std::string(10000, '7'));
-    parse_or_user_error(std::string("phi\0", 4) + "+1");
-    parse_or_user_error("sqrt(-1) + log(0) + pow(0, -1) + 0^0");
+    const std::string nested = "expression nested too deeply (more than 200 levels) in torque";
+    const std::string range = "exponent out of range (its magnitude must be at most 1000) in torque";
+    expect_user_error(repeat("(", 100000) + "phi" + repeat(")", 100000), "fuzz.yaml:3:212: " + nested);
+    expect_user_error(repeat("sin(", 50000) + "phi" + repeat(")", 50000), "fuzz.yaml:3:812: " + nested);
+    expect_user_error(repeat("phi^", 50000) + "2", "fuzz.yaml:3:812: " + nested);
+    expect_user_error("9^9^9^9", "fuzz.yaml:3:15: " + range);
+    expect_user_error("pow(7, 99999999)", "fuzz.yaml:3:12: " + range);
+    expect_user_error("2^(99999999/2)", "fuzz.yaml:3:13: " + range);
+    expect_user_error("((phi + 1)^1000)^1000",
+                      "fuzz.yaml:3:22: a sum raised to a power above 32 is not supported (the "
+                      "derivation expands it) in torque");
+    expect_user_error(repeat("1e4000*", 20000) + "1",
+                      "fuzz.yaml:3:74: numbers too large (an exact value would have more than "
+                      "39321 digits) in torque");
+    expect_user_error(std::string(10000, '7'), "fuzz.yaml:3:12: number with more than 4000 digits in torque");
+    expect_user_error(std::string("phi\0", 4) + "+1", "fuzz.yaml:3:15: unexpected character '\\x00' in torque");
+    expect_user_error("sqrt(-1) + log(0) + pow(0, -1) + 0^0", "fuzz.yaml:3:23: log(0) is undefined in torque");
+    // Accepted: signs are not nesting; 200000 minus signs cancel.
+    const auto& s = rotgen::symbols();
+    CHECK((parse_fuzz(repeat("-", 200000) + "phi") - s.q[0]).is_zero());
+    CHECK((parse_fuzz(repeat("-", 199999) + "phi") + s.q[0]).is_zero());
     // Long but harmless: a sum of 50000 distinct terms is linear, not quadratic, to parse.
     std::string sum = "0";
-    for (int i = 1; i <= 50000; ++i) sum += "+sin(" + std::to_string(i) + "*phi)";
-    parse_or_user_error(sum);
+    GiNaC::ex expected = 0;
+    for (int i = 1; i <= 50000; ++i) {
+        sum += "+sin(" + std::to_string(i) + "*phi)";
+        expected += GiNaC::sin(i * s.q[0]);
+    }
+    const GiNaC::ex parsed = parse_fuzz(sum);
+    CHECK(parsed.nops() == 50000);
+    CHECK((parsed - expected).is_zero());
 }
 
 TEST_CASE("fuzz regressions: hostile model files give one user error line", "[fuzz][errors]") {
@@ -197,7 +267,8 @@ TEST_CASE("fuzz regressions: hostile model files give one user error line", "[fu
         row{"a file over 1 MiB", top + "# " + std::string(1100000, 'x') + "\n", "file is larger than 1 MiB"},
         row{"billion laughs (aliases are shared, never expanded)", top + bomb + "damping: *h\n",
             "'damping' must be one coefficient or a list of three"},
-        row{"deeply nested YAML", "name: top\ninertia: " + repeat("[", 100000) + repeat("]", 100000) + "\n", ""},
+        row{"deeply nested YAML", "name: top\ninertia: " + repeat("[", 100000) + repeat("]", 100000) + "\n",
+            "fuzz_regression_model.yaml:2:200010: malformed YAML: bad file"},
     }));
     INFO(name);
     const scratch_file file("fuzz_regression_model.yaml", text);
@@ -243,21 +314,28 @@ TEST_CASE("fuzz regressions: hostile scene files give one user error line", "[fu
 // inputs of this kind are in fuzz/regressions/model_one_line/ (the in-process fuzz target does not
 // see the CLI's escaping, so run.sh does not replay them).
 TEST_CASE("fuzz regressions: kept inputs with control characters in messages", "[fuzz][errors]") {
-    for (const auto& file : kept_inputs("model_one_line")) {
+    const auto files = kept_inputs("model_one_line");
+    CHECK(files.size() == 1);
+    for (const auto& file : files) {
         INFO(file.filename().string());
-        check_one_user_error(run_limited("inspect '" + file.string() + "'"), "");
+        check_one_user_error(run_limited("inspect '" + file.string() + "'"),
+                             file.string() + expected_for(kept_file_errors(), file));
     }
 }
 
 TEST_CASE("fuzz regressions: control characters in quoted names stay on one line", "[fuzz][errors]") {
-    using row = std::tuple<std::string, std::string>;
-    const auto [name, text] = GENERATE(table<std::string, std::string>({
-        row{"a key with a newline", top + "\"foo\\nbar\": 1\n"},
-        row{"a parameter name with a newline", "name: top\nparameters: {\"a\\nb\": 1}\ninertia: [1, 1, 1]\n"},
-        row{"a parameter name with a carriage return", "name: top\nparameters: {\"a\\rb\": 1}\ninertia: [1, 1, 1]\n"},
-        row{"a NUL byte (yaml-cpp quotes it in its message)", top + std::string("potential: cos(theta)\0\n", 23)},
+    using row = std::tuple<std::string, std::string, std::string>;
+    // name, file contents, the message after the file name: control characters escaped
+    const auto [name, text, message] = GENERATE(table<std::string, std::string, std::string>({
+        row{"a key with a newline", top + "\"foo\\nbar\": 1\n", ":4:2: unknown field 'foo\\nbar' in the model"},
+        row{"a parameter name with a newline", "name: top\nparameters: {\"a\\nb\": 1}\ninertia: [1, 1, 1]\n",
+            ":2:15: parameter name 'a\\nb' is not an identifier"},
+        row{"a parameter name with a carriage return", "name: top\nparameters: {\"a\\rb\": 1}\ninertia: [1, 1, 1]\n",
+            ":2:15: parameter name 'a\\x0db' is not an identifier"},
+        row{"a NUL byte (yaml-cpp quotes it in its message)", top + std::string("potential: cos(theta)\0\n", 23),
+            ":5:1: malformed YAML: unknown escape character: \\n"},
     }));
     INFO(name);
     const scratch_file file("fuzz_regression_control.yaml", text);
-    check_one_user_error(run_limited("inspect '" + file.path + "'"), "");
+    check_one_user_error(run_limited("inspect '" + file.path + "'"), file.path + message);
 }
