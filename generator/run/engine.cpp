@@ -16,10 +16,7 @@ namespace {
 
 // Below this |sin theta| at a sample, an Euler-angle run continues in the body form; above
 // switch_back_above it returns to the Euler-angle form (hysteresis: no switching to and fro).
-constexpr double switch_below = 0.1, switch_back_above = 0.2;
-
-// Thrown by the observer to change chart at a sample.
-struct leave_chart {};
+constexpr double switch_below = 0.1, switch_back_above = 0.3;
 
 struct sample {
     double t;
@@ -261,21 +258,18 @@ scene_run::next scene_run::integrate_segment(Eigen::VectorXd& y, double t_from) 
     const bool euler_chart = cf.form == form_kind::lagrangian || cf.form == form_kind::hamiltonian;
     const std::vector<double> times(m_times.begin() + static_cast<std::ptrdiff_t>(m_next_sample), m_times.end());
     const std::size_t first_sample = m_samples.size();
-    m_left_chart = false;
     m_timings.time("integrate", to_string(cf.form), [&] {
-        try {
-            m_last = integrate(cf.sys, *m_method, t_from, y, times, [&](double t, const Eigen::VectorXd& yt) {
-                m_samples.push_back({t, yt, m_current});
-                if (m_on_sample) m_on_sample(t);
-                if (!m_can_switch || m_samples.size() <= first_sample + 1 || t >= m_scene.t_end) return;
-                const double st = sin_theta_of(cf.form, yt);
-                if (euler_chart ? st < switch_below : st > switch_back_above) throw leave_chart{};
-            });
-        } catch (const leave_chart&) {
-            m_left_chart = true;
-        }
+        // returning false stops the run at this sample: the chart is left there
+        m_last = integrate(cf.sys, *m_method, t_from, y, times, [&](double t, const Eigen::VectorXd& yt) {
+            m_samples.push_back({t, yt, m_current});
+            if (m_on_sample) m_on_sample(t);
+            if (!m_can_switch || m_samples.size() <= first_sample + 1 || t >= m_scene.t_end) return true;
+            const double st = sin_theta_of(cf.form, yt);
+            return !(euler_chart ? st < switch_below : st > switch_back_above);
+        });
     });
-    if (!m_left_chart) add_stats(m_result.stats, m_last.stats);
+    m_left_chart = m_last.code == status::stopped_by_observer;
+    add_stats(m_result.stats, m_last.stats);
     if (!m_can_switch || m_samples.empty() || m_samples.back().t >= m_scene.t_end) return next::done;
     if (m_left_chart) return euler_chart ? next::body : next::euler;
     return euler_chart && !m_last.ok() && sin_theta_of(cf.form, y) < switch_below ? next::body : next::done;

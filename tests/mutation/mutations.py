@@ -84,7 +84,7 @@ MUTATIONS = [
      "t[i][j] = (m * ((i == j ? d2 : ex(0)) + d[i] * d[j])).expand();",
      [GENERATOR + " '[inertia]'"]),
     ("chart switch: threshold |sin theta| < 0.01 instead of 0.1",
-     "constexpr double switch_below = 0.1, switch_back_above = 0.2;",
-     "constexpr double switch_below = 0.01, switch_back_above = 0.2;",
+     "constexpr double switch_below = 0.1, switch_back_above = 0.3;",
+     "constexpr double switch_below = 0.01, switch_back_above = 0.3;",
      [SIMULATE]),
 ]

@@ -21,10 +21,11 @@
 // Set ROTGEN_VERBOSE=1 to print the measured values.
 #include <catch2/catch.hpp>
 
-#include "dop853.hpp"
-#include "dopri5.hpp"
+#include "integrate/integrate.hpp"
+#include "steppers/dop853.hpp"
+#include "steppers/dopri5.hpp"
 #include "exact_free_top.hpp"
-#include "rosenbrock.hpp"
+#include "steppers/rosenbrock.hpp"
 
 #include <array>
 #include <cmath>

@@ -130,7 +130,7 @@ TEST_CASE("max_steps reached is exit 3 with a partial file, not a chart switch",
 TEST_CASE("SIGTERM during a run leaves nothing behind and exits 143", "[simulate][outputs]") {
     const std::string dir = scratch_dir("sigterm");
     // Far too long to finish before the signal: 1e9 fixed RK4 steps (minutes), sampled 1e5 times.
-    const std::string scene = heavy_scene(dir, "integrator: {method: rk4, step: 1e-5}\n");
+    const std::string scene = heavy_scene(dir, "integrator: {method: rk4, step: 1e-5, max_steps: 1e12}\n");
     std::string text = read_file(scene);
     text.replace(text.find("end: 1, samples: 11"), 19, "end: 1e4, samples: 100001");
     std::ofstream(scene) << text;

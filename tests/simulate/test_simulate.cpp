@@ -200,8 +200,10 @@ TEST_CASE("a free top tumbling through theta ~ 0 stays on the exact solution (ch
             for (int k = 0; k < 3; ++k)
                 worst = std::max(worst, std::abs(t.rows[i][1 + k] - w[static_cast<std::size_t>(k)]));
         }
-        // measured 3.1e-10 (from theta = 0.5) and 2.1e-10 (from theta = 0); the issue's goal was 1e-8
-        CHECK(worst < 1e-9);
+        // measured 1.2e-9 from theta = 0 (the run changes chart about 45 times: to the body form below
+        // |sin theta| 0.1, back above 0.3; each restart adds its own error; staying in the body form
+        // gave 2.1e-10 and 3.1e-10); the goal is 1e-8
+        CHECK(worst < 4e-9);
     }
 }
 
@@ -441,7 +443,9 @@ TEST_CASE("near gimbal lock the Hamiltonian chart loses accuracy and the switch 
     };
     const double kept = max_error("false"), switched = max_error("true");
     CHECK(switched < 1e-9);
-    CHECK(kept > 100 * switched); // measured: 4e-8 vs 4.5e-11
+    // measured: 3.4e-8 vs 1.3e-10 (the switched run changes chart 7 times: to the body form below
+    // |sin theta| 0.1 and back above 0.3; without the switch back it was 4.5e-11)
+    CHECK(kept > 100 * switched);
 }
 
 TEST_CASE("a reduced scene without record: records what the form gives (no ignored angle)",
