@@ -57,30 +57,38 @@ void make_output_directory(const fs::path& dir) {
 // them, that fill it.
 class bench_run {
   public:
-    int run(const std::vector<std::string>& args) {
+    int run(const bench_options& options) {
         m_wall0 = clock_type::now();
-        prepare(args);     // options, scene, output directory
+        stage_timings& t = m_ctx.timings;
+        prepare(options); // scene, output directory
         choose_variants(); // derive; the forms and code-generation variants
         m_ctx.plan = make_plan(m_ctx.scene, m_ctx.spec, m_ctx.parameter_values, m_ctx.k0, m_ctx.opt,
                                m_ctx.conservative, m_ctx.variants);
         write_file(m_ctx.dir / "plan.txt", m_ctx.plan.text); // the configurations -> plan.txt
-        m_ctx.source = driver_source(m_ctx.variants.variants, m_ctx.scene, m_ctx.spec, m_ctx.d,
-                                     m_ctx.k0, m_ctx.opt, m_ctx.src); // emit every variant
+        m_ctx.source = t.time("emit", "every variant (lowered and printed)", [&] {
+            return driver_source(m_ctx.variants.variants, m_ctx.scene, m_ctx.spec, m_ctx.d, m_ctx.k0,
+                                 m_ctx.opt, m_ctx.src); // emit every variant
+        });
         m_ctx.generate_seconds = seconds_since(m_t_gen);
-        m_ctx.driver = compile_driver(m_ctx.source, m_ctx.src, m_ctx.scene_name,
-                                      m_ctx.variants.variants.size()); // once per source, cached
-        m_ctx.run = run_driver(m_ctx.driver.exe, m_ctx.dir, m_ctx.plan.lines); // -> raw.txt
+        m_ctx.driver = t.time("compile", "the driver", [&] {
+            return compile_driver(m_ctx.source, m_ctx.src, m_ctx.scene_name,
+                                  m_ctx.variants.variants.size()); // once per source, cached
+        });
+        m_ctx.run = t.time("integrate", "every configuration", [&] {
+            return run_driver(m_ctx.driver.exe, m_ctx.dir, m_ctx.plan.lines); // -> raw.txt
+        });
         m_ctx.output = read_output(m_ctx.run.raw);
         write_tables(m_ctx);                          // results.csv, final_states.csv, drift.csv
         m_ctx.summary = summarise(m_ctx.output.rows); // the best configuration per accuracy
         std::string markdown = write_markdown(m_ctx, seconds_since(m_wall0));
-        draw_plots(m_ctx);
+        t.time("plot", "", [&] { draw_plots(m_ctx); });
         finish(markdown); // results.md, the summary on stdout
+        if (m_ctx.opt.timings) t.print(std::cerr);
         return 0;
     }
 
   private:
-    void prepare(const std::vector<std::string>& args);
+    void prepare(const bench_options& options);
     void choose_variants();
     void finish(std::string& markdown);
     void print_summary(double wall_seconds) const;
@@ -89,9 +97,9 @@ class bench_run {
     clock_type::time_point m_wall0, m_t_gen;
 };
 
-void bench_run::prepare(const std::vector<std::string>& args) {
+void bench_run::prepare(const bench_options& options) {
     bench_context& c = m_ctx;
-    c.opt = parse_arguments(args);
+    c.opt = options;
     c.scene = load_scene(c.opt.scene);
     c.spec = c.scene.model; // with the scene's parameter values
     for (std::size_t i = 0; i < c.spec.parameters.size(); ++i)
@@ -109,15 +117,17 @@ void bench_run::prepare(const std::vector<std::string>& args) {
 void bench_run::choose_variants() {
     bench_context& c = m_ctx;
     m_t_gen = clock_type::now();
-    c.d = derive(c.spec);
+    c.d = c.timings.time("derive", c.spec.name, [&] { return derive(c.spec); });
     for (std::size_t i = 0; i < c.spec.parameters.size(); ++i)
         c.parameter_values[c.spec.parameters[i].symbol] = exact_decimal(c.scene.parameters[i]);
     c.k0 = initial_kinematics_of(c.scene, c.d);
     check_double_range(c.scene, c.k0);
     c.conservative = !c.spec.has_damping && !c.spec.has_torque;
     c.scene_name = fs::path(c.opt.scene).stem().string();
-    c.variants = bench::choose_variants(c.scene, c.spec, c.d, c.euler_ok && c.k0.have_rates,
-                                        needs_orientation(c.scene, false), c.opt.quick);
+    c.variants = c.timings.time("forms", "every variant", [&] {
+        return bench::choose_variants(c.scene, c.spec, c.d, c.euler_ok && c.k0.have_rates,
+                                      needs_orientation(c.scene, false), c.opt.quick);
+    });
 }
 
 void bench_run::finish(std::string& markdown) {
@@ -172,8 +182,6 @@ void bench_run::print_summary(double wall_seconds) const {
 
 } // namespace bench
 
-int cmd_bench(const std::vector<std::string>& args) {
-    return bench::bench_run().run(args);
-}
+int run_bench(const bench_options& options) { return bench::bench_run().run(options); }
 
 } // namespace rotgen

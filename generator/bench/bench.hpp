@@ -1,12 +1,20 @@
-// rotgen bench: the work-precision report of one scene (generator/bench/bench.cpp).
+// rotgen bench: the work-precision report of one scene (docs/architecture.md; the command line is
+// cli/bench_command.cpp).
 #pragma once
 
 #include <string>
-#include <vector>
 
 namespace rotgen {
 
-// `rotgen bench ARGS...`; returns the exit status, throws user_error for bad input.
-int cmd_bench(const std::vector<std::string>& args);
+struct bench_options {
+    std::string scene;      // the scene file
+    std::string dir;        // the output directory (cli default: bench-out/<scene name>)
+    bool quick = false;     // fewer configurations
+    long long_steps = 0;    // steps of the long-run drift check; 0: none
+    bool timings = false;   // one line per pipeline stage to stderr
+};
+
+// Runs the bench; returns the exit status. Throws user_error for bad input.
+int run_bench(const bench_options& options);
 
 } // namespace rotgen

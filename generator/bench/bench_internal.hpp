@@ -4,7 +4,8 @@
 
 #include "bench/driver.hpp"
 #include "bench/initial_state.hpp"
-#include "bench/options.hpp"
+#include "bench/bench.hpp"
+#include "support/timings.hpp"
 #include "bench/plan.hpp"
 #include "bench/sources.hpp"
 #include "bench/summary.hpp"
@@ -17,6 +18,7 @@ namespace rotgen::bench {
 
 struct bench_context {
     bench_options opt;
+    stage_timings timings;
     scene_spec scene;
     model_spec spec; // the scene's model, with the scene's parameter values
     bench_sources src;

@@ -4,7 +4,7 @@
 #pragma once
 
 #include "bench/initial_state.hpp"
-#include "bench/options.hpp"
+#include "bench/bench.hpp"
 #include "bench/sources.hpp"
 #include "bench/variants.hpp"
 

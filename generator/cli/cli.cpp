@@ -1,6 +1,5 @@
 #include "cli/cli.hpp"
 
-#include "bench/bench.hpp"
 #include "cli/commands.hpp"
 #include "support/error.hpp"
 

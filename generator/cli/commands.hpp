@@ -12,6 +12,6 @@ namespace rotgen {
 int cmd_inspect(const std::vector<std::string>& args);  // inspect_command.cpp
 int cmd_emit(const std::vector<std::string>& args);     // emit_command.cpp
 int cmd_simulate(const std::vector<std::string>& args); // simulate_command.cpp
-// cmd_bench: bench/bench.hpp
+int cmd_bench(const std::vector<std::string>& args);    // bench_command.cpp
 
 } // namespace rotgen

@@ -5,6 +5,8 @@
 // Writes DIR/<unit>.hpp (unit: the model's name, plus _<form> for forms other than lagrangian),
 // through a temporary file renamed into place: a failed run leaves no partial header.
 #include "cli/commands.hpp"
+#include "cli/options.hpp"
+#include "support/timings.hpp"
 #include "derive/derive.hpp"
 #include "emit/emit.hpp"
 #include "support/error.hpp"
@@ -24,23 +26,31 @@ namespace rotgen {
 
 namespace {
 
-const char* const emit_usage =
-    "usage: rotgen emit MODEL.yaml -o DIR [--form lagrangian|hamiltonian|reduced|body]\n"
-    "                   [--outputs "
-    "rhs,jacobian,energy,momenta,mass_matrix,omega,rotation,ignored_rates]\n"
-    "                   [--specialise | --specialise=NAME,...] [--strategy explicit|solve]\n"
-    "                   [--name UNIT]   (file UNIT.hpp, namespace rotgen::models::UNIT)\n";
+const command_spec emit_command{
+    "emit",
+    "model file",
+    "MODEL.yaml -o DIR [--form F] [--strategy S] [--outputs LIST] [--specialise[=NAMES]] [--name UNIT]",
+    "Writes DIR/<unit>.hpp: the model's kernels as a dependency-free C++ header, templated on the\n"
+    "scalar (unit: the model's name, plus _<form> for forms other than lagrangian). Written through\n"
+    "a temporary renamed into place: a failed run leaves no partial header.\n\n"
+    "example: rotgen emit models/heavy_top.yaml -o generated --form hamiltonian --outputs rhs,energy",
+    {{"-o", "DIR", "the output directory (created if missing)", {"--output"}},
+     {"--form", "lagrangian|hamiltonian|reduced|body", "the form of the equations (default lagrangian)", {}},
+     {"--strategy", "explicit|solve", "Lagrangian form: explicit accelerations, or M and f solved inline", {}},
+     {"--outputs", "LIST", "comma-separated: rhs,jacobian,energy,momenta,mass_matrix,omega,rotation,\n"
+                           "                        ignored_rates (default: all the form gives)", {}},
+     {"--specialise", "NAMES", "fold parameter values into the code (all, or =I1,I3)", {"--specialize"}, true},
+     {"--name", "UNIT", "the unit: file UNIT.hpp, namespace rotgen::models::UNIT", {}},
+     {"--timings", "", "print the wall time of each pipeline stage to standard error", {}}}};
 
-user_error usage_error(const std::string& problem) {
-    return user_error({"rotgen emit"}, problem);
-}
+[[noreturn]] void fail(const std::string& problem) { usage_error(emit_command, problem); }
 
 std::vector<std::string> split_list(const std::string& text, const std::string& option) {
     std::vector<std::string> items;
     std::string item;
     for (std::size_t i = 0; i <= text.size(); ++i) {
         if (i == text.size() || text[i] == ',') {
-            if (item.empty()) throw usage_error(option + ": empty name in '" + text + "'");
+            if (item.empty()) fail(option + ": empty name in '" + text + "'");
             items.push_back(item);
             item.clear();
         } else if (text[i] != ' ') {
@@ -93,120 +103,83 @@ void write_atomically(const std::filesystem::path& dir, const std::string& file,
     }
 }
 
+
+form_kind form_of(const std::string& f) {
+    if (f.empty() || f == "lagrangian") return form_kind::lagrangian;
+    if (f == "hamiltonian") return form_kind::hamiltonian;
+    if (f == "reduced") return form_kind::reduced;
+    if (f == "body") return form_kind::body;
+    const std::string best = closest_name(f, {"lagrangian", "hamiltonian", "reduced", "body"});
+    fail("unknown form '" + f + "' (expected lagrangian, hamiltonian, reduced or body)" +
+         (best.empty() ? "" : "; did you mean '" + best + "'?"));
+}
+
+lagrangian_strategy strategy_of(const std::string& s) {
+    if (s.empty() || s == "explicit") return lagrangian_strategy::explicit_inverse;
+    if (s == "solve") return lagrangian_strategy::solve;
+    fail("unknown strategy '" + s + "' (expected explicit or solve)");
+}
+
+// The command that regenerates exactly this header (for its comment).
+std::string regenerate_command(const parsed_options& o, form_kind form, lagrangian_strategy strategy) {
+    std::string command = "rotgen emit " + shell_quote(o.operand) + " -o " + shell_quote(o.value("-o")) +
+                          " --form " + to_string(form);
+    if (form == form_kind::lagrangian) command += std::string(" --strategy ") + to_string(strategy);
+    if (o.has("--outputs")) {
+        std::string list;
+        for (const auto& s : split_list(o.value("--outputs"), "--outputs")) list += (list.empty() ? "" : ",") + s;
+        command += " --outputs " + shell_quote(list);
+    }
+    if (o.has("--specialise"))
+        command += " " + shell_quote(o.value("--specialise").empty() ? "--specialise"
+                                                                     : "--specialise=" + o.value("--specialise"));
+    if (o.has("--name")) command += " --name " + o.value("--name");
+    return command;
+}
+
+void print_written(const std::string& dir, const emitted_header& h) {
+    std::string summary;
+    for (const auto& s : h.stats)
+        summary += (summary.empty() ? "" : ", ") + s.function + " " + std::to_string(s.before.total()) + " -> " +
+                   std::to_string(s.after.total());
+    std::cout << "rotgen: wrote " << (std::filesystem::path(dir) / h.file_name).string() << " (operations: " << summary
+              << ")\n";
+}
+
 } // namespace
 
 int cmd_emit(const std::vector<std::string>& args) {
-    std::string model, dir;
-    form_kind form = form_kind::lagrangian;
-    lagrangian_strategy strategy = lagrangian_strategy::explicit_inverse;
+    const parsed_options o = parse_options(emit_command, args);
+    if (o.help) {
+        std::cout << help_text(emit_command);
+        return 0;
+    }
+    const std::string dir = o.value("-o");
+    if (dir.empty()) fail("emit needs an output directory: -o DIR");
+    const form_kind form = form_of(o.value("--form"));
+    const lagrangian_strategy strategy = strategy_of(o.value("--strategy"));
+    if (o.has("--strategy") && form != form_kind::lagrangian)
+        fail("--strategy applies to the Lagrangian form only (got --form " + std::string(to_string(form)) + ")");
+    static const std::regex identifier("[A-Za-z_][A-Za-z0-9_]*");
+    if (o.has("--name") && !std::regex_match(o.value("--name"), identifier))
+        fail("--name '" + o.value("--name") + "' is not a C++ identifier");
     kernel_request request;
-    header_options header;
-    bool form_given = false, strategy_given = false, outputs_given = false;
-    std::string specialise_text;
-    const auto value = [&](std::size_t& i, const std::string& option, const std::string& expected) {
-        if (i + 1 >= args.size() || (args[i + 1].size() > 1 && args[i + 1][0] == '-'))
-            throw usage_error(option + " needs a value (" + expected + ")");
-        return args[++i];
-    };
-    for (std::size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        if (a == "-h" || a == "--help") {
-            std::cout << emit_usage;
-            return 0;
-        } else if (a == "-o" || a == "--output") {
-            if (!dir.empty()) throw usage_error("-o given twice");
-            dir = value(i, a, "a directory");
-        } else if (a == "--form") {
-            if (form_given) throw usage_error("--form given twice");
-            form_given = true;
-            const std::string f = value(i, a, "lagrangian, hamiltonian, reduced or body");
-            if (f == "lagrangian")
-                form = form_kind::lagrangian;
-            else if (f == "hamiltonian")
-                form = form_kind::hamiltonian;
-            else if (f == "reduced")
-                form = form_kind::reduced;
-            else if (f == "body")
-                form = form_kind::body;
-            else {
-                const std::string best =
-                    closest_name(f, {"lagrangian", "hamiltonian", "reduced", "body"});
-                throw usage_error("unknown form '" + f +
-                                  "' (expected lagrangian, hamiltonian, reduced or body)" +
-                                  (best.empty() ? "" : "; did you mean '" + best + "'?"));
-            }
-        } else if (a == "--strategy") {
-            if (strategy_given) throw usage_error("--strategy given twice");
-            strategy_given = true;
-            const std::string s = value(i, a, "explicit or solve");
-            if (s == "explicit")
-                strategy = lagrangian_strategy::explicit_inverse;
-            else if (s == "solve")
-                strategy = lagrangian_strategy::solve;
-            else
-                throw usage_error("unknown strategy '" + s + "' (expected explicit or solve)");
-        } else if (a == "--outputs") {
-            if (outputs_given) throw usage_error("--outputs given twice");
-            outputs_given = true;
-            request.outputs = split_list(value(i, a, "a comma-separated list such as rhs,jacobian"), a);
-        } else if (a == "--name") {
-            if (!header.name.empty()) throw usage_error("--name given twice");
-            header.name = value(i, a, "a C++ identifier");
-            static const std::regex identifier("[A-Za-z_][A-Za-z0-9_]*");
-            if (!std::regex_match(header.name, identifier))
-                throw usage_error("--name '" + header.name + "' is not a C++ identifier");
-        } else if (a == "--specialise" || a == "--specialize") {
-            request.specialise_all = true;
-            specialise_text = "--specialise";
-        } else if (a.rfind("--specialise=", 0) == 0 || a.rfind("--specialize=", 0) == 0) {
-            const std::string list = a.substr(a.find('=') + 1);
-            request.specialise = split_list(list, "--specialise");
-            specialise_text = "--specialise=" + list;
-        } else if (a.size() > 1 && a[0] == '-') {
-            const std::string best = closest_name(
-                a, {"-o", "--form", "--outputs", "--specialise", "--strategy", "--name"});
-            throw usage_error("unknown option '" + a + "' for emit" +
-                              (best.empty() ? "" : "; did you mean '" + best + "'?"));
-        } else if (model.empty()) {
-            model = a;
-        } else {
-            throw usage_error("emit takes one model file, got '" + model + "' and '" + a + "'");
-        }
-    }
-    if (model.empty())
-        throw usage_error("emit needs a model file: rotgen emit MODEL.yaml -o DIR [options]");
-    if (dir.empty()) throw usage_error("emit needs an output directory: -o DIR");
-    if (strategy_given && form != form_kind::lagrangian)
-        throw usage_error("--strategy applies to the Lagrangian form only (got --form " +
-                          std::string(to_string(form)) + ")");
+    if (o.has("--outputs")) request.outputs = split_list(o.value("--outputs"), "--outputs");
+    request.specialise_all = o.has("--specialise") && o.value("--specialise").empty();
+    if (!o.value("--specialise").empty()) request.specialise = split_list(o.value("--specialise"), "--specialise");
+    const header_options header{regenerate_command(o, form, strategy), o.value("--name")};
 
-    // The command that regenerates exactly this header.
-    std::string command = "rotgen emit " + shell_quote(model) + " -o " + shell_quote(dir) +
-                          " --form " + to_string(form);
-    if (form == form_kind::lagrangian)
-        command += std::string(" --strategy ") + to_string(strategy);
-    if (outputs_given) {
-        std::string list;
-        for (const auto& s : request.outputs)
-            list += (list.empty() ? "" : ",") + s;
-        command += " --outputs " + shell_quote(list);
-    }
-    if (!specialise_text.empty()) command += " " + shell_quote(specialise_text);
-    if (!header.name.empty()) command += " --name " + header.name;
-    header.command = command;
-
-    const model_spec spec = load_model(model);
-    const derivation d = derive(spec);
-    const form_expressions f = build_requested_form(spec, d, form, strategy, request);
-    const emitted_header h = emit_header(spec, lower_form(spec, f, request), header);
-    write_atomically(dir, h.file_name, h.text);
-
-    std::string summary;
-    for (const auto& s : h.stats)
-        summary += (summary.empty() ? "" : ", ") + s.function + " " +
-                   std::to_string(s.before.total()) + " -> " + std::to_string(s.after.total());
-    std::cout << "rotgen: wrote " << (std::filesystem::path(dir) / h.file_name).string()
-              << " (operations: " << summary << ")\n";
+    stage_timings timings;
+    const model_spec spec = load_model(o.operand);
+    const derivation d = timings.time("derive", spec.name, [&] { return derive(spec); });
+    const form_expressions f = timings.time("forms", to_string(form), [&] {
+        return build_requested_form(spec, d, form, strategy, request);
+    });
+    const lowered_form lowered = timings.time("lower", to_string(form), [&] { return lower_form(spec, f, request); });
+    const emitted_header h = timings.time("emit", to_string(form), [&] { return emit_header(spec, lowered, header); });
+    timings.time("write", h.file_name, [&] { write_atomically(dir, h.file_name, h.text); });
+    print_written(dir, h);
+    if (o.has("--timings")) timings.print(std::cerr);
     return 0;
 }
 

@@ -51,7 +51,7 @@ TEST_CASE("cli: bad command lines of emit give one line, exit 2 and write nothin
     const auto [args, line] = GENERATE_COPY(table<std::string, std::string>({
         row{o + " -o other", "rotgen emit: -o given twice"},
         row{o + " --form body --form body", "rotgen emit: --form given twice"},
-        row{o + " --form", "rotgen emit: --form needs a value (lagrangian, hamiltonian, reduced or body)"},
+        row{o + " --form", "rotgen emit: --form needs a value (lagrangian|hamiltonian|reduced|body)"},
         row{o + " --strategy solve --strategy solve", "rotgen emit: --strategy given twice"},
         row{o + " --outputs rhs --outputs rhs", "rotgen emit: --outputs given twice"},
         row{o + " --outputs rhs,,jacobian", "rotgen emit: --outputs: empty name in 'rhs,,jacobian'"},
