@@ -1,9 +1,9 @@
 // Fuzz target 3: scene files (generator/scene.cpp, and the model each names or holds inline).
 // The scratch directory mirrors the repository's models/ layout: the input is written to
-// DIR/scenes/scene.yaml and the shipped models are copied to DIR/*.yaml, so `model: ../heavy_top.yaml`
-// (as in the shipped scenes, the seed corpus) resolves.
-// An accepted scene must have finite numbers in range, and its model must evaluate to finite real
-// numbers with the scene's parameter values.
+// DIR/scenes/scene.yaml and the shipped models are copied to DIR/*.yaml, so `model:
+// ../heavy_top.yaml` (as in the shipped scenes, the seed corpus) resolves. An accepted scene must
+// have finite numbers in range, and its model must evaluate to finite real numbers with the scene's
+// parameter values.
 #include "fuzz_support.hpp"
 #include "scene/scene.hpp"
 
@@ -16,7 +16,8 @@ const std::string& scene_path() {
     static const std::string path = [] {
         const std::string dir = fuzz::scratch_dir();
         ::mkdir((dir + "/scenes").c_str(), 0700);
-        for (const char* m : {"heavy_top", "free_asymmetric_top", "full_tensor_top", "damped_driven_top"}) {
+        for (const char* m :
+             {"heavy_top", "free_asymmetric_top", "full_tensor_top", "damped_driven_top"}) {
             const std::string text =
                 fuzz::read_whole(std::string(ROTGEN_SOURCE_DIR) + "/models/" + m + ".yaml");
             fuzz::write_file(dir + "/" + m + ".yaml", text.data(), text.size());
@@ -30,7 +31,8 @@ void check_scene(const scene_spec& s) {
     using fuzz::violation;
     for (double a : s.angles)
         if (!std::isfinite(a)) violation("non-finite initial angle");
-    if (!(s.angles[1] >= 0 && s.angles[1] <= 3.141592653589793238)) violation("initial theta outside [0, pi]");
+    if (!(s.angles[1] >= 0 && s.angles[1] <= 3.141592653589793238))
+        violation("initial theta outside [0, pi]");
     for (double r : s.initial_rates)
         if (!std::isfinite(r)) violation("non-finite initial rate");
     if (!std::isfinite(s.t_start) || !std::isfinite(s.t_end) || !(s.t_end > s.t_start))

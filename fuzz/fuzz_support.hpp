@@ -4,9 +4,9 @@
 // A violation aborts with "rotgen-fuzz: CONTRACT VIOLATION: ..." so libFuzzer keeps the input.
 #pragma once
 
-#include "support/error.hpp"
-#include "spec/spec.hpp"
 #include "expr/symbols.hpp"
+#include "spec/spec.hpp"
+#include "support/error.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <ginac/ginac.h>
@@ -18,9 +18,9 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <vector>
 #include <string>
 #include <typeinfo>
+#include <vector>
 
 #include <unistd.h>
 
@@ -54,8 +54,8 @@ template <class F> void expect_result_or_user_error(F&& f) {
     } catch (const user_error& e) {
         check_user_error(e);
     } catch (const std::exception& e) {
-        violation(std::string("exception other than user_error escaped: ") + typeid(e).name() + ": " +
-                  e.what());
+        violation(std::string("exception other than user_error escaped: ") + typeid(e).name() +
+                  ": " + e.what());
     } catch (...) {
         violation("non-std exception escaped");
     }
@@ -66,8 +66,9 @@ template <class F> void expect_result_or_user_error(F&& f) {
 inline const std::string& scratch_dir() {
     static const std::string dir = [] {
         const char* base = std::getenv("ROTGEN_FUZZ_TMP");
-        std::string tmpl = std::string(base ? base : (access("/dev/shm", W_OK) == 0 ? "/dev/shm" : "/tmp")) +
-                           "/rotgen_fuzz_XXXXXX";
+        std::string tmpl =
+            std::string(base ? base : (access("/dev/shm", W_OK) == 0 ? "/dev/shm" : "/tmp")) +
+            "/rotgen_fuzz_XXXXXX";
         if (!mkdtemp(tmpl.data())) {
             std::perror("rotgen-fuzz: mkdtemp");
             std::abort();
@@ -109,24 +110,27 @@ inline double double_value(const GiNaC::ex& e, const GiNaC::exmap& at) {
     }
     if (is_a<constant>(e)) return ex_to<numeric>(evalf(e)).to_double();
     std::vector<double> v;
-    for (std::size_t i = 0; i < e.nops(); ++i) v.push_back(double_value(e.op(i), at));
+    for (std::size_t i = 0; i < e.nops(); ++i)
+        v.push_back(double_value(e.op(i), at));
     if (is_a<add>(e)) {
         double r = 0;
-        for (double x : v) r += x;
+        for (double x : v)
+            r += x;
         return r;
     }
     if (is_a<mul>(e)) {
         double r = 1;
-        for (double x : v) r *= x;
+        for (double x : v)
+            r *= x;
         return r;
     }
     if (is_a<power>(e)) return std::pow(v[0], v[1]);
     if (is_a<function>(e)) {
         const std::string f = ex_to<function>(e).get_name();
         static const std::map<std::string, double (*)(double)> unary{
-            {"sin", std::sin},   {"cos", std::cos},   {"tan", std::tan}, {"asin", std::asin},
+            {"sin", std::sin},   {"cos", std::cos},   {"tan", std::tan},   {"asin", std::asin},
             {"acos", std::acos}, {"atan", std::atan}, {"sinh", std::sinh}, {"cosh", std::cosh},
-            {"tanh", std::tanh}, {"exp", std::exp},   {"log", std::log}, {"abs", std::fabs}};
+            {"tanh", std::tanh}, {"exp", std::exp},   {"log", std::log},   {"abs", std::fabs}};
         if (v.size() == 1 && unary.count(f)) return unary.at(f)(v[0]);
         if (v.size() == 2 && f == "atan2") return std::atan2(v[0], v[1]);
     }
@@ -158,13 +162,17 @@ inline GiNaC::exmap generic_state() {
 // What load_model/parse_model promise about an accepted model, at the given parameter values.
 inline void check_model(const model_spec& spec, const GiNaC::exmap& values) {
     for (const auto& p : spec.parameters)
-        if (!std::isfinite(p.value)) violation("parameter '" + p.name + "' has a non-finite default");
+        if (!std::isfinite(p.value))
+            violation("parameter '" + p.name + "' has a non-finite default");
     GiNaC::exmap at = generic_state();
-    for (const auto& kv : values) at[kv.first] = kv.second;
+    for (const auto& kv : values)
+        at[kv.first] = kv.second;
     Eigen::Matrix3d inertia;
     for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) inertia(i, j) = finite_value(spec.inertia[i][j], at, "an inertia entry");
-    if ((inertia - inertia.transpose()).cwiseAbs().maxCoeff() > 1e-12 * inertia.cwiseAbs().maxCoeff())
+        for (int j = 0; j < 3; ++j)
+            inertia(i, j) = finite_value(spec.inertia[i][j], at, "an inertia entry");
+    if ((inertia - inertia.transpose()).cwiseAbs().maxCoeff() >
+        1e-12 * inertia.cwiseAbs().maxCoeff())
         violation("an accepted inertia is not symmetric");
     const Eigen::Vector3d m = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(inertia).eigenvalues();
     if (!(m[0] > 0)) violation("an accepted inertia is not positive definite");

@@ -16,8 +16,8 @@ enum class status {
     newton_failure,      // the implicit solve (implicit midpoint) did not converge
     max_steps,           // the step budget (`max_steps`) was used up before the end time
     non_finite,          // NaN/Inf in the state or its derivative; stopped at the last good state
-    invalid_argument,    // bad options or sample times (non-positive tolerance, unsorted times, …)
-    stopped_by_observer  // the observer returned false at the sample t (integrate/observer.hpp)
+    invalid_argument,   // bad options or sample times (non-positive tolerance, unsorted times, …)
+    stopped_by_observer // the observer returned false at the sample t (integrate/observer.hpp)
 };
 
 inline const char* status_name(status s) {

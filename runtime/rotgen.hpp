@@ -17,7 +17,8 @@
 //   integrate/monitor.hpp        invariant_monitor: first value and max drift of invariants
 //   integrate/chart_switch.hpp   chart_switch: stop a run near gimbal lock (|sin θ| < threshold)
 //   method.hpp                   run-time choice of a method by name
-//   rotation.hpp                 z-x-z Euler angles, passive matrices (5.25), quaternions, angle errors
+//   rotation.hpp                 z-x-z Euler angles, passive matrices (5.25), quaternions, angle
+//   errors
 // (exact_free_top.hpp, the exact free top, needs Boost.Math and is included separately.)
 #pragma once
 

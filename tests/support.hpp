@@ -2,18 +2,18 @@
 #pragma once
 
 #include "derive/derive.hpp"
-#include "spec/spec.hpp"
 #include "expr/symbols.hpp"
+#include "spec/spec.hpp"
 
 #include <ginac/ginac.h>
 
 #include <cstdio>
 #include <cstdlib>
-#include <sys/wait.h>
-#include <unistd.h>
 #include <fstream>
 #include <random>
 #include <string>
+#include <sys/wait.h>
+#include <unistd.h>
 
 namespace rotgen::test {
 
@@ -44,7 +44,8 @@ struct point {
 // Evaluates e numerically with `at` and the model's parameter defaults.
 inline double eval(const GiNaC::ex& e, const GiNaC::exmap& at, const model_spec& spec) {
     GiNaC::exmap all = spec.parameter_defaults();
-    for (const auto& kv : at) all[kv.first] = kv.second;
+    for (const auto& kv : at)
+        all[kv.first] = kv.second;
     const GiNaC::ex v = GiNaC::evalf(e.subs(all));
     if (!GiNaC::is_a<GiNaC::numeric>(v)) throw std::runtime_error("not numeric after substitution");
     return GiNaC::ex_to<GiNaC::numeric>(v).to_double();

@@ -28,7 +28,8 @@ int main(int argc, char** argv) {
     rotgen::dop853<T> method(T(1e-17), T(1e-19));
     method.max_steps = 100000000;
     std::vector<T> times(1001);
-    for (std::size_t i = 0; i < times.size(); ++i) times[i] = t_end * T(i) / T(times.size() - 1);
+    for (std::size_t i = 0; i < times.size(); ++i)
+        times[i] = t_end * T(i) / T(times.size() - 1);
     T lo = 10, hi = -10, phi = 0;
     const auto r = rotgen::integrate(sys, method, T(0), y, times, [&](T t, const auto& s) {
         if (t >= t_end / 2) lo = std::min(lo, s[1]), hi = std::max(hi, s[1]);

@@ -6,10 +6,10 @@
 //   free_top_error I1 I2 I3 W1 W2 W3 CSV
 //       max over the CSV's rows of max_i |omega_i - exact_i| (columns t, omega1, omega2, omega3
 //       in that order, as `record: [omega1, omega2, omega3]` writes them); the same against a
-//       long-double run of the checked-in body-form kernels (generated/free_asymmetric_top_body.hpp,
-//       dop853 at rtol 3e-18, a check on the exact solution's own rounding); and the largest
-//       |omega3(t) - omega3(0)| of the exact solution over the same times (the part of the motion
-//       that exists only because the moments differ).
+//       long-double run of the checked-in body-form kernels
+//       (generated/free_asymmetric_top_body.hpp, dop853 at rtol 3e-18, a check on the exact
+//       solution's own rounding); and the largest |omega3(t) - omega3(0)| of the exact solution
+//       over the same times (the part of the motion that exists only because the moments differ).
 //   free_top_error --floor I1 I2 I3 W1 W2 W3 T N
 //       the data-rounding floor: the largest change of the exact omega over N + 1 times in [0, T]
 //       when one of the six inputs (I1, I2, I3, W1, W2, W3) moves by its rounding to double,
@@ -49,7 +49,8 @@ static real data_floor(const std::array<real, 3>& I, const std::array<real, 3>& 
         for (int i = 0; i <= n; ++i) {
             const real t = T * i / n;
             const auto a = exact(t), b = moved(t);
-            for (int j = 0; j < 3; ++j) worst = std::max(worst, std::abs(a[j] - b[j]));
+            for (int j = 0; j < 3; ++j)
+                worst = std::max(worst, std::abs(a[j] - b[j]));
         }
     }
     return worst;
@@ -64,7 +65,8 @@ static bool read_rows(const char* path, std::vector<std::array<real, 4>>& rows) 
         std::istringstream row(line);
         std::string cell;
         std::array<real, 4> v{};
-        for (int j = 0; j < 4 && std::getline(row, cell, ','); ++j) v[j] = std::strtold(cell.c_str(), nullptr);
+        for (int j = 0; j < 4 && std::getline(row, cell, ','); ++j)
+            v[j] = std::strtold(cell.c_str(), nullptr);
         rows.push_back(v);
     }
     return true;
@@ -81,23 +83,26 @@ static int compare_with_exact(const std::array<real, 3>& I, const std::array<rea
     rotgen::state_vector<real, decltype(sys)> y;
     y << w[0], w[1], w[2];
     std::vector<real> times;
-    for (const auto& r : rows) times.push_back(r[0]);
+    for (const auto& r : rows)
+        times.push_back(r[0]);
     rotgen::dop853<real> method(real(3e-18), real(1e-20));
     method.max_steps = 100000000;
     real worst = 0, worst_run = 0, swing = 0;
     const real w30 = exact(0)[2];
     std::size_t k = 0;
-    const auto result = rotgen::integrate(sys, method, real(0), y, times, [&](real t, const auto& s) {
-        const auto e = exact(t);
-        for (int j = 0; j < 3; ++j) {
-            worst = std::max(worst, std::abs(rows[k][j + 1] - e[j]));
-            worst_run = std::max(worst_run, std::abs(rows[k][j + 1] - s[j]));
-        }
-        swing = std::max(swing, std::abs(e[2] - w30));
-        ++k;
-    });
+    const auto result =
+        rotgen::integrate(sys, method, real(0), y, times, [&](real t, const auto& s) {
+            const auto e = exact(t);
+            for (int j = 0; j < 3; ++j) {
+                worst = std::max(worst, std::abs(rows[k][j + 1] - e[j]));
+                worst_run = std::max(worst_run, std::abs(rows[k][j + 1] - s[j]));
+            }
+            swing = std::max(swing, std::abs(e[2] - w30));
+            ++k;
+        });
     if (!result.ok() || k != rows.size()) {
-        std::fprintf(stderr, "free_top_error: the long-double run failed: %s\n", result.message.c_str());
+        std::fprintf(stderr, "free_top_error: the long-double run failed: %s\n",
+                     result.message.c_str());
         return 1;
     }
     std::printf("%.2Le %.2Le %.2Le\n", worst, worst_run, swing);

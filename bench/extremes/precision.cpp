@@ -1,9 +1,10 @@
 // Precision: the same scene in float, double and long double, for bench/extremes/precision.sh.
-// The checked-in body-form kernels of the free asymmetric top (generated/free_asymmetric_top_body.hpp,
-// y = omega, I = (1, 2, 3)) integrated by the runtime (runtime/rotgen.hpp) in each scalar type from
-// omega(0) = (1, 0.1, 0.5) over t in [0, 100] (about 6.7 periods of omega), against the exact
-// solution (runtime/exact_free_top.hpp) in long double. Printed, as Markdown rows: per integrator
-// setting and type, max |omega - exact| over 1001 samples (max |E(t)/E(0) - 1| in brackets), or
+// The checked-in body-form kernels of the free asymmetric top
+// (generated/free_asymmetric_top_body.hpp, y = omega, I = (1, 2, 3)) integrated by the runtime
+// (runtime/rotgen.hpp) in each scalar type from omega(0) = (1, 0.1, 0.5) over t in [0, 100]
+// (about 6.7 periods of omega), against the exact solution (runtime/exact_free_top.hpp) in long
+// double. Printed, as Markdown rows: per integrator setting and type, max |omega - exact| over 1001
+// samples (max |E(t)/E(0) - 1| in brackets), or
 // "-" where the tolerance is below 10 eps of the type (the runtime refuses it). The fixed-step
 // driver stops with step_size_underflow when h < 16 eps t (time itself would lose the step).
 #include "free_asymmetric_top_body.hpp"
@@ -35,11 +36,13 @@ template <class T, class Method> outcome run(const Method& method) {
     y << T(1), T(0.1), T(0.5);
     const T e0 = sys.energy(T(0), y.data());
     std::vector<T> times(1001);
-    for (std::size_t i = 0; i < times.size(); ++i) times[i] = T(100) * T(i) / T(1000);
+    for (std::size_t i = 0; i < times.size(); ++i)
+        times[i] = T(100) * T(i) / T(1000);
     outcome o;
     const auto r = rotgen::integrate(sys, method, T(0), y, times, [&](T t, const auto& s) {
         const auto e = exact(real(t));
-        for (int j = 0; j < 3; ++j) o.error = std::max(o.error, std::abs(real(s[j]) - e[j]));
+        for (int j = 0; j < 3; ++j)
+            o.error = std::max(o.error, std::abs(real(s[j]) - e[j]));
         o.energy = std::max(o.energy, std::abs(real(sys.energy(t, s.data())) / real(e0) - 1));
     });
     o.steps = r.stats.steps;
@@ -74,9 +77,11 @@ template <class T> std::string dop853_cell(double rtol) {
 
 int main() {
     for (double h : {1e-1, 1e-2, 1e-3, 1e-4})
-        std::printf("| rk4 h %g (%.0f steps) | %s | %s | %s |\n", h, 100 / h, rk4_cell<float>(h).c_str(),
-                    rk4_cell<double>(h).c_str(), rk4_cell<long double>(h).c_str());
+        std::printf("| rk4 h %g (%.0f steps) | %s | %s | %s |\n", h, 100 / h,
+                    rk4_cell<float>(h).c_str(), rk4_cell<double>(h).c_str(),
+                    rk4_cell<long double>(h).c_str());
     for (double rtol : {1e-4, 2e-6, 1e-8, 1e-11, 1e-14, 1e-17})
-        std::printf("| dop853 rtol %g, atol rtol/100 | %s | %s | %s |\n", rtol, dop853_cell<float>(rtol).c_str(),
-                    dop853_cell<double>(rtol).c_str(), dop853_cell<long double>(rtol).c_str());
+        std::printf("| dop853 rtol %g, atol rtol/100 | %s | %s | %s |\n", rtol,
+                    dop853_cell<float>(rtol).c_str(), dop853_cell<double>(rtol).c_str(),
+                    dop853_cell<long double>(rtol).c_str());
 }

@@ -45,8 +45,8 @@ template <class Form> struct measure {
 
     // {max error / data bound, max error / state bound}
     static std::array<double, 2> run(const std::array<double, 3>& I, std::mt19937_64& rng) {
-        std::uniform_real_distribution<double> angle(0, 6.283185307179586), polar(0.3, 2.8415926535897931),
-            rate(-2, 2);
+        std::uniform_real_distribution<double> angle(0, 6.283185307179586),
+            polar(0.3, 2.8415926535897931), rate(-2, 2);
         typename Form::template params<double> pd;
         typename Form::template params<real> pl;
         pd.I1 = I[0], pd.I2 = I[1], pd.I3 = I[2];
@@ -60,14 +60,16 @@ template <class Form> struct measure {
             std::array<real, n> yl, fl, up, down;
             std::array<double, n> fd;
             std::array<real, n * n> J;
-            for (std::size_t j = 0; j < n; ++j) yl[j] = yd[j];
+            for (std::size_t j = 0; j < n; ++j)
+                yl[j] = yd[j];
             Form::rhs(0.0, yd.data(), fd.data(), pd);
             Form::rhs(real(0), yl.data(), fl.data(), pl);
             Form::jacobian(real(0), yl.data(), J.data(), pl);
             std::array<real, n> state_sum{}, data_sum{};
             for (std::size_t i = 0; i < n; ++i) {
                 state_sum[i] = std::abs(fl[i]);
-                for (std::size_t j = 0; j < n; ++j) state_sum[i] += std::abs(J[i * n + j] * yl[j]);
+                for (std::size_t j = 0; j < n; ++j)
+                    state_sum[i] += std::abs(J[i * n + j] * yl[j]);
                 data_sum[i] = state_sum[i];
             }
             for (int k = 0; k < 3; ++k) { // df/dI_k I_k by central differences
@@ -79,7 +81,8 @@ template <class Form> struct measure {
                 Form::rhs(real(0), yl.data(), up.data(), pk);
                 Ik = I0 - h;
                 Form::rhs(real(0), yl.data(), down.data(), pk);
-                for (std::size_t i = 0; i < n; ++i) data_sum[i] += std::abs((up[i] - down[i]) / (2 * h) * I0);
+                for (std::size_t i = 0; i < n; ++i)
+                    data_sum[i] += std::abs((up[i] - down[i]) / (2 * h) * I0);
             }
             for (std::size_t i = 0; i < n; ++i) {
                 const real err = std::abs(real(fd[i]) - fl[i]);

@@ -7,11 +7,11 @@
 //   kernel_bench [PREFIX]     prints Markdown tables; writes PREFIX.md and PREFIX.csv if given
 //
 // Timing: 256 random states (theta in [0.3, pi - 0.3]) evaluated in turn, repeated until a run
-// takes >= 20 ms of this thread's CPU time; the median of 7 runs. Accuracy: relative max-norm error of q_ddot in double
-// against the same kernel in 50-digit arithmetic (boost::multiprecision::cpp_bin_float_50).
-// Against SymPy: rotgen's default Lagrangian kernel (explicit), SymPy's, and the hand-written ones
-// of each model are timed interleaved (15 rounds, each kernel once per round, the median), so that a
-// change in the machine's load hits them alike.
+// takes >= 20 ms of this thread's CPU time; the median of 7 runs. Accuracy: relative max-norm error
+// of q_ddot in double against the same kernel in 50-digit arithmetic
+// (boost::multiprecision::cpp_bin_float_50). Against SymPy: rotgen's default Lagrangian kernel
+// (explicit), SymPy's, and the hand-written ones of each model are timed interleaved (15 rounds,
+// each kernel once per round, the median), so that a change in the machine's load hits them alike.
 #include "bench_units.hpp"
 #include "sympy_kernels.hpp"
 
@@ -19,9 +19,9 @@
 
 #include <algorithm>
 #include <array>
-#include <ctime>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <fstream>
 #include <functional>
 #include <random>
@@ -32,7 +32,8 @@
 namespace {
 
 // CPU time of this thread (CLOCK_THREAD_CPUTIME_ID), not wall time: on a shared machine the time
-// spent waiting for a core is not counted, so the timings (and their ratios) do not follow the load.
+// spent waiting for a core is not counted, so the timings (and their ratios) do not follow the
+// load.
 double cpu_seconds() {
     timespec ts;
     clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
@@ -226,7 +227,8 @@ struct free_top_hand {
                      cp = std::cos(y[2]);
         const double phid = y[3], thetad = y[4], psid = y[5];
         const double pst = phid * st;
-        const double w1 = pst * sp + thetad * cp, w2 = pst * cp - thetad * sp, w3 = phid * ct + psid;
+        const double w1 = pst * sp + thetad * cp, w2 = pst * cp - thetad * sp,
+                     w3 = phid * ct + psid;
         const double tp = thetad * psid, ptc = phid * thetad * ct;
         const double a1 = k1 * w2 * w3 - (ptc * sp + pst * cp * psid - tp * sp);
         const double a2 = k2 * w3 * w1 - (ptc * cp - pst * sp * psid - tp * cp);
@@ -346,8 +348,7 @@ int main(int argc, char** argv) {
         int k = 0;                                                                                 \
         for (const auto& y : states) {                                                             \
             rg::params<double> rp{};                                                               \
-            if (k % 2)                                                                             \
-                sk::for_each_param(rp, [&](double& v) { v *= factor(rng); });                      \
+            if (k % 2) sk::for_each_param(rp, [&](double& v) { v *= factor(rng); });               \
             const sk::params sp = sk::params_from(rp);                                             \
             const double t = 0.37 * k++;                                                           \
             double a[6], b[6], Ja[36], Jb[36];                                                     \
@@ -384,13 +385,13 @@ int main(int argc, char** argv) {
     bool mismatch = false;
     for (const auto& c : checks)
         if (!(c.rhs_error <= tolerance) || !(c.jac_error <= tolerance)) {
-            std::fprintf(stderr, "kernel_bench: MISMATCH %s: max relative difference rhs %.3e, "
-                                 "jacobian %.3e (tolerance %.0e)\n",
+            std::fprintf(stderr,
+                         "kernel_bench: MISMATCH %s: max relative difference rhs %.3e, "
+                         "jacobian %.3e (tolerance %.0e)\n",
                          c.what.c_str(), c.rhs_error, c.jac_error, tolerance);
             mismatch = true;
         }
-    if (mismatch)
-        return 1;
+    if (mismatch) return 1;
 
     std::vector<row> rows;
 #define ROTGEN_BENCH_ROW(model, u, form_name)                                                      \
@@ -477,21 +478,21 @@ int main(int argc, char** argv) {
         const std::vector<double> ns = time_interleaved(runners, states.size());                   \
         std::size_t best = 5;                                                                      \
         for (std::size_t i = 6; i < ns.size(); ++i)                                                \
-            if (ns[i] < ns[best])                                                                  \
-                best = i;                                                                          \
+            if (ns[i] < ns[best]) best = i;                                                        \
         comparison.push_back({#model, #u, hand_names[best - 5], ops_of(#model, "rhs").second,      \
                               ops_of(#model, "jacobian").second, sk::rhs_ops, sk::jacobian_ops,    \
                               sk::rhs_ops_before, sk::jacobian_ops_before, sk::rhs_count_ops,      \
                               sk::jacobian_count_ops, ns[0], ns[1], ns[2], ns[3], ns[best],        \
                               sk::generation_seconds, ns[4]});                                     \
-        std::fprintf(stderr, "%s against SymPy done\n", #u);                                      \
+        std::fprintf(stderr, "%s against SymPy done\n", #u);                                       \
     }
     SYMPY_BENCH_UNITS(SYMPY_BENCH_TIME)
 
     std::ostringstream md, csv;
     char buf[1024];
     md << "## rotgen against SymPy and hand-written code\n\n"
-          "Lagrangian form, y = (phi, theta, psi, phi_dot, theta_dot, psi_dot), runtime parameters, "
+          "Lagrangian form, y = (phi, theta, psi, phi_dot, theta_dot, psi_dot), runtime "
+          "parameters, "
           "double. rotgen: the default kernel (explicit accelerations). SymPy "
        << sympy_kernels::sympy_version
        << ": bench/kernels/sympy_kernels.py (q_ddot = M.LUsolve(f), `jacobian`, `cse`, `ccode`; "
@@ -505,13 +506,14 @@ int main(int argc, char** argv) {
     for (const auto& c : comparison) {
         const std::string label =
             c.sympy_unit == c.model ? c.model : c.model + " (SymPy with `simplify`)";
-        std::snprintf(buf, sizeof buf, "| %s | %ld / %ld | %ld / %ld | %.1f / %.1f | %.1f / %.1f | %.1f |\n",
-                      label.c_str(), c.rotgen_rhs_ops, c.rotgen_jac_ops, c.sympy_rhs_ops,
-                      c.sympy_jac_ops, c.rotgen_rhs_ns, c.rotgen_jac_ns, c.sympy_rhs_ns,
-                      c.sympy_jac_ns, c.hand_ns);
+        std::snprintf(
+            buf, sizeof buf, "| %s | %ld / %ld | %ld / %ld | %.1f / %.1f | %.1f / %.1f | %.1f |\n",
+            label.c_str(), c.rotgen_rhs_ops, c.rotgen_jac_ops, c.sympy_rhs_ops, c.sympy_jac_ops,
+            c.rotgen_rhs_ns, c.rotgen_jac_ns, c.sympy_rhs_ns, c.sympy_jac_ns, c.hand_ns);
         md << buf;
     }
-    md << "\nGoals of issue 3 (against SymPy's output without `simplify`). The hand-written kernels "
+    md << "\nGoals of issue 3 (against SymPy's output without `simplify`). The hand-written "
+          "kernels "
           "fold the parameters in (I^{-1}, M g h, ratios of moments precomputed), as "
           "`rotgen emit --specialise` does; the default kernel reads them at run time.\n\n"
           "| model | rotgen rhs / hand-written time (goal <= 1.1) | the same, rotgen --specialise "
@@ -520,22 +522,22 @@ int main(int argc, char** argv) {
           "|---|---|---|---|---|---|\n";
     const auto met = [](bool b) { return b ? "met" : "NOT met"; };
     for (const auto& c : comparison) {
-        if (c.sympy_unit != c.model)
-            continue;
+        if (c.sympy_unit != c.model) continue;
         const double speed = c.rotgen_rhs_ns / c.hand_ns, jac = c.rotgen_jac_ns / c.rotgen_rhs_ns;
         const bool fewer = c.rotgen_rhs_ops < c.sympy_rhs_ops && c.rotgen_jac_ops < c.sympy_jac_ops;
-        std::snprintf(buf, sizeof buf,
-                      "| %s | %.2f (%.1f / %.1f ns): %s | %.2f (%.1f ns): %s | %ld vs %ld; %ld vs %ld: "
-                      "%s | %.2f (%.1f / %.1f ns): %s | %.2f |\n",
-                      c.model.c_str(), speed, c.rotgen_rhs_ns, c.hand_ns, met(speed <= 1.1),
-                      c.specialised_rhs_ns / c.hand_ns, c.specialised_rhs_ns,
-                      met(c.specialised_rhs_ns / c.hand_ns <= 1.1),
-                      c.rotgen_rhs_ops, c.sympy_rhs_ops, c.rotgen_jac_ops, c.sympy_jac_ops,
-                      met(fewer), jac, c.rotgen_jac_ns, c.rotgen_rhs_ns, met(jac < 2),
-                      c.sympy_rhs_ns / c.hand_ns);
+        std::snprintf(
+            buf, sizeof buf,
+            "| %s | %.2f (%.1f / %.1f ns): %s | %.2f (%.1f ns): %s | %ld vs %ld; %ld vs %ld: "
+            "%s | %.2f (%.1f / %.1f ns): %s | %.2f |\n",
+            c.model.c_str(), speed, c.rotgen_rhs_ns, c.hand_ns, met(speed <= 1.1),
+            c.specialised_rhs_ns / c.hand_ns, c.specialised_rhs_ns,
+            met(c.specialised_rhs_ns / c.hand_ns <= 1.1), c.rotgen_rhs_ops, c.sympy_rhs_ops,
+            c.rotgen_jac_ops, c.sympy_jac_ops, met(fewer), jac, c.rotgen_jac_ns, c.rotgen_rhs_ns,
+            met(jac < 2), c.sympy_rhs_ns / c.hand_ns);
         md << buf;
     }
-    md << "\n| SymPy unit | generation s | rhs ops: tree -> cse (SymPy count_ops) | jac ops: tree -> "
+    md << "\n| SymPy unit | generation s | rhs ops: tree -> cse (SymPy count_ops) | jac ops: tree "
+          "-> "
           "cse (count_ops) | hand-written kernel timed |\n|---|---|---|---|---|\n";
     for (const auto& c : comparison) {
         std::snprintf(buf, sizeof buf, "| %s | %.2f | %ld -> %ld (%ld) | %ld -> %ld (%ld) | %s |\n",
@@ -544,12 +546,11 @@ int main(int argc, char** argv) {
                       c.sympy_jac_count_ops, c.hand_what.c_str());
         md << buf;
     }
-    md << "\nChecked before timing (max |a - b| / max |b| over the outputs; tolerance "
-       << tolerance << "):\n\n| check | points | rhs | jacobian |\n|---|---|---|---|\n";
+    md << "\nChecked before timing (max |a - b| / max |b| over the outputs; tolerance " << tolerance
+       << "):\n\n| check | points | rhs | jacobian |\n|---|---|---|---|\n";
     for (const auto& c : checks) {
         char jac[32] = "-";
-        if (c.jac_error >= 0)
-            std::snprintf(jac, sizeof jac, "%.1e", c.jac_error);
+        if (c.jac_error >= 0) std::snprintf(jac, sizeof jac, "%.1e", c.jac_error);
         std::snprintf(buf, sizeof buf, "| %s | %d | %.1e | %s |\n", c.what.c_str(), c.points,
                       c.rhs_error, jac);
         md << buf;

@@ -86,10 +86,9 @@ run_record run_odeint(const run_spec& spec, double t0, double t1, double dt0) {
                                       static_cast<std::size_t>(n_steps));
             else
                 oi::integrate_adaptive(
-                    oi::make_controlled(tol, tol, oi::runge_kutta_fehlberg78<state>()), f, c->x,
-                    t0, t1, dt0);
-        }
-        else
+                    oi::make_controlled(tol, tol, oi::runge_kutta_fehlberg78<state>()), f, c->x, t0,
+                    t1, dt0);
+        } else
             oi::integrate_n_steps(oi::runge_kutta4<state>(), f, c->x, t0,
                                   (t1 - t0) / double(n_steps), static_cast<std::size_t>(n_steps));
         return c->x[0];
@@ -162,9 +161,7 @@ struct cvode_context {
 };
 
 // The CVODE memory of one configuration, with the variant's parameters as user data.
-template <class V> struct cvode_variant_context : cvode_context {
-    cvode_user<V> user;
-};
+template <class V> struct cvode_variant_context : cvode_context { cvode_user<V> user; };
 
 // y0 from the variant, CVODE created and set up (BDF with the dense solver and the generated
 // Jacobian, or Adams with fixed-point iteration), tolerances spec.tol; the first failing flag.

@@ -15,7 +15,8 @@ int main() {
 
     // y = (phi, theta, psi, phi_dot, theta_dot, psi_dot): tilted 1 rad, spinning at 200 rad/s,
     // started with the steady precession rate so that it barely nutates.
-    const double spin = 200, Omega = sys.params.M * sys.params.g * sys.params.l / (sys.params.I3 * spin);
+    const double spin = 200,
+                 Omega = sys.params.M * sys.params.g * sys.params.l / (sys.params.I3 * spin);
     rotgen::state_vector<double, decltype(sys)> y;
     y << 0, 1.0, 0, Omega, 0, spin;
     const double e0 = sys.energy(0, y.data());
@@ -28,9 +29,10 @@ int main() {
         return 1;
     }
     const double precession = y[0] / t_end;
-    std::printf("precession rate %.6f rad/s (fast-top estimate %.6f), energy drift %.2e, %ld steps\n",
-                precession, Omega, std::abs(sys.energy(0, y.data()) - e0) / std::abs(e0),
-                static_cast<long>(result.stats.accepted));
+    std::printf(
+        "precession rate %.6f rad/s (fast-top estimate %.6f), energy drift %.2e, %ld steps\n",
+        precession, Omega, std::abs(sys.energy(0, y.data()) - e0) / std::abs(e0),
+        static_cast<long>(result.stats.accepted));
     // The fast-top estimate holds to O(Omega / spin); a wrong sign or factor would be far off.
     return std::abs(precession - Omega) < 0.01 * Omega ? 0 : 1;
 }

@@ -60,14 +60,14 @@ class bench_run {
     int run(const bench_options& options) {
         m_wall0 = clock_type::now();
         stage_timings& t = m_ctx.timings;
-        prepare(options); // scene, output directory
+        prepare(options);  // scene, output directory
         choose_variants(); // derive; the forms and code-generation variants
         m_ctx.plan = make_plan(m_ctx.scene, m_ctx.spec, m_ctx.parameter_values, m_ctx.k0, m_ctx.opt,
                                m_ctx.conservative, m_ctx.variants);
         write_file(m_ctx.dir / "plan.txt", m_ctx.plan.text); // the configurations -> plan.txt
         m_ctx.source = t.time("emit", "every variant (lowered and printed)", [&] {
-            return driver_source(m_ctx.variants.variants, m_ctx.scene, m_ctx.spec, m_ctx.d, m_ctx.k0,
-                                 m_ctx.opt, m_ctx.src); // emit every variant
+            return driver_source(m_ctx.variants.variants, m_ctx.scene, m_ctx.spec, m_ctx.d,
+                                 m_ctx.k0, m_ctx.opt, m_ctx.src); // emit every variant
         });
         m_ctx.generate_seconds = seconds_since(m_t_gen);
         m_ctx.driver = t.time("compile", "the driver", [&] {
@@ -182,6 +182,8 @@ void bench_run::print_summary(double wall_seconds) const {
 
 } // namespace bench
 
-int run_bench(const bench_options& options) { return bench::bench_run().run(options); }
+int run_bench(const bench_options& options) {
+    return bench::bench_run().run(options);
+}
 
 } // namespace rotgen

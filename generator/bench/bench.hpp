@@ -7,11 +7,11 @@
 namespace rotgen {
 
 struct bench_options {
-    std::string scene;      // the scene file
-    std::string dir;        // the output directory (cli default: bench-out/<scene name>)
-    bool quick = false;     // fewer configurations
-    long long_steps = 0;    // steps of the long-run drift check; 0: none
-    bool timings = false;   // one line per pipeline stage to stderr
+    std::string scene;    // the scene file
+    std::string dir;      // the output directory (cli default: bench-out/<scene name>)
+    bool quick = false;   // fewer configurations
+    long long_steps = 0;  // steps of the long-run drift check; 0: none
+    bool timings = false; // one line per pipeline stage to stderr
 };
 
 // Runs the bench; returns the exit status. Throws user_error for bad input.

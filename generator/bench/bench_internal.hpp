@@ -2,14 +2,14 @@
 // by the report writers (report_tables.cpp, report_plots.cpp).
 #pragma once
 
+#include "bench/bench.hpp"
 #include "bench/driver.hpp"
 #include "bench/initial_state.hpp"
-#include "bench/bench.hpp"
-#include "support/timings.hpp"
 #include "bench/plan.hpp"
 #include "bench/sources.hpp"
 #include "bench/summary.hpp"
 #include "bench/variants.hpp"
+#include "support/timings.hpp"
 
 #include <filesystem>
 #include <string>

@@ -29,7 +29,8 @@ std::string emit_kernels(std::vector<variant>& variants, const model_spec& spec,
         // v.f is the form emit_header would build: the body form keeps its quaternion exactly
         // when `rotation` is among the outputs (variants.cpp)
         const kernel_request request{v.outputs, v.specialised, {}};
-        v.header = emit_header(spec, lower_form(spec, v.f, request), {"rotgen bench " + opt.scene, v.unit});
+        v.header = emit_header(spec, lower_form(spec, v.f, request),
+                               {"rotgen bench " + opt.scene, v.unit});
         kernels += "// ==== " + v.label + " ====\n" + v.header.text + "\n" + v.naive + "\n";
     }
     return kernels;

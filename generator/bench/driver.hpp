@@ -3,8 +3,8 @@
 // the runtime, the compiler and the flags), run on plan.txt, and its output (raw.txt) read.
 #pragma once
 
-#include "bench/initial_state.hpp"
 #include "bench/bench.hpp"
+#include "bench/initial_state.hpp"
 #include "bench/sources.hpp"
 #include "bench/variants.hpp"
 

@@ -23,6 +23,8 @@ std::string read_file(const fs::path& p) {
     return s.str();
 }
 
-void write_file(const fs::path& path, const std::string& text) { write_file_atomically(path.string(), text); }
+void write_file(const fs::path& path, const std::string& text) {
+    write_file_atomically(path.string(), text);
+}
 
 } // namespace rotgen::bench

@@ -3,8 +3,8 @@
 // kernels), the reference and the long runs.
 #pragma once
 
-#include "bench/initial_state.hpp"
 #include "bench/bench.hpp"
+#include "bench/initial_state.hpp"
 #include "bench/variants.hpp"
 
 #include <cstddef>

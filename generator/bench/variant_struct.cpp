@@ -27,8 +27,8 @@ void write_data(std::ostream& s, const variant& v, std::size_t index, const std:
     s << "    template <class T> static params<T> parameters() {\n        params<T> p;\n";
     for (const auto& p : v.f.parameters)
         if (!v.specialised || !p.specialisable)
-            s << "        p." << p.name << " = T(" << ld_literal(scene_parameter_value(scene, k, p.name))
-              << ");\n";
+            s << "        p." << p.name << " = T("
+              << ld_literal(scene_parameter_value(scene, k, p.name)) << ");\n";
     s << "        return p;\n    }\n";
     s << "    static std::array<long double, " << n << "> initial() {\n        return {{";
     for (std::size_t i = 0; i < n; ++i)

@@ -146,7 +146,8 @@ std::string naive_rhs(const variant& v, const GiNaC::exmap& folded) {
        << "::params<T>& p) {\n"
        << "    using std::sin; using std::cos; using std::tan; using std::sqrt; using std::pow;\n"
        << "    using std::exp; using std::log; using std::abs; using std::atan2; using std::asin;\n"
-       << "    using std::acos; using std::atan; using std::sinh; using std::cosh; using std::tanh;\n"
+       << "    using std::acos; using std::atan; using std::sinh; using std::cosh; using "
+          "std::tanh;\n"
        << "    (void)t; (void)y; (void)p;\n"
        << print_rhs_inline(v.f, folded, "T") << "}\n} // namespace " << v.unit
        << "_naive\n} // namespace models\n} // namespace rotgen\n";

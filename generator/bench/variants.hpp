@@ -49,13 +49,13 @@ struct variant_set {
     std::optional<std::size_t> hamiltonian; // the long runs' variant, if there is one
 };
 
-
 // "lagrangian:explicit", "hamiltonian", "body:quaternion", ...
 std::string form_label(form_kind form, lagrangian_strategy strategy, bool quaternion);
 
 // The variants of the scene (only the main form's three and one other form with `quick`).
 // `euler_usable`: the Euler-angle forms can start (sin theta != 0 and the initial rates known);
-// `orientation`: needs_orientation(scene, false) (run/engine.hpp, the rule simulate uses). Throws user_error if the scene's own form fails.
+// `orientation`: needs_orientation(scene, false) (run/engine.hpp, the rule simulate uses). Throws
+// user_error if the scene's own form fails.
 variant_set choose_variants(const scene_spec& scene, const model_spec& spec, const derivation& d,
                             bool euler_usable, bool orientation, bool quick);
 

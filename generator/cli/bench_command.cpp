@@ -21,7 +21,10 @@ const command_spec bench_command{
     "example: rotgen bench models/scenes/free_top_workprecision.yaml --quick -o bench-out/free_top",
     {{"-o", "DIR", "the output directory (default bench-out/<scene name>)", {"--output"}},
      {"--quick", "", "fewer configurations (a minute instead of several)", {}},
-     {"--long-steps", "N", "steps of the long-run drift check, 0 to 1e8 (default 1e6; 1e4 with --quick)", {}},
+     {"--long-steps",
+      "N",
+      "steps of the long-run drift check, 0 to 1e8 (default 1e6; 1e4 with --quick)",
+      {}},
      {"--timings", "", "print the wall time of each pipeline stage to standard error", {}}}};
 
 long long_steps_of(const parsed_options& o) {
@@ -30,7 +33,8 @@ long long_steps_of(const parsed_options& o) {
     char* end = nullptr;
     const long n = std::strtol(v.c_str(), &end, 10);
     if (v.empty() || *end || n < 0 || n > 100000000)
-        usage_error(bench_command, "--long-steps needs a whole number of steps in [0, 1e8], got '" + v + "'");
+        usage_error(bench_command,
+                    "--long-steps needs a whole number of steps in [0, 1e8], got '" + v + "'");
     return n;
 }
 

@@ -33,13 +33,16 @@ const char* const usage =
 std::string one_line(const std::string& text) {
     std::string out;
     for (unsigned char c : text) {
-        if (c == '\n') out += "\\n";
-        else if (c == '\t') out += "\\t";
+        if (c == '\n')
+            out += "\\n";
+        else if (c == '\t')
+            out += "\\t";
         else if (c < 0x20 || c == 0x7f) {
             char buf[8];
             std::snprintf(buf, sizeof buf, "\\x%02x", c);
             out += buf;
-        } else out += static_cast<char>(c);
+        } else
+            out += static_cast<char>(c);
     }
     return out;
 }
@@ -49,7 +52,8 @@ std::string one_line(const std::string& text) {
 int run_cli(int argc, char** argv) {
     std::vector<std::string> args(argv + 1, argv + argc);
     try {
-        if (args.empty() || args[0] == "--help" || args[0] == "-h" || (args[0] == "help" && args.size() == 1)) {
+        if (args.empty() || args[0] == "--help" || args[0] == "-h" ||
+            (args[0] == "help" && args.size() == 1)) {
             std::cout << usage;
             return args.empty() ? 2 : 0;
         }
@@ -64,7 +68,9 @@ int run_cli(int argc, char** argv) {
         if (command == "emit") return cmd_emit(args);
         if (command == "simulate") return cmd_simulate(args);
         if (command == "bench") return cmd_bench(args);
-        throw user_error({"rotgen"}, "unknown command '" + command + "' (expected inspect, emit, simulate or bench; see rotgen --help)");
+        throw user_error({"rotgen"},
+                         "unknown command '" + command +
+                             "' (expected inspect, emit, simulate or bench; see rotgen --help)");
     } catch (const user_error& e) {
         std::cerr << "rotgen: error: " << one_line(e.message()) << "\n";
         return 2;

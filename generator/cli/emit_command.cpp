@@ -6,11 +6,11 @@
 // through a temporary file renamed into place: a failed run leaves no partial header.
 #include "cli/commands.hpp"
 #include "cli/options.hpp"
-#include "support/timings.hpp"
 #include "derive/derive.hpp"
 #include "emit/emit.hpp"
-#include "support/error.hpp"
 #include "spec/spec.hpp"
+#include "support/error.hpp"
+#include "support/timings.hpp"
 
 #include <unistd.h>
 
@@ -29,21 +29,39 @@ namespace {
 const command_spec emit_command{
     "emit",
     "model file",
-    "MODEL.yaml -o DIR [--form F] [--strategy S] [--outputs LIST] [--specialise[=NAMES]] [--name UNIT]",
+    "MODEL.yaml -o DIR [--form F] [--strategy S] [--outputs LIST] [--specialise[=NAMES]] [--name "
+    "UNIT]",
     "Writes DIR/<unit>.hpp: the model's kernels as a dependency-free C++ header, templated on the\n"
-    "scalar (unit: the model's name, plus _<form> for forms other than lagrangian). Written through\n"
+    "scalar (unit: the model's name, plus _<form> for forms other than lagrangian). Written "
+    "through\n"
     "a temporary renamed into place: a failed run leaves no partial header.\n\n"
-    "example: rotgen emit models/heavy_top.yaml -o generated --form hamiltonian --outputs rhs,energy",
+    "example: rotgen emit models/heavy_top.yaml -o generated --form hamiltonian --outputs "
+    "rhs,energy",
     {{"-o", "DIR", "the output directory (created if missing)", {"--output"}},
-     {"--form", "lagrangian|hamiltonian|reduced|body", "the form of the equations (default lagrangian)", {}},
-     {"--strategy", "explicit|solve", "Lagrangian form: explicit accelerations, or M and f solved inline", {}},
-     {"--outputs", "LIST", "comma-separated: rhs,jacobian,energy,momenta,mass_matrix,omega,rotation,\n"
-                           "                        ignored_rates (default: all the form gives)", {}},
-     {"--specialise", "NAMES", "fold parameter values into the code (all, or =I1,I3)", {"--specialize"}, true},
+     {"--form",
+      "lagrangian|hamiltonian|reduced|body",
+      "the form of the equations (default lagrangian)",
+      {}},
+     {"--strategy",
+      "explicit|solve",
+      "Lagrangian form: explicit accelerations, or M and f solved inline",
+      {}},
+     {"--outputs",
+      "LIST",
+      "comma-separated: rhs,jacobian,energy,momenta,mass_matrix,omega,rotation,\n"
+      "                        ignored_rates (default: all the form gives)",
+      {}},
+     {"--specialise",
+      "NAMES",
+      "fold parameter values into the code (all, or =I1,I3)",
+      {"--specialize"},
+      true},
      {"--name", "UNIT", "the unit: file UNIT.hpp, namespace rotgen::models::UNIT", {}},
      {"--timings", "", "print the wall time of each pipeline stage to standard error", {}}}};
 
-[[noreturn]] void fail(const std::string& problem) { usage_error(emit_command, problem); }
+[[noreturn]] void fail(const std::string& problem) {
+    usage_error(emit_command, problem);
+}
 
 std::vector<std::string> split_list(const std::string& text, const std::string& option) {
     std::vector<std::string> items;
@@ -103,7 +121,6 @@ void write_atomically(const std::filesystem::path& dir, const std::string& file,
     }
 }
 
-
 form_kind form_of(const std::string& f) {
     if (f.empty() || f == "lagrangian") return form_kind::lagrangian;
     if (f == "hamiltonian") return form_kind::hamiltonian;
@@ -121,18 +138,21 @@ lagrangian_strategy strategy_of(const std::string& s) {
 }
 
 // The command that regenerates exactly this header (for its comment).
-std::string regenerate_command(const parsed_options& o, form_kind form, lagrangian_strategy strategy) {
-    std::string command = "rotgen emit " + shell_quote(o.operand) + " -o " + shell_quote(o.value("-o")) +
-                          " --form " + to_string(form);
+std::string regenerate_command(const parsed_options& o, form_kind form,
+                               lagrangian_strategy strategy) {
+    std::string command = "rotgen emit " + shell_quote(o.operand) + " -o " +
+                          shell_quote(o.value("-o")) + " --form " + to_string(form);
     if (form == form_kind::lagrangian) command += std::string(" --strategy ") + to_string(strategy);
     if (o.has("--outputs")) {
         std::string list;
-        for (const auto& s : split_list(o.value("--outputs"), "--outputs")) list += (list.empty() ? "" : ",") + s;
+        for (const auto& s : split_list(o.value("--outputs"), "--outputs"))
+            list += (list.empty() ? "" : ",") + s;
         command += " --outputs " + shell_quote(list);
     }
     if (o.has("--specialise"))
-        command += " " + shell_quote(o.value("--specialise").empty() ? "--specialise"
-                                                                     : "--specialise=" + o.value("--specialise"));
+        command += " " + shell_quote(o.value("--specialise").empty()
+                                         ? "--specialise"
+                                         : "--specialise=" + o.value("--specialise"));
     if (o.has("--name")) command += " --name " + o.value("--name");
     return command;
 }
@@ -140,10 +160,10 @@ std::string regenerate_command(const parsed_options& o, form_kind form, lagrangi
 void print_written(const std::string& dir, const emitted_header& h) {
     std::string summary;
     for (const auto& s : h.stats)
-        summary += (summary.empty() ? "" : ", ") + s.function + " " + std::to_string(s.before.total()) + " -> " +
-                   std::to_string(s.after.total());
-    std::cout << "rotgen: wrote " << (std::filesystem::path(dir) / h.file_name).string() << " (operations: " << summary
-              << ")\n";
+        summary += (summary.empty() ? "" : ", ") + s.function + " " +
+                   std::to_string(s.before.total()) + " -> " + std::to_string(s.after.total());
+    std::cout << "rotgen: wrote " << (std::filesystem::path(dir) / h.file_name).string()
+              << " (operations: " << summary << ")\n";
 }
 
 } // namespace
@@ -159,14 +179,16 @@ int cmd_emit(const std::vector<std::string>& args) {
     const form_kind form = form_of(o.value("--form"));
     const lagrangian_strategy strategy = strategy_of(o.value("--strategy"));
     if (o.has("--strategy") && form != form_kind::lagrangian)
-        fail("--strategy applies to the Lagrangian form only (got --form " + std::string(to_string(form)) + ")");
+        fail("--strategy applies to the Lagrangian form only (got --form " +
+             std::string(to_string(form)) + ")");
     static const std::regex identifier("[A-Za-z_][A-Za-z0-9_]*");
     if (o.has("--name") && !std::regex_match(o.value("--name"), identifier))
         fail("--name '" + o.value("--name") + "' is not a C++ identifier");
     kernel_request request;
     if (o.has("--outputs")) request.outputs = split_list(o.value("--outputs"), "--outputs");
     request.specialise_all = o.has("--specialise") && o.value("--specialise").empty();
-    if (!o.value("--specialise").empty()) request.specialise = split_list(o.value("--specialise"), "--specialise");
+    if (!o.value("--specialise").empty())
+        request.specialise = split_list(o.value("--specialise"), "--specialise");
     const header_options header{regenerate_command(o, form, strategy), o.value("--name")};
 
     stage_timings timings;
@@ -175,8 +197,10 @@ int cmd_emit(const std::vector<std::string>& args) {
     const form_expressions f = timings.time("forms", to_string(form), [&] {
         return build_requested_form(spec, d, form, strategy, request);
     });
-    const lowered_form lowered = timings.time("lower", to_string(form), [&] { return lower_form(spec, f, request); });
-    const emitted_header h = timings.time("emit", to_string(form), [&] { return emit_header(spec, lowered, header); });
+    const lowered_form lowered =
+        timings.time("lower", to_string(form), [&] { return lower_form(spec, f, request); });
+    const emitted_header h =
+        timings.time("emit", to_string(form), [&] { return emit_header(spec, lowered, header); });
     timings.time("write", h.file_name, [&] { write_atomically(dir, h.file_name, h.text); });
     print_written(dir, h);
     if (o.has("--timings")) timings.print(std::cerr);

@@ -15,11 +15,15 @@ const command_spec inspect_command{
     "inspect",
     "model file",
     "MODEL.yaml [--format text|latex|json] [--inertia]",
-    "Prints the derived equations of the model: kinetic and potential energy, Lagrangian, momenta,\n"
+    "Prints the derived equations of the model: kinetic and potential energy, Lagrangian, "
+    "momenta,\n"
     "mass matrix, Euler-Lagrange equations, Hamiltonian and Hamilton's equations, cyclic\n"
     "coordinates and the energy, as text, LaTeX or JSON (expressions SymPy can parse).",
     {{"--format", "text|latex|json", "the output format (default text)", {}},
-     {"--inertia", "", "also the inertia tensor, principal moments and axes, class and stability", {}}}};
+     {"--inertia",
+      "",
+      "also the inertia tensor, principal moments and axes, class and stability",
+      {}}}};
 
 output_format format_of(const std::string& f) {
     if (f.empty() || f == "text") return output_format::text;

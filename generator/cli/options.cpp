@@ -19,7 +19,8 @@ const option_spec* find_option(const command_spec& c, const std::string& word) {
 
 [[noreturn]] void unknown_option(const command_spec& c, const std::string& word) {
     std::vector<std::string> names;
-    for (const auto& o : c.options) names.push_back(o.name);
+    for (const auto& o : c.options)
+        names.push_back(o.name);
     const std::string best = closest_name(word, names);
     usage_error(c, "unknown option '" + word + "' for " + c.name +
                        (best.empty() ? "" : "; did you mean '" + best + "'?"));
@@ -32,7 +33,8 @@ const std::string& parsed_options::empty() {
     return none;
 }
 
-const std::string& parsed_options::value(const std::string& name, const std::string& fallback) const {
+const std::string& parsed_options::value(const std::string& name,
+                                         const std::string& fallback) const {
     const auto it = m_values.find(name);
     return it == m_values.end() ? fallback : it->second;
 }
@@ -86,7 +88,8 @@ std::string help_text(const command_spec& c) {
     std::vector<std::string> left;
     for (const auto& o : c.options) {
         std::string l = o.name;
-        for (const auto& a : o.aliases) l += ", " + a;
+        for (const auto& a : o.aliases)
+            l += ", " + a;
         if (!o.value.empty()) l += o.optional_value ? "[=" + o.value + "]" : " " + o.value;
         width = std::max(width, l.size());
         left.push_back(l);

@@ -17,9 +17,9 @@
 namespace rotgen {
 
 struct option_spec {
-    std::string name;                 // "--form", "-o"
-    std::string value;                // what its value is, for errors and help ("DIR"); empty: a flag
-    std::string help;                 // one line for --help
+    std::string name;  // "--form", "-o"
+    std::string value; // what its value is, for errors and help ("DIR"); empty: a flag
+    std::string help;  // one line for --help
     std::vector<std::string> aliases; // other spellings: "--output", "--specialize"
     bool optional_value = false;      // also accepted as a bare flag; a value only as --name=VALUE
 };

@@ -17,9 +17,13 @@ const command_spec simulate_command{
     "(cached), integrates it and records the scene's quantities at its sample times. Prints a\n"
     "summary (steps, evaluations, invariant drifts) on standard output. A run that cannot finish\n"
     "exits 3 with its rows in <output>.partial.csv.\n\n"
-    "example: rotgen simulate models/scenes/heavy_top_nutation.yaml -o nutation.csv --plot nutation.png",
-    {{"-o", "FILE", "the samples as CSV (header t,<recorded columns>); - for standard output;\n"
-                    "                     default <scene name>.csv", {"--output"}},
+    "example: rotgen simulate models/scenes/heavy_top_nutation.yaml -o nutation.csv --plot "
+    "nutation.png",
+    {{"-o",
+      "FILE",
+      "the samples as CSV (header t,<recorded columns>); - for standard output;\n"
+      "                     default <scene name>.csv",
+      {"--output"}},
      {"--plot", "FILE", "the recorded quantities against t (gnuplot): .png, .svg or .pdf", {}},
      {"--timings", "", "print the wall time of each pipeline stage to standard error", {}},
      {"--quiet", "", "no summary and no progress line (errors are still reported)", {"-q"}}}};
@@ -32,7 +36,8 @@ int cmd_simulate(const std::vector<std::string>& args) {
         std::cout << help_text(simulate_command);
         return 0;
     }
-    return simulate({o.operand, o.value("-o"), o.value("--plot"), o.has("--timings"), o.has("--quiet")});
+    return simulate(
+        {o.operand, o.value("-o"), o.value("--plot"), o.has("--timings"), o.has("--quiet")});
 }
 
 } // namespace rotgen

@@ -20,7 +20,8 @@ ex canonical(const ex& e) {
 ex time_derivative(const ex& e) {
     const auto& s = symbols();
     ex d = e.diff(s.t);
-    for (int i = 0; i < 3; ++i) d += e.diff(s.q[i]) * s.qd[i] + e.diff(s.qd[i]) * s.qdd[i];
+    for (int i = 0; i < 3; ++i)
+        d += e.diff(s.q[i]) * s.qd[i] + e.diff(s.qd[i]) * s.qdd[i];
     return d;
 }
 
@@ -52,7 +53,8 @@ matrix3 inverse_inertia(const model_spec& spec) {
     matrix3 inv;
     if (spec.inertia_diagonal) {
         for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j) inv[i][j] = i == j ? 1 / I[i][i] : ex(0);
+            for (int j = 0; j < 3; ++j)
+                inv[i][j] = i == j ? 1 / I[i][i] : ex(0);
         return inv;
     }
     matrix3 adj;
@@ -63,10 +65,12 @@ matrix3 inverse_inertia(const model_spec& spec) {
             adj[i][j] = (I[r0][c0] * I[r1][c1] - I[r0][c1] * I[r1][c0]).expand();
         }
     ex det = 0;
-    for (int k = 0; k < 3; ++k) det += I[0][k] * adj[k][0];
+    for (int k = 0; k < 3; ++k)
+        det += I[0][k] * adj[k][0];
     det = det.expand();
     for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) inv[i][j] = adj[i][j] / det;
+        for (int j = 0; j < 3; ++j)
+            inv[i][j] = adj[i][j] / det;
     return inv;
 }
 
@@ -82,27 +86,32 @@ derivation derive(const model_spec& spec) {
     // omega = J q_dot (5.30)
     for (int i = 0; i < 3; ++i) {
         ex w = 0;
-        for (int j = 0; j < 3; ++j) w += d.omega_jacobian[i][j] * s.qd[j];
+        for (int j = 0; j < 3; ++j)
+            w += d.omega_jacobian[i][j] * s.qd[j];
         d.omega[i] = canonical(w);
     }
     // T = 1/2 omega^T I omega (5.38)
     ex T = 0;
     for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) T += spec.inertia[i][j] * d.omega[i] * d.omega[j];
+        for (int j = 0; j < 3; ++j)
+            T += spec.inertia[i][j] * d.omega[i] * d.omega[j];
     d.kinetic = canonical(T / 2);
     d.potential = canonical(spec.potential);
     d.lagrangian = canonical(d.kinetic - d.potential);
     d.energy = canonical(d.kinetic + d.potential);
 
     // p = dL/dq_dot, M = dp/dq_dot
-    for (int i = 0; i < 3; ++i) d.momenta[i] = canonical(d.lagrangian.diff(s.qd[i]));
     for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) d.mass_matrix[i][j] = canonical(d.momenta[i].diff(s.qd[j]));
+        d.momenta[i] = canonical(d.lagrangian.diff(s.qd[i]));
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            d.mass_matrix[i][j] = canonical(d.momenta[i].diff(s.qd[j]));
 
     // Q = -c q_dot + J^T tau (virtual work of a body torque: tau . J dq)
     for (int i = 0; i < 3; ++i) {
         ex Q = -spec.damping[i] * s.qd[i];
-        for (int k = 0; k < 3; ++k) Q += d.omega_jacobian[k][i] * spec.torque[k];
+        for (int k = 0; k < 3; ++k)
+            Q += d.omega_jacobian[k][i] * spec.torque[k];
         d.generalized_force[i] = canonical(Q);
     }
 
@@ -110,17 +119,20 @@ derivation derive(const model_spec& spec) {
     // M q_ddot = f.
     for (int i = 0; i < 3; ++i) {
         ex f = d.lagrangian.diff(s.q[i]) + d.generalized_force[i];
-        for (int j = 0; j < 3; ++j) f -= d.momenta[i].diff(s.q[j]) * s.qd[j];
+        for (int j = 0; j < 3; ++j)
+            f -= d.momenta[i].diff(s.q[j]) * s.qd[j];
         d.forcing[i] = canonical(f);
         ex el = -d.forcing[i];
-        for (int j = 0; j < 3; ++j) el += d.mass_matrix[i][j] * s.qdd[j];
+        for (int j = 0; j < 3; ++j)
+            el += d.mass_matrix[i][j] * s.qdd[j];
         d.euler_lagrange[i] = canonical(el);
     }
 
     // l = J^{-T} p; H = 1/2 l^T I^{-1} l + V
     for (int i = 0; i < 3; ++i) {
         ex l = 0;
-        for (int j = 0; j < 3; ++j) l += d.inverse_omega_jacobian[j][i] * s.p[j];
+        for (int j = 0; j < 3; ++j)
+            l += d.inverse_omega_jacobian[j][i] * s.p[j];
         d.body_momentum[i] = canonical(l);
     }
     ex H = 0;

@@ -29,24 +29,24 @@
 namespace rotgen {
 
 struct derivation {
-    matrix3 omega_jacobian;     // J = d omega / d q_dot
-    vector3 omega;              // (5.30), in q and q_dot
-    GiNaC::ex kinetic;          // T (5.38), in q and q_dot
-    GiNaC::ex potential;        // V, in q
-    GiNaC::ex lagrangian;       // L = T - V
-    GiNaC::ex energy;           // E = T + V, in q and q_dot
-    vector3 momenta;            // p = dL/dq_dot
-    matrix3 mass_matrix;        // M(q) = d p / d q_dot
-    vector3 generalized_force;  // Q, in t, q and q_dot
-    vector3 forcing;            // f(q, q_dot, t):  M q_ddot = f
-    vector3 euler_lagrange;     // M q_ddot - f  (each = 0)
+    matrix3 omega_jacobian;         // J = d omega / d q_dot
+    vector3 omega;                  // (5.30), in q and q_dot
+    GiNaC::ex kinetic;              // T (5.38), in q and q_dot
+    GiNaC::ex potential;            // V, in q
+    GiNaC::ex lagrangian;           // L = T - V
+    GiNaC::ex energy;               // E = T + V, in q and q_dot
+    vector3 momenta;                // p = dL/dq_dot
+    matrix3 mass_matrix;            // M(q) = d p / d q_dot
+    vector3 generalized_force;      // Q, in t, q and q_dot
+    vector3 forcing;                // f(q, q_dot, t):  M q_ddot = f
+    vector3 euler_lagrange;         // M q_ddot - f  (each = 0)
     matrix3 inverse_omega_jacobian; // J^{-1}: q_dot = J^{-1} omega
-    matrix3 inverse_inertia;    // I^{-1} (adjugate / determinant; 1/I_ii when diagonal)
-    vector3 body_momentum;      // l = I omega = J^{-T} p, in q and p
-    GiNaC::ex hamiltonian;      // H(q, p)
-    vector3 hamilton_qdot;      // dH/dp
-    vector3 hamilton_pdot;      // -dH/dq + Q(q, dH/dp)
-    std::vector<int> cyclic;    // indices of coordinates absent from L and Q (momentum conserved)
+    matrix3 inverse_inertia;        // I^{-1} (adjugate / determinant; 1/I_ii when diagonal)
+    vector3 body_momentum;          // l = I omega = J^{-T} p, in q and p
+    GiNaC::ex hamiltonian;          // H(q, p)
+    vector3 hamilton_qdot;          // dH/dp
+    vector3 hamilton_pdot;          // -dH/dq + Q(q, dH/dp)
+    std::vector<int> cyclic; // indices of coordinates absent from L and Q (momentum conserved)
 };
 
 // Derives everything above. Pure: depends only on the spec.

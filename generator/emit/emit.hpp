@@ -70,7 +70,6 @@ std::string unit_name(const std::string& model, form_kind form);
 emitted_header emit_header(const model_spec& spec, const lowered_form& form,
                            const header_options& options);
 
-
 // Fills the @name@ placeholders of templates/<name>; a placeholder without a value is an error.
 std::string fill_template(const std::string& name,
                           const std::map<std::string, std::string>& values);

@@ -17,9 +17,9 @@ using GiNaC::ex;
 
 // Limits that keep a hostile expression from exhausting the stack, the memory or the time: the
 // parser is recursive, and GiNaC evaluates numbers exactly (9^9^9 would have 3.7e8 digits).
-constexpr int max_nesting = 200;            // parentheses, calls, exponents, nested in each other
-constexpr std::size_t max_digits = 4000;    // significant digits of one number literal
-constexpr long max_exponent = 1000;         // |n| in x^n (except for the bases 0, 1 and -1)
+constexpr int max_nesting = 200;         // parentheses, calls, exponents, nested in each other
+constexpr std::size_t max_digits = 4000; // significant digits of one number literal
+constexpr long max_exponent = 1000;      // |n| in x^n (except for the bases 0, 1 and -1)
 constexpr std::size_t max_number_bits = 1u << 17; // an exact number, ~39000 decimal digits
 
 // Bits in the numerator and denominator of the real and imaginary parts of a numeric.
@@ -37,11 +37,13 @@ std::size_t numeric_bits(const GiNaC::numeric& n) {
 // (a number times a sum is distributed).
 std::size_t coefficient_bits(const ex& e) {
     if (GiNaC::is_a<GiNaC::numeric>(e)) return numeric_bits(GiNaC::ex_to<GiNaC::numeric>(e));
-    if (GiNaC::is_a<GiNaC::mul>(e) && e.nops() > 0 && GiNaC::is_a<GiNaC::numeric>(e.op(e.nops() - 1)))
+    if (GiNaC::is_a<GiNaC::mul>(e) && e.nops() > 0 &&
+        GiNaC::is_a<GiNaC::numeric>(e.op(e.nops() - 1)))
         return numeric_bits(GiNaC::ex_to<GiNaC::numeric>(e.op(e.nops() - 1)));
     if (GiNaC::is_a<GiNaC::add>(e)) {
         std::size_t bits = 0;
-        for (std::size_t i = 0; i < e.nops(); ++i) bits = std::max(bits, coefficient_bits(e.op(i)));
+        for (std::size_t i = 0; i < e.nops(); ++i)
+            bits = std::max(bits, coefficient_bits(e.op(i)));
         return bits;
     }
     return 0;
@@ -63,8 +65,10 @@ std::pair<GiNaC::numeric, ex> split_coefficient(const ex& term) {
 std::string describe_character(const std::string& s, std::size_t i) {
     const unsigned char c = static_cast<unsigned char>(s[i]);
     if (c >= 0x20 && c < 0x7f) return std::string("'") + static_cast<char>(c) + "'";
-    const std::size_t length = c >= 0xc2 && c <= 0xdf ? 2 : c >= 0xe0 && c <= 0xef ? 3
-                               : c >= 0xf0 && c <= 0xf4 ? 4 : 0;
+    const std::size_t length = c >= 0xc2 && c <= 0xdf   ? 2
+                               : c >= 0xe0 && c <= 0xef ? 3
+                               : c >= 0xf0 && c <= 0xf4 ? 4
+                                                        : 0;
     bool valid = length > 0 && i + length <= s.size();
     for (std::size_t k = 1; valid && k < length; ++k)
         valid = (static_cast<unsigned char>(s[i + k]) & 0xc0) == 0x80;
@@ -130,17 +134,20 @@ class parser {
             } else if (std::isdigit(c) || (c == '.' && i + 1 < s.size() &&
                                            std::isdigit(static_cast<unsigned char>(s[i + 1])))) {
                 const std::size_t start = i;
-                while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i]))) ++i;
+                while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i])))
+                    ++i;
                 if (i < s.size() && s[i] == '.') {
                     ++i;
-                    while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i]))) ++i;
+                    while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i])))
+                        ++i;
                 }
                 if (i < s.size() && (s[i] == 'e' || s[i] == 'E')) {
                     std::size_t j = i + 1;
                     if (j < s.size() && (s[j] == '+' || s[j] == '-')) ++j;
                     if (j < s.size() && std::isdigit(static_cast<unsigned char>(s[j]))) {
                         i = j;
-                        while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i]))) ++i;
+                        while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i])))
+                            ++i;
                     }
                 }
                 m_tokens.push_back({token::number, s.substr(start, i - start), start});
@@ -218,18 +225,20 @@ class parser {
                 }
                 if (g.denominators.insert(part.denom()).second)
                     g.denominator_bits += static_cast<std::size_t>(part.denom().int_length());
-                g.numerator_bits =
-                    std::max<std::size_t>(g.numerator_bits, static_cast<std::size_t>(part.numer().int_length()));
+                g.numerator_bits = std::max<std::size_t>(
+                    g.numerator_bits, static_cast<std::size_t>(part.numer().int_length()));
             }
             ++g.count;
             std::size_t count_bits = 0;
-            for (std::size_t k = g.count; k > 0; k >>= 1) ++count_bits;
+            for (std::size_t k = g.count; k > 0; k >>= 1)
+                ++count_bits;
             if (g.numerator_bits + 2 * g.denominator_bits + count_bits > max_number_bits)
                 fail(first, number_too_large);
         };
         for (const ex& t : terms) {
             if (GiNaC::is_a<GiNaC::add>(t))
-                for (std::size_t i = 0; i < t.nops(); ++i) add_bits(t.op(i));
+                for (std::size_t i = 0; i < t.nops(); ++i)
+                    add_bits(t.op(i));
             else
                 add_bits(t);
         }
@@ -296,17 +305,21 @@ class parser {
         // (found by fuzzing: minutes and gigabytes). Sums may be raised to at most the 32nd power.
         if (numeric_exponent && GiNaC::is_a<GiNaC::add>(base) &&
             GiNaC::abs(GiNaC::ex_to<GiNaC::numeric>(exponent)) > 32)
-            fail(at, "a sum raised to a power above 32 is not supported (the derivation expands it)");
+            fail(at,
+                 "a sum raised to a power above 32 is not supported (the derivation expands it)");
         if (base.is_zero() && numeric_exponent &&
             !GiNaC::ex_to<GiNaC::numeric>(exponent).is_positive())
             fail(at, "division by zero (0 raised to a non-positive power)");
         const bool trivial_base = GiNaC::is_a<GiNaC::numeric>(base) &&
                                   (base.is_zero() || base.is_equal(1) || base.is_equal(-1));
-        if (numeric_exponent && GiNaC::ex_to<GiNaC::numeric>(exponent).is_rational() && !trivial_base) {
+        if (numeric_exponent && GiNaC::ex_to<GiNaC::numeric>(exponent).is_rational() &&
+            !trivial_base) {
             const GiNaC::numeric r = GiNaC::abs(GiNaC::ex_to<GiNaC::numeric>(exponent));
-            if (r > max_exponent) fail(at, "exponent out of range (its magnitude must be at most " +
-                                               std::to_string(max_exponent) + ")");
-            if (GiNaC::numeric(static_cast<long>(coefficient_bits(base))) * r > long(max_number_bits))
+            if (r > max_exponent)
+                fail(at, "exponent out of range (its magnitude must be at most " +
+                             std::to_string(max_exponent) + ")");
+            if (GiNaC::numeric(static_cast<long>(coefficient_bits(base))) * r >
+                long(max_number_bits))
                 fail(at, number_too_large);
         }
         const ex result = guarded(at, [&] { return GiNaC::pow(base, exponent); });
@@ -325,7 +338,8 @@ class parser {
         long exponent = 0;
         std::size_t i = 0;
         const std::string& s = t.text;
-        for (; i < s.size() && std::isdigit(static_cast<unsigned char>(s[i])); ++i) digits += s[i];
+        for (; i < s.size() && std::isdigit(static_cast<unsigned char>(s[i])); ++i)
+            digits += s[i];
         if (i < s.size() && s[i] == '.') {
             for (++i; i < s.size() && std::isdigit(static_cast<unsigned char>(s[i])); ++i) {
                 digits += s[i];
@@ -350,7 +364,8 @@ class parser {
 
     std::string suggestion(const std::string& word) const {
         std::vector<std::string> candidates;
-        for (const auto& [name, value] : m_names) candidates.push_back(name);
+        for (const auto& [name, value] : m_names)
+            candidates.push_back(name);
         const std::string best = closest_name(word, candidates);
         return best.empty() ? std::string() : "; did you mean '" + best + "'?";
     }
@@ -359,7 +374,8 @@ class parser {
         std::vector<ex> args;
         if (!accept(")")) {
             args.push_back(expression());
-            while (accept(",")) args.push_back(expression());
+            while (accept(","))
+                args.push_back(expression());
             expect(")");
         }
         const std::string& f = name.text;

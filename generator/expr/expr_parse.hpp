@@ -7,8 +7,8 @@
 //   primary := number | name | name '(' expr (',' expr)* ')' | '(' expr ')'
 //
 // Numbers become exact rationals (0.5 -> 1/2, 9.81 -> 981/100) so that the derivation is exact and
-// its printed form deterministic. Functions: sin cos tan asin acos atan atan2 sinh cosh tanh exp log
-// sqrt abs pow; the constant pi. Every error names the column of the offending token.
+// its printed form deterministic. Functions: sin cos tan asin acos atan atan2 sinh cosh tanh exp
+// log sqrt abs pow; the constant pi. Every error names the column of the offending token.
 #pragma once
 
 #include "support/error.hpp"

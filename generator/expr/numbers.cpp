@@ -1,8 +1,8 @@
 #include "expr/numbers.hpp"
 
 #include <cmath>
-#include <stdexcept>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
 namespace rotgen {

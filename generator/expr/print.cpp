@@ -29,7 +29,8 @@ bool has_negative_coefficient(const ex& term) {
     if (is_a<GiNaC::numeric>(term)) return ex_to<GiNaC::numeric>(term).is_negative();
     if (is_a<GiNaC::mul>(term))
         for (std::size_t i = 0; i < term.nops(); ++i)
-            if (is_a<GiNaC::numeric>(term.op(i))) return ex_to<GiNaC::numeric>(term.op(i)).is_negative();
+            if (is_a<GiNaC::numeric>(term.op(i)))
+                return ex_to<GiNaC::numeric>(term.op(i)).is_negative();
     return false;
 }
 
@@ -70,7 +71,8 @@ bool flips_sign(const ex& f) {
 std::pair<bool, ex> split_sign(const ex& term) {
     bool negative = has_negative_coefficient(term);
     if (is_a<GiNaC::mul>(term)) {
-        for (std::size_t i = 0; i < term.nops(); ++i) negative ^= flips_sign(term.op(i));
+        for (std::size_t i = 0; i < term.nops(); ++i)
+            negative ^= flips_sign(term.op(i));
     } else {
         negative ^= flips_sign(term);
     }
@@ -89,7 +91,8 @@ std::string expression_printer::print(const ex& e, int context) const {
     if (is_a<GiNaC::power>(e)) return power(e.op(0), e.op(1), context);
     if (is_a<GiNaC::function>(e)) {
         std::vector<std::string> args;
-        for (std::size_t i = 0; i < e.nops(); ++i) args.push_back(print(e.op(i), 0));
+        for (std::size_t i = 0; i < e.nops(); ++i)
+            args.push_back(print(e.op(i), 0));
         return function(function_name(ex_to<GiNaC::function>(e).get_name()), args);
     }
     std::ostringstream os;
@@ -113,7 +116,9 @@ std::string expression_printer::number(const GiNaC::numeric& n, int context) con
     return s;
 }
 
-std::string expression_printer::symbol(const GiNaC::symbol& s) const { return s.get_name(); }
+std::string expression_printer::symbol(const GiNaC::symbol& s) const {
+    return s.get_name();
+}
 
 std::string expression_printer::constant(const GiNaC::constant& c) const {
     if (ex(c).is_equal(GiNaC::Pi)) return "pi";
@@ -169,13 +174,16 @@ std::string expression_printer::product(const ex& e, int context) const {
         if (!coeff.numer().is_equal(1)) num.insert(num.begin(), integer_text(coeff.numer()));
         if (!coeff.denom().is_equal(1)) den.insert(den.begin(), integer_text(coeff.denom()));
     }
-    std::sort(num.begin() + (num.empty() || !std::isdigit(static_cast<unsigned char>(num[0][0])) ? 0 : 1),
+    std::sort(num.begin() +
+                  (num.empty() || !std::isdigit(static_cast<unsigned char>(num[0][0])) ? 0 : 1),
               num.end());
-    std::sort(den.begin() + (den.empty() || !std::isdigit(static_cast<unsigned char>(den[0][0])) ? 0 : 1),
+    std::sort(den.begin() +
+                  (den.empty() || !std::isdigit(static_cast<unsigned char>(den[0][0])) ? 0 : 1),
               den.end());
     const auto join = [&](const std::vector<std::string>& v) {
         std::string s;
-        for (std::size_t i = 0; i < v.size(); ++i) s += (i ? times() : "") + v[i];
+        for (std::size_t i = 0; i < v.size(); ++i)
+            s += (i ? times() : "") + v[i];
         return s;
     };
     std::string s = num.empty() ? "1" : join(num);
@@ -208,7 +216,6 @@ std::string latex_printer::integer_power(const std::string& base, int n) const {
     return n == 1 ? base : base + "^{" + std::to_string(n) + "}";
 }
 
-
 std::string expression_printer::power(const ex& base, const ex& exponent, int context) const {
     if (exponent.is_equal(GiNaC::numeric(1, 2))) return function("sqrt", {print(base, 0)});
     std::string s = print(base, 3) + "**" + print(exponent, 3);
@@ -218,7 +225,8 @@ std::string expression_printer::power(const ex& base, const ex& exponent, int co
 std::string expression_printer::function(const std::string& name,
                                          const std::vector<std::string>& args) const {
     std::string s = name + "(";
-    for (std::size_t i = 0; i < args.size(); ++i) s += (i ? ", " : "") + args[i];
+    for (std::size_t i = 0; i < args.size(); ++i)
+        s += (i ? ", " : "") + args[i];
     return s + ")";
 }
 
@@ -241,12 +249,13 @@ std::string latex_printer::symbol(const GiNaC::symbol& s) const {
     const std::string name = s.get_name();
     if (std::regex_match(name, m, with_index)) return m[1].str() + "_{" + m[2].str() + "}";
     if (name.size() == 1) return name;
-    static const std::vector<std::string> greek{"alpha", "beta",  "gamma", "delta", "epsilon",
-                                                "kappa", "lambda", "mu",   "nu",    "rho",
-                                                "sigma", "tau",   "omega", "Omega", "eta"};
+    static const std::vector<std::string> greek{"alpha", "beta",   "gamma", "delta", "epsilon",
+                                                "kappa", "lambda", "mu",    "nu",    "rho",
+                                                "sigma", "tau",    "omega", "Omega", "eta"};
     if (std::find(greek.begin(), greek.end(), name) != greek.end()) return "\\" + name;
     std::string escaped;
-    for (char c : name) escaped += c == '_' ? std::string("\\_") : std::string(1, c);
+    for (char c : name)
+        escaped += c == '_' ? std::string("\\_") : std::string(1, c);
     return "\\mathrm{" + escaped + "}";
 }
 
@@ -273,16 +282,20 @@ std::string latex_printer::power(const ex& base, const ex& exponent, int context
 
 std::string latex_printer::function(const std::string& name,
                                     const std::vector<std::string>& args) const {
-    static const std::vector<std::string> known{"sin", "cos", "tan", "exp", "log", "sinh",
+    static const std::vector<std::string> known{"sin",  "cos",  "tan",    "exp",    "log",   "sinh",
                                                 "cosh", "tanh", "arcsin", "arccos", "arctan"};
     std::string head;
     if (name == "sqrt") return "\\sqrt{" + args.at(0) + "}";
     if (name == "abs") return "\\left|" + args.at(0) + "\\right|";
-    if (name == "asin" || name == "acos" || name == "atan") head = "\\arc" + name.substr(1);
-    else if (std::find(known.begin(), known.end(), name) != known.end()) head = "\\" + name;
-    else head = "\\operatorname{" + name + "}";
+    if (name == "asin" || name == "acos" || name == "atan")
+        head = "\\arc" + name.substr(1);
+    else if (std::find(known.begin(), known.end(), name) != known.end())
+        head = "\\" + name;
+    else
+        head = "\\operatorname{" + name + "}";
     std::string s = head + "\\left(";
-    for (std::size_t i = 0; i < args.size(); ++i) s += (i ? ", " : "") + args[i];
+    for (std::size_t i = 0; i < args.size(); ++i)
+        s += (i ? ", " : "") + args[i];
     return s + "\\right)";
 }
 
@@ -290,8 +303,11 @@ std::string latex_printer::fraction(const std::string& num, const std::string& d
     return "\\frac{" + num + "}{" + den + "}";
 }
 
-
-std::string to_text(const ex& e) { return text_printer()(e); }
-std::string to_latex(const ex& e) { return latex_printer()(e); }
+std::string to_text(const ex& e) {
+    return text_printer()(e);
+}
+std::string to_latex(const ex& e) {
+    return latex_printer()(e);
+}
 
 } // namespace rotgen

@@ -36,7 +36,8 @@ class expression_printer {
     virtual std::string sum(const GiNaC::ex& e, int context, bool negate = false) const;
     virtual std::string product(const GiNaC::ex& e, int context) const;
     virtual std::string power(const GiNaC::ex& base, const GiNaC::ex& exponent, int context) const;
-    virtual std::string function(const std::string& name, const std::vector<std::string>& args) const;
+    virtual std::string function(const std::string& name,
+                                 const std::vector<std::string>& args) const;
 
     // Pieces the styles differ in.
     virtual std::string times() const { return "*"; }
@@ -56,15 +57,14 @@ class latex_printer : public expression_printer {
     std::string symbol(const GiNaC::symbol& s) const override;
     std::string constant(const GiNaC::constant& c) const override;
     std::string power(const GiNaC::ex& base, const GiNaC::ex& exponent, int context) const override;
-    std::string function(const std::string& name, const std::vector<std::string>& args) const override;
+    std::string function(const std::string& name,
+                         const std::vector<std::string>& args) const override;
     std::string times() const override { return " "; }
     std::string integer_power(const std::string& base, int n) const override;
     std::string fraction(const std::string& num, const std::string& den) const override;
 };
 
-
 std::string to_text(const GiNaC::ex& e);
 std::string to_latex(const GiNaC::ex& e);
-
 
 } // namespace rotgen

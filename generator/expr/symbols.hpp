@@ -31,8 +31,8 @@ const coordinate_symbols& symbols();
 // Index 0, 1, 2 -> "phi", "theta", "psi".
 const std::array<std::string, 3>& coordinate_names();
 
-// Names a model may not use for a parameter, with the reason ("a coordinate", "a GiNaC constant", ...);
-// empty when the name is free.
+// Names a model may not use for a parameter, with the reason ("a coordinate", "a GiNaC constant",
+// ...); empty when the name is free.
 std::string reserved_reason(const std::string& name);
 
 // Functions the expression language knows, as written in model files.

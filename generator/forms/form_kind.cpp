@@ -4,10 +4,14 @@ namespace rotgen {
 
 const char* to_string(form_kind f) {
     switch (f) {
-    case form_kind::lagrangian: return "lagrangian";
-    case form_kind::hamiltonian: return "hamiltonian";
-    case form_kind::reduced: return "reduced";
-    case form_kind::body: return "body";
+    case form_kind::lagrangian:
+        return "lagrangian";
+    case form_kind::hamiltonian:
+        return "hamiltonian";
+    case form_kind::reduced:
+        return "reduced";
+    case form_kind::body:
+        return "body";
     }
     return "?";
 }

@@ -43,11 +43,11 @@
 // alone (kind, printed names and exact numbers, children's digests, commutative children sorted);
 // children are ordered by digest, temporaries are numbered t000, t001, ... in a depth-first
 // traversal from the outputs in that order, and the printer (emit/printer.hpp) sorts the terms of
-// sums and factors of products by their printed text. Same expressions in, same program (and same bytes) out. (Two
-// different nodes with one digest would be a collision: lowering throws rather than guess.)
-// normal()'s output also changes from run to run, but only by a constant factor of numerator and
-// denominator, which lowering fixes (expanded, the denominator's integer content 1, the sign by
-// the DAG's leading-term rule).
+// sums and factors of products by their printed text. Same expressions in, same program (and same
+// bytes) out. (Two different nodes with one digest would be a collision: lowering throws rather
+// than guess.) normal()'s output also changes from run to run, but only by a constant factor of
+// numerator and denominator, which lowering fixes (expanded, the denominator's integer content 1,
+// the sign by the DAG's leading-term rule).
 #pragma once
 
 #include <ginac/ginac.h>

@@ -25,7 +25,8 @@ const std::string& compiler_identity() {
     static const std::string id = [] {
         int status = 0;
         const std::string v = run_capture("'" + compiler() + "' --version", &status);
-        if (status != 0) throw std::runtime_error("no working C++ compiler ('" + compiler() + "'): " + v);
+        if (status != 0)
+            throw std::runtime_error("no working C++ compiler ('" + compiler() + "'): " + v);
         return v;
     }();
     return id;
@@ -94,8 +95,8 @@ loaded_library compile_and_load(const std::string& source, const std::string& na
         const std::string tmp_so = base + ".so.tmp" + std::to_string(::getpid());
         register_temporary(tmp_so);
         int status = 0;
-        const std::string log =
-            run_capture("'" + compiler() + "' " + flags + " '" + src + "' -o '" + tmp_so + "'", &status);
+        const std::string log = run_capture(
+            "'" + compiler() + "' " + flags + " '" + src + "' -o '" + tmp_so + "'", &status);
         if (status != 0) {
             std::remove(tmp_so.c_str());
             forget_temporary(tmp_so);
@@ -105,7 +106,8 @@ loaded_library compile_and_load(const std::string& source, const std::string& na
         forget_temporary(tmp_so);
     }
     lib.m_handle = ::dlopen(lib.m_path.c_str(), RTLD_NOW | RTLD_LOCAL);
-    if (!lib.m_handle) throw std::runtime_error(std::string("cannot load ") + lib.m_path + ": " + ::dlerror());
+    if (!lib.m_handle)
+        throw std::runtime_error(std::string("cannot load ") + lib.m_path + ": " + ::dlerror());
     return lib;
 }
 

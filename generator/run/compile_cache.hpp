@@ -1,8 +1,8 @@
 // rotgen — compile generated C++ with the system compiler into a cached shared object and load it.
 //
 // The cache key is a hash of the source, the compiler's identity (`$CXX --version`) and the flags,
-// so a changed model, option, generator or compiler builds anew. Cache directory: $ROTGEN_CACHE_DIR,
-// else $XDG_CACHE_HOME/rotgen, else ~/.cache/rotgen.
+// so a changed model, option, generator or compiler builds anew. Cache directory:
+// $ROTGEN_CACHE_DIR, else $XDG_CACHE_HOME/rotgen, else ~/.cache/rotgen.
 #pragma once
 
 #include <cstdint>

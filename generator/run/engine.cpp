@@ -35,9 +35,9 @@ double number(const GiNaC::ex& e, const GiNaC::exmap& at) {
 std::vector<double> sample_times(const scene_spec& scene) {
     std::vector<double> times(static_cast<std::size_t>(scene.samples));
     for (std::size_t i = 0; i < times.size(); ++i)
-        times[i] = i + 1 == times.size()
-                       ? scene.t_end
-                       : scene.t_start + (scene.t_end - scene.t_start) * double(i) / double(times.size() - 1);
+        times[i] = i + 1 == times.size() ? scene.t_end
+                                         : scene.t_start + (scene.t_end - scene.t_start) *
+                                                               double(i) / double(times.size() - 1);
     return times;
 }
 
@@ -45,7 +45,8 @@ std::vector<double> sample_times(const scene_spec& scene) {
 // from f): omega = J q_dot (5.30).
 initial_kinematics continuation(const Eigen::VectorXd& y, const Eigen::VectorXd& dydt) {
     initial_kinematics k;
-    for (int i = 0; i < 3; ++i) k.q[i] = y[i], k.qd[i] = dydt[i];
+    for (int i = 0; i < 3; ++i)
+        k.q[i] = y[i], k.qd[i] = dydt[i];
     const double st = std::sin(y[1]), ct = std::cos(y[1]), sp = std::sin(y[2]), cp = std::cos(y[2]);
     const double qd0 = dydt[0], qd1 = dydt[1], qd2 = dydt[2];
     k.omega = {qd0 * st * sp + qd1 * cp, qd0 * st * cp - qd1 * sp, qd0 * ct + qd2};
@@ -56,7 +57,8 @@ initial_kinematics continuation(const Eigen::VectorXd& y, const Eigen::VectorXd&
 
 void add_stats(step_stats& s, const step_stats& more) {
     s.steps += more.steps, s.accepted += more.accepted, s.rejected += more.rejected;
-    s.rhs_evals += more.rhs_evals, s.jac_evals += more.jac_evals, s.factorisations += more.factorisations;
+    s.rhs_evals += more.rhs_evals, s.jac_evals += more.jac_evals,
+        s.factorisations += more.factorisations;
 }
 
 class scene_run {
@@ -73,8 +75,8 @@ class scene_run {
     compiled_form& compile(form_kind form, bool orientation);
     Eigen::VectorXd state_of(const form_expressions& f, const initial_kinematics& k) const;
     std::vector<double> parameters_of(const form_expressions& f, const initial_kinematics& k) const;
-    void check_finite_start(const initial_kinematics& k, const compiled_form& cf, const Eigen::VectorXd& y,
-                            const std::vector<double>& parameters) const;
+    void check_finite_start(const initial_kinematics& k, const compiled_form& cf,
+                            const Eigen::VectorXd& y, const std::vector<double>& parameters) const;
     enum class next { done, body, euler }; // after a segment: finished, or continue in that chart
     next integrate_segment(Eigen::VectorXd& y, double t_from);
     void switch_chart(next to, Eigen::VectorXd& y, std::vector<double>& parameters, double& t_from);
@@ -88,8 +90,8 @@ class scene_run {
     std::map<std::pair<form_kind, bool>, form_expressions> m_forms; // each built once
     std::vector<compiled_form> m_compiled;
     std::vector<invariant> m_invariants;
-    bool m_left_chart = false; // the last segment stopped at a sample to change chart (not failed)
-    std::size_t m_current = 0; // the form integrating now (index into m_compiled)
+    bool m_left_chart = false;  // the last segment stopped at a sample to change chart (not failed)
+    std::size_t m_current = 0;  // the form integrating now (index into m_compiled)
     std::size_t m_switches = 0; // changes of chart so far
     bool m_can_switch = false, m_start_in_body = false, m_orientation = false;
     std::vector<double> m_times;
@@ -104,9 +106,15 @@ const form_expressions& scene_run::built(form_kind form, bool orientation) {
     const auto key = std::make_pair(form, form == form_kind::body && orientation);
     auto it = m_forms.find(key);
     if (it == m_forms.end())
-        it = m_forms.emplace(key, m_timings.time("forms", to_string(form), [&] {
-                        return build_form(m_scene.model, m_d, form, lagrangian_strategy::explicit_inverse, key.second);
-                    })).first;
+        it = m_forms
+                 .emplace(key, m_timings.time("forms", to_string(form),
+                                              [&] {
+                                                  return build_form(
+                                                      m_scene.model, m_d, form,
+                                                      lagrangian_strategy::explicit_inverse,
+                                                      key.second);
+                                              }))
+                 .first;
     return it->second;
 }
 
@@ -114,22 +122,25 @@ const form_expressions& scene_run::built(form_kind form, bool orientation) {
 // through the chart itself; a start near the singularity starts in the body form.
 void scene_run::decide_chart() {
     const form_kind form = m_scene.form;
-    m_can_switch = m_scene.switch_chart && (form == form_kind::lagrangian || form == form_kind::hamiltonian) &&
+    m_can_switch = m_scene.switch_chart &&
+                   (form == form_kind::lagrangian || form == form_kind::hamiltonian) &&
                    !built(form_kind::body, true).uses_euler_chart;
     const bool euler_form = form != form_kind::body;
     const double sin_theta0 = std::abs(std::sin(m_scene.angles[1]));
     if (euler_form && sin_theta0 < 1e-10 && !m_can_switch)
-        throw user_error(m_scene.initial_where,
-                         "initial theta = " + format_number(m_scene.angles[1]) +
-                             " is the gimbal-lock singularity of the Euler-angle forms (sin theta = "
-                             "0); use form: body" +
-                             (form == form_kind::reduced || !m_scene.switch_chart
-                                  ? ""
-                                  : " (this model's body form goes through the Euler-angle chart too)"));
+        throw user_error(
+            m_scene.initial_where,
+            "initial theta = " + format_number(m_scene.angles[1]) +
+                " is the gimbal-lock singularity of the Euler-angle forms (sin theta = "
+                "0); use form: body" +
+                (form == form_kind::reduced || !m_scene.switch_chart
+                     ? ""
+                     : " (this model's body form goes through the Euler-angle chart too)"));
     m_start_in_body = euler_form && m_can_switch && sin_theta0 < switch_below;
     if (m_start_in_body)
-        m_result.chart_note = "started in the body form (initial |sin theta| = " + short_number(sin_theta0) +
-                              " < " + short_number(switch_below) + ")";
+        m_result.chart_note =
+            "started in the body form (initial |sin theta| = " + short_number(sin_theta0) + " < " +
+            short_number(switch_below) + ")";
 }
 
 // Without `record:` the scene records phi, theta, psi and energy; the reduced form has no ignored
@@ -141,7 +152,8 @@ void scene_run::default_record_follows_form() {
     for (std::size_t r = m_scene.record.size(); r-- > 0;)
         if (!form_gives(f, m_scene.record[r])) {
             m_scene.record.erase(m_scene.record.begin() + static_cast<std::ptrdiff_t>(r));
-            m_scene.record_where.erase(m_scene.record_where.begin() + static_cast<std::ptrdiff_t>(r));
+            m_scene.record_where.erase(m_scene.record_where.begin() +
+                                       static_cast<std::ptrdiff_t>(r));
         }
 }
 
@@ -150,7 +162,8 @@ void scene_run::list_invariants() {
     const model_spec& spec = m_scene.model;
     m_invariants = {{"energy", !spec.has_damping && !spec.has_torque}};
     for (int i : m_d.cyclic)
-        if (m_scene.form != form_kind::reduced) m_invariants.push_back({"p_" + coordinate_names()[i], true});
+        if (m_scene.form != form_kind::reduced)
+            m_invariants.push_back({"p_" + coordinate_names()[i], true});
     m_orientation = needs_orientation(m_scene, m_can_switch) ||
                     (m_scene.form == form_kind::body && m_invariants.size() > 1);
 }
@@ -178,17 +191,20 @@ Eigen::VectorXd scene_run::state_of(const form_expressions& f, const initial_kin
         const std::string& name = f.state[s].name;
         const bool needs_rates = name.find("_dot") != std::string::npos || name.rfind("p_", 0) == 0;
         if (needs_rates && !k.have_rates)
-            throw user_error(m_scene.initial_where, "at theta = 0 the " + std::string(to_string(m_scene.form)) +
-                                                        " form cannot start from body omega; use form: body");
+            throw user_error(m_scene.initial_where,
+                             "at theta = 0 the " + std::string(to_string(m_scene.form)) +
+                                 " form cannot start from body omega; use form: body");
         y[static_cast<Eigen::Index>(s)] = static_cast<double>(state_value(k, name));
     }
     return y;
 }
 
 // The form's parameters: the scene's values of the model's, and the conserved momenta (reduced).
-std::vector<double> scene_run::parameters_of(const form_expressions& f, const initial_kinematics& k) const {
+std::vector<double> scene_run::parameters_of(const form_expressions& f,
+                                             const initial_kinematics& k) const {
     std::vector<double> values;
-    for (const auto& fp : f.parameters) values.push_back(static_cast<double>(scene_parameter_value(m_scene, k, fp.name)));
+    for (const auto& fp : f.parameters)
+        values.push_back(static_cast<double>(scene_parameter_value(m_scene, k, fp.name)));
     return values;
 }
 
@@ -196,14 +212,16 @@ std::vector<double> scene_run::parameters_of(const form_expressions& f, const in
 // the run computes from them: a rate of 1e300 squares to inf in the energy. Before the run: the
 // form's state and parameters, f(t0, y0), and the invariants at t0 must be finite — as the kernels
 // compute them — or the scene's `initial` is the error.
-void scene_run::check_finite_start(const initial_kinematics& k, const compiled_form& cf, const Eigen::VectorXd& y,
+void scene_run::check_finite_start(const initial_kinematics& k, const compiled_form& cf,
+                                   const Eigen::VectorXd& y,
                                    const std::vector<double>& parameters) const {
     const auto check = [&](const std::string& what, double v, const std::string& in = "") {
         if (std::isfinite(v)) return;
-        throw user_error(m_scene.initial_where,
-                         "initial values too large for double precision: " + what + " = " + format_number(v) + in +
-                             " at t = " + format_double(m_scene.t_start) +
-                             "; give smaller initial rates or momenta, or rescale the model's units");
+        throw user_error(
+            m_scene.initial_where,
+            "initial values too large for double precision: " + what + " = " + format_number(v) +
+                in + " at t = " + format_double(m_scene.t_start) +
+                "; give smaller initial rates or momenta, or rescale the model's units");
     };
     const auto& q = coordinate_names();
     if (k.have_rates)
@@ -213,8 +231,10 @@ void scene_run::check_finite_start(const initial_kinematics& k, const compiled_f
             check("omega" + std::to_string(i + 1), static_cast<double>(k.omega[i]));
         }
     const form_expressions& f = cf.f;
-    for (std::size_t i = 0; i < f.state.size(); ++i) check(f.state[i].name, y[static_cast<Eigen::Index>(i)]);
-    for (std::size_t i = 0; i < f.parameters.size(); ++i) check(f.parameters[i].name, parameters[i]);
+    for (std::size_t i = 0; i < f.state.size(); ++i)
+        check(f.state[i].name, y[static_cast<Eigen::Index>(i)]);
+    for (std::size_t i = 0; i < f.parameters.size(); ++i)
+        check(f.parameters[i].name, parameters[i]);
     Eigen::VectorXd dydt(y.size());
     cf.sys.rhs(m_scene.t_start, y.data(), dydt.data());
     for (std::size_t i = 0; i < f.rate_names.size(); ++i)
@@ -229,11 +249,13 @@ void scene_run::check_finite_start(const initial_kinematics& k, const compiled_f
 // The initial kinematics in the Euler-angle chart from a body-form state (quaternion, omega):
 // q_dot = J^{-1} omega, p = J^T I omega (5.30); needs |sin theta| away from 0.
 initial_kinematics from_body(const Eigen::VectorXd& y, const Eigen::Matrix3d& inertia) {
-    const euler_angles<double> e = euler_from_quaternion(Eigen::Quaterniond(y[0], y[1], y[2], y[3]));
+    const euler_angles<double> e =
+        euler_from_quaternion(Eigen::Quaterniond(y[0], y[1], y[2], y[3]));
     initial_kinematics k;
     k.q = {e.phi, e.theta, e.psi};
     const Eigen::Vector3d w(y[4], y[5], y[6]), l = inertia * w;
-    const double st = std::sin(e.theta), ct = std::cos(e.theta), sp = std::sin(e.psi), cp = std::cos(e.psi);
+    const double st = std::sin(e.theta), ct = std::cos(e.theta), sp = std::sin(e.psi),
+                 cp = std::cos(e.psi);
     const double phi_dot = (w[0] * sp + w[1] * cp) / st;
     k.qd = {phi_dot, w[0] * cp - w[1] * sp, w[2] - phi_dot * ct};
     k.p = {st * sp * l[0] + st * cp * l[1] + ct * l[2], cp * l[0] - sp * l[1], l[2]};
@@ -245,7 +267,8 @@ initial_kinematics from_body(const Eigen::VectorXd& y, const Eigen::Matrix3d& in
 // |sin theta| of a state of the given form (Euler-angle forms: theta is y[1]).
 double sin_theta_of(form_kind form, const Eigen::VectorXd& y) {
     if (form != form_kind::body) return std::abs(std::sin(y[1]));
-    return std::abs(std::sin(euler_from_quaternion(Eigen::Quaterniond(y[0], y[1], y[2], y[3])).theta));
+    return std::abs(
+        std::sin(euler_from_quaternion(Eigen::Quaterniond(y[0], y[1], y[2], y[3])).theta));
 }
 
 // Integrates the current form from t_from over the remaining sample times, and says where to go
@@ -256,27 +279,33 @@ double sin_theta_of(form_kind form, const Eigen::VectorXd& y) {
 scene_run::next scene_run::integrate_segment(Eigen::VectorXd& y, double t_from) {
     compiled_form& cf = m_compiled[m_current];
     const bool euler_chart = cf.form == form_kind::lagrangian || cf.form == form_kind::hamiltonian;
-    const std::vector<double> times(m_times.begin() + static_cast<std::ptrdiff_t>(m_next_sample), m_times.end());
+    const std::vector<double> times(m_times.begin() + static_cast<std::ptrdiff_t>(m_next_sample),
+                                    m_times.end());
     const std::size_t first_sample = m_samples.size();
     m_timings.time("integrate", to_string(cf.form), [&] {
         // returning false stops the run at this sample: the chart is left there
-        m_last = integrate(cf.sys, *m_method, t_from, y, times, [&](double t, const Eigen::VectorXd& yt) {
-            m_samples.push_back({t, yt, m_current});
-            if (m_on_sample) m_on_sample(t);
-            if (!m_can_switch || m_samples.size() <= first_sample + 1 || t >= m_scene.t_end) return true;
-            const double st = sin_theta_of(cf.form, yt);
-            return !(euler_chart ? st < switch_below : st > switch_back_above);
-        });
+        m_last = integrate(
+            cf.sys, *m_method, t_from, y, times, [&](double t, const Eigen::VectorXd& yt) {
+                m_samples.push_back({t, yt, m_current});
+                if (m_on_sample) m_on_sample(t);
+                if (!m_can_switch || m_samples.size() <= first_sample + 1 || t >= m_scene.t_end)
+                    return true;
+                const double st = sin_theta_of(cf.form, yt);
+                return !(euler_chart ? st < switch_below : st > switch_back_above);
+            });
     });
     m_left_chart = m_last.code == status::stopped_by_observer;
     add_stats(m_result.stats, m_last.stats);
-    if (!m_can_switch || m_samples.empty() || m_samples.back().t >= m_scene.t_end) return next::done;
+    if (!m_can_switch || m_samples.empty() || m_samples.back().t >= m_scene.t_end)
+        return next::done;
     if (m_left_chart) return euler_chart ? next::body : next::euler;
-    return euler_chart && !m_last.ok() && sin_theta_of(cf.form, y) < switch_below ? next::body : next::done;
+    return euler_chart && !m_last.ok() && sin_theta_of(cf.form, y) < switch_below ? next::body
+                                                                                  : next::done;
 }
 
 // Continues from the last sample in the other chart.
-void scene_run::switch_chart(next to, Eigen::VectorXd& y, std::vector<double>& parameters, double& t_from) {
+void scene_run::switch_chart(next to, Eigen::VectorXd& y, std::vector<double>& parameters,
+                             double& t_from) {
     const sample& last = m_samples.back();
     const compiled_form& from = m_compiled[m_current];
     initial_kinematics k;
@@ -288,14 +317,17 @@ void scene_run::switch_chart(next to, Eigen::VectorXd& y, std::vector<double>& p
         k = from_body(last.y, m_inertia);
     }
     const double st = sin_theta_of(from.form, last.y);
-    const std::string why = !m_left_chart ? "; the Euler-angle run failed: " + m_last.message
+    const std::string why = !m_left_chart      ? "; the Euler-angle run failed: " + m_last.message
                             : to == next::body ? " < " + short_number(switch_below)
                                                : " > " + short_number(switch_back_above);
     if (m_switches++ == 0)
-        m_result.chart_note += std::string(m_result.chart_note.empty() ? "" : "; ") + "switched to the " +
-                               (to == next::body ? "body" : to_string(m_scene.form)) + " form at t = " +
-                               short_number(last.t) + " (|sin theta| = " + short_number(st) + why + ")";
-    const compiled_form& next_form = to == next::body ? compile(form_kind::body, true) : compile(m_scene.form, m_orientation);
+        m_result.chart_note += std::string(m_result.chart_note.empty() ? "" : "; ") +
+                               "switched to the " +
+                               (to == next::body ? "body" : to_string(m_scene.form)) +
+                               " form at t = " + short_number(last.t) +
+                               " (|sin theta| = " + short_number(st) + why + ")";
+    const compiled_form& next_form =
+        to == next::body ? compile(form_kind::body, true) : compile(m_scene.form, m_orientation);
     y = state_of(next_form.f, k);
     parameters = parameters_of(next_form.f, k);
     t_from = last.t;
@@ -305,7 +337,8 @@ void scene_run::switch_chart(next to, Eigen::VectorXd& y, std::vector<double>& p
 // Records and invariants at every sample, each by the form that integrated it.
 void scene_run::record() {
     m_result.invariants.clear();
-    for (const auto& inv : m_invariants) m_result.invariants.push_back({inv, 0, 0});
+    for (const auto& inv : m_invariants)
+        m_result.invariants.push_back({inv, 0, 0});
     for (std::size_t k = 0; k < m_samples.size(); ++k) {
         const compiled_form& cf = m_compiled[m_samples[k].form];
         const Eigen::VectorXd& ys = m_samples[k].y;
@@ -313,7 +346,8 @@ void scene_run::record() {
         cf.record(m_samples[k].t, ys.data(), out.data());
         std::optional<euler_angles<double>> e;
         std::vector<double> row{m_samples[k].t};
-        for (const auto& src : cf.columns) row.push_back(source_value(src, ys, out, m_inertia, e));
+        for (const auto& src : cf.columns)
+            row.push_back(source_value(src, ys, out, m_inertia, e));
         m_result.rows.push_back(std::move(row));
         for (std::size_t i = 0; i < m_invariants.size(); ++i) {
             invariant_drift& d = m_result.invariants[i];
@@ -332,18 +366,22 @@ run_result scene_run::run() {
     for (std::size_t i = 0; i < spec.parameters.size(); ++i)
         parameter_values[spec.parameters[i].symbol] = float_numeric(m_scene.parameters[i]);
     for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) m_inertia(i, j) = number(spec.inertia[i][j], parameter_values);
+        for (int j = 0; j < 3; ++j)
+            m_inertia(i, j) = number(spec.inertia[i][j], parameter_values);
     decide_chart();
     const initial_kinematics k0 = initial_kinematics_of(m_scene, m_d);
     if (m_scene.initial == initial_kind::momenta && !k0.have_rates)
-        throw user_error(m_scene.initial_where, "momenta cannot give the rates at theta = 0 or pi (the mass matrix is "
-                                                "singular there); give body omega1..3 instead");
+        throw user_error(m_scene.initial_where,
+                         "momenta cannot give the rates at theta = 0 or pi (the mass matrix is "
+                         "singular there); give body omega1..3 instead");
     default_record_follows_form();
     list_invariants();
     m_result.record = m_scene.record;
-    const compiled_form& first = compile(m_start_in_body ? form_kind::body : m_scene.form, m_orientation);
+    const compiled_form& first =
+        compile(m_start_in_body ? form_kind::body : m_scene.form, m_orientation);
     for (const auto& name : m_scene.record)
-        for (const auto& c : record_columns(name)) m_result.columns.push_back(c);
+        for (const auto& c : record_columns(name))
+            m_result.columns.push_back(c);
     m_result.state_size = first.f.state.size();
 
     const integrator_spec& ig = m_scene.integrator;
@@ -365,8 +403,10 @@ run_result scene_run::run() {
         if (to != next::done) switch_chart(to, y, parameters, t_from);
     }
     if (m_switches > 1)
-        m_result.chart_note += "; " + std::to_string(m_switches) + " changes of chart in all (to the body form below " +
-                               short_number(switch_below) + ", back above " + short_number(switch_back_above) + ")";
+        m_result.chart_note += "; " + std::to_string(m_switches) +
+                               " changes of chart in all (to the body form below " +
+                               short_number(switch_below) + ", back above " +
+                               short_number(switch_back_above) + ")";
     m_result.ok = m_last.ok();
     m_result.message = m_last.message;
     m_result.integrate_seconds = m_timings.total("integrate");
@@ -376,7 +416,8 @@ run_result scene_run::run() {
 
 } // namespace
 
-run_result run_scene(const scene_spec& scene, stage_timings& timings, const sample_callback& on_sample) {
+run_result run_scene(const scene_spec& scene, stage_timings& timings,
+                     const sample_callback& on_sample) {
     return scene_run(scene, timings, on_sample).run();
 }
 

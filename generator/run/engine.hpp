@@ -23,23 +23,23 @@ namespace rotgen {
 
 struct invariant_drift {
     invariant what;
-    double first = 0; // at the first sample
-    double drift = 0; // max |v(t) - v(t0)| over the samples
+    double first = 0;   // at the first sample
+    double drift = 0;   // max |v(t) - v(t0)| over the samples
     double largest = 0; // max |v(t)| over the samples: the scale `first` is compared with
 };
 
 struct run_result {
-    std::size_t state_size = 0;       // of the scene's form (the first form run)
-    std::vector<std::string> record;  // the recorded quantities (the scene's, or its default)
-    std::vector<std::string> columns; // the recorded columns, after t (body_x expands to 3)
+    std::size_t state_size = 0;            // of the scene's form (the first form run)
+    std::vector<std::string> record;       // the recorded quantities (the scene's, or its default)
+    std::vector<std::string> columns;      // the recorded columns, after t (body_x expands to 3)
     std::vector<std::vector<double>> rows; // t, then one value per column, per sample
     std::vector<invariant_drift> invariants;
     step_stats stats;
-    std::string chart_note;         // the chart switch, if one happened (empty otherwise)
-    bool ok = true;                 // the integration reached the end time
-    std::string message;            // why not, when !ok
+    std::string chart_note; // the chart switch, if one happened (empty otherwise)
+    bool ok = true;         // the integration reached the end time
+    std::string message;    // why not, when !ok
     double integrate_seconds = 0;
-    bool kernels_cached = true;     // every compiled form came from the cache
+    bool kernels_cached = true; // every compiled form came from the cache
 };
 
 // Called at each sample with its time (e.g. to show progress); may be empty.
@@ -47,7 +47,8 @@ using sample_callback = std::function<void(double t)>;
 
 // Runs the scene. Throws user_error for a scene the model cannot run (an unrecordable quantity,
 // a start at the singularity that cannot be left, initial values that overflow double).
-run_result run_scene(const scene_spec& scene, stage_timings& timings, const sample_callback& on_sample = {});
+run_result run_scene(const scene_spec& scene, stage_timings& timings,
+                     const sample_callback& on_sample = {});
 
 // Whether the body form must keep the orientation (the quaternion) for this scene: a chart switch,
 // or a recorded angle, body axis, Euler-angle rate or momentum needs it. (A potential that needs

@@ -31,7 +31,8 @@ std::optional<ex> record_expression(const form_expressions& f, const std::string
 class source_finder {
   public:
     source_finder(const compiled_form& c, bool orientation, std::vector<ex>& program)
-        : m_c(c), m_body_with_angles(c.form == form_kind::body && orientation), m_program(program) {}
+        : m_c(c), m_body_with_angles(c.form == form_kind::body && orientation), m_program(program) {
+    }
 
     value_source operator()(const std::string& name, const source_location& where) {
         if (auto e = record_expression(m_c.f, name)) return compiled(*e);
@@ -41,16 +42,20 @@ class source_finder {
             if (name == q + "_dot") return {value_source::euler_rate, i};
             if (name == "p_" + q) return {value_source::canonical_momentum, i};
         }
-        throw user_error(where, "the " + std::string(to_string(m_c.form)) + " form does not give '" + name + "'");
+        throw user_error(where, "the " + std::string(to_string(m_c.form)) +
+                                    " form does not give '" + name + "'");
     }
 
     // body_x, body_y, body_z: body axis i in space axes, row i of A (three columns).
-    void body_axis(const std::string& name, const source_location& where, std::vector<value_source>& out) {
+    void body_axis(const std::string& name, const source_location& where,
+                   std::vector<value_source>& out) {
         const auto it = m_c.f.outputs.find("rotation");
         if (it == m_c.f.outputs.end())
-            throw user_error(where, "the " + std::string(to_string(m_c.form)) + " form does not give '" + name + "'");
+            throw user_error(where, "the " + std::string(to_string(m_c.form)) +
+                                        " form does not give '" + name + "'");
         const int row = name.back() - 'x';
-        for (int k = 0; k < 3; ++k) out.push_back(compiled(it->second.values[static_cast<std::size_t>(3 * row + k)]));
+        for (int k = 0; k < 3; ++k)
+            out.push_back(compiled(it->second.values[static_cast<std::size_t>(3 * row + k)]));
     }
 
   private:
@@ -70,21 +75,26 @@ std::vector<ex> record_program(const scene_spec& scene, compiled_form& c, bool o
     source_finder source(c, orientation, program);
     for (std::size_t r = 0; r < scene.record.size(); ++r) {
         const std::string& name = scene.record[r];
-        if (name.rfind("body_", 0) == 0) source.body_axis(name, scene.record_where[r], c.columns);
-        else c.columns.push_back(source(name, scene.record_where[r]));
+        if (name.rfind("body_", 0) == 0)
+            source.body_axis(name, scene.record_where[r], c.columns);
+        else
+            c.columns.push_back(source(name, scene.record_where[r]));
     }
-    for (const auto& inv : invariants) c.invariants.push_back(source(inv.name, scene.where));
+    for (const auto& inv : invariants)
+        c.invariants.push_back(source(inv.name, scene.where));
     c.outputs = program.size();
     return program;
 }
 
 // The translation unit compiled for the runtime: the header and extern "C" entry points
 // rotgen_set_parameters, rotgen_rhs, rotgen_jacobian, rotgen_record.
-std::string entry_points(const form_expressions& f, const std::string& unit, const std::vector<ex>& program) {
+std::string entry_points(const form_expressions& f, const std::string& unit,
+                         const std::vector<ex>& program) {
     std::vector<program_input> inputs;
     for (std::size_t i = 0; i < f.state.size(); ++i)
         inputs.push_back({f.state[i].symbol, f.state[i].name, "y[" + std::to_string(i) + "]"});
-    for (const auto& fp : f.parameters) inputs.push_back({fp.symbol, fp.name, "rg_p." + fp.name, fp.specialisable});
+    for (const auto& fp : f.parameters)
+        inputs.push_back({fp.symbol, fp.name, "rg_p." + fp.name, fp.specialisable});
     inputs.push_back({f.time, "t", ""});
     const lowered_program lowered = lower(program, inputs);
     const std::vector<bool> used = used_inputs(lowered);
@@ -96,33 +106,39 @@ std::string entry_points(const form_expressions& f, const std::string& unit, con
     for (std::size_t i = 0; i < f.parameters.size(); ++i)
         shim << "    rg_p." << f.parameters[i].name << " = v[" << i << "];\n";
     shim << (f.parameters.empty() ? "    (void)v;\n" : "") << "}\n"
-         << "void rotgen_rhs(double t, const double* y, double* dydt) { rg_model::rhs(t, y, dydt, rg_p); }\n"
-         << "void rotgen_jacobian(double t, const double* y, double* J) { rg_model::jacobian(t, y, J, rg_p); }\n"
+         << "void rotgen_rhs(double t, const double* y, double* dydt) { rg_model::rhs(t, y, dydt, "
+            "rg_p); }\n"
+         << "void rotgen_jacobian(double t, const double* y, double* J) { rg_model::jacobian(t, y, "
+            "J, rg_p); }\n"
          << "void rotgen_record(double t, const double* y, double* out) {\n"
          << "    using namespace std;\n    (void)t;\n    (void)y;\n    (void)out;\n";
     for (std::size_t i = 0; i < inputs.size(); ++i)
         if (used[i] && !inputs[i].definition.empty())
             shim << "    const double " << inputs[i].name << " = " << inputs[i].definition << ";\n";
     for (const auto& step : lowered.steps)
-        shim << "    const double " << step.name << " = " << print_definition(lowered, step.node, "double") << ";\n";
+        shim << "    const double " << step.name << " = "
+             << print_definition(lowered, step.node, "double") << ";\n";
     for (std::size_t i = 0; i < lowered.outputs.size(); ++i)
-        shim << "    out[" << i << "] = " << print_node(lowered, lowered.outputs[i], "double") << ";\n";
+        shim << "    out[" << i << "] = " << print_node(lowered, lowered.outputs[i], "double")
+             << ";\n";
     shim << "}\n}\n";
     return shim.str();
 }
 
 } // namespace
 
-bool form_gives(const form_expressions& f, const std::string& name) { return record_expression(f, name).has_value(); }
+bool form_gives(const form_expressions& f, const std::string& name) {
+    return record_expression(f, name).has_value();
+}
 
 void compiled_form::set_parameters(const std::vector<double>& values) const {
     using set_fn = void (*)(const double*);
     reinterpret_cast<set_fn>(lib.symbol("rotgen_set_parameters"))(values.data());
 }
 
-compiled_form compile_form(const scene_spec& scene, form_expressions f,
-                           bool orientation, const std::vector<invariant>& invariants,
-                           const std::string& command, stage_timings& timings) {
+compiled_form compile_form(const scene_spec& scene, form_expressions f, bool orientation,
+                           const std::vector<invariant>& invariants, const std::string& command,
+                           stage_timings& timings) {
     const model_spec& spec = scene.model;
     compiled_form c;
     c.form = f.form;
@@ -132,15 +148,17 @@ compiled_form compile_form(const scene_spec& scene, form_expressions f,
     if (c.form == form_kind::body && orientation) request.outputs.push_back("rotation");
     const lowered_form lowered =
         timings.time("lower", to_string(c.form), [&] { return lower_form(spec, c.f, request); });
-    const emitted_header header =
-        timings.time("emit", to_string(c.form), [&] { return emit_header(spec, lowered, {command, ""}); });
+    const emitted_header header = timings.time("emit", to_string(c.form), [&] {
+        return emit_header(spec, lowered, {command, ""});
+    });
     // The compiled kernels and the state built here must agree on the layout.
     const std::string size_decl = "state_size = " + std::to_string(c.f.state.size()) + ";";
     if (header.text.find(size_decl) == std::string::npos)
         throw std::logic_error("run: the emitted " + header.unit + " does not have " + size_decl);
     const std::vector<ex> program = record_program(scene, c, orientation, invariants);
     const std::string source = header.text + entry_points(c.f, header.unit, program);
-    c.lib = timings.time("compile", header.unit, [&] { return compile_and_load(source, header.unit); });
+    c.lib =
+        timings.time("compile", header.unit, [&] { return compile_and_load(source, header.unit); });
     c.sys.n = c.f.state.size();
     c.sys.f = reinterpret_cast<loaded_system::kernel>(c.lib.symbol("rotgen_rhs"));
     c.sys.jac = reinterpret_cast<loaded_system::kernel>(c.lib.symbol("rotgen_jacobian"));
@@ -148,19 +166,26 @@ compiled_form compile_form(const scene_spec& scene, form_expressions f,
     return c;
 }
 
-double source_value(const value_source& src, const Eigen::VectorXd& y, const std::vector<double>& out,
-                    const Eigen::Matrix3d& inertia, std::optional<euler_angles<double>>& e) {
+double source_value(const value_source& src, const Eigen::VectorXd& y,
+                    const std::vector<double>& out, const Eigen::Matrix3d& inertia,
+                    std::optional<euler_angles<double>>& e) {
     if (src.kind == value_source::compiled) return out[static_cast<std::size_t>(src.index)];
     if (!e) e = euler_from_quaternion(Eigen::Quaterniond(y[0], y[1], y[2], y[3]));
     const Eigen::Vector3d w(y[4], y[5], y[6]);
-    const double st = std::sin(e->theta), ct = std::cos(e->theta), sp = std::sin(e->psi), cp = std::cos(e->psi);
-    if (src.kind == value_source::angle) return src.index == 0 ? e->phi : src.index == 1 ? e->theta : e->psi;
+    const double st = std::sin(e->theta), ct = std::cos(e->theta), sp = std::sin(e->psi),
+                 cp = std::cos(e->psi);
+    if (src.kind == value_source::angle)
+        return src.index == 0 ? e->phi : src.index == 1 ? e->theta : e->psi;
     if (src.kind == value_source::euler_rate) {
         const double phi_dot = (w[0] * sp + w[1] * cp) / st; // undefined at theta = 0, pi
-        return src.index == 0 ? phi_dot : src.index == 1 ? w[0] * cp - w[1] * sp : w[2] - phi_dot * ct;
+        return src.index == 0   ? phi_dot
+               : src.index == 1 ? w[0] * cp - w[1] * sp
+                                : w[2] - phi_dot * ct;
     }
     const Eigen::Vector3d l = inertia * w; // p = J^T l, J of (5.30)
-    return src.index == 0 ? st * sp * l[0] + st * cp * l[1] + ct * l[2] : src.index == 1 ? cp * l[0] - sp * l[1] : l[2];
+    return src.index == 0   ? st * sp * l[0] + st * cp * l[1] + ct * l[2]
+           : src.index == 1 ? cp * l[0] - sp * l[1]
+                            : l[2];
 }
 
 } // namespace rotgen

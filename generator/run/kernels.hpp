@@ -65,9 +65,9 @@ struct compiled_form {
 // Emits, lowers and compiles (or loads from the cache) the built form `f` of the scene's model,
 // with the record program for the scene's `record` list and `invariants`. `command` stamps the
 // header. Throws user_error when the form cannot give a recorded quantity.
-compiled_form compile_form(const scene_spec& scene, form_expressions f,
-                           bool orientation, const std::vector<invariant>& invariants,
-                           const std::string& command, stage_timings& timings);
+compiled_form compile_form(const scene_spec& scene, form_expressions f, bool orientation,
+                           const std::vector<invariant>& invariants, const std::string& command,
+                           stage_timings& timings);
 
 // Whether the form itself gives the quantity `name` (a state, an output or a rate).
 bool form_gives(const form_expressions& f, const std::string& name);
@@ -76,7 +76,8 @@ bool form_gives(const form_expressions& f, const std::string& name);
 // record program, or in the body form from the quaternion and omega: the Euler angles, their
 // rates q_dot = J^{-1} omega (5.30, undefined at theta = 0, pi), p = J^T I omega. `e` caches the
 // angles between calls at one sample.
-double source_value(const value_source& src, const Eigen::VectorXd& y, const std::vector<double>& out,
-                    const Eigen::Matrix3d& inertia, std::optional<euler_angles<double>>& e);
+double source_value(const value_source& src, const Eigen::VectorXd& y,
+                    const std::vector<double>& out, const Eigen::Matrix3d& inertia,
+                    std::optional<euler_angles<double>>& e);
 
 } // namespace rotgen

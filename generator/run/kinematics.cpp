@@ -21,12 +21,14 @@ namespace {
 using GiNaC::ex;
 
 // q_dot = M(q)^{-1} p, solved in long double.
-std::array<ex, 3> rates_from_momenta(const scene_spec& scene, const derivation& d, const GiNaC::exmap& at) {
+std::array<ex, 3> rates_from_momenta(const scene_spec& scene, const derivation& d,
+                                     const GiNaC::exmap& at) {
     Eigen::Matrix<long double, 3, 3> M;
     Eigen::Matrix<long double, 3, 1> p;
     for (int i = 0; i < 3; ++i) {
         p[i] = to_long_double(exact_decimal(scene.initial_rates[i]));
-        for (int j = 0; j < 3; ++j) M(i, j) = to_long_double(d.mass_matrix[i][j].subs(at));
+        for (int j = 0; j < 3; ++j)
+            M(i, j) = to_long_double(d.mass_matrix[i][j].subs(at));
     }
     const Eigen::Matrix<long double, 3, 1> v = M.fullPivLu().solve(p);
     std::array<ex, 3> qd;
@@ -39,7 +41,8 @@ std::array<ex, 3> rates_from_momenta(const scene_spec& scene, const derivation& 
 }
 
 // q_dot = J^{-1} omega (5.30).
-std::array<ex, 3> rates_from_omega(const scene_spec& scene, const derivation& d, const GiNaC::exmap& at) {
+std::array<ex, 3> rates_from_omega(const scene_spec& scene, const derivation& d,
+                                   const GiNaC::exmap& at) {
     std::array<ex, 3> qd;
     for (int i = 0; i < 3; ++i) {
         ex r = 0;
@@ -66,13 +69,15 @@ initial_kinematics initial_kinematics_of(const scene_spec& scene, const derivati
     k.have_rates = std::abs(std::sin(scene.angles[1])) >= 1e-12;
     std::array<ex, 3> qd;
     if (scene.initial == initial_kind::rates)
-        for (int i = 0; i < 3; ++i) qd[i] = exact_decimal(scene.initial_rates[i]);
+        for (int i = 0; i < 3; ++i)
+            qd[i] = exact_decimal(scene.initial_rates[i]);
     else if (k.have_rates)
         qd = scene.initial == initial_kind::momenta ? rates_from_momenta(scene, d, at)
                                                     : rates_from_omega(scene, d, at);
     if (scene.initial == initial_kind::rates) k.have_rates = true;
     if (k.have_rates) {
-        for (int i = 0; i < 3; ++i) at[s.qd[i]] = qd[i];
+        for (int i = 0; i < 3; ++i)
+            at[s.qd[i]] = qd[i];
         for (int i = 0; i < 3; ++i) {
             k.qd[i] = to_long_double(qd[i]);
             k.p[i] = to_long_double(d.momenta[i].subs(at));
@@ -80,7 +85,8 @@ initial_kinematics initial_kinematics_of(const scene_spec& scene, const derivati
         }
     }
     if (scene.initial == initial_kind::omega)
-        for (int i = 0; i < 3; ++i) k.omega[i] = to_long_double(exact_decimal(scene.initial_rates[i]));
+        for (int i = 0; i < 3; ++i)
+            k.omega[i] = to_long_double(exact_decimal(scene.initial_rates[i]));
     k.quat = quaternion_from_euler<long double>(k.q[0], k.q[1], k.q[2]);
     return k;
 }
@@ -89,10 +95,11 @@ void check_double_range(const scene_spec& scene, const initial_kinematics& k) {
     const long double big = std::numeric_limits<double>::max();
     const auto check = [&](const std::string& what, long double v) {
         if (std::isfinite(v) && std::abs(v) <= big) return;
-        throw user_error(scene.initial_where,
-                         "initial values too large for double precision: " + what + " = " +
-                             std::to_string(static_cast<double>(v)) +
-                             "; give smaller initial rates or momenta, or rescale the model's units");
+        throw user_error(
+            scene.initial_where,
+            "initial values too large for double precision: " + what + " = " +
+                std::to_string(static_cast<double>(v)) +
+                "; give smaller initial rates or momenta, or rescale the model's units");
     };
     const auto& q = coordinate_names();
     long double twice_kinetic = 0;

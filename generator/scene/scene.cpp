@@ -8,15 +8,15 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 
 namespace rotgen {
 
 const std::vector<std::string>& recordable_names() {
     static const std::vector<std::string> names{
-        "phi",    "theta",  "psi",    "phi_dot", "theta_dot", "psi_dot", "p_phi",  "p_theta",
-        "p_psi",  "omega1", "omega2", "omega3",  "energy",    "body_x",  "body_y", "body_z"};
+        "phi",   "theta",  "psi",    "phi_dot", "theta_dot", "psi_dot", "p_phi",  "p_theta",
+        "p_psi", "omega1", "omega2", "omega3",  "energy",    "body_x",  "body_y", "body_z"};
     return names;
 }
 
@@ -33,7 +33,8 @@ bool is_decimal(const std::string& s) {
     std::size_t i = 0;
     const auto digits = [&] {
         const std::size_t from = i;
-        while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i]))) ++i;
+        while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i])))
+            ++i;
         return i - from;
     };
     if (i < s.size() && (s[i] == '+' || s[i] == '-')) ++i;
@@ -58,8 +59,9 @@ class scene_reader {
     scene_spec read() {
         std::string source;
         const YAML::Node root = load_yaml_file(m_file, &source);
-        check_keys(root, {"model", "parameters", "form", "initial", "time", "integrator", "record",
-                          "description", "switch_chart"},
+        check_keys(root,
+                   {"model", "parameters", "form", "initial", "time", "integrator", "record",
+                    "description", "switch_chart"},
                    m_file, "the scene");
         m_scene.file = m_file;
         m_scene.where = {m_file, 1, 1};
@@ -104,7 +106,8 @@ class scene_reader {
             m_model_source = source;
             return;
         }
-        if (!n.IsScalar()) throw user_error(at(n), "'model' must be a file name or a model mapping");
+        if (!n.IsScalar())
+            throw user_error(at(n), "'model' must be a file name or a model mapping");
         std::string path = n.Scalar();
         if (!path.empty() && path[0] != '/') {
             const auto slash = m_file.find_last_of('/');
@@ -112,18 +115,21 @@ class scene_reader {
         }
         std::ifstream probe(path);
         if (!probe) // located at the scene's `model:` key, which names the file
-            throw user_error(at(n), "cannot open the model file '" + path + "': " + std::strerror(errno));
+            throw user_error(at(n),
+                             "cannot open the model file '" + path + "': " + std::strerror(errno));
         m_model_root = load_yaml_file(path, &m_model_source);
         m_model_file = path;
         m_scene.model = parse_model(m_model_root, m_model_file, m_model_source);
     }
 
     void read_parameters(const YAML::Node& n) {
-        for (const auto& p : m_scene.model.parameters) m_scene.parameters.push_back(p.value);
+        for (const auto& p : m_scene.model.parameters)
+            m_scene.parameters.push_back(p.value);
         if (!n) return;
         if (!n.IsMap()) throw user_error(at(n), "'parameters' must be a mapping of name: value");
         std::vector<std::string> names;
-        for (const auto& p : m_scene.model.parameters) names.push_back(p.name);
+        for (const auto& p : m_scene.model.parameters)
+            names.push_back(p.name);
         check_keys(n, names, m_file, "parameters (of model '" + m_scene.model.name + "')");
         for (const auto& kv : n) {
             const auto it = std::find(names.begin(), names.end(), kv.first.Scalar());
@@ -150,18 +156,22 @@ class scene_reader {
         try {
             (void)parse_model(model, m_model_file, m_model_source);
         } catch (const user_error& e) {
-            throw user_error(at(overrides), "with these parameter values the model (" + m_model_file +
-                                                ") is not valid: " + e.problem());
+            throw user_error(at(overrides), "with these parameter values the model (" +
+                                                m_model_file + ") is not valid: " + e.problem());
         }
     }
 
     void read_form(const YAML::Node& n) {
         if (!n) return;
         const std::string f = n.IsScalar() ? n.Scalar() : "";
-        if (f == "lagrangian") m_scene.form = form_kind::lagrangian;
-        else if (f == "hamiltonian") m_scene.form = form_kind::hamiltonian;
-        else if (f == "reduced") m_scene.form = form_kind::reduced;
-        else if (f == "body") m_scene.form = form_kind::body;
+        if (f == "lagrangian")
+            m_scene.form = form_kind::lagrangian;
+        else if (f == "hamiltonian")
+            m_scene.form = form_kind::hamiltonian;
+        else if (f == "reduced")
+            m_scene.form = form_kind::reduced;
+        else if (f == "body")
+            m_scene.form = form_kind::body;
         else
             throw user_error(at(n), "unknown form '" + f +
                                         "' (expected lagrangian, hamiltonian, reduced or body)");
@@ -170,16 +180,16 @@ class scene_reader {
     void read_initial(const YAML::Node& n) {
         if (!n.IsMap()) throw user_error(at(n), "'initial' must be a mapping of angles and rates");
         m_scene.initial_where = at(n);
-        const std::vector<std::string> allowed{"phi",   "theta",   "psi",   "phi_dot", "theta_dot",
-                                               "psi_dot", "p_phi", "p_theta", "p_psi", "omega1",
-                                               "omega2",  "omega3"};
+        const std::vector<std::string> allowed{"phi",       "theta",   "psi",    "phi_dot",
+                                               "theta_dot", "psi_dot", "p_phi",  "p_theta",
+                                               "p_psi",     "omega1",  "omega2", "omega3"};
         check_keys(n, allowed, m_file, "initial");
         const auto& q = coordinate_names();
         for (int i = 0; i < 3; ++i)
             m_scene.angles[i] = n[q[i]] ? number(n[q[i]], "initial " + q[i]) : 0.0;
-        const std::array<std::array<std::string, 3>, 3> groups{
-            {{"phi_dot", "theta_dot", "psi_dot"}, {"p_phi", "p_theta", "p_psi"},
-             {"omega1", "omega2", "omega3"}}};
+        const std::array<std::array<std::string, 3>, 3> groups{{{"phi_dot", "theta_dot", "psi_dot"},
+                                                                {"p_phi", "p_theta", "p_psi"},
+                                                                {"omega1", "omega2", "omega3"}}};
         int chosen = -1;
         for (int g = 0; g < 3; ++g)
             for (const auto& key : groups[g])
@@ -214,7 +224,8 @@ class scene_reader {
         if (n["samples"]) {
             const double s = number(n["samples"], "time samples");
             if (s < 2 || s > 1e8 || s != std::floor(s))
-                throw user_error(at(n["samples"]), "time samples must be a whole number from 2 to 1e8");
+                throw user_error(at(n["samples"]),
+                                 "time samples must be a whole number from 2 to 1e8");
             m_scene.samples = static_cast<long>(s);
         }
     }
@@ -232,16 +243,19 @@ class scene_reader {
             ig.method = n["method"].Scalar();
             if (std::find(methods.begin(), methods.end(), ig.method) == methods.end()) {
                 const std::string best = closest_name(ig.method, methods);
-                throw user_error(at(n["method"]),
-                                 "unknown integrator '" + ig.method +
-                                     "' (expected rk4, dopri5, dop853, implicit_midpoint or rosenbrock)" +
-                                     (best.empty() ? "" : "; did you mean '" + best + "'?"));
+                throw user_error(
+                    at(n["method"]),
+                    "unknown integrator '" + ig.method +
+                        "' (expected rk4, dopri5, dop853, implicit_midpoint or rosenbrock)" +
+                        (best.empty() ? "" : "; did you mean '" + best + "'?"));
             }
         }
         const auto positive = [&](const char* key, double& value) {
             if (!n[key]) return;
             value = number(n[key], std::string("integrator ") + key);
-            if (!(value > 0)) throw user_error(at(n[key]), std::string("integrator ") + key + " must be positive");
+            if (!(value > 0))
+                throw user_error(at(n[key]),
+                                 std::string("integrator ") + key + " must be positive");
         };
         positive("rtol", ig.rtol);
         positive("atol", ig.atol);
@@ -250,7 +264,8 @@ class scene_reader {
             double m = 0;
             positive("max_steps", m);
             if (m < 1 || m > 1e15 || m != std::floor(m))
-                throw user_error(at(n["max_steps"]), "integrator max_steps must be a whole number from 1 to 1e15");
+                throw user_error(at(n["max_steps"]),
+                                 "integrator max_steps must be a whole number from 1 to 1e15");
             ig.max_steps = static_cast<long>(m);
         }
         if (ig.fixed_step() && !n["step"])
@@ -260,9 +275,11 @@ class scene_reader {
                 if (n[key])
                     throw user_error(at(n[key]), "integrator " + ig.method +
                                                      " with a fixed step has no error control: "
-                                                     "give 'step' or '" + key + "', not both");
+                                                     "give 'step' or '" +
+                                                     key + "', not both");
         if (ig.rtol < 1e-15 && !ig.fixed_step())
-            throw user_error(at(n["rtol"]), "integrator rtol below 1e-15 cannot be met in double precision");
+            throw user_error(at(n["rtol"]),
+                             "integrator rtol below 1e-15 cannot be met in double precision");
         if (ig.step > 0 && ig.step > m_scene.t_end - m_scene.t_start)
             throw user_error(at(n["step"]), "integrator step is longer than the time span");
     }
@@ -281,10 +298,12 @@ class scene_reader {
             const std::string name = item.IsScalar() ? item.Scalar() : "";
             if (std::find(allowed.begin(), allowed.end(), name) == allowed.end()) {
                 const std::string best = closest_name(name, allowed);
-                throw user_error(at(item), "cannot record '" + name + "'" +
-                                               (best.empty() ? "" : "; did you mean '" + best + "'?"));
+                throw user_error(at(item),
+                                 "cannot record '" + name + "'" +
+                                     (best.empty() ? "" : "; did you mean '" + best + "'?"));
             }
-            if (std::find(m_scene.record.begin(), m_scene.record.end(), name) != m_scene.record.end())
+            if (std::find(m_scene.record.begin(), m_scene.record.end(), name) !=
+                m_scene.record.end())
                 throw user_error(at(item), "'" + name + "' is recorded twice");
             m_scene.record.push_back(name);
             m_scene.record_where.push_back(at(item));
@@ -293,12 +312,15 @@ class scene_reader {
 
     std::string m_file;
     scene_spec m_scene;
-    YAML::Node m_model_root; // the model's mapping, its file and text (for check_model_with_overrides)
+    YAML::Node
+        m_model_root; // the model's mapping, its file and text (for check_model_with_overrides)
     std::string m_model_file, m_model_source;
 };
 
 } // namespace
 
-scene_spec load_scene(const std::string& path) { return scene_reader(path).read(); }
+scene_spec load_scene(const std::string& path) {
+    return scene_reader(path).read();
+}
 
 } // namespace rotgen

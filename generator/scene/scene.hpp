@@ -25,7 +25,6 @@ namespace rotgen {
 
 enum class initial_kind { rates, momenta, omega };
 
-
 struct integrator_spec {
     std::string method = "dop853"; // rk4 | dopri5 | dop853 | implicit_midpoint | rosenbrock
     double rtol = 1e-8, atol = 1e-10;
@@ -40,14 +39,14 @@ struct scene_spec {
     model_spec model;
     std::vector<double> parameters; // the model's parameters, in model order, with overrides
     form_kind form = form_kind::lagrangian;
-    std::array<double, 3> angles{};      // phi, theta, psi
+    std::array<double, 3> angles{}; // phi, theta, psi
     initial_kind initial = initial_kind::rates;
     std::array<double, 3> initial_rates{}; // q_dot, p, or omega, as `initial` says
     double t_start = 0, t_end = 1;
     long samples = 101;
     integrator_spec integrator;
     std::vector<std::string> record; // quantities, in order (body_z expands to 3 columns)
-    bool record_default = false;     // no `record:`: phi, theta, psi, energy, as the form gives them
+    bool record_default = false; // no `record:`: phi, theta, psi, energy, as the form gives them
     // Leave the Euler-angle chart for the body form near theta = 0, pi (lagrangian and
     // hamiltonian forms); `switch_chart: false` keeps the chart (to measure its failure).
     bool switch_chart = true;

@@ -28,17 +28,19 @@ std::string panel_of(const std::string& name) {
 }
 
 // One panel per kind of quantity, in the order first recorded; each with its gnuplot plot terms.
-panel_list panels_of(const std::string& csv, const std::vector<std::string>& record, double energy0) {
+panel_list panels_of(const std::string& csv, const std::vector<std::string>& record,
+                     double energy0) {
     panel_list panels;
     int column = 2;
     for (const auto& name : record) {
         const std::string p = panel_of(name);
-        auto it = std::find_if(panels.begin(), panels.end(), [&](const auto& x) { return x.first == p; });
+        auto it =
+            std::find_if(panels.begin(), panels.end(), [&](const auto& x) { return x.first == p; });
         if (it == panels.end()) it = panels.insert(panels.end(), {p, {}});
         for (const auto& c : record_columns(name)) {
-            const std::string y = name == "energy"
-                                      ? "($" + std::to_string(column) + " - (" + format_number(energy0) + "))"
-                                      : std::to_string(column);
+            const std::string y = name == "energy" ? "($" + std::to_string(column) + " - (" +
+                                                         format_number(energy0) + "))"
+                                                   : std::to_string(column);
             it->second.push_back("'" + csv + "' using 1:" + y + " with lines title '" + c + "'");
             ++column;
         }
@@ -51,17 +53,22 @@ panel_list panels_of(const std::string& csv, const std::vector<std::string>& rec
 std::string plot_terminal(const std::string& file, std::size_t panels) {
     const std::size_t dot = file.rfind('.');
     std::string ext = dot == std::string::npos ? "" : file.substr(dot + 1);
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    const std::size_t height = 120 + 260 * panels; // pixels (PNG, SVG); PDF: the same at 100 per inch
+    for (char& c : ext)
+        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const std::size_t height =
+        120 + 260 * panels; // pixels (PNG, SVG); PDF: the same at 100 per inch
     if (ext == "png") return "pngcairo size 1000," + std::to_string(height) + " noenhanced";
     if (ext == "svg") return "svg size 1000," + std::to_string(height) + " noenhanced";
-    if (ext == "pdf") return "pdfcairo size 10in," + std::to_string(height / 100.0).substr(0, 4) + "in noenhanced";
-    throw user_error({file}, "cannot tell the plot format from the extension '" + (ext.empty() ? "" : "." + ext) +
+    if (ext == "pdf")
+        return "pdfcairo size 10in," + std::to_string(height / 100.0).substr(0, 4) +
+               "in noenhanced";
+    throw user_error({file}, "cannot tell the plot format from the extension '" +
+                                 (ext.empty() ? "" : "." + ext) +
                                  "' (expected .png, .svg or .pdf)");
 }
 
-void plot_run(const std::string& png, const std::string& csv, const std::vector<std::string>& record,
-              const std::string& title, double energy0) {
+void plot_run(const std::string& png, const std::string& csv,
+              const std::vector<std::string>& record, const std::string& title, double energy0) {
     const panel_list panels = panels_of(csv, record, energy0);
     draw_with_gnuplot(png, [&](const std::string& output) {
         std::ostringstream script;

@@ -14,7 +14,7 @@ std::string plot_terminal(const std::string& file, std::size_t panels);
 
 // `csv`: the samples (t first, then the columns of `record` in order; may be a temporary file).
 // `energy0`: the energy at the start; its panel shows energy - energy(0), the drift.
-void plot_run(const std::string& png, const std::string& csv, const std::vector<std::string>& record,
-              const std::string& title, double energy0);
+void plot_run(const std::string& png, const std::string& csv,
+              const std::vector<std::string>& record, const std::string& title, double energy0);
 
 } // namespace rotgen

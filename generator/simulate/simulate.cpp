@@ -20,7 +20,8 @@ namespace {
 
 void write_rows(std::ostream& os, const std::vector<std::vector<double>>& rows) {
     for (const auto& row : rows) {
-        for (std::size_t i = 0; i < row.size(); ++i) os << (i ? "," : "") << format_number(row[i]);
+        for (std::size_t i = 0; i < row.size(); ++i)
+            os << (i ? "," : "") << format_number(row[i]);
         os << "\n";
     }
 }
@@ -28,7 +29,8 @@ void write_rows(std::ostream& os, const std::vector<std::vector<double>>& rows) 
 void write_csv(atomic_file& out, const run_result& r) {
     std::ostream& os = out.stream();
     os << "t";
-    for (const auto& c : r.columns) os << "," << c;
+    for (const auto& c : r.columns)
+        os << "," << c;
     os << "\n";
     write_rows(os, r.rows);
     out.commit();
@@ -40,47 +42,54 @@ void print_invariants(std::ostream& os, const run_result& r) {
     for (const auto& inv : r.invariants) {
         const std::string& name = inv.what.name;
         const bool conserved = inv.what.conserved;
-        const bool near_zero = std::abs(inv.first) <= 1e-9 * inv.largest || std::abs(inv.first) < 1e-300;
-        os << "  " << (conserved ? "drift   " : "change  ") << name << ": max |" << name << "(t) - " << name
-           << "(0)| = " << short_number(inv.drift)
+        const bool near_zero =
+            std::abs(inv.first) <= 1e-9 * inv.largest || std::abs(inv.first) < 1e-300;
+        os << "  " << (conserved ? "drift   " : "change  ") << name << ": max |" << name << "(t) - "
+           << name << "(0)| = " << short_number(inv.drift)
            << (near_zero ? " (absolute: " + name + "(0) is near 0)"
                          : " (relative " + short_number(inv.drift / std::abs(inv.first)) + ")")
            << (conserved ? "" : ", not conserved: the model is damped or driven") << "\n";
     }
     std::size_t non_finite = 0;
     for (const auto& row : r.rows)
-        for (double v : row) non_finite += std::isfinite(v) ? 0 : 1;
+        for (double v : row)
+            non_finite += std::isfinite(v) ? 0 : 1;
     if (non_finite > 0)
         os << "  note    " << non_finite << " recorded values are not finite (inf or nan): "
            << "Euler-angle rates are undefined at theta = 0 and pi\n";
 }
 
-void print_summary(std::ostream& os, const simulate_request& q, const scene_spec& scene, const run_result& r,
-                   const stage_timings& timings) {
+void print_summary(std::ostream& os, const simulate_request& q, const scene_spec& scene,
+                   const run_result& r, const stage_timings& timings) {
     const integrator_spec& ig = scene.integrator;
     const double prepare = timings.total("derive") + timings.total("forms");
-    const double compile = timings.total("lower") + timings.total("emit") + timings.total("compile");
+    const double compile =
+        timings.total("lower") + timings.total("emit") + timings.total("compile");
     os << "rotgen simulate " << q.scene << "\n"
-       << "  model   " << scene.model.name << " (" << scene.model.file << "), " << to_string(scene.form)
-       << " form, " << r.state_size << " states\n";
+       << "  model   " << scene.model.name << " (" << scene.model.file << "), "
+       << to_string(scene.form) << " form, " << r.state_size << " states\n";
     if (!r.chart_note.empty()) os << "  chart   " << r.chart_note << "\n";
     os << "  method  " << ig.method;
-    if (ig.fixed_step()) os << " step " << format_double(ig.step);
-    else os << " rtol " << format_double(ig.rtol) << " atol " << format_double(ig.atol);
+    if (ig.fixed_step())
+        os << " step " << format_double(ig.step);
+    else
+        os << " rtol " << format_double(ig.rtol) << " atol " << format_double(ig.atol);
     os << ", t " << format_double(scene.t_start) << " .. "
        << format_double(r.rows.empty() ? scene.t_start : r.rows.back()[0]) << "\n"
-       << "  steps   " << r.stats.accepted << " accepted, " << r.stats.rejected << " rejected; " << r.stats.rhs_evals
-       << " RHS and " << r.stats.jac_evals << " Jacobian evaluations, " << r.stats.factorisations
-       << " factorisations\n"
-       << "  time    " << short_number(r.integrate_seconds * 1e3) << " ms integrating; " << short_number(prepare)
-       << " s deriving, " << short_number(compile) << " s "
-       << (r.kernels_cached ? "emitting and loading the cached kernels" : "emitting and compiling the kernels")
+       << "  steps   " << r.stats.accepted << " accepted, " << r.stats.rejected << " rejected; "
+       << r.stats.rhs_evals << " RHS and " << r.stats.jac_evals << " Jacobian evaluations, "
+       << r.stats.factorisations << " factorisations\n"
+       << "  time    " << short_number(r.integrate_seconds * 1e3) << " ms integrating; "
+       << short_number(prepare) << " s deriving, " << short_number(compile) << " s "
+       << (r.kernels_cached ? "emitting and loading the cached kernels"
+                            : "emitting and compiling the kernels")
        << "\n";
     print_invariants(os, r);
 }
 
 // The plot, from the CSV written (or from a scratch CSV beside the PNG when none was asked for).
-void draw_plot(const simulate_request& q, std::string csv, const scene_spec& scene, const run_result& r) {
+void draw_plot(const simulate_request& q, std::string csv, const scene_spec& scene,
+               const run_result& r) {
     std::optional<atomic_file> scratch;
     if (csv.empty() || csv == "-") {
         scratch.emplace(q.plot + ".csv");
@@ -92,7 +101,9 @@ void draw_plot(const simulate_request& q, std::string csv, const scene_spec& sce
     for (std::size_t i = 0; i < r.columns.size(); ++i)
         if (r.columns[i] == "energy" && !r.rows.empty()) energy0 = r.rows[0][i + 1];
     plot_run(q.plot, csv, r.record,
-             scene.model.name + " (" + to_string(scene.form) + " form, " + scene.integrator.method + ")", energy0);
+             scene.model.name + " (" + to_string(scene.form) + " form, " + scene.integrator.method +
+                 ")",
+             energy0);
 }
 
 // Where the samples go: the requested file, "-" for standard output, or by default
@@ -106,18 +117,20 @@ std::string csv_path(const simulate_request& q) {
 
 // A run that could not finish: the rows so far go to <output stem>.partial.csv (never under the
 // requested name); exit status 3.
-int report_partial(const simulate_request& q, const std::string& csv, const scene_spec& scene, const run_result& r,
-                   std::ostream& summary) {
+int report_partial(const simulate_request& q, const std::string& csv, const scene_spec& scene,
+                   const run_result& r, std::ostream& summary) {
     std::string base = csv == "-" ? csv_path({q.scene, "", "", false, false}) : csv;
-    if (base.size() > 4 && base.compare(base.size() - 4, 4, ".csv") == 0) base.erase(base.size() - 4);
+    if (base.size() > 4 && base.compare(base.size() - 4, 4, ".csv") == 0)
+        base.erase(base.size() - 4);
     const std::string partial = base + ".partial.csv";
     atomic_file out(partial, {q.scene, scene.model.file});
     write_csv(out, r);
     summary << "  wrote   " << partial << " (" << r.rows.size() << " samples, partial)\n";
     const double t = r.rows.empty() ? scene.t_start : r.rows.back()[0];
-    std::cerr << "rotgen: error: " << to_string(scene.integrator_where) << ": the run stopped at t = "
-              << format_double(t) << " of " << format_double(scene.t_end) << ": " << r.message << "; the "
-              << r.rows.size() << " samples computed so far are in " << partial << "\n";
+    std::cerr << "rotgen: error: " << to_string(scene.integrator_where)
+              << ": the run stopped at t = " << format_double(t) << " of "
+              << format_double(scene.t_end) << ": " << r.message << "; the " << r.rows.size()
+              << " samples computed so far are in " << partial << "\n";
     return 3;
 }
 
@@ -145,8 +158,9 @@ int simulate(const simulate_request& q) {
         return status;
     }
     timings.time("write", csv, [&] { write_csv(csv_out, r); });
-    summary << "  wrote   " << (csv == "-" ? "standard output" : csv) << " (" << r.rows.size() << " samples"
-            << (q.csv.empty() ? ", the default name: -o chooses another" : "") << ")\n";
+    summary << "  wrote   " << (csv == "-" ? "standard output" : csv) << " (" << r.rows.size()
+            << " samples" << (q.csv.empty() ? ", the default name: -o chooses another" : "")
+            << ")\n";
     if (!q.plot.empty()) {
         timings.time("plot", q.plot, [&] { draw_plot(q, csv, scene, r); });
         summary << "  wrote   " << q.plot << "\n";

@@ -8,9 +8,9 @@
 namespace rotgen {
 
 struct simulate_request {
-    std::string scene;   // the scene file
-    std::string csv;     // where to write the samples; empty: not written
-    std::string plot;    // a PNG of the recorded columns; empty: none
+    std::string scene;    // the scene file
+    std::string csv;      // where to write the samples; empty: not written
+    std::string plot;     // a PNG of the recorded columns; empty: none
     bool timings = false; // one line per pipeline stage to stderr
     bool quiet = false;   // no summary and no progress line
 };

@@ -12,9 +12,9 @@
 // default, the centre of mass).
 #pragma once
 
-#include "support/error.hpp"
 #include "expr/expr_parse.hpp"
 #include "inertia/inertia.hpp"
+#include "support/error.hpp"
 
 #include <ginac/ginac.h>
 #include <yaml-cpp/yaml.h>
@@ -44,9 +44,9 @@ struct gravity_spec {
 // matrix3, vector3: inertia.hpp
 
 struct model_spec {
-    std::string name;   // a C++ identifier: names the header and the namespace
-    std::string file;   // the path it was read from (as given)
-    std::string source; // the file's text, hashed into generated headers
+    std::string name;                  // a C++ identifier: names the header and the namespace
+    std::string file;                  // the path it was read from (as given)
+    std::string source;                // the file's text, hashed into generated headers
     std::vector<parameter> parameters; // in file order
     matrix3 inertia;                   // body axes, symmetric
     bool inertia_diagonal = true;
@@ -54,10 +54,10 @@ struct model_spec {
     // `inertia`); empty when the model gives `inertia:`.
     std::vector<part> parts;
     std::optional<body_inertia> body;
-    GiNaC::ex potential;               // the `potential:` field plus the gravity shorthand
+    GiNaC::ex potential; // the `potential:` field plus the gravity shorthand
     std::optional<gravity_spec> gravity;
-    vector3 damping;                   // generalised force -damping[i] * q_dot[i]
-    vector3 torque;                    // body-frame torque, may depend on t, q and q_dot
+    vector3 damping; // generalised force -damping[i] * q_dot[i]
+    vector3 torque;  // body-frame torque, may depend on t, q and q_dot
     bool has_damping = false;
     bool has_torque = false;
 

@@ -78,14 +78,16 @@ void remove_temporaries_on_signal() {
     ::sigaction(SIGTERM, &sa, nullptr);
 }
 
-atomic_file::atomic_file(std::string path, const std::vector<std::string>& inputs) : m_path(std::move(path)) {
+atomic_file::atomic_file(std::string path, const std::vector<std::string>& inputs)
+    : m_path(std::move(path)) {
     if (m_path == "-") {
         m_stdout = true;
         return;
     }
     for (const auto& in : inputs)
         if (same_file(m_path, in))
-            throw user_error({m_path}, "refusing to write over '" + in + "', a file this command reads");
+            throw user_error({m_path},
+                             "refusing to write over '" + in + "', a file this command reads");
     std::error_code ec;
     const fs::file_status st = fs::status(m_path, ec); // follows symlinks
     m_direct = fs::exists(st) && !fs::is_regular_file(st);

@@ -14,7 +14,8 @@ std::string gnuplot_temporary(const std::string& output) {
     return output + ".tmp" + std::to_string(::getpid());
 }
 
-void run_gnuplot(const std::string& output, const std::string& temporary, const std::string& script) {
+void run_gnuplot(const std::string& output, const std::string& temporary,
+                 const std::string& script) {
     register_temporary(temporary);
     const std::string script_path = temporary + ".gp";
     write_file_atomically(script_path, script);
@@ -34,7 +35,8 @@ void run_gnuplot(const std::string& output, const std::string& temporary, const 
 
 std::string gnuplot_escape(const std::string& s) {
     std::string r;
-    for (char c : s) r += c == '\'' ? std::string("''") : std::string(1, c);
+    for (char c : s)
+        r += c == '\'' ? std::string("''") : std::string(1, c);
     return r;
 }
 

@@ -16,7 +16,8 @@ namespace rotgen {
 template <class ScriptFor> void draw_with_gnuplot(const std::string& output, ScriptFor script_for);
 
 // The same with the script text already made for the temporary `output + ".tmp<pid>"`.
-void run_gnuplot(const std::string& output, const std::string& temporary, const std::string& script);
+void run_gnuplot(const std::string& output, const std::string& temporary,
+                 const std::string& script);
 
 // A temporary name for `output` (beside it).
 std::string gnuplot_temporary(const std::string& output);

@@ -16,7 +16,8 @@ std::string compiler() {
 
 std::string shell_quote(const std::string& s) {
     std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    for (char c : s)
+        q += c == '\'' ? std::string("'\\''") : std::string(1, c);
     return q + "'";
 }
 
@@ -26,7 +27,8 @@ std::string run_capture(const std::string& cmd, int* status) {
     if (!pipe) throw std::runtime_error("cannot run: " + cmd);
     std::array<char, 4096> buf;
     std::size_t n;
-    while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) out.append(buf.data(), n);
+    while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0)
+        out.append(buf.data(), n);
     const int raw = pclose(pipe);
     *status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
     return out;

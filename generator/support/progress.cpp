@@ -21,10 +21,12 @@ void progress_line::update(double t) {
     const double done = span != 0 ? std::fabs((t - m_start) / span) : 1.0;
     char line[160];
     if (done > 0)
-        std::snprintf(line, sizeof line, "rotgen: t = %.4g of %.4g (%.0f%%), %.1f s elapsed, about %.1f s to go",
-                      t, m_end, 100 * done, elapsed, elapsed * (1 - done) / done);
+        std::snprintf(line, sizeof line,
+                      "rotgen: t = %.4g of %.4g (%.0f%%), %.1f s elapsed, about %.1f s to go", t,
+                      m_end, 100 * done, elapsed, elapsed * (1 - done) / done);
     else
-        std::snprintf(line, sizeof line, "rotgen: t = %.4g of %.4g, %.1f s elapsed", t, m_end, elapsed);
+        std::snprintf(line, sizeof line, "rotgen: t = %.4g of %.4g, %.1f s elapsed", t, m_end,
+                      elapsed);
     std::fprintf(stderr, "\r%s\033[K", line);
     std::fflush(stderr);
     m_shown = true;

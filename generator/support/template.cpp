@@ -4,7 +4,8 @@
 
 namespace rotgen {
 
-std::string fill_placeholders(const std::string& in, const std::map<std::string, std::string>& values,
+std::string fill_placeholders(const std::string& in,
+                              const std::map<std::string, std::string>& values,
                               const std::string& name, placeholders mode) {
     const bool strict = mode == placeholders::all_required;
     std::string out;
@@ -15,8 +16,8 @@ std::string fill_placeholders(const std::string& in, const std::map<std::string,
         const std::size_t end = in.find('@', at + 1);
         if (end == std::string::npos && strict)
             throw std::logic_error("template " + name + ": unterminated placeholder");
-        const auto v = end == std::string::npos ? values.end()
-                                                : values.find(in.substr(at + 1, end - at - 1));
+        const auto v =
+            end == std::string::npos ? values.end() : values.find(in.substr(at + 1, end - at - 1));
         if (v == values.end()) {
             if (strict)
                 throw std::logic_error("template " + name + " needs a value for @" +

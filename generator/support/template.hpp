@@ -13,7 +13,9 @@ enum class placeholders {
 };
 
 // `text` with each @name@ replaced by values[name]. `name` labels the template in errors.
-std::string fill_placeholders(const std::string& text, const std::map<std::string, std::string>& values,
-                              const std::string& name, placeholders mode = placeholders::all_required);
+std::string fill_placeholders(const std::string& text,
+                              const std::map<std::string, std::string>& values,
+                              const std::string& name,
+                              placeholders mode = placeholders::all_required);
 
 } // namespace rotgen

@@ -23,16 +23,18 @@ class stage_timings {
     };
 
     // Runs `work()` as stage `stage` and records its wall time; returns what work() returns.
-    template <class Work> auto time(const std::string& stage, const std::string& detail, Work&& work) {
+    template <class Work>
+    auto time(const std::string& stage, const std::string& detail, Work&& work) {
         const auto start = std::chrono::steady_clock::now();
         struct recorder { // records on the way out, also when work() throws
             stage_timings& t;
             const std::string &stage, &detail;
             std::chrono::steady_clock::time_point start;
             ~recorder() {
-                t.m_entries.push_back({stage, detail, std::chrono::duration<double>(
-                                                          std::chrono::steady_clock::now() - start)
-                                                          .count()});
+                t.m_entries.push_back(
+                    {stage, detail,
+                     std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+                         .count()});
             }
         } r{*this, stage, detail, start};
         return work();

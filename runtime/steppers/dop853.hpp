@@ -439,8 +439,8 @@ template <class T, class S> class dop853_stepper {
     T m_atol, m_rtol;
     bool m_fixed; // fixed steps: no error estimate
     T m_t = T(0), m_h = T(0);
-    work m_y0, m_y1, m_k1; // start and end of the step, f at the start
-    stages m_k;            // the stages of the last step (with a static size: steps with samples)
+    work m_y0, m_y1, m_k1;   // start and end of the step, f at the start
+    stages m_k;              // the stages of the last step (with a static size: steps with samples)
     std::array<work, 7> m_r; // r2..r8
 };
 

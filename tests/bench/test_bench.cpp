@@ -237,10 +237,10 @@ TEST_CASE("rotgen bench refuses bad arguments with a one-line message", "[bench]
     std::filesystem::create_directories(dir);
     const std::string huge = dir + "/huge.yaml";
     std::ofstream(huge) << ("model: " + std::string(ROTGEN_SOURCE_DIR) +
-                         "/models/heavy_top.yaml\n"
-                         "initial: {phi: 0, theta: 0.5, psi: 0, phi_dot: 0, theta_dot: 0, "
-                         "psi_dot: 1e200}\n"
-                         "time: {start: 0, end: 1}\n");
+                            "/models/heavy_top.yaml\n"
+                            "initial: {phi: 0, theta: 0.5, psi: 0, phi_dot: 0, theta_dot: 0, "
+                            "psi_dot: 1e200}\n"
+                            "time: {start: 0, end: 1}\n");
     r = run_rotgen("bench '" + huge + "' -o '" + dir + "/out'");
     CHECK(r.status == 2);
     CHECK(r.err.find(huge + ":2:10: initial values too large for double precision: the kinetic "

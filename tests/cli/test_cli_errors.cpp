@@ -30,7 +30,8 @@ TEST_CASE("cli: bad command lines of inspect give one line and exit 2", "[cli][e
     // arguments after `rotgen inspect`, the whole message line
     const auto [args, line] = GENERATE_COPY(table<std::string, std::string>({
         row{"'" + model + "' --format", "rotgen inspect: --format needs a value (text|latex|json)"},
-        row{"'" + model + "' --format xml", "rotgen inspect: unknown format 'xml' (expected text, latex or json)"},
+        row{"'" + model + "' --format xml",
+            "rotgen inspect: unknown format 'xml' (expected text, latex or json)"},
         row{"'" + model + "' --verbose", "rotgen inspect: unknown option '--verbose' for inspect"},
         row{"'" + model + "' other.yaml",
             "rotgen inspect: inspect takes one model file, got '" + model + "' and 'other.yaml'"},
@@ -41,7 +42,8 @@ TEST_CASE("cli: bad command lines of inspect give one line and exit 2", "[cli][e
     check_usage_error(run_rotgen("inspect " + args), line);
 }
 
-TEST_CASE("cli: bad command lines of emit give one line, exit 2 and write nothing", "[cli][errors]") {
+TEST_CASE("cli: bad command lines of emit give one line, exit 2 and write nothing",
+          "[cli][errors]") {
     const std::string model = model_path("heavy_top");
     const fs::path out = fs::path(ROTGEN_BINARY_DIR) / "cli_errors_emit_out";
     fs::remove_all(out);
@@ -51,13 +53,17 @@ TEST_CASE("cli: bad command lines of emit give one line, exit 2 and write nothin
     const auto [args, line] = GENERATE_COPY(table<std::string, std::string>({
         row{o + " -o other", "rotgen emit: -o given twice"},
         row{o + " --form body --form body", "rotgen emit: --form given twice"},
-        row{o + " --form", "rotgen emit: --form needs a value (lagrangian|hamiltonian|reduced|body)"},
+        row{o + " --form",
+            "rotgen emit: --form needs a value (lagrangian|hamiltonian|reduced|body)"},
         row{o + " --strategy solve --strategy solve", "rotgen emit: --strategy given twice"},
         row{o + " --outputs rhs --outputs rhs", "rotgen emit: --outputs given twice"},
-        row{o + " --outputs rhs,,jacobian", "rotgen emit: --outputs: empty name in 'rhs,,jacobian'"},
+        row{o + " --outputs rhs,,jacobian",
+            "rotgen emit: --outputs: empty name in 'rhs,,jacobian'"},
         row{o + " --name a --name b", "rotgen emit: --name given twice"},
-        row{o + " --frm body", "rotgen emit: unknown option '--frm' for emit; did you mean '--form'?"},
-        row{o + " other.yaml", "rotgen emit: emit takes one model file, got '" + model + "' and 'other.yaml'"},
+        row{o + " --frm body",
+            "rotgen emit: unknown option '--frm' for emit; did you mean '--form'?"},
+        row{o + " other.yaml",
+            "rotgen emit: emit takes one model file, got '" + model + "' and 'other.yaml'"},
         row{"", "rotgen emit: emit needs an output directory: -o DIR"},
     }));
     INFO(args);

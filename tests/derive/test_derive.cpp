@@ -21,8 +21,8 @@ bool same(const ex& a, const ex& b) {
     const auto& s = symbols();
     ex d = canonical(a - b);
     if (d.is_zero()) return true;
-    d = GiNaC::normal(d.subs(pow(sin(s.q[1]), 2) == 1 - pow(cos(s.q[1]), 2),
-                             GiNaC::subs_options::algebraic));
+    d = GiNaC::normal(
+        d.subs(pow(sin(s.q[1]), 2) == 1 - pow(cos(s.q[1]), 2), GiNaC::subs_options::algebraic));
     return d.is_zero();
 }
 
@@ -32,13 +32,17 @@ void add_accelerations(point& pt, const derivation& d, const model_spec& spec) {
     Eigen::Vector3d f;
     for (int i = 0; i < 3; ++i) {
         f[i] = eval(d.forcing[i], pt.values, spec);
-        for (int j = 0; j < 3; ++j) M(i, j) = eval(d.mass_matrix[i][j], pt.values, spec);
+        for (int j = 0; j < 3; ++j)
+            M(i, j) = eval(d.mass_matrix[i][j], pt.values, spec);
     }
     const Eigen::Vector3d qdd = M.lu().solve(f);
-    for (int i = 0; i < 3; ++i) pt.values[symbols().qdd[i]] = qdd[i];
+    for (int i = 0; i < 3; ++i)
+        pt.values[symbols().qdd[i]] = qdd[i];
 }
 
-ex param(const model_spec& spec, const std::string& name) { return spec.parameter_names().at(name); }
+ex param(const model_spec& spec, const std::string& name) {
+    return spec.parameter_names().at(name);
+}
 
 struct heavy_top_fixture {
     model_spec spec = load_model(model_path("heavy_top"));
@@ -97,7 +101,8 @@ TEST_CASE("mass matrix is J^T I J, built independently", "[derive]") {
         for (int j = 0; j < 3; ++j) {
             ex m = 0;
             for (int a = 0; a < 3; ++a)
-                for (int b = 0; b < 3; ++b) m += J[a][i] * spec.inertia[a][b] * J[b][j];
+                for (int b = 0; b < 3; ++b)
+                    m += J[a][i] * spec.inertia[a][b] * J[b][j];
             INFO(name << " M[" << i << "][" << j << "]");
             CHECK(same(d.mass_matrix[i][j], m));
         }
@@ -111,7 +116,8 @@ TEST_CASE("free top: the Euler-Lagrange equations are Euler's equations (5.87)-(
     const double I[3] = {1.0, 2.0, 3.0}; // the model's defaults
     // omega_dot = d/dt (J q_dot), in q, q_dot, q_ddot
     vector3 omega_dot;
-    for (int i = 0; i < 3; ++i) omega_dot[i] = time_derivative(d.omega[i]);
+    for (int i = 0; i < 3; ++i)
+        omega_dot[i] = time_derivative(d.omega[i]);
     std::mt19937 rng(5087);
     for (int k = 0; k < 50; ++k) {
         point pt(rng, 0.05);
@@ -129,21 +135,24 @@ TEST_CASE("free top: the Euler-Lagrange equations are Euler's equations (5.87)-(
     }
 }
 
-TEST_CASE("H and E equal 1/2 w.I.w (5.30, 5.38) + V, and Hamilton agrees with Euler-Lagrange", "[derive]") {
+TEST_CASE("H and E equal 1/2 w.I.w (5.30, 5.38) + V, and Hamilton agrees with Euler-Lagrange",
+          "[derive]") {
     const std::string name =
         GENERATE("heavy_top", "free_asymmetric_top", "full_tensor_top", "damped_driven_top");
     const model_spec spec = load_model(model_path(name));
     const derivation d = derive(spec);
     const auto& s = symbols();
     vector3 p_dot_along_motion; // d/dt p(q, q_dot)
-    for (int i = 0; i < 3; ++i) p_dot_along_motion[i] = time_derivative(d.momenta[i]);
+    for (int i = 0; i < 3; ++i)
+        p_dot_along_motion[i] = time_derivative(d.momenta[i]);
     std::mt19937 rng(5079);
     for (int k = 0; k < 20; ++k) {
         point pt(rng);
         add_accelerations(pt, d, spec);
         // the point in phase space: p = p(q, q_dot)
         GiNaC::exmap phase = pt.values;
-        for (int i = 0; i < 3; ++i) phase[s.p[i]] = eval(d.momenta[i], pt.values, spec);
+        for (int i = 0; i < 3; ++i)
+            phase[s.p[i]] = eval(d.momenta[i], pt.values, spec);
         INFO(name << " state " << k);
         const double E = eval(d.energy, pt.values, spec);
         CHECK(eval(d.hamiltonian, phase, spec) == Approx(E).epsilon(1e-12).margin(1e-12));
@@ -158,14 +167,16 @@ TEST_CASE("H and E equal 1/2 w.I.w (5.30, 5.38) + V, and Hamilton agrees with Eu
                                 ph * std::cos(theta) + ps);
         Eigen::Matrix3d I;
         for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j) I(i, j) = eval(spec.inertia[i][j], pt.values, spec);
+            for (int j = 0; j < 3; ++j)
+                I(i, j) = eval(spec.inertia[i][j], pt.values, spec);
         const double T = 0.5 * w.dot(I * w), V = eval(spec.potential, pt.values, spec);
         CHECK(E == Approx(T + V).epsilon(1e-12).margin(1e-12));
         for (int i = 0; i < 3; ++i) {
             const double qd = eval(s.qd[i], pt.values, spec);
             CHECK(eval(d.hamilton_qdot[i], phase, spec) == Approx(qd).epsilon(1e-11).margin(1e-11));
-            CHECK(eval(d.hamilton_pdot[i], phase, spec) ==
-                  Approx(eval(p_dot_along_motion[i], pt.values, spec)).epsilon(1e-10).margin(1e-10));
+            CHECK(
+                eval(d.hamilton_pdot[i], phase, spec) ==
+                Approx(eval(p_dot_along_motion[i], pt.values, spec)).epsilon(1e-10).margin(1e-10));
         }
     }
 }
@@ -202,6 +213,7 @@ TEST_CASE("inspect output is byte-identical across processes", "[derive][cli]") 
         const run_result first = run_rotgen(args);
         REQUIRE(first.status == 0);
         REQUIRE(first.out.size() > 1000);
-        for (int k = 0; k < 3; ++k) CHECK(run_rotgen(args).out == first.out);
+        for (int k = 0; k < 3; ++k)
+            CHECK(run_rotgen(args).out == first.out);
     }
 }

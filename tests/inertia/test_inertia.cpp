@@ -237,8 +237,9 @@ TEST_CASE("inertia: Example 5.5: the cube about a corner, exactly (5.41-5.43)", 
     }
 }
 
-TEST_CASE("inertia: Example 5.6: the cube's principal moments and axes, and A I A^T is diagonal (5.69)",
-          "[inertia]") {
+TEST_CASE(
+    "inertia: Example 5.6: the cube's principal moments and axes, and A I A^T is diagonal (5.69)",
+    "[inertia]") {
     const GiNaC::realsymbol M("M"), L("L");
     const GiNaC::exmap defaults{{M, 1.0}, {L, 0.2}};
     const matrix3 tensor =
@@ -449,8 +450,9 @@ TEST_CASE("inertia: a shifted, rotated box against direct integration over a gri
     CHECK((grid + correction - expected).cwiseAbs().maxCoeff() < 1e-12);
 }
 
-TEST_CASE("inertia: the centre of mass is the default pivot, and Steiner's theorem links the pivots",
-          "[inertia]") {
+TEST_CASE(
+    "inertia: the centre of mass is the default pivot, and Steiner's theorem links the pivots",
+    "[inertia]") {
     const GiNaC::realsymbol m1("m1"), m2("m2"), x1("x1"), x2("x2"), r("r");
     const GiNaC::exmap defaults{{m1, 1.0}, {m2, 3.0}, {x1, 0.5}, {x2, -0.2}, {r, 0.1}};
     part sphere = make_axial(part_kind::sphere, m2, r, 0, {0, 0, 1}, {x2, 0, 0});

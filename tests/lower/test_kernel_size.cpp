@@ -5,9 +5,9 @@
 #include "support.hpp"
 
 #include "emit/emit.hpp"
-#include "support/error.hpp"
 #include "emit/printer.hpp"
 #include "lower/lower.hpp"
+#include "support/error.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -2,8 +2,8 @@
 // lowered program computes what the expressions it came from compute.
 #include "support.hpp"
 
-#include "forms/forms.hpp"
 #include "emit/printer.hpp"
+#include "forms/forms.hpp"
 #include "lower/lower.hpp"
 
 #include <catch2/catch.hpp>

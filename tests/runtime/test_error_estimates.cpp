@@ -21,10 +21,10 @@
 // Set ROTGEN_VERBOSE=1 to print the measured values.
 #include <catch2/catch.hpp>
 
+#include "exact_free_top.hpp"
 #include "integrate/integrate.hpp"
 #include "steppers/dop853.hpp"
 #include "steppers/dopri5.hpp"
-#include "exact_free_top.hpp"
 #include "steppers/rosenbrock.hpp"
 
 #include <array>
@@ -38,7 +38,9 @@ using namespace rotgen;
 
 namespace {
 
-bool verbose() { return std::getenv("ROTGEN_VERBOSE") != nullptr; }
+bool verbose() {
+    return std::getenv("ROTGEN_VERBOSE") != nullptr;
+}
 
 // Euler's equations (5.87)-(5.89), force-free, principal axes, with the Jacobian (RODAS4).
 template <class T> auto free_top(std::array<T, 3> I) {
@@ -85,7 +87,8 @@ template <class Method> one_step attempt_once(Method m, real t0, real h) {
     const auto out = st.attempt(sys, t0, y0, h, stats, false);
     REQUIRE(out.code == status::ok);
     V y1;
-    for (int i = 0; i < 3; ++i) y1[i] = st.y_new()[static_cast<std::size_t>(i)];
+    for (int i = 0; i < 3; ++i)
+        y1[i] = st.y_new()[static_cast<std::size_t>(i)];
     const V d = y1 - vec<V>(exact(t0 + h));
     return {out.err, std::sqrt(d.squaredNorm() / 3)};
 }
@@ -103,9 +106,9 @@ real slope(const std::vector<real>& h, const std::vector<real>& e) {
 
 struct estimator_case {
     std::string name;
-    real h0;               // the largest step; then h0/2, h0/4, h0/8
-    real order;            // of the estimate (the local error it estimates is O(h^order))
-    real low, high;        // bounds on (estimate / true local error) · h / h0, at every h
+    real h0;        // the largest step; then h0/2, h0/4, h0/8
+    real order;     // of the estimate (the local error it estimates is O(h^order))
+    real low, high; // bounds on (estimate / true local error) · h / h0, at every h
 };
 
 template <class Method> void check_estimator(const Method& m, const estimator_case& c) {
@@ -115,7 +118,8 @@ template <class Method> void check_estimator(const Method& m, const estimator_ca
         const real h = c.h0 / real(1 << k);
         // a few starting points along the orbit; the worst ratio counts
         real lo = 1e300L, hi = 0, e = 0;
-        // (not near t = 2.9, where the true error of RODAS4's y1 nearly cancels: ratio 350 ... 5900)
+        // (not near t = 2.9, where the true error of RODAS4's y1 nearly cancels: ratio 350 ...
+        // 5900)
         for (real t0 : {0.3L, 7.1L}) {
             const one_step s = attempt_once(m, t0, h);
             const real r = s.estimate / s.true_error * h / c.h0;
@@ -137,7 +141,8 @@ template <class Method> void check_estimator(const Method& m, const estimator_ca
 
 } // namespace
 
-TEST_CASE("error estimates track the true local error on the free top", "[estimator][dopri5][dop853][rodas4]") {
+TEST_CASE("error estimates track the true local error on the free top",
+          "[estimator][dopri5][dop853][rodas4]") {
     SECTION("DOPRI5") {
         check_estimator(dopri5<real>(), {"dopri5", 0.4L, 5, 2, 70});
     }
@@ -169,8 +174,9 @@ TEST_CASE("the controllers keep the global error within a stated factor of the t
         const double e5 = error_at(dopri5<double>(tol, tol)) / tol,
                      e8 = error_at(dop853<double>(tol, tol)) / tol, er = error_at(ro) / tol;
         if (verbose())
-            std::printf("one period, tol %.0e: error / tol = %.3g (dopri5), %.3g (dop853), %.3g (rodas4)\n",
-                        tol, e5, e8, er);
+            std::printf(
+                "one period, tol %.0e: error / tol = %.3g (dopri5), %.3g (dop853), %.3g (rodas4)\n",
+                tol, e5, e8, er);
         CHECK(e5 < 8);
         CHECK(e8 < 1.3);
         CHECK(er < 5);

@@ -403,8 +403,9 @@ TEST_CASE("free asymmetric top from t = 0 to 100: RODAS4 against the exact solut
         errors.push_back(top_error<double>(m, top_inertia, top_w0, 100.0, 100, {}, &st));
         CHECK(st.jac_evals > 0);
         if (verbose())
-            std::printf("free top t=100 rtol=atol=%.0e: rodas4 err %.3e (%zu steps, %zu f, %zu J)\n",
-                        rtol, errors.back(), st.steps, st.rhs_evals, st.jac_evals);
+            std::printf(
+                "free top t=100 rtol=atol=%.0e: rodas4 err %.3e (%zu steps, %zu f, %zu J)\n", rtol,
+                errors.back(), st.steps, st.rhs_evals, st.jac_evals);
     }
     // measured: 7.92e-5, 7.36e-8, 9.82e-10 (ratio 1077 from 1e-5 to 1e-8)
     CHECK(errors[0] / errors[1] >= 300.0);

@@ -61,16 +61,14 @@ TEMPLATE_TEST_CASE("elementary rotations are proper orthogonal matrices", "[rota
 
 TEST_CASE("Example 5.1 and 5.2: products of elementary rotations do not commute", "[rotation]") {
     const double d = pi / 180;
-    const mat3<double> a =
-        compose(rot_z(45 * d), rot_x(30 * d)); // 30° about x, then 45° about z
-    mat3<double> expected;                  // (5.13)
+    const mat3<double> a = compose(rot_z(45 * d), rot_x(30 * d)); // 30° about x, then 45° about z
+    mat3<double> expected;                                        // (5.13)
     const double r2 = std::sqrt(2.0), r3 = std::sqrt(3.0), r6 = std::sqrt(6.0);
     expected << r2 / 2, r6 / 4, r2 / 4, -r2 / 2, r6 / 4, r2 / 4, 0, -0.5, r3 / 2;
     CHECK(max_abs_diff(a, expected) < 1e-15);
 
-    const mat3<double> b =
-        compose(rot_x(30 * d), rot_z(45 * d)); // 45° about z, then 30° about x
-    mat3<double> expected_b;                // Example 5.2, B' = Ax Az
+    const mat3<double> b = compose(rot_x(30 * d), rot_z(45 * d)); // 45° about z, then 30° about x
+    mat3<double> expected_b;                                      // Example 5.2, B' = Ax Az
     expected_b << r2 / 2, r2 / 2, 0, -r6 / 4, r6 / 4, 0.5, r2 / 4, -r2 / 4, r3 / 2;
     CHECK(max_abs_diff(b, expected_b) < 1e-15);
     CHECK(max_abs_diff(a, b) > 0.3);

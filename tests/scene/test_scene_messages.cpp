@@ -8,7 +8,8 @@
 using namespace rotgen::test;
 
 TEST_CASE("a missing model file is reported at the scene's model key", "[scene][errors]") {
-    const scratch_file scene("no_model_scene.yaml", "initial: {theta: 1}\nmodel: nosuch.yaml\ntime: {end: 1}\n");
+    const scratch_file scene("no_model_scene.yaml",
+                             "initial: {theta: 1}\nmodel: nosuch.yaml\ntime: {end: 1}\n");
     const std::string csv = std::string(ROTGEN_BINARY_DIR) + "/no_model.csv";
     const run_result r = run_rotgen("simulate '" + scene.path + "' -o '" + csv + "'");
     CHECK(r.status == 2);
@@ -19,7 +20,8 @@ TEST_CASE("a missing model file is reported at the scene's model key", "[scene][
 }
 
 TEST_CASE("did-you-mean counts a swapped pair of letters as one typo", "[support][errors]") {
-    const std::vector<std::string> methods{"rk4", "dopri5", "dop853", "implicit_midpoint", "rosenbrock"};
+    const std::vector<std::string> methods{"rk4", "dopri5", "dop853", "implicit_midpoint",
+                                           "rosenbrock"};
     CHECK(rotgen::closest_name("dop835", methods) == "dop853"); // 1 transposition; dopri5 is 2 away
     CHECK(rotgen::closest_name("dopri", methods) == "dopri5");
     CHECK(rotgen::closest_name("rk45", methods) == "rk4");

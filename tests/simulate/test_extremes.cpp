@@ -26,7 +26,8 @@ struct csv_table {
         const auto it = std::find(header.begin(), header.end(), name);
         if (it == header.end()) throw std::runtime_error("no column " + name);
         std::vector<double> v;
-        for (const auto& r : rows) v.push_back(r.at(static_cast<std::size_t>(it - header.begin())));
+        for (const auto& r : rows)
+            v.push_back(r.at(static_cast<std::size_t>(it - header.begin())));
         return v;
     }
 };
@@ -37,11 +38,13 @@ csv_table read_csv(const std::string& path) {
     std::string line, cell;
     std::getline(in, line);
     std::istringstream h(line);
-    while (std::getline(h, cell, ',')) t.header.push_back(cell);
+    while (std::getline(h, cell, ','))
+        t.header.push_back(cell);
     while (std::getline(in, line)) {
         std::istringstream r(line);
         std::vector<double> row;
-        while (std::getline(r, cell, ',')) row.push_back(std::stod(cell));
+        while (std::getline(r, cell, ','))
+            row.push_back(std::stod(cell));
         t.rows.push_back(row);
     }
     return t;
@@ -49,7 +52,9 @@ csv_table read_csv(const std::string& path) {
 
 constexpr double pi = 3.141592653589793;
 
-std::string scratch(const std::string& name) { return std::string(ROTGEN_BINARY_DIR) + "/" + name; }
+std::string scratch(const std::string& name) {
+    return std::string(ROTGEN_BINARY_DIR) + "/" + name;
+}
 
 // A number from the summary: the field before `label` ("RHS", "accepted") or after it ("relative").
 double summary_number(const std::string& out, const std::string& label) {
@@ -59,7 +64,9 @@ double summary_number(const std::string& out, const std::string& label) {
     const auto start = out.rfind(' ', at - 1);
     return std::stod(out.substr(start + 1, at - start - 1));
 }
-double rhs_evals(const std::string& out) { return summary_number(out, " RHS"); }
+double rhs_evals(const std::string& out) {
+    return summary_number(out, " RHS");
+}
 double relative_drift(const std::string& out, const std::string& invariant) {
     const auto at = out.find("drift   " + invariant + ":");
     if (at == std::string::npos) throw std::runtime_error("no drift of " + invariant);
@@ -86,7 +93,8 @@ std::string fast_top(const std::string& form, double omega3, double end, int sam
 }
 
 // theta1 - theta0 between the turning points of (5.79)'s effective potential for that release:
-// u0 - u1 = c (1 - u1^2), c = 2 I1 M g h / (I3 omega3)^2, by Newton's method in d = theta1 - theta0.
+// u0 - u1 = c (1 - u1^2), c = 2 I1 M g h / (I3 omega3)^2, by Newton's method in d = theta1 -
+// theta0.
 double exact_nutation(double omega3) {
     const double c = 2 * 1.0 * 1.0 / ((0.5 * omega3) * (0.5 * omega3)), t0 = 0.5;
     double d = c * std::sin(t0);
@@ -98,15 +106,17 @@ double exact_nutation(double omega3) {
     return d;
 }
 
-std::string free_top_scene(const std::string& form, const std::array<double, 3>& I,
-                           const std::string& integrator = "method: dop853, rtol: 1e-12, atol: 1e-14") {
+std::string
+free_top_scene(const std::string& form, const std::array<double, 3>& I,
+               const std::string& integrator = "method: dop853, rtol: 1e-12, atol: 1e-14") {
     // omega(0) = (1, 0.1, 0.5); the space z axis along L = I omega(0), so theta stays clear of 0.
     const double L1 = I[0], L2 = 0.1 * I[1], L3 = 0.5 * I[2];
     std::ostringstream s;
     s.precision(17);
     s << "model: {name: free_top, parameters: {I1: 1, I2: 2, I3: 3}, inertia: [I1, I2, I3]}\n"
       << "parameters: {I1: " << I[0] << ", I2: " << I[1] << ", I3: " << I[2] << "}\nform: " << form
-      << "\ninitial: {theta: " << std::atan2(std::hypot(L1, L2), L3) << ", psi: " << std::atan2(L1, L2)
+      << "\ninitial: {theta: " << std::atan2(std::hypot(L1, L2), L3)
+      << ", psi: " << std::atan2(L1, L2)
       << ", omega1: 1, omega2: 0.1, omega3: 0.5}\ntime: {end: 100, samples: 1001}\n"
       << "integrator: {" << integrator << "}\nrecord: [omega1, omega2, omega3]\n";
     return s.str();
@@ -118,14 +128,16 @@ struct free_top_check {
     double error = 0, swing = 0, exact_swing = 0;
 };
 free_top_check check_free_top(const std::string& csv, const std::array<double, 3>& I) {
-    const rotgen::free_top_exact<long double> exact({I[0], I[1], I[2]}, {1, (long double)0.1, (long double)0.5});
+    const rotgen::free_top_exact<long double> exact({I[0], I[1], I[2]},
+                                                    {1, (long double)0.1, (long double)0.5});
     const csv_table t = read_csv(csv);
     free_top_check c;
     const long double w30 = exact(0)[2];
     for (const auto& row : t.rows) {
         const auto e = exact(row[0]);
         for (int j = 0; j < 3; ++j)
-            c.error = std::max(c.error, double(std::abs(row[1 + j] - e[static_cast<std::size_t>(j)])));
+            c.error =
+                std::max(c.error, double(std::abs(row[1 + j] - e[static_cast<std::size_t>(j)])));
         c.swing = std::max(c.swing, std::abs(row[3] - t.rows.front()[3]));
         c.exact_swing = std::max(c.exact_swing, double(std::abs(e[2] - w30)));
     }
@@ -147,14 +159,15 @@ TEST_CASE("fast spin 1e4: the nutation matches the effective potential, the cost
     int k = 0;
     for (double omega3 : {1e3, 1e4}) {
         const double period = 2 * pi / (0.5 * omega3);
-        const run_result r = simulate("extremes_fast_spin",
-                                      fast_top("lagrangian", omega3, 20 * period, 20001,
-                                               "method: dop853, rtol: 1e-10, atol: 1e-12"));
+        const run_result r =
+            simulate("extremes_fast_spin", fast_top("lagrangian", omega3, 20 * period, 20001,
+                                                    "method: dop853, rtol: 1e-10, atol: 1e-12"));
         INFO(r.out << r.err);
         REQUIRE(r.status == 0);
         const auto theta = read_csv(scratch("extremes_fast_spin.csv")).values("theta");
         const double amplitude = *std::max_element(theta.begin(), theta.end()) - 0.5;
-        const double exact = exact_nutation(omega3), estimate = 8 * std::sin(0.5) / (omega3 * omega3);
+        const double exact = exact_nutation(omega3),
+                     estimate = 8 * std::sin(0.5) / (omega3 * omega3);
         CHECK(std::abs(amplitude - exact) < 1e-5 * exact);
         CHECK(std::abs(estimate - exact) < 2e-5 * exact); // 1.05e-5 at 1e3, 1.05e-7 at 1e4
         CHECK(relative_drift(r.out, "p_phi") < 1e-13);
@@ -180,9 +193,9 @@ TEST_CASE("fast spin 1e6: the Hamiltonian form's rounding noise costs dop853 man
     double evals[2];
     int k = 0;
     for (const char* form : {"lagrangian", "hamiltonian"}) {
-        const run_result r = simulate("extremes_fast_spin_forms",
-                                      fast_top(form, 1e6, 20 * period, 201,
-                                               "method: dop853, rtol: 1e-10, atol: 1e-12"));
+        const run_result r = simulate(
+            "extremes_fast_spin_forms",
+            fast_top(form, 1e6, 20 * period, 201, "method: dop853, rtol: 1e-10, atol: 1e-12"));
         INFO(form << "\n" << r.out << r.err);
         REQUIRE(r.status == 0);
         evals[k++] = rhs_evals(r.out);
@@ -203,7 +216,8 @@ TEST_CASE("fast spin 1e6: RODAS4 damps the nutation, the implicit midpoint rule 
         double phi_error, amplitude, evals;
     };
     const auto run = [&](const std::string& integrator) {
-        const run_result r = simulate("extremes_stiff", fast_top("lagrangian", 1e6, 1, 1001, integrator));
+        const run_result r =
+            simulate("extremes_stiff", fast_top("lagrangian", 1e6, 1, 1001, integrator));
         INFO(integrator << "\n" << r.out << r.err);
         REQUIRE(r.status == 0);
         const csv_table t = read_csv(scratch("extremes_stiff.csv"));
@@ -213,7 +227,8 @@ TEST_CASE("fast spin 1e6: RODAS4 damps the nutation, the implicit midpoint rule 
             if (ts[i] >= 0.5) lo = std::min(lo, theta[i]), hi = std::max(hi, theta[i]);
         CHECK(relative_drift(r.out, "p_phi") < 1e-12); // measured <= 2.3e-14
         CHECK(relative_drift(r.out, "p_psi") < 1e-12);
-        return outcome{std::abs(t.values("phi").back() - phi_ref) / phi_ref, (hi - lo) / exact, rhs_evals(r.out)};
+        return outcome{std::abs(t.values("phi").back() - phi_ref) / phi_ref, (hi - lo) / exact,
+                       rhs_evals(r.out)};
     };
     const outcome rodas = run("method: rosenbrock, rtol: 1e-6, atol: 1e-8");
     const outcome midpoint = run("method: implicit_midpoint, step: 1e-3");
@@ -222,7 +237,8 @@ TEST_CASE("fast spin 1e6: RODAS4 damps the nutation, the implicit midpoint rule 
     CHECK(rodas.phi_error < 3e-6);
     CHECK(midpoint.amplitude == Approx(1).margin(0.02));
     CHECK(midpoint.phi_error < 1e-5);
-    CHECK(dop853.amplitude == Approx(1).margin(0.05)); // rounding of theta (ulp 5.6e-17) over 5e5 steps
+    CHECK(dop853.amplitude ==
+          Approx(1).margin(0.05)); // rounding of theta (ulp 5.6e-17) over 5e5 steps
     CHECK(dop853.phi_error < 1e-6);
     CHECK(midpoint.evals < dop853.evals / 1000);
 }
@@ -248,7 +264,8 @@ TEST_CASE("nearly equal moments: I2 - I1 is exact in the body-form kernel", "[ex
         m::rhs(0.0, y, f, pd);
         m::rhs(0.0L, yl, fl, pl);
         INFO("eps " << eps);
-        CHECK(std::abs(f[2] - fl[2]) <= 4 * std::numeric_limits<double>::epsilon() * std::abs(fl[2]));
+        CHECK(std::abs(f[2] - fl[2]) <=
+              4 * std::numeric_limits<double>::epsilon() * std::abs(fl[2]));
     }
 }
 
@@ -261,10 +278,12 @@ TEST_CASE("nearly equal moments: the motion due to I1 != I2 is resolved down to 
     const double eps = 1e-12;
     const std::array<double, 3> I{1.3, 1.3 * (1 + eps), 2.1};
     for (const char* form : {"body", "lagrangian"}) {
-        const run_result r = simulate(std::string("extremes_moments_") + form, free_top_scene(form, I));
+        const run_result r =
+            simulate(std::string("extremes_moments_") + form, free_top_scene(form, I));
         INFO(form << "\n" << r.out << r.err);
         REQUIRE(r.status == 0);
-        const free_top_check c = check_free_top(scratch(std::string("extremes_moments_") + form + ".csv"), I);
+        const free_top_check c =
+            check_free_top(scratch(std::string("extremes_moments_") + form + ".csv"), I);
         CHECK(c.error < 1e-13);
         CHECK(c.exact_swing == Approx(1.01e-12).epsilon(0.02));
         CHECK(c.swing == Approx(c.exact_swing).epsilon(0.1)); // the eps-effect is there, to ~2%
@@ -276,7 +295,8 @@ TEST_CASE("extreme ratios: moments scaled by 1e-6 and 1e6, and a needle 1 : 1e6"
     // Euler's equations are homogeneous in I: the same omega(t) for (1, 1.5, 2) s. Measured in the
     // body form at rtol 1e-12: 7.7e-13 ... 8.2e-13 for s = 1e-6, 1, 1e6; the needle (1, 1e6,
     // 1e6 + 0.5) 2.0e-12 (its data-rounding floor: 3.7e-10). Margins: 3x.
-    for (const auto& I : std::vector<std::array<double, 3>>{{1e-6, 1.5e-6, 2e-6}, {1e6, 1.5e6, 2e6}, {1, 1e6, 1000000.5}}) {
+    for (const auto& I : std::vector<std::array<double, 3>>{
+             {1e-6, 1.5e-6, 2e-6}, {1e6, 1.5e6, 2e6}, {1, 1e6, 1000000.5}}) {
         const run_result r = simulate("extremes_ratios", free_top_scene("body", I));
         INFO(I[0] << " " << I[1] << " " << I[2] << "\n" << r.out << r.err);
         REQUIRE(r.status == 0);
@@ -285,7 +305,8 @@ TEST_CASE("extreme ratios: moments scaled by 1e-6 and 1e6, and a needle 1 : 1e6"
     }
 }
 
-// ---- long runs -----------------------------------------------------------------------------------
+// ---- long runs
+// -----------------------------------------------------------------------------------
 
 TEST_CASE("long runs: 10^6 steps of rk4 drift, of the implicit midpoint rule do not",
           "[extremes][long_runs]") {
@@ -297,8 +318,8 @@ TEST_CASE("long runs: 10^6 steps of rk4 drift, of the implicit midpoint rule do 
         const run_result r = simulate(
             "extremes_long", "model: " + model_path("heavy_top") +
                                  "\nform: hamiltonian\ninitial: {theta: 0.5, psi_dot: 30}\n"
-                                 "time: {end: 10000, samples: 1001}\nintegrator: {method: " + method +
-                                 ", step: 0.01}\nrecord: [energy, p_phi, p_psi]\n");
+                                 "time: {end: 10000, samples: 1001}\nintegrator: {method: " +
+                                 method + ", step: 0.01}\nrecord: [energy, p_phi, p_psi]\n");
         INFO(method << "\n" << r.out << r.err);
         REQUIRE(r.status == 0);
         CHECK(r.out.find("steps   1000000 accepted") != std::string::npos);
@@ -325,29 +346,34 @@ TEST_CASE("long runs: 10^6 steps of rk4 drift, of the implicit midpoint rule do 
     CHECK(midpoint[2] < 2e-10);
 }
 
-// ---- precision -------------------------------------------------------------------------------------
+// ---- precision
+// -------------------------------------------------------------------------------------
 
 namespace {
 template <class T> std::pair<long double, rotgen::integration_result<T>> rk4_error(T h) {
     namespace m = rotgen::models::free_asymmetric_top_body;
-    const rotgen::free_top_exact<long double> exact({1, 2, 3}, {1, (long double)T(0.1), (long double)T(0.5)});
+    const rotgen::free_top_exact<long double> exact({1, 2, 3},
+                                                    {1, (long double)T(0.1), (long double)T(0.5)});
     auto sys = ROTGEN_GENERATED_SYSTEM(m, T);
     rotgen::state_vector<T, decltype(sys)> y;
     y << T(1), T(0.1), T(0.5);
     std::vector<T> times(1001);
-    for (std::size_t i = 0; i < times.size(); ++i) times[i] = T(100) * T(i) / T(1000);
+    for (std::size_t i = 0; i < times.size(); ++i)
+        times[i] = T(100) * T(i) / T(1000);
     long double worst = 0;
     rotgen::rk4<T> method;
     method.step = h;
     const auto r = rotgen::integrate(sys, method, T(0), y, times, [&](T t, const auto& s) {
         const auto e = exact((long double)t);
-        for (int j = 0; j < 3; ++j) worst = std::max(worst, std::abs((long double)s[j] - e[static_cast<std::size_t>(j)]));
+        for (int j = 0; j < 3; ++j)
+            worst = std::max(worst, std::abs((long double)s[j] - e[static_cast<std::size_t>(j)]));
     });
     return {worst, r};
 }
 } // namespace
 
-TEST_CASE("precision: float, double and long double kernels on the same scene", "[extremes][precision]") {
+TEST_CASE("precision: float, double and long double kernels on the same scene",
+          "[extremes][precision]") {
     // The free asymmetric top I = (1, 2, 3), omega(0) = (1, 0.1, 0.5), t in [0, 100], rk4 with
     // h = 1e-3 (1e5 steps). Measured (bench/extremes/precision.sh): float 5.6e-5, double 2.3e-13,
     // long double 5.1e-14 (rk4's truncation error; double is at its rounding floor, which at

@@ -1,6 +1,7 @@
 // rotgen simulate's output contract: where the samples go (-o FILE, -o -, the default name, a
 // symlink, a device), what is refused (an input as output, an unknown plot format), a run that
-// cannot finish (exit 3, rows in <output>.partial.csv), an interrupted run (exit 143, nothing left).
+// cannot finish (exit 3, rows in <output>.partial.csv), an interrupted run (exit 143, nothing
+// left).
 #include "support.hpp"
 
 #include <catch2/catch.hpp>
@@ -34,12 +35,14 @@ std::string heavy_scene(const std::string& dir, const std::string& extra = "") {
 }
 
 std::size_t files_in(const std::string& dir) {
-    return static_cast<std::size_t>(std::distance(fs::directory_iterator(dir), fs::directory_iterator()));
+    return static_cast<std::size_t>(
+        std::distance(fs::directory_iterator(dir), fs::directory_iterator()));
 }
 
 } // namespace
 
-TEST_CASE("simulate without -o writes <scene name>.csv in the current folder and says so", "[simulate][outputs]") {
+TEST_CASE("simulate without -o writes <scene name>.csv in the current folder and says so",
+          "[simulate][outputs]") {
     const std::string dir = scratch_dir("default");
     heavy_scene(dir);
     const run_result r = run_rotgen("simulate top.yaml", dir);
@@ -49,7 +52,8 @@ TEST_CASE("simulate without -o writes <scene name>.csv in the current folder and
     CHECK(read_file(dir + "/top.csv").rfind("t,theta\n0,0.5\n", 0) == 0);
 }
 
-TEST_CASE("simulate -o - writes the CSV to standard output and the summary to standard error", "[simulate][outputs]") {
+TEST_CASE("simulate -o - writes the CSV to standard output and the summary to standard error",
+          "[simulate][outputs]") {
     const std::string dir = scratch_dir("stdout");
     const run_result r = run_rotgen("simulate '" + heavy_scene(dir) + "' -o -");
     INFO(r.err);
@@ -60,24 +64,28 @@ TEST_CASE("simulate -o - writes the CSV to standard output and the summary to st
     CHECK_FALSE(fs::exists(dir + "/-"));
 }
 
-TEST_CASE("simulate refuses an output that names one of its inputs and changes nothing", "[simulate][outputs]") {
+TEST_CASE("simulate refuses an output that names one of its inputs and changes nothing",
+          "[simulate][outputs]") {
     const std::string dir = scratch_dir("inputs");
     const std::string scene = heavy_scene(dir);
     const std::string before = read_file(scene);
     run_result r = run_rotgen("simulate '" + scene + "' -o '" + scene + "'");
     CHECK(r.status == 2);
-    CHECK(r.err == "rotgen: error: " + scene + ": refusing to write over '" + scene + "', a file this command reads\n");
+    CHECK(r.err == "rotgen: error: " + scene + ": refusing to write over '" + scene +
+                       "', a file this command reads\n");
     // the model, through another path to the same file (a symlink)
     fs::create_symlink(model_path("heavy_top"), dir + "/model_link.csv");
     r = run_rotgen("simulate '" + scene + "' -o '" + dir + "/model_link.csv'");
     CHECK(r.status == 2);
-    CHECK(r.err.find("refusing to write over '" + model_path("heavy_top") + "'") != std::string::npos);
+    CHECK(r.err.find("refusing to write over '" + model_path("heavy_top") + "'") !=
+          std::string::npos);
     CHECK(fs::is_symlink(dir + "/model_link.csv"));
     CHECK(read_file(scene) == before);
     CHECK(files_in(dir) == 2); // the scene and the link
 }
 
-TEST_CASE("simulate writes through a symlink and into a device, never replacing them", "[simulate][outputs]") {
+TEST_CASE("simulate writes through a symlink and into a device, never replacing them",
+          "[simulate][outputs]") {
     const std::string dir = scratch_dir("links");
     const std::string scene = heavy_scene(dir);
     fs::create_symlink("target.csv", dir + "/link.csv"); // dangling until written
@@ -91,28 +99,34 @@ TEST_CASE("simulate writes through a symlink and into a device, never replacing 
     CHECK(fs::is_character_file("/dev/null"));
 }
 
-TEST_CASE("simulate --plot writes PNG, SVG or PDF by the extension and refuses others", "[simulate][outputs]") {
+TEST_CASE("simulate --plot writes PNG, SVG or PDF by the extension and refuses others",
+          "[simulate][outputs]") {
     const std::string dir = scratch_dir("plots");
     const std::string scene = heavy_scene(dir);
     const std::vector<std::pair<std::string, std::string>> formats{
         {"png", "\x89PNG"}, {"svg", "<?xml"}, {"pdf", "%PDF"}};
     for (const auto& [ext, magic] : formats) {
-        const run_result r = run_rotgen("simulate '" + scene + "' -o - --plot '" + dir + "/p." + ext + "'");
+        const run_result r =
+            run_rotgen("simulate '" + scene + "' -o - --plot '" + dir + "/p." + ext + "'");
         INFO(ext << ": " << r.err);
         CHECK(r.status == 0);
         CHECK(read_file(dir + "/p." + ext).rfind(magic, 0) == 0);
     }
-    const run_result r = run_rotgen("simulate '" + scene + "' -o '" + dir + "/x.csv' --plot '" + dir + "/p.jpg'");
+    const run_result r =
+        run_rotgen("simulate '" + scene + "' -o '" + dir + "/x.csv' --plot '" + dir + "/p.jpg'");
     CHECK(r.status == 2);
-    CHECK(r.err == "rotgen: error: " + dir + "/p.jpg: cannot tell the plot format from the extension '.jpg' "
-                                             "(expected .png, .svg or .pdf)\n");
+    CHECK(r.err == "rotgen: error: " + dir +
+                       "/p.jpg: cannot tell the plot format from the extension '.jpg' "
+                       "(expected .png, .svg or .pdf)\n");
     CHECK_FALSE(fs::exists(dir + "/x.csv"));
     CHECK_FALSE(fs::exists(dir + "/p.jpg"));
 }
 
-TEST_CASE("max_steps reached is exit 3 with a partial file, not a chart switch", "[simulate][outputs]") {
+TEST_CASE("max_steps reached is exit 3 with a partial file, not a chart switch",
+          "[simulate][outputs]") {
     const std::string dir = scratch_dir("max_steps");
-    const std::string scene = heavy_scene(dir, "integrator: {method: dop853, rtol: 1e-10, atol: 1e-12, max_steps: 20}\n");
+    const std::string scene =
+        heavy_scene(dir, "integrator: {method: dop853, rtol: 1e-10, atol: 1e-12, max_steps: 20}\n");
     const run_result r = run_rotgen("simulate '" + scene + "' -o '" + dir + "/out.csv'");
     INFO(r.out << r.err);
     CHECK(r.status == 3);
@@ -130,36 +144,43 @@ TEST_CASE("max_steps reached is exit 3 with a partial file, not a chart switch",
 TEST_CASE("SIGTERM during a run leaves nothing behind and exits 143", "[simulate][outputs]") {
     const std::string dir = scratch_dir("sigterm");
     // Far too long to finish before the signal: 1e9 fixed RK4 steps (minutes), sampled 1e5 times.
-    const std::string scene = heavy_scene(dir, "integrator: {method: rk4, step: 1e-5, max_steps: 1e12}\n");
+    const std::string scene =
+        heavy_scene(dir, "integrator: {method: rk4, step: 1e-5, max_steps: 1e12}\n");
     std::string text = read_file(scene);
     text.replace(text.find("end: 1, samples: 11"), 19, "end: 1e4, samples: 100001");
     std::ofstream(scene) << text;
-    const std::string cmd = "timeout --preserve-status -s TERM 2 '" + std::string(ROTGEN_EXE) + "' simulate '" +
-                            scene + "' -o '" + dir + "/out.csv' --plot '" + dir + "/out.png' >/dev/null 2>&1";
+    const std::string cmd = "timeout --preserve-status -s TERM 2 '" + std::string(ROTGEN_EXE) +
+                            "' simulate '" + scene + "' -o '" + dir + "/out.csv' --plot '" + dir +
+                            "/out.png' >/dev/null 2>&1";
     const int raw = std::system(cmd.c_str());
     CHECK(WEXITSTATUS(raw) == 143);
     CHECK(files_in(dir) == 1); // the scene alone: no output, no temporary
 }
 
-TEST_CASE("a conserved momentum that starts at 0 gets an absolute drift, not a relative one", "[simulate][outputs]") {
+TEST_CASE("a conserved momentum that starts at 0 gets an absolute drift, not a relative one",
+          "[simulate][outputs]") {
     const std::string dir = scratch_dir("drift");
-    std::ofstream(dir + "/top.yaml") << "model: " << model_path("heavy_top") << "\n"
-                                     << "initial: {theta: 0.5}\ntime: {end: 1, samples: 11}\nrecord: [theta]\n";
+    std::ofstream(dir + "/top.yaml")
+        << "model: " << model_path("heavy_top") << "\n"
+        << "initial: {theta: 0.5}\ntime: {end: 1, samples: 11}\nrecord: [theta]\n";
     const run_result r = run_rotgen("simulate top.yaml", dir);
     INFO(r.out << r.err);
     REQUIRE(r.status == 0);
-    // p_phi = I1 phi_dot sin^2 theta + I3 cos theta (phi_dot cos theta + psi_dot) (5.74) = 0 at rest
+    // p_phi = I1 phi_dot sin^2 theta + I3 cos theta (phi_dot cos theta + psi_dot) (5.74) = 0 at
+    // rest
     CHECK(r.out.find("p_phi(0)| = 0 (absolute: p_phi(0) is near 0)") != std::string::npos);
     CHECK(r.out.find("energy(0)| = ") != std::string::npos);
     CHECK(r.out.find("(relative ") != std::string::npos); // the energy, M g h cos(0.5) != 0
 }
 
-TEST_CASE("a long run shows a progress line on a terminal only, erased at the end", "[simulate][outputs]") {
+TEST_CASE("a long run shows a progress line on a terminal only, erased at the end",
+          "[simulate][outputs]") {
     const std::string dir = scratch_dir("progress");
     // ~9e6 fixed RK4 steps: a few seconds, past the one second before the line appears
-    std::ofstream(dir + "/long.yaml") << "model: " << model_path("heavy_top") << "\n"
-                                      << "initial: {theta: 0.5, psi_dot: 30}\ntime: {end: 900, samples: 1001}\n"
-                                      << "record: [theta]\nintegrator: {method: rk4, step: 1e-4}\n";
+    std::ofstream(dir + "/long.yaml")
+        << "model: " << model_path("heavy_top") << "\n"
+        << "initial: {theta: 0.5, psi_dot: 30}\ntime: {end: 900, samples: 1001}\n"
+        << "record: [theta]\nintegrator: {method: rk4, step: 1e-4}\n";
     // on a terminal (a pseudo-terminal from util-linux's script)
     const std::string cmd = "cd '" + dir + "' && script -qec \"'" + std::string(ROTGEN_EXE) +
                             "' simulate long.yaml -o a.csv\" /dev/null > tty.txt";
@@ -167,7 +188,8 @@ TEST_CASE("a long run shows a progress line on a terminal only, erased at the en
     const std::string tty = read_file(dir + "/tty.txt");
     CHECK(tty.find("rotgen: t = ") != std::string::npos);
     CHECK(tty.find("\r\033[K") != std::string::npos); // erased before the summary
-    // not on a terminal, and not with --quiet (the same run, shorter: the line would not show anyway)
+    // not on a terminal, and not with --quiet (the same run, shorter: the line would not show
+    // anyway)
     std::string text = read_file(dir + "/long.yaml");
     text.replace(text.find("end: 900"), 8, "end: 9");
     std::ofstream(dir + "/long.yaml") << text;

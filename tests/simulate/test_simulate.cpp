@@ -23,7 +23,8 @@ struct csv_table {
     }
     std::vector<double> values(const std::string& name) const {
         std::vector<double> v;
-        for (const auto& r : rows) v.push_back(r.at(column(name)));
+        for (const auto& r : rows)
+            v.push_back(r.at(column(name)));
         return v;
     }
 };
@@ -34,18 +35,22 @@ csv_table read_csv(const std::string& path) {
     std::string line, cell;
     std::getline(in, line);
     std::istringstream h(line);
-    while (std::getline(h, cell, ',')) t.header.push_back(cell);
+    while (std::getline(h, cell, ','))
+        t.header.push_back(cell);
     while (std::getline(in, line)) {
         std::istringstream r(line);
         std::vector<double> row;
         // strtod, not stod: stod throws on a subnormal value (ERANGE), strtod returns it
-        while (std::getline(r, cell, ',')) row.push_back(std::strtod(cell.c_str(), nullptr));
+        while (std::getline(r, cell, ','))
+            row.push_back(std::strtod(cell.c_str(), nullptr));
         t.rows.push_back(row);
     }
     return t;
 }
 
-std::string scratch(const std::string& name) { return std::string(ROTGEN_BINARY_DIR) + "/" + name; }
+std::string scratch(const std::string& name) {
+    return std::string(ROTGEN_BINARY_DIR) + "/" + name;
+}
 
 // A scene file in the build tree that names a shipped model by absolute path.
 std::string scene_text(const std::string& model, const std::string& rest) {
@@ -54,7 +59,8 @@ std::string scene_text(const std::string& model, const std::string& rest) {
 
 double max_abs_change(const std::vector<double>& v) {
     double m = 0;
-    for (double x : v) m = std::max(m, std::abs(x - v.front()));
+    for (double x : v)
+        m = std::max(m, std::abs(x - v.front()));
     return m;
 }
 
@@ -65,13 +71,14 @@ TEST_CASE("heavy top: theta nods between the turning points of the effective pot
     // Parameters of models/heavy_top.yaml.
     const double I1 = 1.0, I3 = 0.5, M = 1.0, g = 9.81, h = 0.1;
     const double theta0 = 0.5, spin = 30; // psi_dot; phi_dot = theta_dot = 0
-    const scratch_file scene(
-        "nutation_scene.yaml",
-        scene_text("heavy_top", "initial: {theta: 0.5, psi_dot: 30}\n"
-                                "time: {end: 5, samples: 5001}\n"
-                                "integrator: {method: dop853, rtol: 1e-11, atol: 1e-13}\n"
-                                "record: [theta, energy, p_phi, p_psi]\n"));
-    const run_result r = run_rotgen("simulate '" + scene.path + "' -o '" + scratch("nutation.csv") + "'");
+    const scratch_file scene("nutation_scene.yaml",
+                             scene_text("heavy_top",
+                                        "initial: {theta: 0.5, psi_dot: 30}\n"
+                                        "time: {end: 5, samples: 5001}\n"
+                                        "integrator: {method: dop853, rtol: 1e-11, atol: 1e-13}\n"
+                                        "record: [theta, energy, p_phi, p_psi]\n"));
+    const run_result r =
+        run_rotgen("simulate '" + scene.path + "' -o '" + scratch("nutation.csv") + "'");
     INFO(r.out << r.err);
     REQUIRE(r.status == 0);
     const csv_table t = read_csv(scratch("nutation.csv"));
@@ -92,7 +99,9 @@ TEST_CASE("heavy top: theta nods between the turning points of the effective pot
     const double E = t.values("energy").front();
     const double a = p_psi / I1, b = p_phi / I1, alpha = 2 * M * g * h / I1;
     const double beta = 2 * (E - p_psi * p_psi / (2 * I3)) / I1;
-    const auto f = [&](double u) { return (beta - alpha * u) * (1 - u * u) - (b - a * u) * (b - a * u); };
+    const auto f = [&](double u) {
+        return (beta - alpha * u) * (1 - u * u) - (b - a * u) * (b - a * u);
+    };
     // u0 = cos(theta0) is one root; the other in (-1, u0) by bisection.
     const double u0 = std::cos(theta0);
     CHECK(std::abs(f(u0)) < 1e-9);
@@ -141,29 +150,37 @@ TEST_CASE("body form and Lagrangian form agree away from theta = 0", "[simulate]
                            "-0.2, psi_dot: 6}\ntime: {end: 3, samples: 31}\n"
                            "integrator: {method: dop853, rtol: 1e-12, atol: 1e-14}\n"
                            "record: [theta, energy]\n"));
-        const run_result r = run_rotgen("simulate '" + scene.path + "' -o '" + scratch("form.csv") + "'");
+        const run_result r =
+            run_rotgen("simulate '" + scene.path + "' -o '" + scratch("form.csv") + "'");
         INFO(form << "\n" << r.out << r.err);
         REQUIRE(r.status == 0);
         theta[k++] = read_csv(scratch("form.csv")).values("theta");
     }
     REQUIRE(theta[0].size() == theta[1].size());
-    for (std::size_t i = 0; i < theta[0].size(); ++i) CHECK(theta[1][i] == Approx(theta[0][i]).margin(1e-9));
+    for (std::size_t i = 0; i < theta[0].size(); ++i)
+        CHECK(theta[1][i] == Approx(theta[0][i]).margin(1e-9));
 }
 
 TEST_CASE("gimbal lock: theta = 0 starts in the body form, or is refused when no chart is free",
           "[simulate][gimbal]") {
-    const std::string common = "initial: {theta: 0, omega1: 0.1, omega2: 0.2, omega3: 1}\n"
-                               "time: {end: 10, samples: 11}\nrecord: [omega1, theta, phi_dot, energy]\n";
+    const std::string common =
+        "initial: {theta: 0, omega1: 0.1, omega2: 0.2, omega3: 1}\n"
+        "time: {end: 10, samples: 11}\nrecord: [omega1, theta, phi_dot, energy]\n";
     // The damped model's damping acts on Euler-angle rates: its body form is singular too.
-    const scratch_file damped("lock_damped.yaml", scene_text("damped_driven_top", "form: hamiltonian\n" + common));
+    const scratch_file damped("lock_damped.yaml",
+                              scene_text("damped_driven_top", "form: hamiltonian\n" + common));
     const run_result bad = run_rotgen("simulate '" + damped.path + "'");
     CHECK(bad.status == 2);
-    CHECK(bad.err.find("lock_damped.yaml:3:10: initial theta = 0 is the gimbal-lock singularity") != std::string::npos);
-    const scratch_file free_top("lock_free.yaml", scene_text("free_asymmetric_top", "form: hamiltonian\n" + common));
-    const run_result good = run_rotgen("simulate '" + free_top.path + "' -o '" + scratch("lock.csv") + "'");
+    CHECK(bad.err.find("lock_damped.yaml:3:10: initial theta = 0 is the gimbal-lock singularity") !=
+          std::string::npos);
+    const scratch_file free_top("lock_free.yaml",
+                                scene_text("free_asymmetric_top", "form: hamiltonian\n" + common));
+    const run_result good =
+        run_rotgen("simulate '" + free_top.path + "' -o '" + scratch("lock.csv") + "'");
     INFO(good.out << good.err);
     CHECK(good.status == 0);
-    CHECK(good.out.find("chart   started in the body form (initial |sin theta| = 0 < 0.1)") != std::string::npos);
+    CHECK(good.out.find("chart   started in the body form (initial |sin theta| = 0 < 0.1)") !=
+          std::string::npos);
     // phi_dot is undefined at theta = 0: written as inf, and said so in the summary.
     CHECK(good.out.find("recorded values are not finite") != std::string::npos);
     const csv_table t = read_csv(scratch("lock.csv"));
@@ -180,12 +197,14 @@ TEST_CASE("a free top tumbling through theta ~ 0 stays on the exact solution (ch
     for (const std::string start : {"theta: 0.5", "theta: 0"}) {
         const scratch_file scene(
             "tumble.yaml",
-            scene_text("free_asymmetric_top",
-                       "form: lagrangian\ninitial: {" + start +
-                           ", omega1: 0.05, omega2: 0.5, omega3: 1}\ntime: {end: 100, samples: 2001}\n"
-                           "integrator: {method: dop853, rtol: 1e-10, atol: 1e-12}\n"
-                           "record: [omega1, omega2, omega3, theta]\n"));
-        const run_result r = run_rotgen("simulate '" + scene.path + "' -o '" + scratch("tumble.csv") + "'");
+            scene_text(
+                "free_asymmetric_top",
+                "form: lagrangian\ninitial: {" + start +
+                    ", omega1: 0.05, omega2: 0.5, omega3: 1}\ntime: {end: 100, samples: 2001}\n"
+                    "integrator: {method: dop853, rtol: 1e-10, atol: 1e-12}\n"
+                    "record: [omega1, omega2, omega3, theta]\n"));
+        const run_result r =
+            run_rotgen("simulate '" + scene.path + "' -o '" + scratch("tumble.csv") + "'");
         INFO(start << "\n" << r.out << r.err);
         REQUIRE(r.status == 0);
         CHECK(r.out.find("chart   ") != std::string::npos);
@@ -198,37 +217,72 @@ TEST_CASE("a free top tumbling through theta ~ 0 stays on the exact solution (ch
         for (std::size_t i = 0; i < ts.size(); ++i) {
             const auto w = exact(ts[i]);
             for (int k = 0; k < 3; ++k)
-                worst = std::max(worst, std::abs(t.rows[i][1 + k] - w[static_cast<std::size_t>(k)]));
+                worst =
+                    std::max(worst, std::abs(t.rows[i][1 + k] - w[static_cast<std::size_t>(k)]));
         }
-        // measured 1.2e-9 from theta = 0 (the run changes chart about 45 times: to the body form below
-        // |sin theta| 0.1, back above 0.3; each restart adds its own error; staying in the body form
-        // gave 2.1e-10 and 3.1e-10); the goal is 1e-8
+        // measured 1.2e-9 from theta = 0 (the run changes chart about 45 times: to the body form
+        // below |sin theta| 0.1, back above 0.3; each restart adds its own error; staying in the
+        // body form gave 2.1e-10 and 3.1e-10); the goal is 1e-8
         CHECK(worst < 4e-9);
     }
 }
 
-TEST_CASE("bad scenes: exit 2, one line naming file and place, no output file", "[simulate][errors]") {
+TEST_CASE("bad scenes: exit 2, one line naming file and place, no output file",
+          "[simulate][errors]") {
     using row = std::tuple<std::string, std::string, std::string>;
     const auto [name, body, expected] = GENERATE(table<std::string, std::string, std::string>({
-        row{"NaN initial value", "initial: {theta: .nan}\ntime: {end: 1}\n", "bad_scene.yaml:2:18: initial theta must be a finite number"},
-        row{"theta out of range", "initial: {theta: 4}\ntime: {end: 1}\n", "bad_scene.yaml:2:18: initial theta = 4"},
-        row{"end before start", "initial: {theta: 1}\ntime: {start: 2, end: 1}\n", "bad_scene.yaml:3:23: time end must be after time start"},
-        row{"non-positive rtol", "initial: {theta: 1}\ntime: {end: 1}\nintegrator: {method: dopri5, rtol: 0}\n", "bad_scene.yaml:4:36: integrator rtol must be positive"},
-        row{"negative step", "initial: {theta: 1}\ntime: {end: 1}\nintegrator: {method: rk4, step: -0.1}\n", "bad_scene.yaml:4:33: integrator step must be positive"},
-        row{"fixed step without a step", "initial: {theta: 1}\ntime: {end: 1}\nintegrator: {method: rk4}\n", "bad_scene.yaml:4:13: integrator rk4 is fixed-step and needs 'step'"},
-        row{"a step and a tolerance", "initial: {theta: 1}\ntime: {end: 1}\nintegrator: {method: dop853, step: 0.1, rtol: 1e-8}\n", "bad_scene.yaml:4:47: integrator dop853 with a fixed step has no error control: give 'step' or 'rtol', not both"},
-        row{"unknown method", "initial: {theta: 1}\ntime: {end: 1}\nintegrator: {method: dopri}\n", "did you mean 'dopri5'?"},
-        row{"unknown record", "initial: {theta: 1}\ntime: {end: 1}\nrecord: [thetta]\n", "bad_scene.yaml:4:10: cannot record 'thetta'; did you mean 'theta'?"},
-        row{"rates given two ways", "initial: {theta: 1, psi_dot: 1, omega1: 2}\ntime: {end: 1}\n", "give the initial rates one way only"},
-        row{"unknown parameter override", "parameters: {I2: 3}\ninitial: {theta: 1}\ntime: {end: 1}\n", "unknown field 'I2' in parameters"},
+        row{"NaN initial value", "initial: {theta: .nan}\ntime: {end: 1}\n",
+            "bad_scene.yaml:2:18: initial theta must be a finite number"},
+        row{"theta out of range", "initial: {theta: 4}\ntime: {end: 1}\n",
+            "bad_scene.yaml:2:18: initial theta = 4"},
+        row{"end before start", "initial: {theta: 1}\ntime: {start: 2, end: 1}\n",
+            "bad_scene.yaml:3:23: time end must be after time start"},
+        row{"non-positive rtol",
+            "initial: {theta: 1}\ntime: {end: 1}\nintegrator: {method: dopri5, rtol: 0}\n",
+            "bad_scene.yaml:4:36: integrator rtol must be positive"},
+        row{"negative step",
+            "initial: {theta: 1}\ntime: {end: 1}\nintegrator: {method: rk4, step: -0.1}\n",
+            "bad_scene.yaml:4:33: integrator step must be positive"},
+        row{"fixed step without a step",
+            "initial: {theta: 1}\ntime: {end: 1}\nintegrator: {method: rk4}\n",
+            "bad_scene.yaml:4:13: integrator rk4 is fixed-step and needs 'step'"},
+        row{"a step and a tolerance",
+            "initial: {theta: 1}\ntime: {end: 1}\nintegrator: {method: dop853, step: 0.1, rtol: "
+            "1e-8}\n",
+            "bad_scene.yaml:4:47: integrator dop853 with a fixed step has no error control: give "
+            "'step' or 'rtol', not both"},
+        row{"unknown method", "initial: {theta: 1}\ntime: {end: 1}\nintegrator: {method: dopri}\n",
+            "did you mean 'dopri5'?"},
+        row{"unknown record", "initial: {theta: 1}\ntime: {end: 1}\nrecord: [thetta]\n",
+            "bad_scene.yaml:4:10: cannot record 'thetta'; did you mean 'theta'?"},
+        row{"rates given two ways", "initial: {theta: 1, psi_dot: 1, omega1: 2}\ntime: {end: 1}\n",
+            "give the initial rates one way only"},
+        row{"unknown parameter override",
+            "parameters: {I2: 3}\ninitial: {theta: 1}\ntime: {end: 1}\n",
+            "unknown field 'I2' in parameters"},
         row{"missing time", "initial: {theta: 1}\n", "bad_scene.yaml:1:1: missing field 'time'"},
-        row{"unknown form", "form: euler\ninitial: {theta: 1}\ntime: {end: 1}\n", "unknown form 'euler'"},
-        row{"record not in the form", "form: reduced\ninitial: {theta: 1, psi_dot: 3}\ntime: {end: 1}\nrecord: [phi]\n", "bad_scene.yaml:5:10: the reduced form does not give 'phi'"},
+        row{"unknown form", "form: euler\ninitial: {theta: 1}\ntime: {end: 1}\n",
+            "unknown form 'euler'"},
+        row{"record not in the form",
+            "form: reduced\ninitial: {theta: 1, psi_dot: 3}\ntime: {end: 1}\nrecord: [phi]\n",
+            "bad_scene.yaml:5:10: the reduced form does not give 'phi'"},
         // Finite initial values whose consequences overflow double precision (a silent inf before).
-        row{"initial rate overflows f", "initial: {theta: 1, phi_dot: 1e300}\ntime: {end: 1}\n", "bad_scene.yaml:2:10: initial values too large for double precision: theta_ddot = inf in f(t0, y0) at t = 0.0"},
-        row{"initial momentum overflows f", "form: hamiltonian\ninitial: {theta: 1, p_psi: 1e300}\ntime: {end: 1}\n", "bad_scene.yaml:3:10: initial values too large for double precision: p_theta_dot = inf in f(t0, y0)"},
-        row{"initial momentum overflows", "parameters: {I1: 4}\ninitial: {theta: 1, phi_dot: 1e308}\ntime: {end: 1}\n", "bad_scene.yaml:3:10: initial values too large for double precision: p_phi = inf at t = 0.0"},
-        row{"initial energy overflows", "parameters: {I1: 1e10, I3: 5e9}\nform: body\ninitial: {theta: 1, omega1: 1e150}\ntime: {end: 1}\n", "bad_scene.yaml:4:10: initial values too large for double precision: energy = inf at t = 0.0"},
+        row{"initial rate overflows f", "initial: {theta: 1, phi_dot: 1e300}\ntime: {end: 1}\n",
+            "bad_scene.yaml:2:10: initial values too large for double precision: theta_ddot = inf "
+            "in f(t0, y0) at t = 0.0"},
+        row{"initial momentum overflows f",
+            "form: hamiltonian\ninitial: {theta: 1, p_psi: 1e300}\ntime: {end: 1}\n",
+            "bad_scene.yaml:3:10: initial values too large for double precision: p_theta_dot = inf "
+            "in f(t0, y0)"},
+        row{"initial momentum overflows",
+            "parameters: {I1: 4}\ninitial: {theta: 1, phi_dot: 1e308}\ntime: {end: 1}\n",
+            "bad_scene.yaml:3:10: initial values too large for double precision: p_phi = inf at t "
+            "= 0.0"},
+        row{"initial energy overflows",
+            "parameters: {I1: 1e10, I3: 5e9}\nform: body\ninitial: {theta: 1, omega1: "
+            "1e150}\ntime: {end: 1}\n",
+            "bad_scene.yaml:4:10: initial values too large for double precision: energy = inf at t "
+            "= 0.0"},
     }));
     INFO(name);
     const scratch_file scene("bad_scene.yaml", scene_text("heavy_top", body));
@@ -265,18 +319,22 @@ TEST_CASE("a rate that comes out subnormal from omega is no internal error", "[s
 }
 
 TEST_CASE("an unwritable output path is a clear error before any work", "[simulate][errors]") {
-    const run_result r = run_rotgen("simulate '" + std::string(ROTGEN_SOURCE_DIR) +
-                                    "/models/scenes/heavy_top_nutation.yaml' -o /nonexistent/dir/out.csv");
+    const run_result r =
+        run_rotgen("simulate '" + std::string(ROTGEN_SOURCE_DIR) +
+                   "/models/scenes/heavy_top_nutation.yaml' -o /nonexistent/dir/out.csv");
     CHECK(r.status == 2);
-    CHECK(r.err == "rotgen: error: /nonexistent/dir/out.csv: cannot write: No such file or directory\n");
+    CHECK(r.err ==
+          "rotgen: error: /nonexistent/dir/out.csv: cannot write: No such file or directory\n");
 }
 
-TEST_CASE("an integration that cannot go on exits 3 and keeps its samples in a partial file", "[simulate][errors]") {
+TEST_CASE("an integration that cannot go on exits 3 and keeps its samples in a partial file",
+          "[simulate][errors]") {
     // The damped top falls to theta = pi, where the Euler-angle forms are singular.
     const scratch_file scene(
         "falling_scene.yaml",
-        scene_text("damped_driven_top", "initial: {theta: 1.0, psi_dot: 5}\ntime: {end: 40, samples: 401}\n"
-                                        "integrator: {method: dopri5, rtol: 1e-8, atol: 1e-10}\nrecord: [theta]\n"));
+        scene_text("damped_driven_top",
+                   "initial: {theta: 1.0, psi_dot: 5}\ntime: {end: 40, samples: 401}\n"
+                   "integrator: {method: dopri5, rtol: 1e-8, atol: 1e-10}\nrecord: [theta]\n"));
     const std::string csv = scratch("falling.csv"), partial = scratch("falling.partial.csv");
     std::remove(csv.c_str());
     std::remove(partial.c_str());
@@ -300,12 +358,14 @@ csv_table run_free_top(const std::string& model, const std::string& initial, dou
                        long samples, const std::string& name,
                        const std::string& integrator = "{method: dop853, rtol: 1e-12, atol: 1e-14}",
                        std::string* summary = nullptr) {
-    const scratch_file scene(name + ".yaml",
-                             model + "form: body\ninitial: {" + initial + "}\ntime: {end: " +
-                                 std::to_string(end) + ", samples: " + std::to_string(samples) +
-                                 "}\nintegrator: " + integrator + "\n"
-                                 "record: [omega1, omega2, omega3]\n");
-    const run_result r = run_rotgen("simulate '" + scene.path + "' -o '" + scratch(name + ".csv") + "'");
+    const scratch_file scene(name + ".yaml", model + "form: body\ninitial: {" + initial +
+                                                 "}\ntime: {end: " + std::to_string(end) +
+                                                 ", samples: " + std::to_string(samples) +
+                                                 "}\nintegrator: " + integrator +
+                                                 "\n"
+                                                 "record: [omega1, omega2, omega3]\n");
+    const run_result r =
+        run_rotgen("simulate '" + scene.path + "' -o '" + scratch(name + ".csv") + "'");
     INFO(r.out << r.err);
     REQUIRE(r.status == 0);
     if (summary) *summary = r.out;
@@ -350,8 +410,8 @@ TEST_CASE("steady rotation: frequencies (5.94) about axes 1 and 3, growth (5.100
     }
     SECTION("axis 2: exponential growth at Omega2") {
         const double omega2 = std::sqrt((I1 - I2) * (I2 - I3) / (I1 * I3)) * spin;
-        const csv_table t = run_free_top(model, "theta: 1, omega1: 1e-6, omega2: 1, omega3: 0",
-                                         16, 1601, "unstable2");
+        const csv_table t = run_free_top(model, "theta: 1, omega1: 1e-6, omega2: 1, omega3: 0", 16,
+                                         1601, "unstable2");
         // While the deviation is small, omega1 and omega3 grow like exp(Omega2 t): fit the
         // slope of log|omega1| over the samples with 1e-5 < |omega1| < 1e-2 (past the
         // transient of the decaying mode, before the nonlinear flip).
@@ -374,8 +434,8 @@ TEST_CASE("free symmetric top: omega precesses about the symmetry axis at (I3 - 
     const std::string model = "model:\n  name: symmetric\n  inertia: [2, 2, 1]\n";
     const double I1 = 2, I3 = 1, w3 = 3, w_perp = 0.4;
     const double Omega = (I3 - I1) / I1 * w3; // (omega1 + i omega2) ~ exp(-i Omega t)
-    const csv_table t = run_free_top(model, "theta: 0.7, omega1: 0.4, omega2: 0, omega3: 3", 10, 101,
-                                     "symmetric");
+    const csv_table t =
+        run_free_top(model, "theta: 0.7, omega1: 0.4, omega2: 0, omega3: 3", 10, 101, "symmetric");
     const auto ts = t.values("t"), w1 = t.values("omega1"), w2 = t.values("omega2"),
                w3s = t.values("omega3");
     for (std::size_t i = 0; i < ts.size(); ++i) {
@@ -396,9 +456,9 @@ TEST_CASE("an adaptive method given a step takes fixed steps: no rejections, err
     for (int k = 0; k < 2; ++k) {
         const double h = k == 0 ? 0.5 : 0.25;
         std::string summary;
-        const csv_table t = run_free_top(model, "theta: 0.7, omega1: 0.4, omega2: 0, omega3: 3", 10,
-                                         11, "fixed_dop853", "{method: dop853, step: " +
-                                         std::to_string(h) + "}", &summary);
+        const csv_table t = run_free_top(
+            model, "theta: 0.7, omega1: 0.4, omega2: 0, omega3: 3", 10, 11, "fixed_dop853",
+            "{method: dop853, step: " + std::to_string(h) + "}", &summary);
         INFO(summary);
         CHECK(summary.find(std::to_string(static_cast<int>(10 / h)) + " accepted, 0 rejected") !=
               std::string::npos);
@@ -425,11 +485,15 @@ TEST_CASE("near gimbal lock the Hamiltonian chart loses accuracy and the switch 
         const scratch_file scene(
             "near_lock.yaml",
             "model:\n  name: symmetric_free_top\n  inertia: [2, 2, 1]\nform: hamiltonian\n"
-            "switch_chart: " + switch_chart +
-                "\ninitial: {theta: 1e-4, psi: 1.5707963267948966, omega1: 0.3, omega2: 0, omega3: 1}\n"
-                "time: {end: 40, samples: 401}\nintegrator: {method: dop853, rtol: 1e-10, atol: 1e-12}\n"
+            "switch_chart: " +
+                switch_chart +
+                "\ninitial: {theta: 1e-4, psi: 1.5707963267948966, omega1: 0.3, omega2: 0, omega3: "
+                "1}\n"
+                "time: {end: 40, samples: 401}\nintegrator: {method: dop853, rtol: 1e-10, atol: "
+                "1e-12}\n"
                 "record: [omega1, omega2, omega3]\n");
-        const run_result r = run_rotgen("simulate '" + scene.path + "' -o '" + scratch("near_lock.csv") + "'");
+        const run_result r =
+            run_rotgen("simulate '" + scene.path + "' -o '" + scratch("near_lock.csv") + "'");
         INFO(r.out << r.err);
         REQUIRE(r.status == 0);
         const csv_table t = read_csv(scratch("near_lock.csv"));
@@ -455,16 +519,18 @@ TEST_CASE("a reduced scene without record: records what the form gives (no ignor
     // top only phi (psi appears in T through I1 != I2).
     // drift: the bound on max |E(t) - E(0)|, 10x the observed 4.4e-12 and 6.0e-10.
     using row = std::tuple<std::string, std::vector<std::string>, double>;
-    const auto [model, header, drift] = GENERATE(table<std::string, std::vector<std::string>, double>({
-        row{"heavy_top", {"t", "theta", "energy"}, 5e-11},
-        row{"free_asymmetric_top", {"t", "theta", "psi", "energy"}, 6e-9},
-    }));
+    const auto [model, header, drift] =
+        GENERATE(table<std::string, std::vector<std::string>, double>({
+            row{"heavy_top", {"t", "theta", "energy"}, 5e-11},
+            row{"free_asymmetric_top", {"t", "theta", "psi", "energy"}, 6e-9},
+        }));
     INFO(model);
-    const scratch_file scene("reduced_default_scene.yaml",
-                             scene_text(model, "form: reduced\n"
-                                               "initial: {theta: 1, psi: 0.3, phi_dot: 0.5, psi_dot: 3}\n"
-                                               "time: {end: 2, samples: 21}\n"
-                                               "integrator: {method: dop853, rtol: 1e-10, atol: 1e-12}\n"));
+    const scratch_file scene(
+        "reduced_default_scene.yaml",
+        scene_text(model, "form: reduced\n"
+                          "initial: {theta: 1, psi: 0.3, phi_dot: 0.5, psi_dot: 3}\n"
+                          "time: {end: 2, samples: 21}\n"
+                          "integrator: {method: dop853, rtol: 1e-10, atol: 1e-12}\n"));
     const std::string csv = scratch("reduced_default.csv");
     const run_result r = run_rotgen("simulate '" + scene.path + "' -o '" + csv + "'");
     INFO(r.out << r.err);

@@ -73,7 +73,8 @@ void expect_user_error(const std::string& text, const std::string& message) {
 
 // The expressions fuzz/regressions/expr/ keeps, with the error each must give.
 const std::map<std::string, std::string>& kept_expression_errors() {
-    const std::string range = "exponent out of range (its magnitude must be at most 1000) in torque";
+    const std::string range =
+        "exponent out of range (its magnitude must be at most 1000) in torque";
     static const std::map<std::string, std::string> m{
         {"slow_long_number_to_huge_power", "fuzz.yaml:3:86: " + range},
         {"timeout_decimal_base_huge_exponent", "fuzz.yaml:3:47: " + range},
@@ -96,7 +97,8 @@ const std::map<std::string, std::string>& kept_file_errors() {
         {"subnormal_parameter_default.yaml", ":6:6: the default of parameter 'c'" + finite},
         {"subnormal_parameter_default_full_tensor_top.yaml",
          ":7:8: the default of parameter 'Izz'" + finite},
-        {"subnormal_parameter_default_inline_model.yaml", ":3:19: the default of parameter 'A'" + finite},
+        {"subnormal_parameter_default_inline_model.yaml",
+         ":3:19: the default of parameter 'A'" + finite},
         {"nul_in_yaml_error_message.yaml", ":1:5: malformed YAML: unknown escape character: \\x04"},
     };
     return m;
@@ -144,14 +146,16 @@ fs::path scene_dir(const std::string& name) {
     fs::create_directories(d / "scenes");
     for (const auto& entry : fs::directory_iterator(fs::path(ROTGEN_SOURCE_DIR) / "models"))
         if (entry.is_regular_file() && entry.path().extension() == ".yaml")
-            fs::copy_file(entry.path(), d / entry.path().filename(), fs::copy_options::overwrite_existing);
+            fs::copy_file(entry.path(), d / entry.path().filename(),
+                          fs::copy_options::overwrite_existing);
     return d;
 }
 
 std::string repeat(const std::string& s, std::size_t n) {
     std::string r;
     r.reserve(s.size() * n);
-    for (std::size_t i = 0; i < n; ++i) r += s;
+    for (std::size_t i = 0; i < n; ++i)
+        r += s;
     return r;
 }
 
@@ -195,9 +199,12 @@ TEST_CASE("fuzz regressions: kept scene inputs give their user error line", "[fu
 TEST_CASE("fuzz regressions: hostile expressions are bounded", "[fuzz][errors]") {
     // Each used to overflow the stack, run for minutes or exhaust the memory.
     const std::string nested = "expression nested too deeply (more than 200 levels) in torque";
-    const std::string range = "exponent out of range (its magnitude must be at most 1000) in torque";
-    expect_user_error(repeat("(", 100000) + "phi" + repeat(")", 100000), "fuzz.yaml:3:212: " + nested);
-    expect_user_error(repeat("sin(", 50000) + "phi" + repeat(")", 50000), "fuzz.yaml:3:812: " + nested);
+    const std::string range =
+        "exponent out of range (its magnitude must be at most 1000) in torque";
+    expect_user_error(repeat("(", 100000) + "phi" + repeat(")", 100000),
+                      "fuzz.yaml:3:212: " + nested);
+    expect_user_error(repeat("sin(", 50000) + "phi" + repeat(")", 50000),
+                      "fuzz.yaml:3:812: " + nested);
     expect_user_error(repeat("phi^", 50000) + "2", "fuzz.yaml:3:812: " + nested);
     expect_user_error("9^9^9^9", "fuzz.yaml:3:15: " + range);
     expect_user_error("pow(7, 99999999)", "fuzz.yaml:3:12: " + range);
@@ -208,9 +215,12 @@ TEST_CASE("fuzz regressions: hostile expressions are bounded", "[fuzz][errors]")
     expect_user_error(repeat("1e4000*", 20000) + "1",
                       "fuzz.yaml:3:74: numbers too large (an exact value would have more than "
                       "39321 digits) in torque");
-    expect_user_error(std::string(10000, '7'), "fuzz.yaml:3:12: number with more than 4000 digits in torque");
-    expect_user_error(std::string("phi\0", 4) + "+1", "fuzz.yaml:3:15: unexpected character '\\x00' in torque");
-    expect_user_error("sqrt(-1) + log(0) + pow(0, -1) + 0^0", "fuzz.yaml:3:23: log(0) is undefined in torque");
+    expect_user_error(std::string(10000, '7'),
+                      "fuzz.yaml:3:12: number with more than 4000 digits in torque");
+    expect_user_error(std::string("phi\0", 4) + "+1",
+                      "fuzz.yaml:3:15: unexpected character '\\x00' in torque");
+    expect_user_error("sqrt(-1) + log(0) + pow(0, -1) + 0^0",
+                      "fuzz.yaml:3:23: log(0) is undefined in torque");
     // Accepted: signs are not nesting; 200000 minus signs cancel.
     const auto& s = rotgen::symbols();
     CHECK((parse_fuzz(repeat("-", 200000) + "phi") - s.q[0]).is_zero());
@@ -230,44 +240,54 @@ TEST_CASE("fuzz regressions: hostile expressions are bounded", "[fuzz][errors]")
 TEST_CASE("fuzz regressions: hostile model files give one user error line", "[fuzz][errors]") {
     using row = std::tuple<std::string, std::string, std::string>;
     // name, file contents, expected text in the message
-    const std::string bomb = "description: [&a [x, x, x, x, x, x, x, x, x], &b [*a, *a, *a, *a, *a, *a, *a, *a, *a], "
-                             "&c [*b, *b, *b, *b, *b, *b, *b, *b, *b], &d [*c, *c, *c, *c, *c, *c, *c, *c, *c], "
-                             "&e [*d, *d, *d, *d, *d, *d, *d, *d, *d], &f [*e, *e, *e, *e, *e, *e, *e, *e, *e], "
-                             "&g [*f, *f, *f, *f, *f, *f, *f, *f, *f], &h [*g, *g, *g, *g, *g, *g, *g, *g, *g]]\n";
+    const std::string bomb =
+        "description: [&a [x, x, x, x, x, x, x, x, x], &b [*a, *a, *a, *a, *a, *a, *a, *a, *a], "
+        "&c [*b, *b, *b, *b, *b, *b, *b, *b, *b], &d [*c, *c, *c, *c, *c, *c, *c, *c, *c], "
+        "&e [*d, *d, *d, *d, *d, *d, *d, *d, *d], &f [*e, *e, *e, *e, *e, *e, *e, *e, *e], "
+        "&g [*f, *f, *f, *f, *f, *f, *f, *f, *f], &h [*g, *g, *g, *g, *g, *g, *g, *g, *g]]\n";
     const auto [name, text, problem] = GENERATE_COPY(table<std::string, std::string, std::string>({
-        row{"deep parentheses", top + "potential: " + repeat("(", 100000) + "theta" + repeat(")", 100000) + "\n",
+        row{"deep parentheses",
+            top + "potential: " + repeat("(", 100000) + "theta" + repeat(")", 100000) + "\n",
             "nested too deeply"},
-        row{"deep calls", top + "potential: " + repeat("cos(", 20000) + "theta" + repeat(")", 20000) + "\n",
+        row{"deep calls",
+            top + "potential: " + repeat("cos(", 20000) + "theta" + repeat(")", 20000) + "\n",
             "nested too deeply"},
         row{"power tower", top + "potential: 9^9^9^9\n", "exponent out of range"},
         row{"huge exponent", top + "potential: theta^99999999\n", "exponent out of range"},
-        row{"huge power of a number", top + "potential: pow(7, 99999999)\n", "exponent out of range"},
+        row{"huge power of a number", top + "potential: pow(7, 99999999)\n",
+            "exponent out of range"},
         row{"enormous product", top + "potential: " + repeat("1e4000*", 100) + "cos(theta)\n",
             "numbers too large"},
-        row{"10000 digits", top + "potential: " + std::string(10000, '3') + "\n", "more than 4000 digits"},
+        row{"10000 digits", top + "potential: " + std::string(10000, '3') + "\n",
+            "more than 4000 digits"},
         row{"1e4000 in the inertia", "name: top\ninertia: [1e4000, 1e4000, 1e4000]\n",
             "inertia is not a finite real number"},
         row{"sqrt(-1) in the inertia", "name: top\ninertia: [\"1 + sqrt(-1)\", 2, 2]\n",
             "inertia is not a finite real number"},
         row{"a subnormal default (GiNaC::numeric(double) threw CLN's underflow exception)",
             "name: top\nparameters: {a: 1e-310}\ninertia: [1, 1, 1]\n", "must be a finite number"},
-        row{"sqrt(-1) in the potential", top + "potential: sqrt(-1)*cos(theta)\n", "not a finite real number"},
+        row{"sqrt(-1) in the potential", top + "potential: sqrt(-1)*cos(theta)\n",
+            "not a finite real number"},
         row{"pow(0, -1)", top + "potential: pow(0, -1)\n", "division by zero"},
         row{"0^0", top + "potential: 0^0\n", "division by zero"},
         row{"log(0)", top + "potential: log(0)\n", "log(0) is undefined"},
         row{"sin(exp(exp(20))) took minutes in evalf", top + "potential: sin(exp(exp(22)))\n",
             "not a finite real number"},
-        row{"gravity whose product overflows", top + "gravity: {mass: 1e300, g: 1e300, com: [0, 0, 1]}\n",
+        row{"gravity whose product overflows",
+            top + "gravity: {mass: 1e300, g: 1e300, com: [0, 0, 1]}\n",
             "the potential with gravity is not a finite real number"},
         row{"a 300000-character name (std::regex overflowed the stack)",
-            "name: " + std::string(300000, 'a') + "\ninertia: [1, 1, 1]\n", "must be a C++ identifier"},
+            "name: " + std::string(300000, 'a') + "\ninertia: [1, 1, 1]\n",
+            "must be a C++ identifier"},
         row{"a 300000-digit default (std::regex overflowed the stack)",
             "name: top\nparameters: {a: " + std::string(300000, '1') + "}\ninertia: [1, 1, 1]\n",
             "must be a finite number"},
-        row{"a file over 1 MiB", top + "# " + std::string(1100000, 'x') + "\n", "file is larger than 1 MiB"},
+        row{"a file over 1 MiB", top + "# " + std::string(1100000, 'x') + "\n",
+            "file is larger than 1 MiB"},
         row{"billion laughs (aliases are shared, never expanded)", top + bomb + "damping: *h\n",
             "'damping' must be one coefficient or a list of three"},
-        row{"deeply nested YAML", "name: top\ninertia: " + repeat("[", 100000) + repeat("]", 100000) + "\n",
+        row{"deeply nested YAML",
+            "name: top\ninertia: " + repeat("[", 100000) + repeat("]", 100000) + "\n",
             "fuzz_regression_model.yaml:2:200010: malformed YAML: bad file"},
     }));
     INFO(name);
@@ -278,29 +298,36 @@ TEST_CASE("fuzz regressions: hostile model files give one user error line", "[fu
 TEST_CASE("fuzz regressions: hostile scene files give one user error line", "[fuzz][errors]") {
     using row = std::tuple<std::string, std::string, std::string>;
     const auto [name, text, problem] = GENERATE_COPY(table<std::string, std::string, std::string>({
-        row{"model: /dev/zero used to read forever", "model: /dev/zero\n" + start, "file is larger than 1 MiB"},
+        row{"model: /dev/zero used to read forever", "model: /dev/zero\n" + start,
+            "file is larger than 1 MiB"},
         row{"an override that makes the inertia negative",
             "model: ../heavy_top.yaml\nparameters: {I3: -5}\n" + start,
             "with these parameter values the model"},
         row{"an override that puts 0 under a division",
             "model: {name: t, parameters: {a: 1}, inertia: [1, 1, 1], potential: 1/a*cos(theta)}\n"
-            "parameters: {a: 0}\n" + start,
+            "parameters: {a: 0}\n" +
+                start,
             "with these parameter values the model"},
-        row{"a time span that overflows", "model: ../heavy_top.yaml\ninitial: {theta: 0.5}\n"
-                                          "time: {start: -1e308, end: 1e308}\n",
+        row{"a time span that overflows",
+            "model: ../heavy_top.yaml\ninitial: {theta: 0.5}\n"
+            "time: {start: -1e308, end: 1e308}\n",
             "time span"},
         row{"max_steps below 1 (was cast to 0)",
             "model: ../heavy_top.yaml\n" + start + "integrator: {method: dop853, max_steps: 0.5}\n",
             "max_steps must be a whole number"},
         row{"max_steps 1e300 (undefined cast to long)",
-            "model: ../heavy_top.yaml\n" + start + "integrator: {method: dop853, max_steps: 1e300}\n",
+            "model: ../heavy_top.yaml\n" + start +
+                "integrator: {method: dop853, max_steps: 1e300}\n",
             "max_steps must be a whole number"},
-        row{"a subnormal initial angle", "model: ../heavy_top.yaml\ninitial: {theta: 0.5, phi: 1e-310}\ntime: {end: 1}\n",
+        row{"a subnormal initial angle",
+            "model: ../heavy_top.yaml\ninitial: {theta: 0.5, phi: 1e-310}\ntime: {end: 1}\n",
             "must be 0 or at least 2.2e-308 in magnitude"},
-        row{"a subnormal parameter override", "model: ../heavy_top.yaml\nparameters: {h: -1e-310}\n" + start,
+        row{"a subnormal parameter override",
+            "model: ../heavy_top.yaml\nparameters: {h: -1e-310}\n" + start,
             "must be 0 or at least 2.2e-308 in magnitude"},
         row{"a 400000-digit number (std::regex overflowed the stack)",
-            "model: ../heavy_top.yaml\ninitial: {theta: " + std::string(400000, '1') + "}\ntime: {end: 1}\n",
+            "model: ../heavy_top.yaml\ninitial: {theta: " + std::string(400000, '1') +
+                "}\ntime: {end: 1}\n",
             "must be a finite number"},
     }));
     INFO(name);
@@ -323,16 +350,21 @@ TEST_CASE("fuzz regressions: kept inputs with control characters in messages", "
     }
 }
 
-TEST_CASE("fuzz regressions: control characters in quoted names stay on one line", "[fuzz][errors]") {
+TEST_CASE("fuzz regressions: control characters in quoted names stay on one line",
+          "[fuzz][errors]") {
     using row = std::tuple<std::string, std::string, std::string>;
     // name, file contents, the message after the file name: control characters escaped
     const auto [name, text, message] = GENERATE(table<std::string, std::string, std::string>({
-        row{"a key with a newline", top + "\"foo\\nbar\": 1\n", ":4:2: unknown field 'foo\\nbar' in the model"},
-        row{"a parameter name with a newline", "name: top\nparameters: {\"a\\nb\": 1}\ninertia: [1, 1, 1]\n",
+        row{"a key with a newline", top + "\"foo\\nbar\": 1\n",
+            ":4:2: unknown field 'foo\\nbar' in the model"},
+        row{"a parameter name with a newline",
+            "name: top\nparameters: {\"a\\nb\": 1}\ninertia: [1, 1, 1]\n",
             ":2:15: parameter name 'a\\nb' is not an identifier"},
-        row{"a parameter name with a carriage return", "name: top\nparameters: {\"a\\rb\": 1}\ninertia: [1, 1, 1]\n",
+        row{"a parameter name with a carriage return",
+            "name: top\nparameters: {\"a\\rb\": 1}\ninertia: [1, 1, 1]\n",
             ":2:15: parameter name 'a\\x0db' is not an identifier"},
-        row{"a NUL byte (yaml-cpp quotes it in its message)", top + std::string("potential: cos(theta)\0\n", 23),
+        row{"a NUL byte (yaml-cpp quotes it in its message)",
+            top + std::string("potential: cos(theta)\0\n", 23),
             ":5:1: malformed YAML: unknown escape character: \\n"},
     }));
     INFO(name);
