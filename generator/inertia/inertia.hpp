@@ -1,7 +1,7 @@
 // rotgen — inertia from geometry, principal axes, and the stability of steady rotation (§5.4–5.7).
 //
 // Everything here is exact (GiNaC) where it can be, and numeric (at the parameters' defaults)
-// where it cannot. No YAML: spec.cpp reads `body: {pivot, parts}` into `part`s and calls
+// where it cannot. No YAML: spec/body_parts.cpp reads `body: {pivot, parts}` into `part`s and calls
 // `combine_parts`.
 //
 // Conventions (the chapter's; runtime/rotation.hpp has the same ones in floating point):
@@ -119,7 +119,7 @@ struct principal_axes {
 //     perpendicular to the simple axis (any orthonormal pair in it is principal, §5.5.1).
 //   * numeric otherwise, and where the closed forms would be too large to read (a quadratic
 //     factor with symbolic coefficients gives axes of thousands of nodes; see the limits in
-//     inertia.cpp) or need a root under a root (the unit axes of [[2, 1], [1, 3]]): Eigen's
+//     principal_axes.cpp) or need a root under a root (the unit axes of [[2, 1], [1, 3]]): Eigen's
 //     SelfAdjointEigenSolver on the tensor at the defaults. Moments may be exact while the axes
 //     are numeric.
 // Each axis has its largest component positive, except that the third may be flipped to make

@@ -31,8 +31,9 @@ TEST_CASE("the reduced heavy top's ignored rates are dH/dp of (5.79)", "[forms][
     const form_output& ignored = f.outputs.at("ignored_rates");
     REQUIRE(ignored.names == std::vector<std::string>{"phi_dot", "psi_dot"});
 
-    // H = p_theta^2/(2 I1) + p_psi^2/(2 I3) + (p_phi - p_psi cos theta)^2/(2 I1 sin^2 theta) + M g
-    // h cos theta: phi_dot = dH/dp_phi, psi_dot = dH/dp_psi.
+    // (5.79): H = p_theta^2/(2 I1) + p_psi^2/(2 I3)
+    //              + (p_phi - p_psi cos theta)^2/(2 I1 sin^2 theta) + M g h cos theta,
+    // phi_dot = dH/dp_phi, psi_dot = dH/dp_psi.
     const auto& s = symbols();
     const double I1 = 1.0, I3 = 0.5, theta = 0.7, p_phi = 0.3, p_theta = -0.2, p_psi = 1.1;
     GiNaC::exmap at = spec.parameter_defaults();
