@@ -60,15 +60,6 @@ std::string harness_text(const bench_sources& src) {
     return text;
 }
 
-// `$CXX --version`; throws std::runtime_error if the compiler does not run.
-std::string compiler_identity() {
-    int status = 0;
-    const std::string id = run_capture(shell_quote(compiler()) + " --version", &status);
-    if (status != 0)
-        throw std::runtime_error("no working C++ compiler ('" + compiler() + "'): " + id);
-    return id;
-}
-
 // With GCC, an inlining limit high enough that every integrator — Odeint's header-only steppers
 // as much as rotgen's — is inlined into its loop as it would be in a program that uses it once:
 // at GCC's default, one translation unit holding many configurations outlines Odeint's
@@ -128,7 +119,8 @@ std::string driver_source(std::vector<variant>& variants, const scene_spec& scen
                              placeholders::known_only);
 }
 
-// shared with simulate: to be replaced by run/'s one compile cache
+// The driver is an executable with SUNDIALS, not a shared object: its own compile step, over the
+// one cache directory and compiler identity of run/compile_cache.hpp.
 compiled_driver compile_driver(const std::string& source, const bench_sources& src,
                                const std::string& scene_name, std::size_t variant_count) {
     const auto t_compile = std::chrono::steady_clock::now();

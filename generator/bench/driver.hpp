@@ -36,7 +36,6 @@ struct compiled_driver {
 // The driver compiled (and cached in <cache_directory()>/bench/<scene_name>-<key>, with its
 // driver.cpp) unless the cache has it; prints a line while compiling. Throws std::runtime_error
 // with the compiler's output.
-// shared with simulate: to be replaced by run/'s one compile cache
 compiled_driver compile_driver(const std::string& source, const bench_sources& src,
                                const std::string& scene_name, std::size_t variant_count);
 

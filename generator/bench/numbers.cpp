@@ -1,6 +1,8 @@
 // rotgen bench: number formatting.
 #include "bench/numbers.hpp"
 
+#include "support/format.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -8,7 +10,7 @@
 
 namespace rotgen::bench {
 
-// shared with simulate: to be replaced by support/'s number formatting (ld_literal ... tol_text)
+// long double literals and table cells; doubles as support/format.hpp writes them
 std::string ld_literal(long double x) {
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.21LgL", x);
@@ -24,16 +26,11 @@ std::string ld_plain(long double x) {
 }
 
 std::string plain(double x) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.17g", x);
-    return buf;
+    return format_number(x);
 }
 
 std::string short_number(double x, int digits) {
-    if (std::isnan(x)) return "";
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.*g", digits, x);
-    return buf;
+    return std::isnan(x) ? "" : rotgen::short_number(x, digits);
 }
 
 std::string csv_number(double x) {

@@ -10,7 +10,7 @@
 
 namespace rotgen::bench {
 
-// shared with simulate: to be replaced by support/'s number formatting
+// bench's own: long double literals, table cells (empty for NaN); the rest is support/format.hpp
 std::string ld_literal(long double x); // "1.5L", "2.0L": a long double C++ literal, 21 digits
 std::string ld_plain(long double x);   // 21 significant digits, no suffix
 std::string plain(double x);           // 17 significant digits: reads back to the same double

@@ -4,6 +4,7 @@
 #include "bench/files.hpp"
 #include "bench/numbers.hpp"
 #include "support/error.hpp"
+#include "support/gnuplot.hpp"
 #include "support/process.hpp"
 
 #include <unistd.h>
@@ -32,30 +33,13 @@ const char* const palette =
     "linetype 9 lc rgb '#bcbd22'\nset linetype 10 lc rgb '#17becf'\nset linetype 11 lc rgb "
     "'#000000'\n";
 
-std::string gnuplot_escape(std::string s) {
-    std::string r;
-    for (char c : s)
-        r += c == '\'' ? std::string("''") : std::string(1, c);
-    return r;
-}
-
 // `terminal`, then the output (a temporary PNG renamed to `png` once gnuplot succeeded), then
 // `body`, written to `script_path` and run by gnuplot; throws user_error if it fails.
-// shared with simulate: to be replaced by support/'s one plot writer (gnuplot runner)
 void run_gnuplot(const fs::path& script_path, const std::string& terminal, const std::string& body,
                  const fs::path& png) {
-    const fs::path tmp_png = png.string() + ".tmp" + std::to_string(::getpid()) + ".png";
-    write_file(script_path,
-               terminal + "set output '" + gnuplot_escape(tmp_png.string()) + "'\n" + body);
-    int status = 0;
-    const std::string log = run_capture("gnuplot " + shell_quote(script_path.string()), &status);
-    if (status != 0)
-        throw user_error({png.string()}, "gnuplot failed to draw the plot (is gnuplot-nox "
-                                         "installed?): " +
-                                             log.substr(0, 400));
-    std::error_code ec;
-    fs::rename(tmp_png, png, ec);
-    if (ec) throw user_error({png.string()}, "cannot write: " + ec.message());
+    const std::string tmp_png = png.string() + ".tmp" + std::to_string(::getpid()) + ".png";
+    write_file(script_path, terminal + "set output '" + gnuplot_escape(tmp_png) + "'\n" + body);
+    run_gnuplot_script(script_path.string(), tmp_png, png.string());
 }
 
 int color_of(const std::string& peer, const std::string& method) {

@@ -110,7 +110,6 @@ std::optional<std::size_t> hamiltonian_variant(const std::vector<variant>& varia
 
 } // namespace
 
-// shared with simulate: to be replaced by run/'s one orientation rule
 std::string form_label(form_kind form, lagrangian_strategy strategy, bool quaternion) {
     switch (form) {
     case form_kind::lagrangian:

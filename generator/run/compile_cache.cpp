@@ -21,6 +21,13 @@ namespace {
 
 const char* const flags = "-std=c++17 -O3 -fno-math-errno -fPIC -shared -Wall -Wextra";
 
+void make_directories(const std::string& path) {
+    for (std::size_t i = 1; i <= path.size(); ++i)
+        if (i == path.size() || path[i] == '/') ::mkdir(path.substr(0, i).c_str(), 0755);
+}
+
+} // namespace
+
 const std::string& compiler_identity() {
     static const std::string id = [] {
         int status = 0;
@@ -31,13 +38,6 @@ const std::string& compiler_identity() {
     }();
     return id;
 }
-
-void make_directories(const std::string& path) {
-    for (std::size_t i = 1; i <= path.size(); ++i)
-        if (i == path.size() || path[i] == '/') ::mkdir(path.substr(0, i).c_str(), 0755);
-}
-
-} // namespace
 
 std::string cache_directory() {
     if (const char* d = std::getenv("ROTGEN_CACHE_DIR"); d && *d) return d;

@@ -33,6 +33,10 @@ class loaded_library {
 
 std::string cache_directory();
 
+// `$CXX --version` (once per process): part of every cache key, so another compiler builds anew.
+// Throws std::runtime_error if the compiler does not run.
+const std::string& compiler_identity();
+
 // Compiles `source` (a complete translation unit) unless the cache has it, then loads it.
 // `name` labels the files in the cache. Throws std::runtime_error with the compiler's output.
 loaded_library compile_and_load(const std::string& source, const std::string& name);

@@ -14,16 +14,11 @@ std::string gnuplot_temporary(const std::string& output) {
     return output + ".tmp" + std::to_string(::getpid());
 }
 
-void run_gnuplot(const std::string& output, const std::string& temporary,
-                 const std::string& script) {
+void run_gnuplot_script(const std::string& script_path, const std::string& temporary,
+                        const std::string& output) {
     register_temporary(temporary);
-    const std::string script_path = temporary + ".gp";
-    write_file_atomically(script_path, script);
-    register_temporary(script_path);
     int status = 0;
     const std::string log = run_capture("gnuplot " + shell_quote(script_path), &status);
-    std::remove(script_path.c_str());
-    forget_temporary(script_path);
     const bool drawn = status == 0 && std::rename(temporary.c_str(), output.c_str()) == 0;
     forget_temporary(temporary);
     if (!drawn) {
@@ -31,6 +26,22 @@ void run_gnuplot(const std::string& output, const std::string& temporary,
         throw user_error({output}, "gnuplot failed to draw the plot (is gnuplot-nox installed?)" +
                                        (log.empty() ? std::string() : ": " + log.substr(0, 400)));
     }
+}
+
+void run_gnuplot(const std::string& output, const std::string& temporary,
+                 const std::string& script) {
+    const std::string script_path = temporary + ".gp";
+    write_file_atomically(script_path, script);
+    register_temporary(script_path);
+    try {
+        run_gnuplot_script(script_path, temporary, output);
+    } catch (...) {
+        std::remove(script_path.c_str());
+        forget_temporary(script_path);
+        throw;
+    }
+    std::remove(script_path.c_str());
+    forget_temporary(script_path);
 }
 
 std::string gnuplot_escape(const std::string& s) {

@@ -19,6 +19,11 @@ template <class ScriptFor> void draw_with_gnuplot(const std::string& output, Scr
 void run_gnuplot(const std::string& output, const std::string& temporary,
                  const std::string& script);
 
+// Runs gnuplot on an existing script file that writes `temporary`, then renames `temporary` to
+// `output`; the script stays (bench keeps its scripts beside its plots). user_error on failure.
+void run_gnuplot_script(const std::string& script_path, const std::string& temporary,
+                        const std::string& output);
+
 // A temporary name for `output` (beside it).
 std::string gnuplot_temporary(const std::string& output);
 
