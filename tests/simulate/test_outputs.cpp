@@ -176,11 +176,11 @@ TEST_CASE("a conserved momentum that starts at 0 gets an absolute drift, not a r
 TEST_CASE("a long run shows a progress line on a terminal only, erased at the end",
           "[simulate][outputs]") {
     const std::string dir = scratch_dir("progress");
-    // ~9e6 fixed RK4 steps: a few seconds, past the one second before the line appears
+    // 2e7 fixed RK4 steps: several seconds, well past the one second before the line appears
     std::ofstream(dir + "/long.yaml")
         << "model: " << model_path("heavy_top") << "\n"
-        << "initial: {theta: 0.5, psi_dot: 30}\ntime: {end: 900, samples: 1001}\n"
-        << "record: [theta]\nintegrator: {method: rk4, step: 1e-4}\n";
+        << "initial: {theta: 0.5, psi_dot: 30}\ntime: {end: 2000, samples: 1001}\n"
+        << "record: [theta]\nintegrator: {method: rk4, step: 1e-4, max_steps: 1e9}\n";
     // on a terminal (a pseudo-terminal from util-linux's script)
     const std::string cmd = "cd '" + dir + "' && script -qec \"'" + std::string(ROTGEN_EXE) +
                             "' simulate long.yaml -o a.csv\" /dev/null > tty.txt";
@@ -191,7 +191,7 @@ TEST_CASE("a long run shows a progress line on a terminal only, erased at the en
     // not on a terminal, and not with --quiet (the same run, shorter: the line would not show
     // anyway)
     std::string text = read_file(dir + "/long.yaml");
-    text.replace(text.find("end: 900"), 8, "end: 9");
+    text.replace(text.find("end: 2000"), 9, "end: 9");
     std::ofstream(dir + "/long.yaml") << text;
     run_result r = run_rotgen("simulate long.yaml -o b.csv", dir);
     CHECK(r.status == 0);
