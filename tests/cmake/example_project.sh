@@ -10,6 +10,9 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cmake --install "$build" --prefix "$work/prefix" >/dev/null
 cp -r "$src/examples/embed" "$work/embed"
+# the runtime target asks its users for C++17 (GCC 12 defaults to it; other compilers may not)
+grep -rq "INTERFACE_COMPILE_FEATURES \"cxx_std_17\"" "$work/prefix" --include='rotgenTargets*.cmake' ||
+    { echo "rotgen::runtime does not carry cxx_std_17"; exit 1; }
 cmake -S "$work/embed" -B "$work/build" -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$work/build" >/dev/null
 "$work/build/gyroscope"
