@@ -9,6 +9,7 @@
 #include "derive/derive.hpp"
 #include "emit/emit.hpp"
 #include "spec/spec.hpp"
+#include "support/atomic_file.hpp"
 #include "support/error.hpp"
 #include "support/timings.hpp"
 
@@ -89,36 +90,16 @@ std::string shell_quote(const std::string& s) {
     return q + "'";
 }
 
-// Writes `text` to `path` via a temporary file in the same directory and a rename.
-void write_atomically(const std::filesystem::path& dir, const std::string& file,
-                      const std::string& text) {
+// DIR/file, created if missing, through support/'s atomic writer (never a partial header).
+void write_header(const std::filesystem::path& dir, const std::string& file,
+                  const std::string& text) {
     namespace fs = std::filesystem;
     std::error_code ec;
     if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
         throw user_error({dir.string()}, "the output path exists and is not a directory");
     fs::create_directories(dir, ec);
     if (ec) throw user_error({dir.string()}, "cannot create the output directory: " + ec.message());
-    const fs::path target = dir / file;
-    const fs::path temporary = dir / ("." + file + ".tmp." + std::to_string(::getpid()));
-    {
-        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-        if (!out)
-            throw user_error({dir.string()}, "cannot write to the output directory: " +
-                                                 std::string(std::strerror(errno)));
-        out << text;
-        out.flush();
-        if (!out) {
-            out.close();
-            fs::remove(temporary, ec);
-            throw user_error({target.string()}, "cannot write the header (disk full?)");
-        }
-    }
-    fs::rename(temporary, target, ec);
-    if (ec) {
-        std::error_code ignored;
-        fs::remove(temporary, ignored);
-        throw user_error({target.string()}, "cannot move the header into place: " + ec.message());
-    }
+    write_file_atomically((dir / file).string(), text);
 }
 
 form_kind form_of(const std::string& f) {
@@ -201,7 +182,7 @@ int cmd_emit(const std::vector<std::string>& args) {
         timings.time("lower", to_string(form), [&] { return lower_form(spec, f, request); });
     const emitted_header h =
         timings.time("emit", to_string(form), [&] { return emit_header(spec, lowered, header); });
-    timings.time("write", h.file_name, [&] { write_atomically(dir, h.file_name, h.text); });
+    timings.time("write", h.file_name, [&] { write_header(dir, h.file_name, h.text); });
     print_written(dir, h);
     if (o.has("--timings")) timings.print(std::cerr);
     return 0;
