@@ -106,12 +106,12 @@ void bench_run::prepare(const bench_options& options) {
         c.spec.parameters[i].value = c.scene.parameters[i];
     c.src = find_bench_sources();
     c.dir = c.opt.dir;
-    make_output_directory(c.dir);
     c.euler_ok = std::abs(std::sin(c.scene.angles[1])) > 1e-10;
     if (!c.euler_ok && c.scene.form != form_kind::body)
         throw user_error(c.scene.initial_where,
                          "initial theta is the gimbal-lock singularity of the "
                          "Euler-angle forms (sin theta = 0); use form: body");
+    make_output_directory(c.dir); // after every check of the input: a refused run leaves nothing
 }
 
 void bench_run::choose_variants() {
