@@ -10,6 +10,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 using namespace rotgen::test;
 namespace fs = std::filesystem;
@@ -200,4 +201,23 @@ TEST_CASE("a long run shows a progress line on a terminal only, erased at the en
     CHECK(r.status == 0);
     CHECK(r.out.empty());
     CHECK(r.err.empty());
+}
+
+TEST_CASE("the samples are at t_start + k (t_end - t_start) / (samples - 1)",
+          "[simulate][outputs]") {
+    const std::string dir = scratch_dir("grid");
+    std::ofstream(dir + "/top.yaml") << "model: " << model_path("heavy_top") << "\n"
+                                     << "initial: {theta: 0.5, psi_dot: 30}\n"
+                                     << "time: {start: 2, end: 3, samples: 11}\nrecord: [theta]\n";
+    const run_result r = run_rotgen("simulate top.yaml -o - -q", dir);
+    REQUIRE(r.status == 0);
+    std::istringstream rows(r.out);
+    std::string line;
+    std::getline(rows, line); // the header
+    std::vector<double> t;
+    while (std::getline(rows, line))
+        t.push_back(std::stod(line.substr(0, line.find(','))));
+    REQUIRE(t.size() == 11);
+    for (std::size_t k = 0; k < t.size(); ++k)
+        CHECK(t[k] == Approx(2 + 0.1 * double(k)).margin(1e-15)); // as computed, to the last bit
 }
