@@ -11,9 +11,12 @@
 #include <cstdlib>
 #include <fstream>
 #include <random>
+#include <sstream>
+#include <stdexcept>
 #include <string>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <vector>
 
 namespace rotgen::test {
 
@@ -77,6 +80,42 @@ inline run_result run_rotgen(const std::string& args, const std::string& dir = "
     std::remove((base + ".out").c_str());
     std::remove((base + ".err").c_str());
     return r;
+}
+
+// A CSV of numbers with a header line, as `rotgen simulate` writes it.
+struct csv_table {
+    std::vector<std::string> header;
+    std::vector<std::vector<double>> rows;
+    std::size_t column(const std::string& name) const {
+        for (std::size_t i = 0; i < header.size(); ++i)
+            if (header[i] == name) return i;
+        throw std::runtime_error("no column " + name);
+    }
+    std::vector<double> values(const std::string& name) const {
+        std::vector<double> v;
+        for (const auto& r : rows)
+            v.push_back(r.at(column(name)));
+        return v;
+    }
+};
+
+inline csv_table read_csv(const std::string& path) {
+    csv_table t;
+    std::istringstream in(read_file(path));
+    std::string line, cell;
+    std::getline(in, line);
+    std::istringstream h(line);
+    while (std::getline(h, cell, ','))
+        t.header.push_back(cell);
+    while (std::getline(in, line)) {
+        std::istringstream r(line);
+        std::vector<double> row;
+        // strtod, not stod: stod throws on a subnormal value (ERANGE), strtod returns it
+        while (std::getline(r, cell, ','))
+            row.push_back(std::strtod(cell.c_str(), nullptr));
+        t.rows.push_back(row);
+    }
+    return t;
 }
 
 // A scratch file holding `text`, removed at scope exit.

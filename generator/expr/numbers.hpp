@@ -9,6 +9,8 @@
 
 #include <ginac/ginac.h>
 
+#include <string>
+
 namespace rotgen {
 
 // The value of a finite double, exactly, as a rational: its integer mantissa times a power of two
@@ -20,6 +22,11 @@ GiNaC::numeric exact_rational(double x);
 // GiNaC::numeric(x) gives for a normal x, for a subnormal x too. For numeric evaluation (evalf),
 // where a float keeps GiNaC from carrying exact fractions through every operation.
 GiNaC::numeric float_numeric(double x);
+
+// Whether `s` is a decimal literal and nothing else:
+// [+-]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][+-]?[0-9]+)? (YAML's own conversion also accepts ".inf" and
+// "nan"; model and scene files do not).
+bool is_decimal(const std::string& s);
 
 // A real GiNaC value (evalf'd at the caller's GiNaC::Digits) as a long double, through its decimal
 // text; std::logic_error unless it evaluates to a real number.

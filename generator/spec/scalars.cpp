@@ -2,6 +2,8 @@
 // double-precision evaluation that validation uses (spec_detail.hpp).
 #include "spec/spec_detail.hpp"
 
+#include "expr/numbers.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -21,34 +23,6 @@ bool is_identifier(const std::string& s) {
     return !s.empty() && s.size() <= 255 && !std::isdigit(static_cast<unsigned char>(s[0])) &&
            std::all_of(s.begin(), s.end(), word);
 }
-
-namespace {
-
-// [+-]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][+-]?[0-9]+)?
-bool is_decimal(const std::string& s) {
-    std::size_t i = 0;
-    const auto digits = [&] {
-        const std::size_t from = i;
-        while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i])))
-            ++i;
-        return i - from;
-    };
-    if (i < s.size() && (s[i] == '+' || s[i] == '-')) ++i;
-    std::size_t mantissa = digits();
-    if (i < s.size() && s[i] == '.') {
-        ++i;
-        mantissa += digits();
-    }
-    if (mantissa == 0) return false;
-    if (i < s.size() && (s[i] == 'e' || s[i] == 'E')) {
-        ++i;
-        if (i < s.size() && (s[i] == '+' || s[i] == '-')) ++i;
-        if (digits() == 0) return false;
-    }
-    return i == s.size();
-}
-
-} // namespace
 
 // A finite decimal number, the whole scalar (YAML's own conversion accepts ".inf" and "nan"); not
 // subnormal (below 2.2e-308 in magnitude): GiNaC::numeric(double) throws CLN's underflow exception.

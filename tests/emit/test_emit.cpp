@@ -1,6 +1,7 @@
 // rotgen emit: the header's contract (names, sizes, stamp), determinism across processes, the
 // regenerate command, and bad command lines. The kernels themselves are checked numerically by
 // tests/kernels (rotgen_emit_tests), which compiles them.
+#include "emit_support.hpp"
 #include "support.hpp"
 
 #include "emit/emit.hpp"
@@ -14,24 +15,6 @@ using namespace rotgen::test;
 using Catch::Matchers::Contains;
 
 namespace {
-
-// What a test asks of the emitter: the form, the request, the header's options; emitted as
-// `rotgen emit` does (build the form, lower it, print it).
-struct emit_request {
-    form_kind form = form_kind::lagrangian;
-    lagrangian_strategy strategy = lagrangian_strategy::explicit_inverse;
-    std::vector<std::string> outputs;
-    bool specialise_all = false;
-    std::vector<std::string> specialise;
-    std::string command;
-    std::string name;
-};
-
-emitted_header emit_with(const model_spec& spec, const derivation& d, const emit_request& o) {
-    const kernel_request request{o.outputs, o.specialise_all, o.specialise};
-    const form_expressions f = build_requested_form(spec, d, o.form, o.strategy, request);
-    return emit_header(spec, lower_form(spec, f, request), {o.command, o.name});
-}
 
 // A scratch directory under the build tree, removed at scope exit.
 struct scratch_dir {

@@ -111,36 +111,6 @@ TEST_CASE("inertia: inspect --inertia prints fractions the same way in every run
 
 namespace {
 
-struct csv {
-    std::vector<std::string> header;
-    std::vector<std::vector<double>> rows;
-    std::vector<double> column(const std::string& name) const {
-        const auto at = std::find(header.begin(), header.end(), name) - header.begin();
-        std::vector<double> v;
-        for (const auto& r : rows)
-            v.push_back(r.at(at));
-        return v;
-    }
-};
-
-csv read_csv(const std::string& path) {
-    csv t;
-    std::istringstream in(read_file(path));
-    std::string line, cell;
-    std::getline(in, line);
-    std::istringstream h(line);
-    while (std::getline(h, cell, ','))
-        t.header.push_back(cell);
-    while (std::getline(in, line)) {
-        std::istringstream r(line);
-        std::vector<double> row;
-        while (std::getline(r, cell, ','))
-            row.push_back(std::stod(cell));
-        t.rows.push_back(row);
-    }
-    return t;
-}
-
 // A box turned by Euler angles: principal axes off the body axes, moments 5, 10, 13 (exact).
 const std::string box_model =
     "name: turned_box\n"
@@ -183,14 +153,14 @@ std::pair<std::vector<double>, std::vector<double>> deviation(const principal_ax
     const run_result r = run_rotgen("simulate '" + scene.path + "' -o '" + out + "'");
     INFO(r.out << r.err);
     REQUIRE(r.status == 0);
-    const csv t = read_csv(out);
+    const csv_table t = read_csv(out);
     std::remove(out.c_str());
-    const auto w1 = t.column("omega1"), w2 = t.column("omega2"), w3 = t.column("omega3");
+    const auto w1 = t.values("omega1"), w2 = t.values("omega2"), w3 = t.values("omega3");
     std::vector<double> d;
     for (std::size_t i = 0; i < w1.size(); ++i)
         d.push_back(w1[i] * p.axis_values[j][0] + w2[i] * p.axis_values[j][1] +
                     w3[i] * p.axis_values[j][2]);
-    return {t.column("t"), d};
+    return {t.values("t"), d};
 }
 
 } // namespace

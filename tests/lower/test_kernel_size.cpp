@@ -2,6 +2,7 @@
 // kernel bigger than the same kernel with runtime parameters, for every shipped model, form and
 // output; common sub-products are shared; and op-count bounds for the kernels the benchmark
 // times against hand-written code (bench/kernels), each derived from the equations below.
+#include "emit_support.hpp"
 #include "support.hpp"
 
 #include "emit/emit.hpp"
@@ -19,24 +20,6 @@ using namespace rotgen;
 using namespace rotgen::test;
 
 namespace {
-
-// What a test asks of the emitter: the form, the request, the header's options; emitted as
-// `rotgen emit` does (build the form, lower it, print it).
-struct emit_request {
-    form_kind form = form_kind::lagrangian;
-    lagrangian_strategy strategy = lagrangian_strategy::explicit_inverse;
-    std::vector<std::string> outputs;
-    bool specialise_all = false;
-    std::vector<std::string> specialise;
-    std::string command;
-    std::string name;
-};
-
-emitted_header emit_with(const model_spec& spec, const derivation& d, const emit_request& o) {
-    const kernel_request request{o.outputs, o.specialise_all, o.specialise};
-    const form_expressions f = build_requested_form(spec, d, o.form, o.strategy, request);
-    return emit_header(spec, lower_form(spec, f, request), {o.command, o.name});
-}
 
 std::vector<std::string> shipped_models() {
     std::vector<std::string> names;

@@ -19,37 +19,6 @@ using namespace rotgen::test;
 
 namespace {
 
-struct csv_table {
-    std::vector<std::string> header;
-    std::vector<std::vector<double>> rows;
-    std::vector<double> values(const std::string& name) const {
-        const auto it = std::find(header.begin(), header.end(), name);
-        if (it == header.end()) throw std::runtime_error("no column " + name);
-        std::vector<double> v;
-        for (const auto& r : rows)
-            v.push_back(r.at(static_cast<std::size_t>(it - header.begin())));
-        return v;
-    }
-};
-
-csv_table read_csv(const std::string& path) {
-    csv_table t;
-    std::istringstream in(read_file(path));
-    std::string line, cell;
-    std::getline(in, line);
-    std::istringstream h(line);
-    while (std::getline(h, cell, ','))
-        t.header.push_back(cell);
-    while (std::getline(in, line)) {
-        std::istringstream r(line);
-        std::vector<double> row;
-        while (std::getline(r, cell, ','))
-            row.push_back(std::stod(cell));
-        t.rows.push_back(row);
-    }
-    return t;
-}
-
 constexpr double pi = 3.141592653589793;
 
 std::string scratch(const std::string& name) {

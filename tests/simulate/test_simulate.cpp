@@ -13,41 +13,6 @@ using namespace rotgen::test;
 
 namespace {
 
-struct csv_table {
-    std::vector<std::string> header;
-    std::vector<std::vector<double>> rows;
-    std::size_t column(const std::string& name) const {
-        for (std::size_t i = 0; i < header.size(); ++i)
-            if (header[i] == name) return i;
-        throw std::runtime_error("no column " + name);
-    }
-    std::vector<double> values(const std::string& name) const {
-        std::vector<double> v;
-        for (const auto& r : rows)
-            v.push_back(r.at(column(name)));
-        return v;
-    }
-};
-
-csv_table read_csv(const std::string& path) {
-    csv_table t;
-    std::istringstream in(read_file(path));
-    std::string line, cell;
-    std::getline(in, line);
-    std::istringstream h(line);
-    while (std::getline(h, cell, ','))
-        t.header.push_back(cell);
-    while (std::getline(in, line)) {
-        std::istringstream r(line);
-        std::vector<double> row;
-        // strtod, not stod: stod throws on a subnormal value (ERANGE), strtod returns it
-        while (std::getline(r, cell, ','))
-            row.push_back(std::strtod(cell.c_str(), nullptr));
-        t.rows.push_back(row);
-    }
-    return t;
-}
-
 std::string scratch(const std::string& name) {
     return std::string(ROTGEN_BINARY_DIR) + "/" + name;
 }
