@@ -60,8 +60,10 @@ class bench_run {
     int run(const bench_options& options) {
         m_wall0 = clock_type::now();
         stage_timings& t = m_ctx.timings;
-        prepare(options);  // scene, output directory
+        prepare(options);  // scene, sources, cache
         choose_variants(); // derive; the forms and code-generation variants
+        // after every check of the input (the scene's form too): a refused run leaves nothing
+        make_output_directory(m_ctx.dir);
         m_ctx.plan = make_plan(m_ctx.scene, m_ctx.spec, m_ctx.parameter_values, m_ctx.k0, m_ctx.opt,
                                m_ctx.conservative, m_ctx.variants);
         write_file(m_ctx.dir / "plan.txt", m_ctx.plan.text); // the configurations -> plan.txt
@@ -111,7 +113,7 @@ void bench_run::prepare(const bench_options& options) {
         throw user_error(c.scene.initial_where,
                          "initial theta is the gimbal-lock singularity of the "
                          "Euler-angle forms (sin theta = 0); use form: body");
-    make_output_directory(c.dir); // after every check of the input: a refused run leaves nothing
+    bench_cache_root(); // a cache that cannot be made is refused before any output
 }
 
 void bench_run::choose_variants() {

@@ -121,6 +121,14 @@ std::string driver_source(std::vector<variant>& variants, const scene_spec& scen
 
 // The driver is an executable with SUNDIALS, not a shared object: its own compile step, over the
 // one cache directory and compiler identity of run/compile_cache.hpp.
+fs::path bench_cache_root() {
+    const fs::path root = fs::path(cache_directory()) / "bench";
+    std::error_code ec;
+    fs::create_directories(root, ec);
+    if (ec) throw user_error({root.string()}, "cannot create the cache directory: " + ec.message());
+    return root;
+}
+
 compiled_driver compile_driver(const std::string& source, const bench_sources& src,
                                const std::string& scene_name, std::size_t variant_count) {
     const auto t_compile = std::chrono::steady_clock::now();
@@ -134,7 +142,7 @@ compiled_driver compile_driver(const std::string& source, const bench_sources& s
     c.flags = driver_flags(compiler_id);
     const std::string key = hex(fnv1a(source + '\0' + harness + '\0' + compiler_id + '\0' +
                                       c.flags + '\0' + libs + '\0' + ROTGEN_VERSION));
-    c.cache = fs::path(cache_directory()) / "bench" / (scene_name + "-" + key);
+    c.cache = bench_cache_root() / (scene_name + "-" + key);
     std::error_code ec;
     fs::create_directories(c.cache, ec);
     if (ec)

@@ -33,6 +33,11 @@ struct compiled_driver {
     double seconds = 0;               // wall time of compile_driver
 };
 
+// <cache_directory()>/bench, created; throws the user_error "DIR: cannot create the cache
+// directory: REASON". `rotgen bench` calls it before it makes its output directory, so that a
+// cache it cannot use leaves nothing behind.
+std::filesystem::path bench_cache_root();
+
 // The driver compiled (and cached in <cache_directory()>/bench/<scene_name>-<key>, with its
 // driver.cpp) unless the cache has it; prints a line while compiling. Throws std::runtime_error
 // with the compiler's output.

@@ -12,12 +12,26 @@ namespace rotgen::bench {
 
 namespace fs = std::filesystem;
 
+namespace {
+bool complete(const bench_sources& c) {
+    std::error_code ec;
+    return fs::exists(c.harness / "harness.hpp", ec) && fs::exists(c.runtime / "rotgen.hpp", ec);
+}
+} // namespace
+
+bench_sources first_complete(const std::vector<bench_sources>& candidates) {
+    std::string looked;
+    for (const auto& c : candidates) {
+        if (complete(c)) return c;
+        looked += (looked.empty() ? "" : ", ") + c.harness.string();
+    }
+    throw user_error({"rotgen bench"}, "cannot find the harness (bench/workprecision/harness.hpp) "
+                                       "and the runtime headers; looked in " +
+                                           looked +
+                                           "; set ROTGEN_SOURCE_DIR to the rotgen source tree");
+}
+
 bench_sources find_bench_sources() {
-    const auto complete = [](const bench_sources& c) {
-        std::error_code ec;
-        return fs::exists(c.harness / "harness.hpp", ec) &&
-               fs::exists(c.runtime / "rotgen.hpp", ec);
-    };
     if (const char* d = std::getenv("ROTGEN_SOURCE_DIR"); d && *d) {
         // asked for explicitly: that tree or an error, never a silent fallback
         const bench_sources c{fs::path(d) / "bench/workprecision", fs::path(d) / "runtime"};
@@ -37,15 +51,7 @@ bench_sources find_bench_sources() {
     }
     const fs::path tree = ROTGEN_SOURCE_TREE; // set by generator/CMakeLists.txt
     candidates.push_back({tree / "bench/workprecision", tree / "runtime"});
-    std::string looked;
-    for (const auto& c : candidates) {
-        if (complete(c)) return c;
-        looked += (looked.empty() ? "" : ", ") + c.harness.string();
-    }
-    throw user_error({"rotgen bench"}, "cannot find the harness (bench/workprecision/harness.hpp) "
-                                       "and the runtime headers; looked in " +
-                                           looked +
-                                           "; set ROTGEN_SOURCE_DIR to the rotgen source tree");
+    return first_complete(candidates);
 }
 
 } // namespace rotgen::bench

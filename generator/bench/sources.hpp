@@ -2,6 +2,7 @@
 #pragma once
 
 #include <filesystem>
+#include <vector>
 
 namespace rotgen::bench {
 
@@ -14,5 +15,11 @@ struct bench_sources {
 // <prefix>/include/rotgen/runtime); else the source tree this file was compiled from (a build
 // tree). Throws user_error when none has harness.hpp and rotgen.hpp.
 bench_sources find_bench_sources();
+
+// The first of `candidates` that has harness.hpp and rotgen.hpp; throws the user_error "rotgen
+// bench: cannot find the harness ...; looked in H1, H2; set ROTGEN_SOURCE_DIR ..." when none has.
+// (A build's own source tree is always a candidate, so from `rotgen bench` this error is reached
+// only when that tree has been moved or deleted; the tests call this function directly.)
+bench_sources first_complete(const std::vector<bench_sources>& candidates);
 
 } // namespace rotgen::bench

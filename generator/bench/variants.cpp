@@ -19,6 +19,7 @@ struct variant_builder {
     const derivation& d;
     bool euler_usable;
     std::vector<variant> variants;
+    std::string refusal; // why the last form could not be built
 
     bool add(form_kind form, lagrangian_strategy strategy, bool quaternion, role r,
              bool specialised, bool lowered) {
@@ -30,7 +31,8 @@ struct variant_builder {
         v.lowered = lowered;
         try {
             v.f = build_form(spec, d, form, strategy, quaternion);
-        } catch (const user_error&) {
+        } catch (const user_error& e) {
+            refusal = e.problem();
             return false; // no such form for this model (e.g. reduced without cyclic coordinates)
         }
         v.quaternion = form == form_kind::body && v.f.state.size() == 7;
@@ -56,7 +58,7 @@ void add_main(variant_builder& b, form_kind form, bool orientation, const scene_
     const auto strategy = lagrangian_strategy::explicit_inverse;
     if (!b.add(form, strategy, orientation, role::main, true, true))
         if (!b.add(form, strategy, true, role::main, true, true))
-            throw user_error(scene.where, "the scene's form cannot be benchmarked");
+            throw user_error(scene.where, "the scene's form cannot be benchmarked: " + b.refusal);
     b.variants[0].implicit_runs = true;
     const form_kind main_form = b.variants[0].form;
     const bool main_quat = b.variants[0].quaternion;
@@ -126,7 +128,7 @@ std::string form_label(form_kind form, lagrangian_strategy strategy, bool quater
 
 variant_set choose_variants(const scene_spec& scene, const model_spec& spec, const derivation& d,
                             bool euler_usable, bool orientation, bool quick) {
-    variant_builder b{spec, d, euler_usable, {}};
+    variant_builder b{spec, d, euler_usable, {}, {}};
     add_main(b, scene.form, orientation, scene);
     add_alternatives(b, quick);
     print_unlowered(b.variants);

@@ -6,6 +6,7 @@
 #include <cctype>
 #include <map>
 #include <set>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -76,6 +77,11 @@ std::string describe_character(const std::string& s, std::size_t i) {
     static const char* hex = "0123456789abcdef";
     return std::string("'\\x") + hex[c >> 4] + hex[c & 15] + "'";
 }
+
+// An internal inconsistency of the parser (never a user error; passes through guarded()).
+struct parser_bug : std::logic_error {
+    using std::logic_error::logic_error;
+};
 
 struct token {
     enum kind_t { number, name, op, end } kind;
@@ -189,6 +195,8 @@ class parser {
         try {
             return f();
         } catch (const user_error&) {
+            throw;
+        } catch (const parser_bug&) {
             throw;
         } catch (const std::exception& e) {
             fail(at, std::string("cannot evaluate: ") + e.what());
@@ -403,7 +411,9 @@ class parser {
             if (f == "sqrt") return GiNaC::sqrt(a);
             if (f == "abs") return GiNaC::abs(a);
             if (f == "pow") return checked_pow(name, a, args[1]);
-            fail(name, "unknown function '" + f + "'");
+            // Unreachable from input: primary() refuses a name outside known_functions() (with
+            // a suggestion) before calling call(); reaching here means the two lists disagree.
+            throw parser_bug("expression parser: known function '" + f + "' has no case in call()");
         });
     }
 
@@ -438,7 +448,8 @@ class parser {
         case token::end:
             fail(t, "unexpected end of expression");
         }
-        fail(t, "unexpected token");
+        // Unreachable: the switch covers every token kind (number, name, op, end).
+        throw parser_bug("expression parser: a token of unknown kind");
     }
 
     const std::string& m_text;

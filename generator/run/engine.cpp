@@ -190,10 +190,13 @@ Eigen::VectorXd scene_run::state_of(const form_expressions& f, const initial_kin
     for (std::size_t s = 0; s < f.state.size(); ++s) {
         const std::string& name = f.state[s].name;
         const bool needs_rates = name.find("_dot") != std::string::npos || name.rfind("p_", 0) == 0;
+        // Unreachable from a scene: without rates (|sin theta| < 1e-12) an Euler-angle form
+        // either starts in the body form (decide_chart: the switch below 0.2) or is refused by
+        // decide_chart (|sin theta| < 1e-10 without the switch), and a switch back to it happens
+        // only above |sin theta| = 0.3.
         if (needs_rates && !k.have_rates)
-            throw user_error(m_scene.initial_where,
-                             "at theta = 0 the " + std::string(to_string(m_scene.form)) +
-                                 " form cannot start from body omega; use form: body");
+            throw std::logic_error("run: the " + std::string(to_string(m_scene.form)) +
+                                   " form was started at theta = 0 from body omega");
         y[static_cast<Eigen::Index>(s)] = static_cast<double>(state_value(k, name));
     }
     return y;

@@ -123,8 +123,11 @@ long double scene_parameter_value(const scene_spec& scene, const initial_kinemat
         }
     for (int i = 0; i < 3; ++i)
         if (name == "p_" + coordinate_names()[i]) {
+            // Unreachable from a scene: the reduced form never starts at |sin theta| < 1e-10
+            // (run/engine.cpp decide_chart and bench's prepare refuse it; bench adds reduced
+            // alternatives only with rates), so the momenta are always known here.
             if (!k.have_rates)
-                throw user_error(scene.initial_where, "the reduced form needs the initial momenta");
+                throw std::logic_error("run: the reduced form's momenta are unknown at theta = 0");
             return k.p[static_cast<std::size_t>(i)];
         }
     throw std::logic_error("no value for the form parameter " + name);

@@ -57,12 +57,12 @@ void model_reader::check_physical(const YAML::Node& n, const std::string& what) 
     Eigen::Matrix3d I;
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) {
+            // Each entry of `inertia:` and each part's mass and size were checked finite and
+            // real; the sums of the tensor may still overflow double (inf, or inf - inf = NaN).
             I(i, j) = double_value(m_spec.inertia[i][j], defaults);
-            if (std::isnan(I(i, j)))
-                throw user_error(at(n), what + " does not evaluate to real numbers with the "
-                                               "parameters' defaults");
             if (!std::isfinite(I(i, j)))
-                throw user_error(at(n), what + " is not finite with the parameters' defaults");
+                throw user_error(at(n), what + " is not finite with the parameters' defaults "
+                                               "(too large for double precision)");
         }
     const Eigen::Vector3d m = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(I).eigenvalues();
     const double scale = m.cwiseAbs().maxCoeff();

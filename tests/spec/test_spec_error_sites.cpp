@@ -86,3 +86,32 @@ TEST_CASE("spec: a model file that cannot be read is named without a line", "[sp
                            "spec_error_site_big.yaml: file is larger than 1 MiB");
     }
 }
+
+TEST_CASE("spec: a tensor or a potential that overflows double is refused at its key",
+          "[spec][errors]") {
+    using row = std::tuple<std::string, std::string, std::string>;
+    // the model file, "LINE:COL", the problem
+    const auto [text, place, problem] = GENERATE(table<std::string, std::string, std::string>({
+        // I_yy = a^2 + b^2 - (a + b)^2/2 about the centre of mass: inf + inf - inf = NaN
+        row{"name: b\nparameters: {a: 1e200, b: 2e200}\nbody:\n  parts:\n    - point: {mass: 1, "
+            "at: [a, 0, 0]}\n    - point: {mass: 1, at: [b, 0, 0]}\n",
+            "4:3",
+            "the inertia of 'body' is not finite with the parameters' defaults (too large for "
+            "double precision)"},
+        // I_zz = 1e400 / 2
+        row{"name: b\nbody:\n  parts:\n    - point: {mass: 1, at: [1e200, 0, 0]}\n    - point: "
+            "{mass: 1, at: [0, 1e200, 0]}\n",
+            "3:3",
+            "the inertia of 'body' is not finite with the parameters' defaults (too large for "
+            "double precision)"},
+        // M g z = 1e600
+        row{"name: top\ninertia: [1, 1, 1]\ngravity: {mass: 1e300, g: 1e300, com: [0, 0, 1]}\n",
+            "3:10",
+            "the potential with gravity is not a finite real number with the parameters' "
+            "defaults"},
+    }));
+    INFO(text);
+    const scratch_file file("spec_error_site_overflow.yaml", text);
+    check_emit_refuses("spec_error_site_overflow.yaml",
+                       "spec_error_site_overflow.yaml:" + place + ": " + problem);
+}
