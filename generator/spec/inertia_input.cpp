@@ -75,9 +75,16 @@ void model_reader::check_physical(const YAML::Node& n, const std::string& what) 
         throw user_error(at(n), what + " has a zero principal moment " + moments.str() +
                                     ": a rotor (a body on a line, section 5.5) has no Euler-angle "
                                     "equations of motion; give all three moments positive");
-    if (m[0] + m[1] < m[2] * (1 - 1e-12))
+    // m ascending: m0 + m1 >= m2 is the one of the three inequalities that can fail; equality
+    // is the planar limit (a lamina: I3 = I1 + I2, the perpendicular-axis theorem).
+    if (m[0] + m[1] < m[2] * (1 - 1e-12)) {
+        std::ostringstream sum;
+        sum << m[0] << " + " << m[1] << " < " << m[2];
         throw user_error(at(n), what + " is not physical: principal moments " + moments.str() +
-                                    " break the triangle inequality I1 + I2 >= I3");
+                                    " break the triangle inequality (each at most the sum of "
+                                    "the other two): " +
+                                    sum.str());
+    }
 }
 
 } // namespace rotgen::spec_detail

@@ -167,7 +167,8 @@ gravity_spec model_reader::read_gravity(const YAML::Node& g) const {
         if (!g[key] && (std::string(key) == "g" || !m_spec.body))
             throw user_error(at(g), std::string("gravity needs '") + key + "'");
     gravity_spec grav;
-    grav.mass = g["mass"] ? expression(g["mass"], m_names, "gravity mass") : m_spec.body->mass;
+    // a negative mass would turn gravity upside down (issue 14): positive at the defaults
+    grav.mass = g["mass"] ? bounded(g["mass"], "gravity mass", true) : m_spec.body->mass;
     grav.g = expression(g["g"], m_names, "gravity g");
     if (const YAML::Node com = g["com"]) {
         if (!com.IsSequence() || com.size() != 3)
