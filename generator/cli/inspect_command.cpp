@@ -1,4 +1,4 @@
-// rotgen inspect MODEL.yaml [--format text|latex|json] [--inertia]
+// rotgen inspect MODEL.yaml [--format text|latex|json] [--inertia [--symbolic]]
 #include "cli/commands.hpp"
 #include "cli/options.hpp"
 #include "derive/derive.hpp"
@@ -14,7 +14,7 @@ namespace {
 const command_spec inspect_command{
     "inspect",
     "model file",
-    "MODEL.yaml [--format text|latex|json] [--inertia]",
+    "MODEL.yaml [--format text|latex|json] [--inertia [--symbolic]]",
     "Prints the derived equations of the model: kinetic and potential energy, Lagrangian, "
     "momenta,\n"
     "mass matrix, Euler-Lagrange equations, Hamiltonian and Hamilton's equations, cyclic\n"
@@ -23,6 +23,10 @@ const command_spec inspect_command{
      {"--inertia",
       "",
       "also the inertia tensor, principal moments and axes, class and stability",
+      {}},
+     {"--symbolic",
+      "",
+      "with --inertia: stability rates as expressions too (default: their values)",
       {}}}};
 
 output_format format_of(const std::string& f) {
@@ -43,7 +47,9 @@ int cmd_inspect(const std::vector<std::string>& args) {
     const output_format format = format_of(o.value("--format"));
     const model_spec spec = load_model(o.operand);
     const derivation d = derive(spec);
-    std::cout << inspect(spec, d, format, o.has("--inertia"));
+    if (o.has("--symbolic") && !o.has("--inertia"))
+        usage_error(inspect_command, "--symbolic needs --inertia");
+    std::cout << inspect(spec, d, format, o.has("--inertia"), o.has("--symbolic"));
     return 0;
 }
 

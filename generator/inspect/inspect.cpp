@@ -4,6 +4,7 @@
 #include "expr/symbols.hpp"
 #include "inertia/inertia.hpp"
 
+#include <algorithm>
 #include <sstream>
 
 namespace rotgen {
@@ -90,8 +91,19 @@ std::string class_description(top_class c) {
     return "";
 }
 
+// A rate in closed form in the parameters (not a plain number): its expression is shown only
+// with --symbolic (parts give expressions of kilobytes), its value at the defaults always.
+bool symbolic_rate(const axis_stability& s) {
+    return !GiNaC::is_a<GiNaC::numeric>(s.rate);
+}
+
+std::string rate_text(const axis_stability& s, bool symbolic) {
+    return symbolic || !symbolic_rate(s) ? with_value(s.rate, s.rate_value)
+                                         : short_number(s.rate_value);
+}
+
 // One line per principal axis: what a small deviation from steady rotation about it does.
-std::string stability_text(const axis_stability& s, const inertia_report& r) {
+std::string stability_text(const axis_stability& s, const inertia_report& r, bool symbolic) {
     const std::string n = std::to_string(s.axis);
     switch (s.kind) {
     case stability_kind::stable:
@@ -100,11 +112,11 @@ std::string stability_text(const axis_stability& s, const inertia_report& r) {
                    std::string(r.kind == top_class::rotor ? "any axis across a rotor is principal"
                                                           : "all moments equal") +
                    ")";
-        return "stable: small deviations oscillate at Omega" + n + " = " +
-               with_value(s.rate, s.rate_value) + " (5.94)";
+        return "stable: small deviations oscillate at Omega" + n + " = " + rate_text(s, symbolic) +
+               " (5.94)";
     case stability_kind::unstable:
         return "unstable: small deviations grow like exp(Omega" + n + " t), Omega" + n + " = " +
-               with_value(s.rate, s.rate_value) + " (5.100)";
+               rate_text(s, symbolic) + " (5.100)";
     case stability_kind::neutral:
         return "neutral: Omega" + n +
                "^2 = 0 (equal moments); no oscillation and no exponential "
@@ -121,7 +133,7 @@ std::string exactness(const principal_axes& p) {
     return "numeric, at the parameters' defaults";
 }
 
-std::string inertia_text(const model_spec& spec, const inertia_report& r) {
+std::string inertia_text(const model_spec& spec, const inertia_report& r, bool symbolic) {
     std::ostringstream os;
     os << "inertia of " << spec.name << " (" << spec.file << ")\n";
     if (spec.body) {
@@ -144,9 +156,13 @@ std::string inertia_text(const model_spec& spec, const inertia_report& r) {
     }
     os << "class: " << class_description(r.kind) << "\n";
     os << "\nsteady rotation about each principal axis, force-free (5.87-5.89), per unit spin\n"
-       << "(rates scale with the spin omega; numbers at the parameters' defaults):\n";
+       << "(rates scale with the spin omega; numbers at the parameters' defaults"
+       << (!symbolic && std::any_of(r.stability.begin(), r.stability.end(), symbolic_rate)
+               ? "; --symbolic shows their expressions"
+               : "")
+       << "):\n";
     for (const auto& s : r.stability)
-        os << "  axis " << s.axis << ": " << stability_text(s, r) << "\n";
+        os << "  axis " << s.axis << ": " << stability_text(s, r, symbolic) << "\n";
     return os.str();
 }
 
@@ -154,7 +170,7 @@ std::string latex_vector(const vector3& v) {
     return "\\left(" + to_latex(v[0]) + ", " + to_latex(v[1]) + ", " + to_latex(v[2]) + "\\right)";
 }
 
-std::string inertia_latex(const model_spec& spec, const inertia_report& r) {
+std::string inertia_latex(const model_spec& spec, const inertia_report& r, bool symbolic) {
     std::ostringstream os;
     os << "% rotgen inspect --inertia --format latex: model " << spec.name << " (" << spec.file
        << ")\n";
@@ -177,7 +193,9 @@ std::string inertia_latex(const model_spec& spec, const inertia_report& r) {
            << k + 1 << "} &= " << latex_vector(r.principal.axes[k]) << " \\\\\n";
     for (int k = 0; k < 3; ++k) {
         const auto& s = r.stability[k];
-        os << "  \\Omega_{" << k + 1 << "} &= " << to_latex(s.rate) << " \\, \\omega & &\\text{"
+        const std::string rate =
+            symbolic || !symbolic_rate(s) ? to_latex(s.rate) : short_number(s.rate_value);
+        os << "  \\Omega_{" << k + 1 << "} &= " << rate << " \\, \\omega & &\\text{"
            << stability_kind_name(s.kind)
            << (s.kind == stability_kind::stable && s.rate_value != 0 ? " (5.94)"
                : s.kind == stability_kind::unstable                  ? " (5.100)"
@@ -333,18 +351,18 @@ std::string as_latex(const model_spec& spec, const derivation& d) {
 
 } // namespace
 
+std::string inspect_inertia(const model_spec& spec, output_format format, bool symbolic) {
+    const inertia_report r = analyse_inertia(spec.inertia, spec.parameter_defaults());
+    return format == output_format::latex ? inertia_latex(spec, r, symbolic)
+                                          : inertia_text(spec, r, symbolic);
+}
+
 std::string inspect(const model_spec& spec, const derivation& d, output_format format,
-                    bool with_inertia) {
+                    bool with_inertia, bool symbolic) {
     if (with_inertia) {
+        if (format != output_format::json) return inspect_inertia(spec, format, symbolic);
         const inertia_report r = analyse_inertia(spec.inertia, spec.parameter_defaults());
-        switch (format) {
-        case output_format::json:
-            return as_json(spec, d, &r);
-        case output_format::latex:
-            return inertia_latex(spec, r);
-        case output_format::text:
-            return inertia_text(spec, r);
-        }
+        return as_json(spec, d, &r);
     }
     switch (format) {
     case output_format::json:

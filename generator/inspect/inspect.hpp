@@ -22,8 +22,16 @@ namespace rotgen {
 
 enum class output_format { text, latex, json };
 
+// `symbolic` (`--symbolic`): the stability rates of the inertia report (text and LaTeX) as
+// expressions in the parameters with their values; without it a rate that depends on the
+// parameters is shown as its value at the defaults alone (with parts the expressions run to
+// kilobytes). Plain numbers (9/11) are shown exactly either way; JSON always has both.
 std::string inspect(const model_spec& spec, const derivation& d, output_format format,
-                    bool with_inertia = false);
+                    bool with_inertia = false, bool symbolic = false);
+
+// The inertia report alone, text or LaTeX (as `inspect` with `with_inertia`): it needs no
+// derivation.
+std::string inspect_inertia(const model_spec& spec, output_format format, bool symbolic);
 
 // JSON string literal with escapes.
 std::string json_quote(const std::string& s);

@@ -36,7 +36,7 @@ TEST_CASE("cli: bad command lines of inspect give one line and exit 2", "[cli][e
         row{"'" + model + "' other.yaml",
             "rotgen inspect: inspect takes one model file, got '" + model + "' and 'other.yaml'"},
         row{"", "rotgen inspect: inspect needs a model file: rotgen inspect MODEL.yaml [--format "
-                "text|latex|json] [--inertia]"},
+                "text|latex|json] [--inertia [--symbolic]]"},
     }));
     INFO(args);
     check_usage_error(run_rotgen("inspect " + args), line);
