@@ -161,7 +161,7 @@ void bench_run::print_summary(double wall_seconds) const {
               << short_number(wall_seconds) << " s in all\n"
               << "  harness   " << c.src.harness.string() << ", runtime " << c.src.runtime.string()
               << "\n";
-    std::cout << "  fastest to reach an error (interpolated along each curve; median times):\n";
+    std::cout << "  fastest to reach an error (median times; " << matched_accuracy_rule << "):\n";
     for (std::size_t l = 0; l < c.summary.levels.size(); ++l) {
         const reach& a = c.summary.reached[l].first;
         const reach& b = c.summary.reached[l].second;

@@ -82,8 +82,9 @@ void md_introduction(std::ostream& md, const bench_context& ctx) {
 // The fastest measured configuration per accuracy.
 void md_best(std::ostream& md, const bench_summary& s) {
     md << "## Best configuration per accuracy\n\n"
-       << "Fastest configuration (by median time) whose error is at most the level; time as median "
-          "(min).\n\n"
+       << "Fastest configuration (by median time) whose error is at most the level and more than "
+          "a tenth of it; time as median (min). The "
+       << matched_accuracy_rule << ".\n\n"
        << "| error <= | rotgen best | time | RHS evals | best peer | time | RHS evals | peer / "
           "rotgen |\n"
        << "|---|---|---:|---:|---|---:|---:|---:|\n";
@@ -103,8 +104,8 @@ void md_best(std::ostream& md, const bench_summary& s) {
 void md_interpolated(std::ostream& md, const bench_summary& s) {
     md << "\n### Interpolated along each curve\n\n"
        << "Time (median) to reach the accuracy on each configuration's error-time curve, "
-          "interpolated between its neighbouring points; the fastest rotgen and the fastest peer "
-          "configuration.\n\n"
+          "interpolated between its neighbouring points (or a measured run within 10x below "
+          "it); the fastest rotgen and the fastest peer configuration.\n\n"
        << "| error | rotgen configuration | time | RHS evals | peer configuration | time | RHS "
           "evals "
           "| peer / rotgen |\n|---|---|---:|---:|---|---:|---:|---:|\n";

@@ -14,13 +14,14 @@ bool is_peer(const result_row& r) {
     return r.peer != "rotgen";
 }
 
-// The fastest measured point (by median) at or below each level, per kind of peer.
+// The fastest measured point (by median) at matched accuracy at each level, per kind of peer.
 std::vector<best_entry> best_measured(const std::vector<result_row>& rows,
                                       const std::vector<double>& levels) {
     std::vector<best_entry> best(levels.size(), best_entry{});
     for (std::size_t l = 0; l < levels.size(); ++l)
         for (const auto& r : rows) {
-            if (!r.ok() || !(r.error <= levels[l]) || !std::isfinite(r.median)) continue;
+            if (!r.ok() || !matched_accuracy(r.error, levels[l]) || !std::isfinite(r.median))
+                continue;
             const result_row*& slot = is_peer(r) ? best[l].peer : best[l].rotgen;
             if (!slot || r.median < slot->median) slot = &r;
         }
@@ -29,8 +30,9 @@ std::vector<best_entry> best_measured(const std::vector<result_row>& rows,
 
 // The time a curve (points sorted by tolerance or step, coarsest first) needs to reach `level`:
 // between two neighbouring points whose errors straddle the level, log(time) and log(RHS
-// evaluations) are interpolated linearly in log(error); a point at or below the level counts as
-// it is. NaN time if the curve never gets there.
+// evaluations) are interpolated linearly in log(error); a measured point counts as it is if it
+// is at matched accuracy (within the decade below the level). NaN time if the curve never gets
+// there, or only overshoots it by more than 10x (its cost at the level is then not measured).
 reach reach_on_curve(const std::string& name, const std::vector<const result_row*>& points,
                      double level) {
     reach best_here;
@@ -38,7 +40,7 @@ reach reach_on_curve(const std::string& name, const std::vector<const result_row
     best_here.peer = points.front()->peer != "rotgen";
     for (std::size_t i = 0; i < points.size(); ++i) {
         const result_row& b = *points[i];
-        if (b.error <= level && !(b.median >= best_here.time))
+        if (matched_accuracy(b.error, level) && !(b.median >= best_here.time))
             best_here.time = b.median, best_here.rhs = double(b.rhs);
         if (i == 0) continue;
         const result_row& a = *points[i - 1];
@@ -80,6 +82,10 @@ std::vector<std::pair<reach, reach>> best_interpolated(const std::vector<result_
 
 } // namespace
 
+bool matched_accuracy(double error, double level) {
+    return error <= level && error > level / 10;
+}
+
 std::string method_key(const result_row& r) {
     const bool adaptive = r.method == "dop853" || r.method == "dopri5" || r.method == "rkf78";
     return adaptive && r.step > 0 ? r.method + " fixed" : r.method;
@@ -111,7 +117,7 @@ const result_row* fewest(const std::vector<result_row>& rows, const std::string&
     const result_row* b = nullptr;
     for (const auto& r : rows)
         if (r.ok() && r.peer == peer && method_key(r) == method && r.scalar == "double" &&
-            r.variant == 0 && r.error <= level && (!b || r.rhs < b->rhs))
+            r.variant == 0 && matched_accuracy(r.error, level) && (!b || r.rhs < b->rhs))
             b = &r;
     return b;
 }

@@ -21,7 +21,23 @@ std::string method_title(const result_row& r);
 // The name of a configuration, for the tables ("—" for none).
 std::string config_name(const result_row* r);
 
-// The fastest configuration at or below an error level: a measured point, per kind of peer.
+// Configurations are compared at matched accuracy only (issue 14: `bench --quick` ranked a run
+// with error 1e-4 against one with 1e-12 as if they had done the same work). At an error level L
+// a measured configuration is ranked if its error e is within the decade below L,
+//     L/10 < e <= L,
+// so that the errors of any two configurations ranked together differ by less than 10x; a
+// curve is also ranked at L where two of its neighbouring points straddle L (cost interpolated
+// at L exactly). A run more accurate than L/10 is ranked at its own level, not at L.
+bool matched_accuracy(double error, double level);
+
+// The text the summaries give for that rule.
+inline constexpr const char* matched_accuracy_rule =
+    "configurations are ranked only at matched accuracy: at an error level L a run counts if "
+    "its error is in (L/10, L], or its curve is interpolated at L between two runs that "
+    "straddle L";
+
+// The fastest configuration at an error level (matched accuracy): a measured point, per kind
+// of peer.
 struct best_entry {
     const result_row* rotgen = nullptr;
     const result_row* peer = nullptr;
@@ -43,7 +59,8 @@ struct bench_summary {
 // The summary of the rows (which must outlive it).
 bench_summary summarise(const std::vector<result_row>& rows);
 
-// The fewest RHS evaluations of a method (double, main form) at or below an error level.
+// The fewest RHS evaluations of a method (double, main form) at an error level (matched
+// accuracy).
 const result_row* fewest(const std::vector<result_row>& rows, const std::string& peer,
                          const std::string& method, double level);
 
