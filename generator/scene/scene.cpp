@@ -1,6 +1,7 @@
 #include "scene/scene.hpp"
 
 #include "expr/numbers.hpp"
+#include "scene/values.hpp"
 
 #include <cerrno>
 #include <cstring>
@@ -12,6 +13,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 namespace rotgen {
 
@@ -65,14 +67,7 @@ class scene_reader {
     source_location at(const YAML::Node& n) const { return location_of(n, m_file); }
 
     double number(const YAML::Node& n, const std::string& what) const {
-        if (!n.IsScalar() || !is_decimal(n.Scalar()))
-            throw user_error(at(n), what + " must be a finite number");
-        const double v = std::strtod(n.Scalar().c_str(), nullptr);
-        if (!std::isfinite(v)) throw user_error(at(n), what + " must be a finite number");
-        // GiNaC::numeric(double) throws CLN's underflow exception on a subnormal number.
-        if (std::fpclassify(v) == FP_SUBNORMAL)
-            throw user_error(at(n), what + " must be 0 or at least 2.2e-308 in magnitude");
-        return v;
+        return scene_detail::scene_number(n, m_file, what);
     }
 
     void read_model(const YAML::Node& n, const std::string& source) {
@@ -99,21 +94,19 @@ class scene_reader {
         m_scene.model = parse_model(m_model_root, m_model_file, m_model_source);
     }
 
+    // Overrides are numbers or expressions in the model's parameters (values.hpp).
     void read_parameters(const YAML::Node& n) {
-        for (const auto& p : m_scene.model.parameters)
-            m_scene.parameters.push_back(p.value);
-        if (!n) return;
-        if (!n.IsMap()) throw user_error(at(n), "'parameters' must be a mapping of name: value");
+        m_values.emplace(m_file, m_scene.model);
+        if (n && !n.IsMap())
+            throw user_error(at(n), "'parameters' must be a mapping of name: value");
         std::vector<std::string> names;
         for (const auto& p : m_scene.model.parameters)
             names.push_back(p.name);
-        check_keys(n, names, m_file, "parameters (of model '" + m_scene.model.name + "')");
-        for (const auto& kv : n) {
-            const auto it = std::find(names.begin(), names.end(), kv.first.Scalar());
-            m_scene.parameters[static_cast<std::size_t>(it - names.begin())] =
-                number(kv.second, "parameter '" + kv.first.Scalar() + "'");
-        }
-        if (n.size() > 0) check_model_with_overrides(n);
+        if (n) check_keys(n, names, m_file, "parameters (of model '" + m_scene.model.name + "')");
+        m_scene.parameters_written = m_values->parameters(n);
+        for (const auto& w : m_scene.parameters_written)
+            m_scene.parameters.push_back(w.value);
+        if (n && n.size() > 0) check_model_with_overrides(n);
     }
 
     // The model was checked with its defaults (finite expressions, a physical inertia); check it
@@ -162,8 +155,11 @@ class scene_reader {
                                                "p_psi",     "omega1",  "omega2", "omega3"};
         check_keys(n, allowed, m_file, "initial");
         const auto& q = coordinate_names();
-        for (int i = 0; i < 3; ++i)
-            m_scene.angles[i] = n[q[i]] ? number(n[q[i]], "initial " + q[i]) : 0.0;
+        for (std::size_t i = 0; i < 3; ++i)
+            if (n[q[i]]) {
+                m_scene.angles_written[i] = m_values->value(n[q[i]], "initial " + q[i]);
+                m_scene.angles[i] = m_scene.angles_written[i].value;
+            }
         const std::array<std::array<std::string, 3>, 3> groups{{{"phi_dot", "theta_dot", "psi_dot"},
                                                                 {"p_phi", "p_theta", "p_psi"},
                                                                 {"omega1", "omega2", "omega3"}}};
@@ -178,9 +174,11 @@ class scene_reader {
                 }
         if (chosen < 0) chosen = 0;
         m_scene.initial = static_cast<initial_kind>(chosen);
-        for (int i = 0; i < 3; ++i) {
+        for (std::size_t i = 0; i < 3; ++i) {
             const std::string& key = groups[chosen][i];
-            m_scene.initial_rates[i] = n[key] ? number(n[key], "initial " + key) : 0.0;
+            if (!n[key]) continue;
+            m_scene.rates_written[i] = m_values->value(n[key], "initial " + key);
+            m_scene.initial_rates[i] = m_scene.rates_written[i].value;
         }
         const double theta = m_scene.angles[1];
         if (theta < 0 || theta > 3.141592653589793238)
@@ -292,6 +290,7 @@ class scene_reader {
     YAML::Node
         m_model_root; // the model's mapping, its file and text (for check_model_with_overrides)
     std::string m_model_file, m_model_source;
+    std::optional<scene_detail::value_reader> m_values; // after the model is read
 };
 
 } // namespace
