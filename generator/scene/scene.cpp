@@ -51,7 +51,7 @@ class scene_reader {
         read_model(root["model"], source);
         read_parameters(root["parameters"]);
         read_form(root["form"]);
-        read_initial(root["initial"]);
+        read_initial(root);
         read_time(root["time"]);
         if (root["integrator"]) read_integrator(root["integrator"]);
         read_record(root["record"]);
@@ -147,7 +147,10 @@ class scene_reader {
                                         "' (expected lagrangian, hamiltonian, reduced or body)");
     }
 
-    void read_initial(const YAML::Node& n) {
+    // A complete state in one of the accepted ways: the angles with their rates, with the
+    // momenta, or with body omega. Nothing defaults to 0.
+    void read_initial(const YAML::Node& root) {
+        const YAML::Node n = root["initial"];
         if (!n.IsMap()) throw user_error(at(n), "'initial' must be a mapping of angles and rates");
         m_scene.initial_where = at(n);
         const std::vector<std::string> allowed{"phi",       "theta",   "psi",    "phi_dot",
@@ -155,11 +158,6 @@ class scene_reader {
                                                "p_psi",     "omega1",  "omega2", "omega3"};
         check_keys(n, allowed, m_file, "initial");
         const auto& q = coordinate_names();
-        for (std::size_t i = 0; i < 3; ++i)
-            if (n[q[i]]) {
-                m_scene.angles_written[i] = m_values->value(n[q[i]], "initial " + q[i]);
-                m_scene.angles[i] = m_scene.angles_written[i].value;
-            }
         const std::array<std::array<std::string, 3>, 3> groups{{{"phi_dot", "theta_dot", "psi_dot"},
                                                                 {"p_phi", "p_theta", "p_psi"},
                                                                 {"omega1", "omega2", "omega3"}}};
@@ -172,11 +170,14 @@ class scene_reader {
                                                      "angle rates, momenta or body omega");
                     chosen = g;
                 }
-        if (chosen < 0) chosen = 0;
+        check_complete(root, n, chosen < 0 ? nullptr : &groups[chosen]);
+        for (std::size_t i = 0; i < 3; ++i) {
+            m_scene.angles_written[i] = m_values->value(n[q[i]], "initial " + q[i]);
+            m_scene.angles[i] = m_scene.angles_written[i].value;
+        }
         m_scene.initial = static_cast<initial_kind>(chosen);
         for (std::size_t i = 0; i < 3; ++i) {
             const std::string& key = groups[chosen][i];
-            if (!n[key]) continue;
             m_scene.rates_written[i] = m_values->value(n[key], "initial " + key);
             m_scene.initial_rates[i] = m_scene.rates_written[i].value;
         }
@@ -184,6 +185,32 @@ class scene_reader {
         if (theta < 0 || theta > 3.141592653589793238)
             throw user_error(at(n["theta"]), "initial theta = " + std::to_string(theta) +
                                                  " is outside [0, pi] (z-x-z Euler angles)");
+    }
+
+    // Every name of the state the scene started to give (the angles and `rates`, or, with no
+    // rates at all, one of the three groups), or an error at the `initial` key naming the missing.
+    void check_complete(const YAML::Node& root, const YAML::Node& n,
+                        const std::array<std::string, 3>* rates) const {
+        std::vector<std::string> missing;
+        for (const auto& name : coordinate_names())
+            if (!n[name]) missing.push_back(name);
+        if (rates)
+            for (const auto& name : *rates)
+                if (!n[name]) missing.push_back(name);
+        if (missing.empty() && rates) return;
+        std::string list;
+        for (const auto& name : missing)
+            list += (list.empty() ? "" : ", ") + name;
+        const std::string why =
+            rates ? " (a state is phi, theta, psi with " + (*rates)[0] + ", " + (*rates)[1] + ", " +
+                        (*rates)[2] + "; nothing defaults to 0)"
+                  : std::string(list.empty() ? "" : " and ") +
+                        "the rates (phi_dot, theta_dot, psi_dot, or p_phi, p_theta, p_psi, or "
+                        "omega1, omega2, omega3; nothing defaults to 0)";
+        source_location key = at(n);
+        for (const auto& kv : root)
+            if (kv.first.IsScalar() && kv.first.Scalar() == "initial") key = at(kv.first);
+        throw user_error(key, "the initial state is incomplete: missing " + list + why);
     }
 
     void read_time(const YAML::Node& n) {

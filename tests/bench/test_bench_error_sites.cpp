@@ -57,10 +57,11 @@ TEST_CASE("bench: output directories that cannot be used are named", "[bench][er
 
 TEST_CASE("bench: an Euler-angle form at theta = 0 is refused at the initial key",
           "[bench][errors]") {
-    const scratch_file file("bench_error_site_lock.yaml",
-                            "model: " + model_path("heavy_top") +
-                                "\nform: lagrangian\ninitial: {theta: 0, omega1: 0.1, omega2: 0, "
-                                "omega3: 1}\ntime: {end: 1}\n");
+    const scratch_file file(
+        "bench_error_site_lock.yaml",
+        "model: " + model_path("heavy_top") +
+            "\nform: lagrangian\ninitial: {phi: 0, theta: 0, psi: 0, omega1: 0.1, omega2: 0, "
+            "omega3: 1}\ntime: {end: 1}\n");
     const scratch_dir out("bench_error_site_lock_out");
     const run_result r = run_rotgen(
         "bench bench_error_site_lock.yaml -o '" + out.path.string() + "'", ROTGEN_BINARY_DIR);
