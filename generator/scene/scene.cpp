@@ -19,8 +19,10 @@ namespace rotgen {
 
 const std::vector<std::string>& recordable_names() {
     static const std::vector<std::string> names{
-        "phi",   "theta",  "psi",    "phi_dot", "theta_dot", "psi_dot", "p_phi",  "p_theta",
-        "p_psi", "omega1", "omega2", "omega3",  "energy",    "body_x",  "body_y", "body_z"};
+        "phi",     "theta",  "psi",    "phi_dot", "theta_dot", "psi_dot", "p_phi",
+        "p_theta", "p_psi",  "omega1", "omega2",  "omega3",    "energy",  "body_x",
+        "body_y",  "body_z", "q0",     "q1",      "q2",        "q3",      "Lx",
+        "Ly",      "Lz",     "L1",     "L2",      "L3",        "T",       "V"};
     return names;
 }
 
