@@ -121,7 +121,8 @@ void bench_run::choose_variants() {
     m_t_gen = clock_type::now();
     c.d = c.timings.time("derive", c.spec.name, [&] { return derive(c.spec); });
     for (std::size_t i = 0; i < c.spec.parameters.size(); ++i)
-        c.parameter_values[c.spec.parameters[i].symbol] = exact_decimal(c.scene.parameters[i]);
+        c.parameter_values[c.spec.parameters[i].symbol] =
+            exact_scene_value(c.scene.parameters[i], c.scene.parameters_written[i]);
     c.k0 = initial_kinematics_of(c.scene, c.d);
     check_double_range(c.scene, c.k0);
     c.conservative = !c.spec.has_damping && !c.spec.has_torque;

@@ -429,7 +429,8 @@ bool needs_orientation(const scene_spec& scene, bool chart_switch) {
     for (const auto& name : scene.record)
         orientation = orientation || name == "phi" || name == "theta" || name == "psi" ||
                       name.rfind("body_", 0) == 0 || name.find("_dot") != std::string::npos ||
-                      name.rfind("p_", 0) == 0;
+                      name.rfind("p_", 0) == 0 || (name.size() == 2 && name[0] == 'q') ||
+                      name == "Lx" || name == "Ly" || name == "Lz";
     return orientation;
 }
 

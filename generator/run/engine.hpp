@@ -51,8 +51,9 @@ run_result run_scene(const scene_spec& scene, stage_timings& timings,
                      const sample_callback& on_sample = {});
 
 // Whether the body form must keep the orientation (the quaternion) for this scene: a chart switch,
-// or a recorded angle, body axis, Euler-angle rate or momentum needs it. (A potential that needs
-// it makes the body form keep it anyway.) One rule for simulate and bench.
+// or a recorded angle, body axis, Euler-angle rate or momentum, quaternion or space-axes L needs
+// it. (A potential that needs it makes the body form keep it anyway.) One rule for simulate and
+// bench.
 bool needs_orientation(const scene_spec& scene, bool chart_switch);
 
 } // namespace rotgen

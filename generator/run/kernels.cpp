@@ -3,6 +3,7 @@
 #include "emit/emit.hpp"
 #include "expr/symbols.hpp"
 #include "lower/lower.hpp"
+#include "run/records.hpp"
 #include "support/error.hpp"
 
 #include <sstream>
@@ -30,12 +31,20 @@ std::optional<ex> record_expression(const form_expressions& f, const std::string
 // quaternion and omega at each sample.
 class source_finder {
   public:
-    source_finder(const compiled_form& c, bool orientation, std::vector<ex>& program)
-        : m_c(c), m_body_with_angles(c.form == form_kind::body && orientation), m_program(program) {
-    }
+    source_finder(const model_spec& spec, const compiled_form& c, bool orientation,
+                  std::vector<ex>& program)
+        : m_spec(spec), m_c(c), m_body_with_angles(c.form == form_kind::body && orientation),
+          m_program(program) {}
 
     value_source operator()(const std::string& name, const source_location& where) {
         if (auto e = record_expression(m_c.f, name)) return compiled(*e);
+        if (auto e = derived_record(m_spec, m_c.f, name)) return compiled(*e);
+        for (int i = 0; i < 4; ++i)
+            if (name == "q" + std::to_string(i)) {
+                if (m_body_with_angles) return {value_source::quaternion_of_state, i};
+                if (m_c.form == form_kind::lagrangian || m_c.form == form_kind::hamiltonian)
+                    return {value_source::quaternion_of_angles, i};
+            }
         for (int i = 0; i < 3 && m_body_with_angles; ++i) {
             const std::string& q = coordinate_names()[i];
             if (name == q) return {value_source::angle, i};
@@ -63,6 +72,7 @@ class source_finder {
         m_program.push_back(e);
         return {value_source::compiled, static_cast<int>(m_program.size() - 1)};
     }
+    const model_spec& m_spec;
     const compiled_form& m_c;
     bool m_body_with_angles;
     std::vector<ex>& m_program;
@@ -72,7 +82,7 @@ class source_finder {
 std::vector<ex> record_program(const scene_spec& scene, compiled_form& c, bool orientation,
                                const std::vector<invariant>& invariants) {
     std::vector<ex> program;
-    source_finder source(c, orientation, program);
+    source_finder source(scene.model, c, orientation, program);
     for (std::size_t r = 0; r < scene.record.size(); ++r) {
         const std::string& name = scene.record[r];
         if (name.rfind("body_", 0) == 0)
@@ -170,6 +180,15 @@ double source_value(const value_source& src, const Eigen::VectorXd& y,
                     const std::vector<double>& out, const Eigen::Matrix3d& inertia,
                     std::optional<euler_angles<double>>& e) {
     if (src.kind == value_source::compiled) return out[static_cast<std::size_t>(src.index)];
+    if (src.kind == value_source::quaternion_of_state ||
+        src.kind == value_source::quaternion_of_angles) {
+        Eigen::Quaterniond q = src.kind == value_source::quaternion_of_state
+                                   ? Eigen::Quaterniond(y[0], y[1], y[2], y[3]).normalized()
+                                   : quaternion_from_euler(y[0], y[1], y[2]);
+        if (q.w() < 0) q.coeffs() = -q.coeffs(); // q and -q: the same attitude
+        const double c[4] = {q.w(), q.x(), q.y(), q.z()};
+        return c[src.index];
+    }
     if (!e) e = euler_from_quaternion(Eigen::Quaterniond(y[0], y[1], y[2], y[3]));
     const Eigen::Vector3d w(y[4], y[5], y[6]);
     const double st = std::sin(e->theta), ct = std::cos(e->theta), sp = std::sin(e->psi),

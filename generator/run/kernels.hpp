@@ -35,10 +35,12 @@ struct loaded_system {
 // Where a recorded column (or a monitored invariant) comes from in one compiled form.
 struct value_source {
     enum kind_t {
-        compiled,           // an output of the compiled record program
-        angle,              // body form: Euler angle `index` of the quaternion
-        euler_rate,         // body form: q_dot = J^{-1} omega (5.30), undefined at theta = 0, pi
-        canonical_momentum, // body form: p = J^T I omega
+        compiled,             // an output of the compiled record program
+        angle,                // body form: Euler angle `index` of the quaternion
+        euler_rate,           // body form: q_dot = J^{-1} omega (5.30), undefined at theta = 0, pi
+        canonical_momentum,   // body form: p = J^T I omega
+        quaternion_of_state,  // body form: component `index` of q / |q|, q0 >= 0
+        quaternion_of_angles, // Euler-angle forms: of qz(phi) (x) qx(theta) (x) qz(psi), q0 >= 0
     } kind;
     int index;
 };
@@ -74,8 +76,9 @@ bool form_gives(const form_expressions& f, const std::string& name);
 
 // A recorded column or monitored invariant at a sample (t, y): an output `out` of the form's
 // record program, or in the body form from the quaternion and omega: the Euler angles, their
-// rates q_dot = J^{-1} omega (5.30, undefined at theta = 0, pi), p = J^T I omega. `e` caches the
-// angles between calls at one sample.
+// rates q_dot = J^{-1} omega (5.30, undefined at theta = 0, pi), p = J^T I omega; or the unit
+// quaternion of the attitude (body -> space, scalar first, the sign with q0 >= 0: the same in
+// every form and across a chart switch). `e` caches the angles between calls at one sample.
 double source_value(const value_source& src, const Eigen::VectorXd& y,
                     const std::vector<double>& out, const Eigen::Matrix3d& inertia,
                     std::optional<euler_angles<double>>& e);

@@ -16,9 +16,18 @@
 
 namespace rotgen {
 
+GiNaC::ex exact_scene_value(double current, const written_value& written) {
+    if (written.expression && written.value == current) return written.exact;
+    return exact_decimal(current);
+}
+
 namespace {
 
 using GiNaC::ex;
+
+ex written_at(const std::vector<written_value>& w, std::size_t i, double current) {
+    return exact_scene_value(current, i < w.size() ? w[i] : written_value{});
+}
 
 // q_dot = M(q)^{-1} p, solved in long double.
 std::array<ex, 3> rates_from_momenta(const scene_spec& scene, const derivation& d,
@@ -26,7 +35,7 @@ std::array<ex, 3> rates_from_momenta(const scene_spec& scene, const derivation& 
     Eigen::Matrix<long double, 3, 3> M;
     Eigen::Matrix<long double, 3, 1> p;
     for (int i = 0; i < 3; ++i) {
-        p[i] = to_long_double(exact_decimal(scene.initial_rates[i]));
+        p[i] = to_long_double(exact_scene_value(scene.initial_rates[i], scene.rates_written[i]));
         for (int j = 0; j < 3; ++j)
             M(i, j) = to_long_double(d.mass_matrix[i][j].subs(at));
     }
@@ -47,7 +56,8 @@ std::array<ex, 3> rates_from_omega(const scene_spec& scene, const derivation& d,
     for (int i = 0; i < 3; ++i) {
         ex r = 0;
         for (int j = 0; j < 3; ++j)
-            r += d.inverse_omega_jacobian[i][j] * exact_decimal(scene.initial_rates[j]);
+            r += d.inverse_omega_jacobian[i][j] *
+                 exact_scene_value(scene.initial_rates[j], scene.rates_written[j]);
         qd[i] = r.subs(at);
     }
     return qd;
@@ -61,16 +71,17 @@ initial_kinematics initial_kinematics_of(const scene_spec& scene, const derivati
     initial_kinematics k;
     GiNaC::exmap at;
     for (std::size_t i = 0; i < scene.model.parameters.size(); ++i)
-        at[scene.model.parameters[i].symbol] = exact_decimal(scene.parameters[i]);
+        at[scene.model.parameters[i].symbol] =
+            written_at(scene.parameters_written, i, scene.parameters[i]);
     for (int i = 0; i < 3; ++i) {
-        at[s.q[i]] = exact_decimal(scene.angles[i]);
-        k.q[i] = to_long_double(exact_decimal(scene.angles[i]));
+        at[s.q[i]] = exact_scene_value(scene.angles[i], scene.angles_written[i]);
+        k.q[i] = to_long_double(at[s.q[i]]);
     }
     k.have_rates = std::abs(std::sin(scene.angles[1])) >= 1e-12;
     std::array<ex, 3> qd;
     if (scene.initial == initial_kind::rates)
         for (int i = 0; i < 3; ++i)
-            qd[i] = exact_decimal(scene.initial_rates[i]);
+            qd[i] = exact_scene_value(scene.initial_rates[i], scene.rates_written[i]);
     else if (k.have_rates)
         qd = scene.initial == initial_kind::momenta ? rates_from_momenta(scene, d, at)
                                                     : rates_from_omega(scene, d, at);
@@ -86,7 +97,8 @@ initial_kinematics initial_kinematics_of(const scene_spec& scene, const derivati
     }
     if (scene.initial == initial_kind::omega)
         for (int i = 0; i < 3; ++i)
-            k.omega[i] = to_long_double(exact_decimal(scene.initial_rates[i]));
+            k.omega[i] =
+                to_long_double(exact_scene_value(scene.initial_rates[i], scene.rates_written[i]));
     k.quat = quaternion_from_euler<long double>(k.q[0], k.q[1], k.q[2]);
     return k;
 }
@@ -119,7 +131,7 @@ long double scene_parameter_value(const scene_spec& scene, const initial_kinemat
     for (std::size_t i = 0; i < spec.parameters.size(); ++i)
         if (spec.parameters[i].name == name) {
             const scoped_digits digits(30);
-            return to_long_double(exact_decimal(scene.parameters[i]));
+            return to_long_double(written_at(scene.parameters_written, i, scene.parameters[i]));
         }
     for (int i = 0; i < 3; ++i)
         if (name == "p_" + coordinate_names()[i]) {

@@ -25,6 +25,11 @@ struct initial_kinematics {
     Eigen::Quaternion<long double> quat; // body -> space, from the angles (scalar first: w x y z)
 };
 
+// The exact value of a scene's number: the expression it was written as while `current` is still
+// its value (a caller may have changed it since: a sweep member), else the shortest decimal that
+// reads back as `current` (9.81 -> 981/100).
+GiNaC::ex exact_scene_value(double current, const written_value& written);
+
 initial_kinematics initial_kinematics_of(const scene_spec& scene, const derivation& d);
 
 // Refuses (user_error at the scene's `initial`) initial values whose rates, momenta, omega or

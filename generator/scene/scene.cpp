@@ -1,6 +1,7 @@
 #include "scene/scene.hpp"
 
 #include "expr/numbers.hpp"
+#include "scene/values.hpp"
 
 #include <cerrno>
 #include <cstring>
@@ -12,13 +13,16 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 namespace rotgen {
 
 const std::vector<std::string>& recordable_names() {
     static const std::vector<std::string> names{
-        "phi",   "theta",  "psi",    "phi_dot", "theta_dot", "psi_dot", "p_phi",  "p_theta",
-        "p_psi", "omega1", "omega2", "omega3",  "energy",    "body_x",  "body_y", "body_z"};
+        "phi",     "theta",  "psi",    "phi_dot", "theta_dot", "psi_dot", "p_phi",
+        "p_theta", "p_psi",  "omega1", "omega2",  "omega3",    "energy",  "body_x",
+        "body_y",  "body_z", "q0",     "q1",      "q2",        "q3",      "Lx",
+        "Ly",      "Lz",     "L1",     "L2",      "L3",        "T",       "V"};
     return names;
 }
 
@@ -49,7 +53,7 @@ class scene_reader {
         read_model(root["model"], source);
         read_parameters(root["parameters"]);
         read_form(root["form"]);
-        read_initial(root["initial"]);
+        read_initial(root);
         read_time(root["time"]);
         if (root["integrator"]) read_integrator(root["integrator"]);
         read_record(root["record"]);
@@ -65,14 +69,7 @@ class scene_reader {
     source_location at(const YAML::Node& n) const { return location_of(n, m_file); }
 
     double number(const YAML::Node& n, const std::string& what) const {
-        if (!n.IsScalar() || !is_decimal(n.Scalar()))
-            throw user_error(at(n), what + " must be a finite number");
-        const double v = std::strtod(n.Scalar().c_str(), nullptr);
-        if (!std::isfinite(v)) throw user_error(at(n), what + " must be a finite number");
-        // GiNaC::numeric(double) throws CLN's underflow exception on a subnormal number.
-        if (std::fpclassify(v) == FP_SUBNORMAL)
-            throw user_error(at(n), what + " must be 0 or at least 2.2e-308 in magnitude");
-        return v;
+        return scene_detail::scene_number(n, m_file, what);
     }
 
     void read_model(const YAML::Node& n, const std::string& source) {
@@ -99,21 +96,19 @@ class scene_reader {
         m_scene.model = parse_model(m_model_root, m_model_file, m_model_source);
     }
 
+    // Overrides are numbers or expressions in the model's parameters (values.hpp).
     void read_parameters(const YAML::Node& n) {
-        for (const auto& p : m_scene.model.parameters)
-            m_scene.parameters.push_back(p.value);
-        if (!n) return;
-        if (!n.IsMap()) throw user_error(at(n), "'parameters' must be a mapping of name: value");
+        m_values.emplace(m_file, m_scene.model);
+        if (n && !n.IsMap())
+            throw user_error(at(n), "'parameters' must be a mapping of name: value");
         std::vector<std::string> names;
         for (const auto& p : m_scene.model.parameters)
             names.push_back(p.name);
-        check_keys(n, names, m_file, "parameters (of model '" + m_scene.model.name + "')");
-        for (const auto& kv : n) {
-            const auto it = std::find(names.begin(), names.end(), kv.first.Scalar());
-            m_scene.parameters[static_cast<std::size_t>(it - names.begin())] =
-                number(kv.second, "parameter '" + kv.first.Scalar() + "'");
-        }
-        if (n.size() > 0) check_model_with_overrides(n);
+        if (n) check_keys(n, names, m_file, "parameters (of model '" + m_scene.model.name + "')");
+        m_scene.parameters_written = m_values->parameters(n);
+        for (const auto& w : m_scene.parameters_written)
+            m_scene.parameters.push_back(w.value);
+        if (n && n.size() > 0) check_model_with_overrides(n);
     }
 
     // The model was checked with its defaults (finite expressions, a physical inertia); check it
@@ -154,7 +149,10 @@ class scene_reader {
                                         "' (expected lagrangian, hamiltonian, reduced or body)");
     }
 
-    void read_initial(const YAML::Node& n) {
+    // A complete state in one of the accepted ways: the angles with their rates, with the
+    // momenta, or with body omega. Nothing defaults to 0.
+    void read_initial(const YAML::Node& root) {
+        const YAML::Node n = root["initial"];
         if (!n.IsMap()) throw user_error(at(n), "'initial' must be a mapping of angles and rates");
         m_scene.initial_where = at(n);
         const std::vector<std::string> allowed{"phi",       "theta",   "psi",    "phi_dot",
@@ -162,8 +160,6 @@ class scene_reader {
                                                "p_psi",     "omega1",  "omega2", "omega3"};
         check_keys(n, allowed, m_file, "initial");
         const auto& q = coordinate_names();
-        for (int i = 0; i < 3; ++i)
-            m_scene.angles[i] = n[q[i]] ? number(n[q[i]], "initial " + q[i]) : 0.0;
         const std::array<std::array<std::string, 3>, 3> groups{{{"phi_dot", "theta_dot", "psi_dot"},
                                                                 {"p_phi", "p_theta", "p_psi"},
                                                                 {"omega1", "omega2", "omega3"}}};
@@ -176,16 +172,47 @@ class scene_reader {
                                                      "angle rates, momenta or body omega");
                     chosen = g;
                 }
-        if (chosen < 0) chosen = 0;
+        check_complete(root, n, chosen < 0 ? nullptr : &groups[chosen]);
+        for (std::size_t i = 0; i < 3; ++i) {
+            m_scene.angles_written[i] = m_values->value(n[q[i]], "initial " + q[i]);
+            m_scene.angles[i] = m_scene.angles_written[i].value;
+        }
         m_scene.initial = static_cast<initial_kind>(chosen);
-        for (int i = 0; i < 3; ++i) {
+        for (std::size_t i = 0; i < 3; ++i) {
             const std::string& key = groups[chosen][i];
-            m_scene.initial_rates[i] = n[key] ? number(n[key], "initial " + key) : 0.0;
+            m_scene.rates_written[i] = m_values->value(n[key], "initial " + key);
+            m_scene.initial_rates[i] = m_scene.rates_written[i].value;
         }
         const double theta = m_scene.angles[1];
         if (theta < 0 || theta > 3.141592653589793238)
             throw user_error(at(n["theta"]), "initial theta = " + std::to_string(theta) +
                                                  " is outside [0, pi] (z-x-z Euler angles)");
+    }
+
+    // Every name of the state the scene started to give (the angles and `rates`, or, with no
+    // rates at all, one of the three groups), or an error at the `initial` key naming the missing.
+    void check_complete(const YAML::Node& root, const YAML::Node& n,
+                        const std::array<std::string, 3>* rates) const {
+        std::vector<std::string> missing;
+        for (const auto& name : coordinate_names())
+            if (!n[name]) missing.push_back(name);
+        if (rates)
+            for (const auto& name : *rates)
+                if (!n[name]) missing.push_back(name);
+        if (missing.empty() && rates) return;
+        std::string list;
+        for (const auto& name : missing)
+            list += (list.empty() ? "" : ", ") + name;
+        const std::string why =
+            rates ? " (a state is phi, theta, psi with " + (*rates)[0] + ", " + (*rates)[1] + ", " +
+                        (*rates)[2] + "; nothing defaults to 0)"
+                  : std::string(list.empty() ? "" : " and ") +
+                        "the rates (phi_dot, theta_dot, psi_dot, or p_phi, p_theta, p_psi, or "
+                        "omega1, omega2, omega3; nothing defaults to 0)";
+        source_location key = at(n);
+        for (const auto& kv : root)
+            if (kv.first.IsScalar() && kv.first.Scalar() == "initial") key = at(kv.first);
+        throw user_error(key, "the initial state is incomplete: missing " + list + why);
     }
 
     void read_time(const YAML::Node& n) {
@@ -292,6 +319,7 @@ class scene_reader {
     YAML::Node
         m_model_root; // the model's mapping, its file and text (for check_model_with_overrides)
     std::string m_model_file, m_model_source;
+    std::optional<scene_detail::value_reader> m_values; // after the model is read
 };
 
 } // namespace

@@ -25,6 +25,15 @@ namespace rotgen {
 
 enum class initial_kind { rates, momenta, omega };
 
+// A value as the scene wrote it (a parameter override or an initial value): a number, or an
+// expression of the model language (`pi/2`, `2*pi*f` with the model's parameters), kept exact
+// (rationals, pi, functions of them) so that run/kinematics computes from it at 30 digits.
+struct written_value {
+    double value = 0;        // the double (an expression: its value rounded once)
+    GiNaC::ex exact;         // an expression's exact value (parameters put in); unused otherwise
+    bool expression = false; // not a plain decimal number
+};
+
 struct integrator_spec {
     std::string method = "dop853"; // rk4 | dopri5 | dop853 | implicit_midpoint | rosenbrock
     double rtol = 1e-8, atol = 1e-10;
@@ -42,6 +51,11 @@ struct scene_spec {
     std::array<double, 3> angles{}; // phi, theta, psi
     initial_kind initial = initial_kind::rates;
     std::array<double, 3> initial_rates{}; // q_dot, p, or omega, as `initial` says
+    // As written (parameters: the overrides; others are the model's defaults, numbers). The
+    // exact value stands for the double beside it only while that double is still `value`
+    // (run/kinematics: exact_scene_value).
+    std::vector<written_value> parameters_written;
+    std::array<written_value, 3> angles_written, rates_written;
     double t_start = 0, t_end = 1;
     long samples = 101;
     integrator_spec integrator;

@@ -136,9 +136,16 @@ name_table model_reader::angle_names() const {
     return names;
 }
 
-// `potential:` plus the gravity shorthand's M g (com . e_z).
+// `potential:` or the gravity shorthand's M g (com . e_z), never both.
 void model_reader::read_potential(const YAML::Node& root) {
     m_spec.potential = 0;
+    int seen = 0; // of `potential` and `gravity`: refused at the second one in the file
+    for (const auto& kv : root)
+        if (kv.first.Scalar() == "potential" || kv.first.Scalar() == "gravity")
+            if (++seen == 2)
+                throw user_error(at(kv.first), "give 'gravity' or 'potential', not both (gravity "
+                                               "is the potential M g (com . e); write the whole "
+                                               "potential in 'potential' instead)");
     if (root["potential"])
         m_spec.potential = expression(root["potential"], angle_names(), "potential");
     if (const YAML::Node g = root["gravity"]) {

@@ -71,10 +71,11 @@ TEST_CASE("bench: output directories that cannot be used are named", "[bench][er
 
 TEST_CASE("bench: an Euler-angle form at theta = 0 is refused at the initial key",
           "[bench][errors]") {
-    const scratch_file file("bench_error_site_lock.yaml",
-                            "model: " + model_path("heavy_top") +
-                                "\nform: lagrangian\ninitial: {theta: 0, omega1: 0.1, omega2: 0, "
-                                "omega3: 1}\ntime: {end: 1}\n");
+    const scratch_file file(
+        "bench_error_site_lock.yaml",
+        "model: " + model_path("heavy_top") +
+            "\nform: lagrangian\ninitial: {phi: 0, theta: 0, psi: 0, omega1: 0.1, omega2: 0, "
+            "omega3: 1}\ntime: {end: 1}\n");
     check_bench_refuses("bench_error_site_lock.yaml",
                         "bench_error_site_lock.yaml:3:10: initial theta is the gimbal-lock "
                         "singularity of the Euler-angle forms (sin theta = 0); use form: body");

@@ -259,13 +259,14 @@ TEST_CASE(
     "the body form's chart-derived torque of a general potential matches the Euler-angle form",
     "[emit][body]") {
     // A potential that is not the gravity shorthand (and a bare angle, through atan2), plus
-    // gravity.
+    // the potential of gravity written out (M g (com . e), com = (0.1, 0, 0.2); a model gives
+    // `gravity:` or `potential:`, not both).
     scratch_file model("tests_tmp_emit_potential.yaml",
                        "name: odd_potential\n"
                        "parameters: {k: 0.7, m: 0.3, a: 0.2}\n"
                        "inertia: [[2, 0.1, 0], [0.1, 1.5, 0.2], [0, 0.2, 1]]\n"
-                       "potential: k*cos(theta)^2 + m*sin(phi)*sin(theta) + a*theta^2\n"
-                       "gravity: {mass: 1, g: 9.81, com: [0.1, 0, 0.2]}\n");
+                       "potential: k*cos(theta)^2 + m*sin(phi)*sin(theta) + a*theta^2 + "
+                       "9.81*(0.1*sin(theta)*sin(psi) + 0.2*cos(theta))\n");
     const model_spec spec = load_model(model.path);
     const derivation d = derive(spec);
     const form_expressions lag =

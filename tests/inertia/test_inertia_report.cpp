@@ -141,14 +141,14 @@ std::pair<std::vector<double>, std::vector<double>> deviation(const principal_ax
     double w[3];
     for (int i = 0; i < 3; ++i)
         w[i] = p.axis_values[k][i] + eps * p.axis_values[j][i];
-    const scratch_file scene(name + ".yaml",
-                             "model:\n" + indented(box_model) +
-                                 "form: body\ninitial: {theta: 1, omega1: " + number(w[0]) +
-                                 ", omega2: " + number(w[1]) + ", omega3: " + number(w[2]) +
-                                 "}\ntime: {end: " + number(end) +
-                                 ", samples: " + std::to_string(samples) +
-                                 "}\nintegrator: {method: dop853, rtol: 1e-12, atol: 1e-15}\n"
-                                 "record: [omega1, omega2, omega3]\n");
+    const scratch_file scene(
+        name + ".yaml",
+        "model:\n" + indented(box_model) +
+            "form: body\ninitial: {phi: 0, theta: 1, psi: 0, omega1: " + number(w[0]) +
+            ", omega2: " + number(w[1]) + ", omega3: " + number(w[2]) +
+            "}\ntime: {end: " + number(end) + ", samples: " + std::to_string(samples) +
+            "}\nintegrator: {method: dop853, rtol: 1e-12, atol: 1e-15}\n"
+            "record: [omega1, omega2, omega3]\n");
     const std::string out = std::string(ROTGEN_BINARY_DIR) + "/" + name + ".csv";
     const run_result r = run_rotgen("simulate '" + scene.path + "' -o '" + out + "'");
     INFO(r.out << r.err);

@@ -16,21 +16,23 @@ TEST_CASE("run: each engine error site gives one line with line and column, exit
     // the scene after its "model:" line, the whole message after "rotgen: error: "
     const auto [rest, line] = GENERATE(table<std::string, std::string>({
         // engine.cpp: momenta at theta = 0, in an Euler-angle form and in the body form
-        row{"initial: {theta: 0, p_phi: 1, p_theta: 0, p_psi: 1}\n",
+        row{"initial: {theta: 0, p_phi: 1, p_theta: 0, p_psi: 1, phi: 0, psi: 0}\n",
             "run_error_site.yaml:2:10: momenta cannot give the rates at theta = 0 or pi (the mass "
             "matrix is singular there); give body omega1..3 instead"},
-        row{"form: body\ninitial: {theta: 0, p_phi: 1, p_theta: 0, p_psi: 1}\n",
+        row{"form: body\ninitial: {theta: 0, p_phi: 1, p_theta: 0, p_psi: 1, phi: 0, psi: 0}\n",
             "run_error_site.yaml:3:10: momenta cannot give the rates at theta = 0 or pi (the mass "
             "matrix is singular there); give body omega1..3 instead"},
         // engine.cpp: a finite initial rate whose body omega overflows double
-        row{"initial: {theta: 0.1, phi_dot: 1.5e308, theta_dot: 0, psi_dot: 1.5e308}\n",
+        row{"initial: {theta: 0.1, phi_dot: 1.5e308, theta_dot: 0, psi_dot: 1.5e308, phi: 0, psi: "
+            "0}\n",
             "run_error_site.yaml:2:10: initial values too large for double precision: omega3 = "
             "inf at t = 0.0; give smaller initial rates or momenta, or rescale the model's units"},
-        row{"initial: {theta: 0.1, p_phi: 1.5e308, p_theta: 0, p_psi: 1.5e308}\n",
+        row{"initial: {theta: 0.1, p_phi: 1.5e308, p_theta: 0, p_psi: 1.5e308, phi: 0, psi: 0}\n",
             "run_error_site.yaml:2:10: initial values too large for double precision: psi_dot = "
             "inf at t = 0.0; give smaller initial rates or momenta, or rescale the model's units"},
         // kernels.cpp: a body axis the form does not give
-        row{"form: reduced\ninitial: {theta: 1, omega1: 0.1, omega2: 0, omega3: 1}\n"
+        row{"form: reduced\ninitial: {theta: 1, omega1: 0.1, omega2: 0, omega3: 1, phi: 0, psi: "
+            "0}\n"
             "record: [body_x]\n",
             "run_error_site.yaml:4:10: the reduced form does not give 'body_x'"},
     }));

@@ -13,7 +13,8 @@ using namespace rotgen::test;
 
 TEST_CASE("scene: malformed sections give one line with file, line and column", "[scene][errors]") {
     const std::string model = "model: " + model_path("heavy_top") + "\n";
-    const std::string ok = "initial: {theta: 1}\ntime: {end: 1}\n";
+    const std::string ok = "initial: {theta: 1, phi: 0, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: "
+                           "0}\ntime: {end: 1}\n";
     using row = std::tuple<std::string, std::string>;
     // the scene file, the message after "rotgen: error: "
     const auto [text, line] = GENERATE_COPY(table<std::string, std::string>({
@@ -25,11 +26,14 @@ TEST_CASE("scene: malformed sections give one line with file, line and column", 
             "scene_errors.yaml:2:13: 'parameters' must be a mapping of name: value"},
         row{model + "initial: [1]\ntime: {end: 1}\n",
             "scene_errors.yaml:2:10: 'initial' must be a mapping of angles and rates"},
-        row{model + "initial: {theta: 1}\ntime: 5\n",
+        row{model + "initial: {theta: 1, phi: 0, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: "
+                    "0}\ntime: 5\n",
             "scene_errors.yaml:3:7: 'time' must be {start, end, samples}"},
-        row{model + "initial: {theta: 1}\ntime: {start: 0}\n",
+        row{model + "initial: {theta: 1, phi: 0, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: "
+                    "0}\ntime: {start: 0}\n",
             "scene_errors.yaml:3:7: time needs 'end'"},
-        row{model + "initial: {theta: 1}\ntime: {end: 1, samples: 1.5}\n",
+        row{model + "initial: {theta: 1, phi: 0, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: "
+                    "0}\ntime: {end: 1, samples: 1.5}\n",
             "scene_errors.yaml:3:25: time samples must be a whole number from 2 to 1e8"},
         row{model + ok + "integrator: dop853\n", "scene_errors.yaml:4:13: 'integrator' must be "
                                                  "{method, rtol, atol} or {method, step} (a "

@@ -55,8 +55,8 @@ std::string fast_top(const std::string& form, double omega3, double end, int sam
     std::ostringstream s;
     s.precision(17);
     s << "model: " << model_path("heavy_top") << "\nparameters: {g: 10}\nform: " << form
-      << "\ninitial: {theta: 0.5, psi_dot: " << omega3 << "}\ntime: {end: " << end
-      << ", samples: " << samples << "}\nintegrator: {" << integrator
+      << "\ninitial: {phi: 0, theta: 0.5, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: " << omega3
+      << "}\ntime: {end: " << end << ", samples: " << samples << "}\nintegrator: {" << integrator
       << "}\nrecord: [theta, phi, p_phi, p_psi]\n";
     return s.str();
 }
@@ -84,7 +84,7 @@ free_top_scene(const std::string& form, const std::array<double, 3>& I,
     s.precision(17);
     s << "model: {name: free_top, parameters: {I1: 1, I2: 2, I3: 3}, inertia: [I1, I2, I3]}\n"
       << "parameters: {I1: " << I[0] << ", I2: " << I[1] << ", I3: " << I[2] << "}\nform: " << form
-      << "\ninitial: {theta: " << std::atan2(std::hypot(L1, L2), L3)
+      << "\ninitial: {phi: 0, theta: " << std::atan2(std::hypot(L1, L2), L3)
       << ", psi: " << std::atan2(L1, L2)
       << ", omega1: 1, omega2: 0.1, omega3: 0.5}\ntime: {end: 100, samples: 1001}\n"
       << "integrator: {" << integrator << "}\nrecord: [omega1, omega2, omega3]\n";
@@ -286,7 +286,8 @@ TEST_CASE("long runs: 10^6 steps of rk4 drift, of the implicit midpoint rule do 
     const auto drift = [](const std::string& method) {
         const run_result r = simulate(
             "extremes_long", "model: " + model_path("heavy_top") +
-                                 "\nform: hamiltonian\ninitial: {theta: 0.5, psi_dot: 30}\n"
+                                 "\nform: hamiltonian\ninitial: {theta: 0.5, psi_dot: 30, phi: 0, "
+                                 "psi: 0, phi_dot: 0, theta_dot: 0}\n"
                                  "time: {end: 10000, samples: 1001}\nintegrator: {method: " +
                                  method + ", step: 0.01}\nrecord: [energy, p_phi, p_psi]\n");
         INFO(method << "\n" << r.out << r.err);

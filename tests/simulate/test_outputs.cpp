@@ -29,7 +29,8 @@ std::string scratch_dir(const std::string& name) {
 std::string heavy_scene(const std::string& dir, const std::string& extra = "") {
     const std::string path = dir + "/top.yaml";
     std::ofstream(path) << "model: " << model_path("heavy_top") << "\n"
-                        << "initial: {theta: 0.5, psi_dot: 30}\ntime: {end: 1, samples: 11}\n"
+                        << "initial: {theta: 0.5, psi_dot: 30, phi: 0, psi: 0, phi_dot: 0, "
+                           "theta_dot: 0}\ntime: {end: 1, samples: 11}\n"
                         << "record: [theta]\n"
                         << extra;
     return path;
@@ -163,7 +164,8 @@ TEST_CASE("a conserved momentum that starts at 0 gets an absolute drift, not a r
     const std::string dir = scratch_dir("drift");
     std::ofstream(dir + "/top.yaml")
         << "model: " << model_path("heavy_top") << "\n"
-        << "initial: {theta: 0.5}\ntime: {end: 1, samples: 11}\nrecord: [theta]\n";
+        << "initial: {theta: 0.5, phi: 0, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 0}\ntime: "
+           "{end: 1, samples: 11}\nrecord: [theta]\n";
     const run_result r = run_rotgen("simulate top.yaml", dir);
     INFO(r.out << r.err);
     REQUIRE(r.status == 0);
@@ -180,7 +182,8 @@ TEST_CASE("a long run shows a progress line on a terminal only, erased at the en
     // 2e7 fixed RK4 steps: several seconds, well past the one second before the line appears
     std::ofstream(dir + "/long.yaml")
         << "model: " << model_path("heavy_top") << "\n"
-        << "initial: {theta: 0.5, psi_dot: 30}\ntime: {end: 2000, samples: 1001}\n"
+        << "initial: {theta: 0.5, psi_dot: 30, phi: 0, psi: 0, phi_dot: 0, theta_dot: 0}\ntime: "
+           "{end: 2000, samples: 1001}\n"
         << "record: [theta]\nintegrator: {method: rk4, step: 1e-4, max_steps: 1e9}\n";
     // on a terminal (a pseudo-terminal from util-linux's script)
     const std::string cmd = "cd '" + dir + "' && script -qec \"'" + std::string(ROTGEN_EXE) +
@@ -206,9 +209,10 @@ TEST_CASE("a long run shows a progress line on a terminal only, erased at the en
 TEST_CASE("the samples are at t_start + k (t_end - t_start) / (samples - 1)",
           "[simulate][outputs]") {
     const std::string dir = scratch_dir("grid");
-    std::ofstream(dir + "/top.yaml") << "model: " << model_path("heavy_top") << "\n"
-                                     << "initial: {theta: 0.5, psi_dot: 30}\n"
-                                     << "time: {start: 2, end: 3, samples: 11}\nrecord: [theta]\n";
+    std::ofstream(dir + "/top.yaml")
+        << "model: " << model_path("heavy_top") << "\n"
+        << "initial: {theta: 0.5, psi_dot: 30, phi: 0, psi: 0, phi_dot: 0, theta_dot: 0}\n"
+        << "time: {start: 2, end: 3, samples: 11}\nrecord: [theta]\n";
     const run_result r = run_rotgen("simulate top.yaml -o - -q", dir);
     REQUIRE(r.status == 0);
     std::istringstream rows(r.out);

@@ -36,12 +36,13 @@ TEST_CASE("heavy top: theta nods between the turning points of the effective pot
     // Parameters of models/heavy_top.yaml.
     const double I1 = 1.0, I3 = 0.5, M = 1.0, g = 9.81, h = 0.1;
     const double theta0 = 0.5, spin = 30; // psi_dot; phi_dot = theta_dot = 0
-    const scratch_file scene("nutation_scene.yaml",
-                             scene_text("heavy_top",
-                                        "initial: {theta: 0.5, psi_dot: 30}\n"
-                                        "time: {end: 5, samples: 5001}\n"
-                                        "integrator: {method: dop853, rtol: 1e-11, atol: 1e-13}\n"
-                                        "record: [theta, energy, p_phi, p_psi]\n"));
+    const scratch_file scene(
+        "nutation_scene.yaml",
+        scene_text("heavy_top",
+                   "initial: {theta: 0.5, psi_dot: 30, phi: 0, psi: 0, phi_dot: 0, theta_dot: 0}\n"
+                   "time: {end: 5, samples: 5001}\n"
+                   "integrator: {method: dop853, rtol: 1e-11, atol: 1e-13}\n"
+                   "record: [theta, energy, p_phi, p_psi]\n"));
     const run_result r =
         run_rotgen("simulate '" + scene.path + "' -o '" + scratch("nutation.csv") + "'");
     INFO(r.out << r.err);
@@ -129,7 +130,7 @@ TEST_CASE("body form and Lagrangian form agree away from theta = 0", "[simulate]
 TEST_CASE("gimbal lock: theta = 0 starts in the body form, or is refused when no chart is free",
           "[simulate][gimbal]") {
     const std::string common =
-        "initial: {theta: 0, omega1: 0.1, omega2: 0.2, omega3: 1}\n"
+        "initial: {theta: 0, omega1: 0.1, omega2: 0.2, omega3: 1, phi: 0, psi: 0}\n"
         "time: {end: 10, samples: 11}\nrecord: [omega1, theta, phi_dot, energy]\n";
     // The damped model's damping acts on Euler-angle rates: its body form is singular too.
     const scratch_file damped("lock_damped.yaml",
@@ -164,7 +165,7 @@ TEST_CASE("a free top tumbling through theta ~ 0 stays on the exact solution (ch
             "tumble.yaml",
             scene_text(
                 "free_asymmetric_top",
-                "form: lagrangian\ninitial: {" + start +
+                "form: lagrangian\ninitial: {phi: 0, psi: 0, " + start +
                     ", omega1: 0.05, omega2: 0.5, omega3: 1}\ntime: {end: 100, samples: 2001}\n"
                     "integrator: {method: dop853, rtol: 1e-10, atol: 1e-12}\n"
                     "record: [omega1, omega2, omega3, theta]\n"));
@@ -196,56 +197,80 @@ TEST_CASE("bad scenes: exit 2, one line naming file and place, no output file",
           "[simulate][errors]") {
     using row = std::tuple<std::string, std::string, std::string>;
     const auto [name, body, expected] = GENERATE(table<std::string, std::string, std::string>({
-        row{"NaN initial value", "initial: {theta: .nan}\ntime: {end: 1}\n",
+        row{"NaN initial value",
+            "initial: {theta: .nan, phi: 0, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 0}\ntime: "
+            "{end: 1}\n",
             "bad_scene.yaml:2:18: initial theta must be a finite number"},
-        row{"theta out of range", "initial: {theta: 4}\ntime: {end: 1}\n",
+        row{"theta out of range",
+            "initial: {theta: 4, phi: 0, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 0}\ntime: "
+            "{end: 1}\n",
             "bad_scene.yaml:2:18: initial theta = 4"},
-        row{"end before start", "initial: {theta: 1}\ntime: {start: 2, end: 1}\n",
+        row{"end before start",
+            "initial: {theta: 1, phi: 0, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 0}\ntime: "
+            "{start: 2, end: 1}\n",
             "bad_scene.yaml:3:23: time end must be after time start"},
         row{"non-positive rtol",
-            "initial: {theta: 1}\ntime: {end: 1}\nintegrator: {method: dopri5, rtol: 0}\n",
+            "initial: {theta: 1, phi: 0, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 0}\ntime: "
+            "{end: 1}\nintegrator: {method: dopri5, rtol: 0}\n",
             "bad_scene.yaml:4:36: integrator rtol must be positive"},
         row{"negative step",
-            "initial: {theta: 1}\ntime: {end: 1}\nintegrator: {method: rk4, step: -0.1}\n",
+            "initial: {theta: 1, phi: 0, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 0}\ntime: "
+            "{end: 1}\nintegrator: {method: rk4, step: -0.1}\n",
             "bad_scene.yaml:4:33: integrator step must be positive"},
         row{"fixed step without a step",
-            "initial: {theta: 1}\ntime: {end: 1}\nintegrator: {method: rk4}\n",
+            "initial: {theta: 1, phi: 0, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 0}\ntime: "
+            "{end: 1}\nintegrator: {method: rk4}\n",
             "bad_scene.yaml:4:13: integrator rk4 is fixed-step and needs 'step'"},
         row{"a step and a tolerance",
-            "initial: {theta: 1}\ntime: {end: 1}\nintegrator: {method: dop853, step: 0.1, rtol: "
+            "initial: {theta: 1, phi: 0, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 0}\ntime: "
+            "{end: 1}\nintegrator: {method: dop853, step: 0.1, rtol: "
             "1e-8}\n",
             "bad_scene.yaml:4:47: integrator dop853 with a fixed step has no error control: give "
             "'step' or 'rtol', not both"},
-        row{"unknown method", "initial: {theta: 1}\ntime: {end: 1}\nintegrator: {method: dopri}\n",
+        row{"unknown method",
+            "initial: {theta: 1, phi: 0, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 0}\ntime: "
+            "{end: 1}\nintegrator: {method: dopri}\n",
             "did you mean 'dopri5'?"},
-        row{"unknown record", "initial: {theta: 1}\ntime: {end: 1}\nrecord: [thetta]\n",
+        row{"unknown record",
+            "initial: {theta: 1, phi: 0, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 0}\ntime: "
+            "{end: 1}\nrecord: [thetta]\n",
             "bad_scene.yaml:4:10: cannot record 'thetta'; did you mean 'theta'?"},
         row{"rates given two ways", "initial: {theta: 1, psi_dot: 1, omega1: 2}\ntime: {end: 1}\n",
             "give the initial rates one way only"},
         row{"unknown parameter override",
-            "parameters: {I2: 3}\ninitial: {theta: 1}\ntime: {end: 1}\n",
+            "parameters: {I2: 3}\ninitial: {theta: 1, phi: 0, psi: 0, phi_dot: 0, theta_dot: 0, "
+            "psi_dot: 0}\ntime: {end: 1}\n",
             "unknown field 'I2' in parameters"},
-        row{"missing time", "initial: {theta: 1}\n", "bad_scene.yaml:1:1: missing field 'time'"},
-        row{"unknown form", "form: euler\ninitial: {theta: 1}\ntime: {end: 1}\n",
+        row{"missing time",
+            "initial: {theta: 1, phi: 0, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 0}\n",
+            "bad_scene.yaml:1:1: missing field 'time'"},
+        row{"unknown form",
+            "form: euler\ninitial: {theta: 1, phi: 0, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: "
+            "0}\ntime: {end: 1}\n",
             "unknown form 'euler'"},
         row{"record not in the form",
-            "form: reduced\ninitial: {theta: 1, psi_dot: 3}\ntime: {end: 1}\nrecord: [phi]\n",
+            "form: reduced\ninitial: {theta: 1, psi_dot: 3, phi: 0, psi: 0, phi_dot: 0, theta_dot: "
+            "0}\ntime: {end: 1}\nrecord: [phi]\n",
             "bad_scene.yaml:5:10: the reduced form does not give 'phi'"},
         // Finite initial values whose consequences overflow double precision (a silent inf before).
-        row{"initial rate overflows f", "initial: {theta: 1, phi_dot: 1e300}\ntime: {end: 1}\n",
+        row{"initial rate overflows f",
+            "initial: {theta: 1, phi_dot: 1e300, phi: 0, psi: 0, theta_dot: 0, psi_dot: 0}\ntime: "
+            "{end: 1}\n",
             "bad_scene.yaml:2:10: initial values too large for double precision: theta_ddot = inf "
             "in f(t0, y0) at t = 0.0"},
         row{"initial momentum overflows f",
-            "form: hamiltonian\ninitial: {theta: 1, p_psi: 1e300}\ntime: {end: 1}\n",
+            "form: hamiltonian\ninitial: {theta: 1, p_psi: 1e300, phi: 0, psi: 0, p_phi: 0, "
+            "p_theta: 0}\ntime: {end: 1}\n",
             "bad_scene.yaml:3:10: initial values too large for double precision: p_theta_dot = inf "
             "in f(t0, y0)"},
         row{"initial momentum overflows",
-            "parameters: {I1: 4}\ninitial: {theta: 1, phi_dot: 1e308}\ntime: {end: 1}\n",
+            "parameters: {I1: 4}\ninitial: {theta: 1, phi_dot: 1e308, phi: 0, psi: 0, theta_dot: "
+            "0, psi_dot: 0}\ntime: {end: 1}\n",
             "bad_scene.yaml:3:10: initial values too large for double precision: p_phi = inf at t "
             "= 0.0"},
         row{"initial energy overflows",
             "parameters: {I1: 1e10, I3: 5e9}\nform: body\ninitial: {theta: 1, omega1: "
-            "1e150}\ntime: {end: 1}\n",
+            "1e150, phi: 0, psi: 0, omega2: 0, omega3: 0}\ntime: {end: 1}\n",
             "bad_scene.yaml:4:10: initial values too large for double precision: energy = inf at t "
             "= 0.0"},
     }));
@@ -268,8 +293,9 @@ TEST_CASE("a rate that comes out subnormal from omega is no internal error", "[s
     // point underflow" before.
     const scratch_file scene(
         "subnormal_scene.yaml",
-        scene_text("heavy_top", "initial: {theta: 1, psi: 1e-10, omega1: 1e-300, omega3: 1}\n"
-                                "time: {end: 1, samples: 3}\nrecord: [phi_dot, energy]\n"));
+        scene_text("heavy_top",
+                   "initial: {theta: 1, psi: 1e-10, omega1: 1e-300, omega3: 1, phi: 0, omega2: 0}\n"
+                   "time: {end: 1, samples: 3}\nrecord: [phi_dot, energy]\n"));
     const std::string csv = scratch("subnormal.csv");
     const run_result r = run_rotgen("simulate '" + scene.path + "' -o '" + csv + "'");
     INFO(r.out << r.err);
@@ -298,7 +324,8 @@ TEST_CASE("an integration that cannot go on exits 3 and keeps its samples in a p
     const scratch_file scene(
         "falling_scene.yaml",
         scene_text("damped_driven_top",
-                   "initial: {theta: 1.0, psi_dot: 5}\ntime: {end: 40, samples: 401}\n"
+                   "initial: {theta: 1.0, psi_dot: 5, phi: 0, psi: 0, phi_dot: 0, theta_dot: "
+                   "0}\ntime: {end: 40, samples: 401}\n"
                    "integrator: {method: dopri5, rtol: 1e-8, atol: 1e-10}\nrecord: [theta]\n"));
     const std::string csv = scratch("falling.csv"), partial = scratch("falling.partial.csv");
     std::remove(csv.c_str());
@@ -323,8 +350,8 @@ csv_table run_free_top(const std::string& model, const std::string& initial, dou
                        long samples, const std::string& name,
                        const std::string& integrator = "{method: dop853, rtol: 1e-12, atol: 1e-14}",
                        std::string* summary = nullptr) {
-    const scratch_file scene(name + ".yaml", model + "form: body\ninitial: {" + initial +
-                                                 "}\ntime: {end: " + std::to_string(end) +
+    const scratch_file scene(name + ".yaml", model + "form: body\ninitial: {phi: 0, psi: 0, " +
+                                                 initial + "}\ntime: {end: " + std::to_string(end) +
                                                  ", samples: " + std::to_string(samples) +
                                                  "}\nintegrator: " + integrator +
                                                  "\n"
@@ -452,7 +479,8 @@ TEST_CASE("near gimbal lock the Hamiltonian chart loses accuracy and the switch 
             "model:\n  name: symmetric_free_top\n  inertia: [2, 2, 1]\nform: hamiltonian\n"
             "switch_chart: " +
                 switch_chart +
-                "\ninitial: {theta: 1e-4, psi: 1.5707963267948966, omega1: 0.3, omega2: 0, omega3: "
+                "\ninitial: {phi: 0, theta: 1e-4, psi: 1.5707963267948966, omega1: 0.3, omega2: 0, "
+                "omega3: "
                 "1}\n"
                 "time: {end: 40, samples: 401}\nintegrator: {method: dop853, rtol: 1e-10, atol: "
                 "1e-12}\n"
@@ -492,10 +520,11 @@ TEST_CASE("a reduced scene without record: records what the form gives (no ignor
     INFO(model);
     const scratch_file scene(
         "reduced_default_scene.yaml",
-        scene_text(model, "form: reduced\n"
-                          "initial: {theta: 1, psi: 0.3, phi_dot: 0.5, psi_dot: 3}\n"
-                          "time: {end: 2, samples: 21}\n"
-                          "integrator: {method: dop853, rtol: 1e-10, atol: 1e-12}\n"));
+        scene_text(model,
+                   "form: reduced\n"
+                   "initial: {theta: 1, psi: 0.3, phi_dot: 0.5, psi_dot: 3, phi: 0, theta_dot: 0}\n"
+                   "time: {end: 2, samples: 21}\n"
+                   "integrator: {method: dop853, rtol: 1e-10, atol: 1e-12}\n"));
     const std::string csv = scratch("reduced_default.csv");
     const run_result r = run_rotgen("simulate '" + scene.path + "' -o '" + csv + "'");
     INFO(r.out << r.err);

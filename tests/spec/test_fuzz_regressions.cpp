@@ -160,7 +160,8 @@ std::string repeat(const std::string& s, std::size_t n) {
 }
 
 const std::string top = "name: top\nparameters: {I1: 1.0, I3: 0.5}\ninertia: [I1, I1, I3]\n";
-const std::string start = "initial: {theta: 0.5, psi_dot: 30}\ntime: {end: 1}\n";
+const std::string start = "initial: {theta: 0.5, psi_dot: 30, phi: 0, psi: 0, phi_dot: 0, "
+                          "theta_dot: 0}\ntime: {end: 1}\n";
 
 } // namespace
 
@@ -309,7 +310,8 @@ TEST_CASE("fuzz regressions: hostile scene files give one user error line", "[fu
                 start,
             "with these parameter values the model"},
         row{"a time span that overflows",
-            "model: ../heavy_top.yaml\ninitial: {theta: 0.5}\n"
+            "model: ../heavy_top.yaml\ninitial: {theta: 0.5, phi: 0, psi: 0, phi_dot: 0, "
+            "theta_dot: 0, psi_dot: 0}\n"
             "time: {start: -1e308, end: 1e308}\n",
             "time span"},
         row{"max_steps below 1 (was cast to 0)",
@@ -320,14 +322,15 @@ TEST_CASE("fuzz regressions: hostile scene files give one user error line", "[fu
                 "integrator: {method: dop853, max_steps: 1e300}\n",
             "max_steps must be a whole number"},
         row{"a subnormal initial angle",
-            "model: ../heavy_top.yaml\ninitial: {theta: 0.5, phi: 1e-310}\ntime: {end: 1}\n",
+            "model: ../heavy_top.yaml\ninitial: {theta: 0.5, phi: 1e-310, psi: 0, phi_dot: 0, "
+            "theta_dot: 0, psi_dot: 0}\ntime: {end: 1}\n",
             "must be 0 or at least 2.2e-308 in magnitude"},
         row{"a subnormal parameter override",
             "model: ../heavy_top.yaml\nparameters: {h: -1e-310}\n" + start,
             "must be 0 or at least 2.2e-308 in magnitude"},
         row{"a 400000-digit number (std::regex overflowed the stack)",
             "model: ../heavy_top.yaml\ninitial: {theta: " + std::string(400000, '1') +
-                "}\ntime: {end: 1}\n",
+                ", phi: 0, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 0}\ntime: {end: 1}\n",
             "must be a finite number"},
     }));
     INFO(name);

@@ -83,6 +83,13 @@ TEST_CASE("bad model files give one clear line and exit 2", "[spec][errors]") {
             "unknown symbol 't' in potential"},
         row{"gravity without com", top + "gravity: {mass: 1, g: 9.81}\n", "4:10",
             "gravity needs 'com'"},
+        // today's V would be the sum: the gravity potential counted again inside `potential`
+        row{"gravity then potential",
+            top + "gravity: {mass: 1, g: 9.81, com: [0, 0, 1]}\npotential: 9.81*cos(theta)\n",
+            "5:1", "give 'gravity' or 'potential', not both"},
+        row{"potential then gravity",
+            top + "potential: 9.81*cos(theta)\ngravity: {mass: 1, g: 9.81, com: [0, 0, 1]}\n",
+            "5:1", "give 'gravity' or 'potential', not both"},
         row{"damping of the wrong length", top + "damping: [1, 2]\n", "4:10",
             "'damping' must be one coefficient or a list of three"},
         row{"torque not a list", top + "torque: 1\n", "4:9", "'torque' must be a list of three"},
