@@ -19,7 +19,8 @@
 //   method.hpp                   run-time choice of a method by name
 //   rotation.hpp                 z-x-z Euler angles, passive matrices (5.25), quaternions, angle
 //   errors
-// (exact_free_top.hpp, the exact free top, needs Boost.Math and is included separately.)
+// (exact_free_top.hpp, the exact free top's ω(t), and free_body/flow.hpp, the exact free rigid-body
+// flow of momentum and attitude, need Boost.Math and are included separately.)
 #pragma once
 
 #include "combine.hpp"
