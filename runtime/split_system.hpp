@@ -12,6 +12,10 @@
 // torque(t, y, tau); its rhs is the body form of the same model,
 //   q̇ = ½ q ⊗ (0, ω),    I ω̇ = τ − ω × I ω                             (5.87)–(5.89) with τ,
 // so every other method runs the same system too (the tests compare them).
+// body_split_system<S> makes a split system of any body-form system S (7 states, the layout above:
+// a generated model's body form, or the loaded kernels of `rotgen simulate`) with diagonal inertia:
+// at ω = 0 the gyroscopic term vanishes, so the torque is τ_i = I_i ω̇_i(t, q, ω = 0) — valid when
+// S's torque does not depend on ω (no damping), which the caller checks.
 #pragma once
 
 #include <array>
@@ -69,5 +73,28 @@ template <class T, class Torque>
 split_body_system<T, Torque> make_split_system(std::array<T, 3> moments, Torque torque) {
     return split_body_system<T, Torque>(moments, std::move(torque));
 }
+
+// A body-form system seen as a split system (see above); holds a reference to it.
+template <class S> class body_split_system {
+  public:
+    static constexpr std::size_t state_size = 7;
+
+    body_split_system(const S& body, std::array<double, 3> moments)
+        : m_body(body), m_moments(moments) {}
+
+    const std::array<double, 3>& principal_moments() const { return m_moments; }
+    void torque(double t, const double* y, double* tau) const {
+        const double y0[7] = {y[0], y[1], y[2], y[3], 0.0, 0.0, 0.0};
+        double d[7];
+        m_body.rhs(t, y0, d);
+        for (int i = 0; i < 3; ++i)
+            tau[i] = m_moments[static_cast<std::size_t>(i)] * d[4 + i];
+    }
+    void rhs(double t, const double* y, double* dydt) const { m_body.rhs(t, y, dydt); }
+
+  private:
+    const S& m_body;
+    std::array<double, 3> m_moments;
+};
 
 } // namespace rotgen
