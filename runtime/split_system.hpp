@@ -77,7 +77,7 @@ split_body_system<T, Torque> make_split_system(std::array<T, 3> moments, Torque 
 // A body-form system seen as a split system (see above); holds a reference to it.
 template <class S> class body_split_system {
   public:
-    static constexpr std::size_t state_size = 7;
+    std::size_t size() const { return 7; } // run-time size: works on Eigen::VectorXd states
 
     body_split_system(const S& body, std::array<double, 3> moments)
         : m_body(body), m_moments(moments) {}
