@@ -19,7 +19,9 @@
 //   method.hpp                   run-time choice of a method by name
 //   rotation.hpp                 z-x-z Euler angles, passive matrices (5.25), quaternions, angle
 //   errors
-// (exact_free_top.hpp, the exact free top, needs Boost.Math and is included separately.)
+// (exact_free_top.hpp, the exact free top's ω(t), and free_body/flow.hpp, the exact free rigid-body
+// flow of momentum and attitude, need Boost.Math and are included separately, as are the splitting
+// methods on that flow: steppers/splitting.hpp (split2, split4, split6) with split_system.hpp.)
 #pragma once
 
 #include "combine.hpp"

@@ -3,6 +3,7 @@
 #include "expr/numbers.hpp"
 #include "expr/symbols.hpp"
 #include "run/kinematics.hpp"
+#include "run/split_run.hpp"
 #include "support/error.hpp"
 #include "support/format.hpp"
 
@@ -98,6 +99,7 @@ class scene_run {
     std::vector<sample> m_samples;
     std::size_t m_next_sample = 0;
     std::optional<any_method<double>> m_method;
+    std::optional<split_runner> m_split; // split2/4/6: the body form as a split system
     integration_result<double> m_last;
     run_result m_result;
 };
@@ -287,15 +289,16 @@ scene_run::next scene_run::integrate_segment(Eigen::VectorXd& y, double t_from) 
     const std::size_t first_sample = m_samples.size();
     m_timings.time("integrate", to_string(cf.form), [&] {
         // returning false stops the run at this sample: the chart is left there
-        m_last = integrate(
-            cf.sys, *m_method, t_from, y, times, [&](double t, const Eigen::VectorXd& yt) {
-                m_samples.push_back({t, yt, m_current});
-                if (m_on_sample) m_on_sample(t);
-                if (!m_can_switch || m_samples.size() <= first_sample + 1 || t >= m_scene.t_end)
-                    return true;
-                const double st = sin_theta_of(cf.form, yt);
-                return !(euler_chart ? st < switch_below : st > switch_back_above);
-            });
+        const auto observe = [&](double t, const Eigen::VectorXd& yt) {
+            m_samples.push_back({t, yt, m_current});
+            if (m_on_sample) m_on_sample(t);
+            if (!m_can_switch || m_samples.size() <= first_sample + 1 || t >= m_scene.t_end)
+                return true;
+            const double st = sin_theta_of(cf.form, yt);
+            return !(euler_chart ? st < switch_below : st > switch_back_above);
+        };
+        m_last = m_split ? m_split->integrate(cf.sys, t_from, y, times, observe)
+                         : integrate(cf.sys, *m_method, t_from, y, times, observe);
     });
     m_left_chart = m_last.code == status::stopped_by_observer;
     add_stats(m_result.stats, m_last.stats);
@@ -371,6 +374,12 @@ run_result scene_run::run() {
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j)
             m_inertia(i, j) = number(spec.inertia[i][j], parameter_values);
+    const bool split = is_split_method(m_scene.integrator.method);
+    if (split) { // the body form, no chart to leave
+        check_split_model(m_scene, m_inertia);
+        m_scene.form = form_kind::body;
+        m_scene.switch_chart = false;
+    }
     decide_chart();
     const initial_kinematics k0 = initial_kinematics_of(m_scene, m_d);
     if (m_scene.initial == initial_kind::momenta && !k0.have_rates)
@@ -379,6 +388,7 @@ run_result scene_run::run() {
                          "singular there); give body omega1..3 instead");
     default_record_follows_form();
     list_invariants();
+    m_orientation = m_orientation || split;
     m_result.record = m_scene.record;
     const compiled_form& first =
         compile(m_start_in_body ? form_kind::body : m_scene.form, m_orientation);
@@ -388,10 +398,15 @@ run_result scene_run::run() {
     m_result.state_size = first.f.state.size();
 
     const integrator_spec& ig = m_scene.integrator;
-    m_method = make_method<double>(ig.method, ig.rtol, ig.atol, ig.fixed_step() ? ig.step : 0.0);
-    if (!m_method) throw std::logic_error("run: unknown method " + ig.method);
-    std::visit([&](auto& m) { m.max_steps = ig.max_steps; }, *m_method);
-    if (auto* r = std::get_if<rodas4<double>>(&*m_method)) r->autonomous = !spec.has_torque;
+    if (split) {
+        m_split.emplace(m_scene, m_inertia);
+    } else {
+        m_method =
+            make_method<double>(ig.method, ig.rtol, ig.atol, ig.fixed_step() ? ig.step : 0.0);
+        if (!m_method) throw std::logic_error("run: unknown method " + ig.method);
+        std::visit([&](auto& m) { m.max_steps = ig.max_steps; }, *m_method);
+        if (auto* r = std::get_if<rodas4<double>>(&*m_method)) r->autonomous = !spec.has_torque;
+    }
     m_times = sample_times(m_scene);
     m_samples.reserve(m_times.size());
 
@@ -399,6 +414,12 @@ run_result scene_run::run() {
     std::vector<double> parameters = parameters_of(first.f, k0);
     first.set_parameters(parameters);
     check_finite_start(k0, first, y, parameters);
+    if (m_split) {
+        m_split->choose_step(first.sys, m_scene.t_start, y, m_scene.t_end - m_scene.t_start);
+        m_result.chart_note = "body form (quaternion, omega) for " + ig.method + ", step " +
+                              short_number(m_split->step()) +
+                              (ig.step > 0 ? "" : " (from rtol " + short_number(ig.rtol) + ")");
+    }
     double t_from = m_scene.t_start;
     for (next to = next::body; to != next::done;) {
         m_compiled[m_current].set_parameters(parameters);

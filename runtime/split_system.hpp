@@ -1,0 +1,100 @@
+// rotgen runtime — the systems the splitting methods (steppers/splitting.hpp) run: a rigid body
+// whose principal axes are the body axes, moved by the torque of a potential (and torques given
+// as functions of time), with the body form's state layout (DESIGN.md, "State layouts")
+//   y = (qw, qx, qy, qz, ω1, ω2, ω3),
+// q the unit quaternion of the active rotation body → space (rotation.hpp), ω the body angular
+// velocity (5.30). A split system S provides, besides rhs (system.hpp):
+//   std::array<T, 3> principal_moments() const;      I1, I2, I3 along the body axes, > 0
+//   void torque(T t, const T* y, T* tau) const;      body-axis torque at (t, q = y[0..3]); it must
+//                                                    not depend on ω (a rate-dependent force is
+//                                                    not a kick: those models need another method)
+// split_body_system<T, Torque> builds one from the moments and a torque callable
+// torque(t, y, tau); its rhs is the body form of the same model,
+//   q̇ = ½ q ⊗ (0, ω),    I ω̇ = τ − ω × I ω                             (5.87)–(5.89) with τ,
+// so every other method runs the same system too (the tests compare them).
+// body_split_system<S> makes a split system of any body-form system S (7 states, the layout above:
+// a generated model's body form, or the loaded kernels of `rotgen simulate`) with diagonal inertia:
+// at ω = 0 the gyroscopic term vanishes, so the torque is τ_i = I_i ω̇_i(t, q, ω = 0) — valid when
+// S's torque does not depend on ω (no damping), which the caller checks.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <type_traits>
+#include <utility>
+
+namespace rotgen {
+
+namespace detail {
+template <class S, class T, class = void> struct has_split_interface : std::false_type {};
+template <class S, class T>
+struct has_split_interface<
+    S, T,
+    std::void_t<decltype(std::declval<const S&>().principal_moments()[0]),
+                decltype(std::declval<const S&>().torque(
+                    std::declval<T>(), std::declval<const T*>(), std::declval<T*>()))>>
+    : std::true_type {};
+} // namespace detail
+
+// True when S can be run by the splitting methods.
+template <class S, class T>
+inline constexpr bool has_split_interface_v = detail::has_split_interface<S, T>::value;
+
+template <class T, class Torque> class split_body_system {
+  public:
+    static constexpr std::size_t state_size = 7;
+
+    split_body_system(std::array<T, 3> moments, Torque torque)
+        : m_moments(moments), m_torque(std::move(torque)) {}
+
+    const std::array<T, 3>& principal_moments() const { return m_moments; }
+    void torque(T t, const T* y, T* tau) const { m_torque(t, y, tau); }
+
+    void rhs(T t, const T* y, T* d) const {
+        const std::array<T, 3>& i = m_moments;
+        const T* w = y + 4;
+        T tau[3];
+        m_torque(t, y, tau);
+        d[0] = -(y[1] * w[0] + y[2] * w[1] + y[3] * w[2]) / T(2); // ½ q ⊗ (0, ω)
+        d[1] = (y[0] * w[0] + y[2] * w[2] - y[3] * w[1]) / T(2);
+        d[2] = (y[0] * w[1] + y[3] * w[0] - y[1] * w[2]) / T(2);
+        d[3] = (y[0] * w[2] + y[1] * w[1] - y[2] * w[0]) / T(2);
+        d[4] = (tau[0] + (i[1] - i[2]) * w[1] * w[2]) / i[0]; // (5.87)
+        d[5] = (tau[1] + (i[2] - i[0]) * w[2] * w[0]) / i[1];
+        d[6] = (tau[2] + (i[0] - i[1]) * w[0] * w[1]) / i[2];
+    }
+
+  private:
+    std::array<T, 3> m_moments;
+    Torque m_torque;
+};
+
+template <class T, class Torque>
+split_body_system<T, Torque> make_split_system(std::array<T, 3> moments, Torque torque) {
+    return split_body_system<T, Torque>(moments, std::move(torque));
+}
+
+// A body-form system seen as a split system (see above); holds a reference to it.
+template <class S> class body_split_system {
+  public:
+    std::size_t size() const { return 7; } // run-time size: works on Eigen::VectorXd states
+
+    body_split_system(const S& body, std::array<double, 3> moments)
+        : m_body(body), m_moments(moments) {}
+
+    const std::array<double, 3>& principal_moments() const { return m_moments; }
+    void torque(double t, const double* y, double* tau) const {
+        const double y0[7] = {y[0], y[1], y[2], y[3], 0.0, 0.0, 0.0};
+        double d[7];
+        m_body.rhs(t, y0, d);
+        for (int i = 0; i < 3; ++i)
+            tau[i] = m_moments[static_cast<std::size_t>(i)] * d[4 + i];
+    }
+    void rhs(double t, const double* y, double* dydt) const { m_body.rhs(t, y, dydt); }
+
+  private:
+    const S& m_body;
+    std::array<double, 3> m_moments;
+};
+
+} // namespace rotgen

@@ -1,0 +1,111 @@
+// The splitting methods from scene files (issue 17): split2/4/6 run the heavy top and a
+// gravity-gradient-like potential as DOP853 does, to their order, with p_phi to rounding; a step
+// from rtol; models they cannot run (damping, products of inertia) refused with the methods that
+// can.
+#include "support.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+using namespace rotgen::test;
+
+namespace {
+
+std::string scratch(const std::string& name) {
+    return std::string(ROTGEN_BINARY_DIR) + "/" + name;
+}
+
+csv_table simulate(const std::string& model, const std::string& rest, const std::string& name) {
+    const scratch_file scene(name + ".yaml", model + rest);
+    const run_result r =
+        run_rotgen("simulate '" + scene.path + "' -o '" + scratch(name + ".csv") + "'");
+    INFO(r.out << r.err);
+    REQUIRE(r.status == 0);
+    return read_csv(scratch(name + ".csv"));
+}
+
+double max_abs_change(const std::vector<double>& v) {
+    double m = 0;
+    for (double x : v)
+        m = std::max(m, std::abs(x - v.front()));
+    return m;
+}
+
+const std::string top_run = "initial: {theta: 0.5, psi_dot: 30}\n"
+                            "time: {end: 5, samples: 51}\n"
+                            "record: [theta, phi, energy, p_phi]\n";
+
+// V = k cos^2 theta = k A33^2, smooth on the rotation group (a gravity-gradient-like torque) on
+// an asymmetric body
+const std::string gradient_model = "model:\n"
+                                   "  name: gradient_body\n"
+                                   "  parameters: {k: 3.0}\n"
+                                   "  inertia: [1, 1.2, 0.5]\n"
+                                   "  potential: k*cos(theta)^2\n";
+
+} // namespace
+
+TEST_CASE("split methods from a scene agree with DOP853 to their order", "[simulate][split]") {
+    for (const std::string& model : {"model: " + model_path("heavy_top") + "\n", gradient_model}) {
+        const auto ref = simulate(model,
+                                  top_run + "integrator: {method: dop853, rtol: 1e-13, "
+                                            "atol: 1e-15}\n",
+                                  "split_ref");
+        double previous = 0;
+        for (const char* step : {"0.02", "0.01"}) {
+            const auto got = simulate(
+                model, top_run + "integrator: {method: split4, step: " + step + "}\n", "split4");
+            REQUIRE(got.rows.size() == 51);
+            double err = 0;
+            for (const char* c : {"theta", "phi"})
+                for (std::size_t i = 0; i < got.rows.size(); ++i)
+                    err = std::max(err, std::abs(got.values(c)[i] - ref.values(c)[i]));
+            INFO(model << " step " << step << " error " << err);
+            CHECK(err < 1e-6); // observed 3.0e-7 (heavy top at 0.02), 2.0e-8 (gradient)
+            if (previous > 0)
+                CHECK(std::abs(std::log2(previous / err) - 4) < 0.2); // observed 4.02, 4.00
+            previous = err;
+            CHECK(max_abs_change(got.values("p_phi")) < 2e-13); // observed 1.8e-14 (heavy top)
+        }
+    }
+}
+
+TEST_CASE("split methods take a step from rtol", "[simulate][split]") {
+    const std::string model = "model: " + model_path("heavy_top") + "\n";
+    const auto ref = simulate(model,
+                              top_run + "integrator: {method: dop853, rtol: 1e-13, "
+                                        "atol: 1e-15}\n",
+                              "split_ref");
+    for (const char* method : {"split2", "split4", "split6"}) {
+        const auto got = simulate(
+            model, top_run + "integrator: {method: " + method + ", rtol: 1e-7}\n", "split_rtol");
+        const double err = std::abs(got.values("theta").back() - ref.values("theta").back());
+        INFO(method << " error " << err);
+        CHECK(err < 3e-7); // observed 4.1e-9, 2.5e-8, 2.4e-8 at rtol 1e-7
+    }
+}
+
+TEST_CASE("models the split methods cannot run are refused, naming the methods that can",
+          "[simulate][split][errors]") {
+    using row = std::pair<std::string, std::string>;
+    const auto [model, expected] = GENERATE(table<std::string, std::string>({
+        row{"damped_driven_top",
+            "bad_split.yaml:5:13: integrator split4 cannot run model 'damped_driven_top': its "
+            "damping depends on the rates, which a kick cannot hold; use dop853, dopri5, rk4, "
+            "implicit_midpoint or rosenbrock"},
+        row{"full_tensor_top",
+            "bad_split.yaml:5:13: integrator split4 cannot run model 'full_tensor_top': its body "
+            "axes are not principal axes"},
+    }));
+    const scratch_file scene("bad_split.yaml", "model: " + model_path(model) + "\n" + top_run +
+                                                   "integrator: {method: split4, step: 0.01}\n");
+    const std::string csv = scratch("bad_split.csv");
+    std::remove(csv.c_str());
+    const run_result r = run_rotgen("simulate bad_split.yaml -o '" + csv + "'", ROTGEN_BINARY_DIR);
+    INFO(r.err);
+    CHECK(r.status == 2);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    CHECK(r.err.find(expected) != std::string::npos);
+    CHECK(read_file(csv).empty());
+}
