@@ -1,8 +1,9 @@
-// rotgen sweep SCENE.yaml -o DIR [--vary KEY=FROM:TO:COUNT]... [--timings] [--quiet]
+// rotgen sweep SCENE.yaml -o DIR [--vary KEY=FROM:TO:COUNT]... [-j N] [--timings] [--quiet]
 #include "cli/commands.hpp"
 #include "cli/options.hpp"
 #include "sweep/sweep.hpp"
 
+#include <cstdlib>
 #include <iostream>
 
 namespace rotgen {
@@ -12,7 +13,7 @@ namespace {
 const command_spec sweep_command{
     "sweep",
     "scene file",
-    "SCENE.yaml -o DIR [--vary KEY=FROM:TO:COUNT]... [--timings] [--quiet]",
+    "SCENE.yaml -o DIR [--vary KEY=FROM:TO:COUNT]... [-j N] [--timings] [--quiet]",
     "Runs an ensemble of the scene: the members vary its initial values and parameters as its\n"
     "sweep: block and the --vary options say (grid, zip or random). The model is derived and its\n"
     "kernels compiled once for all members. Writes DIR/summary.csv, one row per member in member\n"
@@ -30,6 +31,7 @@ const command_spec sweep_command{
       {},
       false,
       true},
+     {"-j", "N", "run N members at a time, on N threads (default: every core)", {"--jobs"}},
      {"--timings", "", "print the wall time of each pipeline stage to standard error", {}},
      {"--quiet", "", "no summary and no progress line (errors are still reported)", {"-q"}}}};
 
@@ -46,6 +48,15 @@ int cmd_sweep(const std::vector<std::string>& args) {
     q.scene = o.operand;
     q.directory = o.value("-o");
     q.vary = o.values("--vary");
+    if (o.has("-j")) {
+        const std::string& j = o.value("-j");
+        char* end = nullptr;
+        const long n = std::strtol(j.c_str(), &end, 10);
+        if (j.empty() || *end != '\0' || n < 1 || n > 4096)
+            usage_error(sweep_command,
+                        "-j needs a whole number of threads from 1 to 4096, got '" + j + "'");
+        q.jobs = static_cast<unsigned>(n);
+    }
     q.timings = o.has("--timings");
     q.quiet = o.has("--quiet");
     return sweep(q);

@@ -9,9 +9,11 @@
 #include "support/timings.hpp"
 #include "sweep/members.hpp"
 #include "sweep/outcome.hpp"
+#include "sweep/parallel.hpp"
 
 #include <sys/stat.h>
 
+#include <atomic>
 #include <cerrno>
 #include <cstring>
 #include <iostream>
@@ -39,23 +41,32 @@ std::string mode_name(sweep_mode m) {
     return m == sweep_mode::grid ? "grid" : m == sweep_mode::zip ? "zip" : "random";
 }
 
-// The members in order, one after the other.
+// Every member, on `jobs` threads taking the next member as they finish one; each outcome in its
+// member's slot.
 std::vector<member_outcome> run_members(const prepared_scene& prepared,
                                         const summary_layout& layout, const sweep_plan& plan,
-                                        const std::vector<std::vector<double>>& rows,
+                                        const std::vector<std::vector<double>>& rows, unsigned jobs,
                                         progress_line& progress) {
     const member_values base = values_of(prepared.scene());
     std::vector<member_outcome> outcomes(rows.size());
-    for (std::size_t m = 0; m < rows.size(); ++m) {
-        outcomes[m] = run_one(prepared, layout, member_of(plan, base, rows[m]), false);
-        progress.update(double(m + 1));
-    }
+    std::atomic<std::size_t> next{0}, done{0};
+    run_pool(
+        jobs,
+        [&] {
+            const std::size_t m = next++;
+            return m < rows.size() ? m : none;
+        },
+        [&](std::size_t m) {
+            outcomes[m] = run_one(prepared, layout, member_of(plan, base, rows[m]), false);
+            ++done;
+        },
+        [&] { progress.update(double(done)); });
     return outcomes;
 }
 
 void print_summary(std::ostream& os, const sweep_request& q, const scene_spec& scene,
                    const sweep_plan& plan, const std::vector<member_outcome>& outcomes,
-                   double seconds) {
+                   unsigned jobs, double seconds) {
     std::uint64_t steps = 0, evals = 0;
     std::size_t failed = 0;
     for (const auto& o : outcomes) {
@@ -69,8 +80,9 @@ void print_summary(std::ostream& os, const sweep_request& q, const scene_spec& s
        << "  model   " << scene.model.name << " (" << scene.model.file << "), "
        << to_string(scene.form) << " form, method " << scene.integrator.method << "\n"
        << "  members " << outcomes.size() << " (" << mode_name(plan.mode) << " over " << keys
-       << "), " << outcomes.size() - failed << " ok, " << failed << " failed\n"
-       << "  steps   " << steps << " accepted; " << evals << " RHS evaluations\n"
+       << "), " << outcomes.size() - failed << " ok, " << failed << " failed; " << jobs
+       << (jobs == 1 ? " thread\n" : " threads\n") << "  steps   " << steps << " accepted; "
+       << evals << " RHS evaluations\n"
        << "  time    " << short_number(seconds) << " s running the members ("
        << short_number(outcomes.empty() ? 0 : outcomes.size() / seconds) << " members/s)\n";
 }
@@ -105,10 +117,11 @@ int sweep(const sweep_request& q) {
     const std::vector<std::string> inputs{q.scene, scene.model.file};
     atomic_file summary_out(q.directory + "/summary.csv", inputs);
     progress_line progress(0, double(rows.size()), !q.quiet, "members");
+    const unsigned jobs = q.jobs == 0 ? all_cores() : q.jobs;
     const auto start = std::chrono::steady_clock::now();
     const std::vector<member_outcome> outcomes =
         timings.time("members", std::to_string(rows.size()),
-                     [&] { return run_members(prepared, layout, plan, rows, progress); });
+                     [&] { return run_members(prepared, layout, plan, rows, jobs, progress); });
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     progress.finish();
@@ -118,7 +131,7 @@ int sweep(const sweep_request& q) {
     });
     std::ostringstream discarded;
     std::ostream& summary = q.quiet ? discarded : std::cerr;
-    print_summary(summary, q, scene, plan, outcomes, seconds);
+    print_summary(summary, q, scene, plan, outcomes, jobs, seconds);
     summary << "  wrote   " << summary_out.path() << " (" << outcomes.size() << " members)\n";
     if (q.timings) timings.print(std::cerr);
     bool failed = false;

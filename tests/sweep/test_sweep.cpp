@@ -164,3 +164,24 @@ TEST_CASE("sweep: a failing member is reported with its reason while the others 
     CHECK(r.err.find("member 1: ") != std::string::npos);
     CHECK(r.err.find("member 3: stopped at t = ") != std::string::npos);
 }
+
+TEST_CASE("sweep: -j 1 and -j 2 write the same file, byte for byte", "[sweep]") {
+    // Members of different costs (spin 5 .. 200) and one that fails, so that two threads finish
+    // them in another order than one thread does.
+    const scratch_file scene(
+        "sweep_threads.yaml",
+        heavy_top_scene("{theta: 0.5, psi_dot: 30}",
+                        "sweep:\n  vary:\n    initial.psi_dot: {from: 5, to: 200, count: 12}\n"
+                        "    initial.theta: {values: [0.3, 0, 1.2]}\nswitch_chart: false\n"));
+    std::string files[2];
+    for (int j = 1; j <= 2; ++j) {
+        const std::string dir = scratch("sweep_threads_" + std::to_string(j));
+        const test::run_result r =
+            run_rotgen("sweep '" + scene.path + "' -o '" + dir + "' -q -j " + std::to_string(j));
+        INFO(r.err);
+        CHECK(r.status == 3); // the theta = 0 members
+        files[j - 1] = read_file(dir + "/summary.csv");
+    }
+    CHECK(lines(files[0]).size() == 37);
+    CHECK(files[0] == files[1]);
+}
