@@ -20,6 +20,8 @@ const char* const usage =
     "                       a C++ header with the model's kernels (rhs, jacobian, energy, ...)\n"
     "  simulate SCENE.yaml  integrate a scene: CSV, plot, invariant drifts\n"
     "  bench SCENE.yaml     the work-precision report of a scene (rotgen against peers)\n"
+    "  sweep SCENE.yaml -o DIR\n"
+    "                       an ensemble of the scene (varied initial values and parameters)\n"
     "\n"
     "  help [COMMAND]       this text, or a command's options (also rotgen COMMAND --help)\n"
     "  --version            the version\n"
@@ -68,9 +70,11 @@ int run_cli(int argc, char** argv) {
         if (command == "emit") return cmd_emit(args);
         if (command == "simulate") return cmd_simulate(args);
         if (command == "bench") return cmd_bench(args);
-        throw user_error({"rotgen"},
-                         "unknown command '" + command +
-                             "' (expected inspect, emit, simulate or bench; see rotgen --help)");
+        if (command == "sweep") return cmd_sweep(args);
+        throw user_error(
+            {"rotgen"},
+            "unknown command '" + command +
+                "' (expected inspect, emit, simulate, bench or sweep; see rotgen --help)");
     } catch (const user_error& e) {
         std::cerr << "rotgen: error: " << one_line(e.message()) << "\n";
         return 2;

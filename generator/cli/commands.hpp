@@ -13,5 +13,6 @@ int cmd_inspect(const std::vector<std::string>& args);  // inspect_command.cpp
 int cmd_emit(const std::vector<std::string>& args);     // emit_command.cpp
 int cmd_simulate(const std::vector<std::string>& args); // simulate_command.cpp
 int cmd_bench(const std::vector<std::string>& args);    // bench_command.cpp
+int cmd_sweep(const std::vector<std::string>& args);    // sweep_command.cpp
 
 } // namespace rotgen

@@ -39,6 +39,11 @@ const std::string& parsed_options::value(const std::string& name,
     return it == m_values.end() ? fallback : it->second;
 }
 
+std::vector<std::string> parsed_options::values(const std::string& name) const {
+    const auto it = m_repeated.find(name);
+    return it == m_repeated.end() ? std::vector<std::string>{} : it->second;
+}
+
 void usage_error(const command_spec& c, const std::string& problem) {
     throw user_error({"rotgen " + c.name}, problem);
 }
@@ -63,7 +68,7 @@ parsed_options parse_options(const command_spec& c, const std::vector<std::strin
         const std::string word = a.substr(0, eq);
         const option_spec* o = find_option(c, word);
         if (!o) unknown_option(c, a);
-        if (p.has(o->name)) usage_error(c, o->name + " given twice");
+        if (p.has(o->name) && !o->repeatable) usage_error(c, o->name + " given twice");
         std::string v;
         if (eq != std::string::npos) {
             if (o->value.empty()) usage_error(c, o->name + " takes no value");
@@ -74,6 +79,7 @@ parsed_options parse_options(const command_spec& c, const std::vector<std::strin
             v = args[++i];
         }
         p.m_values[o->name] = v;
+        if (o->repeatable) p.m_repeated[o->name].push_back(v);
     }
     if (!p.help && !c.operand.empty() && p.operand.empty())
         usage_error(c, c.name + " needs a " + c.operand + ": rotgen " + c.name + " " + c.synopsis);

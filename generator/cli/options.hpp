@@ -22,6 +22,7 @@ struct option_spec {
     std::string help;  // one line for --help
     std::vector<std::string> aliases; // other spellings: "--output", "--specialize"
     bool optional_value = false;      // also accepted as a bare flag; a value only as --name=VALUE
+    bool repeatable = false;          // may be given more than once (values() has them all)
 };
 
 struct command_spec {
@@ -40,11 +41,14 @@ class parsed_options {
     bool has(const std::string& name) const { return m_values.count(name) > 0; }
     // The value given to `name` (by its canonical name); `fallback` if it was not given.
     const std::string& value(const std::string& name, const std::string& fallback = empty()) const;
+    // Every value given to a repeatable option, in order.
+    std::vector<std::string> values(const std::string& name) const;
 
   private:
     friend parsed_options parse_options(const command_spec&, const std::vector<std::string>&);
     static const std::string& empty();
     std::map<std::string, std::string> m_values; // canonical name -> value ("" for a flag)
+    std::map<std::string, std::vector<std::string>> m_repeated; // repeatable options' values
 };
 
 // Parses `args` (those after the command name). Throws user_error.

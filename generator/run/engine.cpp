@@ -3,12 +3,13 @@
 #include "expr/numbers.hpp"
 #include "expr/symbols.hpp"
 #include "run/kinematics.hpp"
+#include "run/prepared.hpp"
 #include "run/split_run.hpp"
 #include "support/error.hpp"
 #include "support/format.hpp"
 
 #include <cmath>
-#include <map>
+#include <mutex>
 #include <optional>
 
 namespace rotgen {
@@ -62,39 +63,43 @@ void add_stats(step_stats& s, const step_stats& more) {
         s.factorisations += more.factorisations;
 }
 
+// One member's run on a prepared scene: its own initial values and parameter values, the
+// prepared (shared, immutable) kernels. Touches GiNaC only under symbolic_mutex().
 class scene_run {
   public:
-    scene_run(const scene_spec& scene, stage_timings& timings, const sample_callback& on_sample)
-        : m_scene(scene), m_timings(timings), m_on_sample(on_sample) {}
+    scene_run(const prepared_scene& prepared, const member_values& values, stage_timings& timings,
+              const sample_callback& on_sample)
+        : m_prepared(prepared), m_scene(prepared.scene()), m_values(values), m_timings(timings),
+          m_on_sample(on_sample) {}
     run_result run();
 
   private:
-    const form_expressions& built(form_kind form, bool orientation);
+    initial_kinematics exact_start();
     void decide_chart();
-    void list_invariants();
-    void default_record_follows_form();
-    compiled_form& compile(form_kind form, bool orientation);
+    const compiled_form& compile(form_kind form);
     Eigen::VectorXd state_of(const form_expressions& f, const initial_kinematics& k) const;
     std::vector<double> parameters_of(const form_expressions& f, const initial_kinematics& k) const;
     void check_finite_start(const initial_kinematics& k, const compiled_form& cf,
-                            const Eigen::VectorXd& y, const std::vector<double>& parameters) const;
+                            const Eigen::VectorXd& y) const;
     enum class next { done, body, euler }; // after a segment: finished, or continue in that chart
     next integrate_segment(Eigen::VectorXd& y, double t_from);
-    void switch_chart(next to, Eigen::VectorXd& y, std::vector<double>& parameters, double& t_from);
+    void switch_chart(next to, Eigen::VectorXd& y, double& t_from);
     void record();
+    void start_method();
 
-    scene_spec m_scene; // the scene, with its default record fitted to the form
+    const prepared_scene& m_prepared;
+    const scene_spec& m_scene; // the prepared scene (shared): read, never copied outside the lock
+    const member_values& m_values;
     stage_timings& m_timings;
     const sample_callback& m_on_sample;
-    derivation m_d;
     Eigen::Matrix3d m_inertia;
-    std::map<std::pair<form_kind, bool>, form_expressions> m_forms; // each built once
-    std::vector<compiled_form> m_compiled;
-    std::vector<invariant> m_invariants;
+    std::vector<long double> m_model_parameters;   // this member's, exact to long double
+    std::vector<const compiled_form*> m_compiled;  // the forms this member used
+    std::vector<std::vector<double>> m_parameters; // their parameter values (the kernels' p)
     bool m_left_chart = false;  // the last segment stopped at a sample to change chart (not failed)
     std::size_t m_current = 0;  // the form integrating now (index into m_compiled)
     std::size_t m_switches = 0; // changes of chart so far
-    bool m_can_switch = false, m_start_in_body = false, m_orientation = false;
+    bool m_start_in_body = false;
     std::vector<double> m_times;
     std::vector<sample> m_samples;
     std::size_t m_next_sample = 0;
@@ -104,86 +109,64 @@ class scene_run {
     run_result m_result;
 };
 
-const form_expressions& scene_run::built(form_kind form, bool orientation) {
-    const auto key = std::make_pair(form, form == form_kind::body && orientation);
-    auto it = m_forms.find(key);
-    if (it == m_forms.end())
-        it = m_forms
-                 .emplace(key, m_timings.time("forms", to_string(form),
-                                              [&] {
-                                                  return build_form(
-                                                      m_scene.model, m_d, form,
-                                                      lagrangian_strategy::explicit_inverse,
-                                                      key.second);
-                                              }))
-                 .first;
-    return it->second;
+// The member's exact start, with GiNaC (under the lock; the scene copy dies inside it): the
+// inertia tensor, the parameter values and the initial kinematics at this member's values.
+initial_kinematics scene_run::exact_start() {
+    const std::lock_guard<std::mutex> lock(symbolic_mutex());
+    scene_spec scene = m_scene;
+    scene.angles = m_values.angles;
+    scene.initial_rates = m_values.initial_rates;
+    scene.parameters = m_values.parameters;
+    const model_spec& spec = scene.model;
+    GiNaC::exmap parameter_values;
+    for (std::size_t i = 0; i < spec.parameters.size(); ++i)
+        parameter_values[spec.parameters[i].symbol] = float_numeric(scene.parameters[i]);
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            m_inertia(i, j) = number(spec.inertia[i][j], parameter_values);
+    for (const auto& p : spec.parameters)
+        m_model_parameters.push_back(scene_parameter_value(scene, {}, p.name));
+    decide_chart();
+    const initial_kinematics k0 = initial_kinematics_of(scene, m_prepared.derived());
+    if (scene.initial == initial_kind::momenta && !k0.have_rates)
+        throw user_error(scene.initial_where,
+                         "momenta cannot give the rates at theta = 0 or pi (the mass matrix is "
+                         "singular there); give body omega1..3 instead");
+    return k0;
 }
 
-// The chart switch: possible for the Euler-angle forms when the model's body form does not go
-// through the chart itself; a start near the singularity starts in the body form.
+// A start near the singularity starts in the body form (when the chart can switch).
 void scene_run::decide_chart() {
     const form_kind form = m_scene.form;
-    m_can_switch = m_scene.switch_chart &&
-                   (form == form_kind::lagrangian || form == form_kind::hamiltonian) &&
-                   !built(form_kind::body, true).uses_euler_chart;
     const bool euler_form = form != form_kind::body;
-    const double sin_theta0 = std::abs(std::sin(m_scene.angles[1]));
-    if (euler_form && sin_theta0 < 1e-10 && !m_can_switch)
+    const double sin_theta0 = std::abs(std::sin(m_values.angles[1]));
+    if (euler_form && sin_theta0 < 1e-10 && !m_prepared.can_switch())
         throw user_error(
             m_scene.initial_where,
-            "initial theta = " + format_number(m_scene.angles[1]) +
+            "initial theta = " + format_number(m_values.angles[1]) +
                 " is the gimbal-lock singularity of the Euler-angle forms (sin theta = "
                 "0); use form: body" +
                 (form == form_kind::reduced || !m_scene.switch_chart
                      ? ""
                      : " (this model's body form goes through the Euler-angle chart too)"));
-    m_start_in_body = euler_form && m_can_switch && sin_theta0 < switch_below;
+    m_start_in_body = euler_form && m_prepared.can_switch() && sin_theta0 < switch_below;
     if (m_start_in_body)
         m_result.chart_note =
             "started in the body form (initial |sin theta| = " + short_number(sin_theta0) + " < " +
             short_number(switch_below) + ")";
 }
 
-// Without `record:` the scene records phi, theta, psi and energy; the reduced form has no ignored
-// angle to record, so the default keeps only what the form gives (an explicit record is checked
-// in compile_form, and an angle the form lacks is an error there).
-void scene_run::default_record_follows_form() {
-    if (!m_scene.record_default || m_scene.form != form_kind::reduced) return;
-    const form_expressions& f = built(form_kind::reduced, false);
-    for (std::size_t r = m_scene.record.size(); r-- > 0;)
-        if (!form_gives(f, m_scene.record[r])) {
-            m_scene.record.erase(m_scene.record.begin() + static_cast<std::ptrdiff_t>(r));
-            m_scene.record_where.erase(m_scene.record_where.begin() +
-                                       static_cast<std::ptrdiff_t>(r));
-        }
-}
-
-// The energy, and every momentum the derivation found conserved.
-void scene_run::list_invariants() {
-    const model_spec& spec = m_scene.model;
-    m_invariants = {{"energy", !spec.has_damping && !spec.has_torque}};
-    for (int i : m_d.cyclic)
-        if (m_scene.form != form_kind::reduced)
-            m_invariants.push_back({"p_" + coordinate_names()[i], true});
-    m_orientation = needs_orientation(m_scene, m_can_switch) ||
-                    (m_scene.form == form_kind::body && m_invariants.size() > 1);
-}
-
-compiled_form& scene_run::compile(form_kind form, bool orientation) {
+// The prepared kernels of `form` (compiled on first use), made current.
+const compiled_form& scene_run::compile(form_kind form) {
     for (std::size_t i = 0; i < m_compiled.size(); ++i)
-        if (m_compiled[i].form == form) {
+        if (m_compiled[i]->form == form) {
             m_current = i;
-            return m_compiled[i];
+            return *m_compiled[i];
         }
     m_current = m_compiled.size();
-    // The stamp in the compiled source names no path, so the same kernels are compiled once,
-    // whatever scene file asks for them.
-    const std::string command = "rotgen simulate (kernels of model '" + m_scene.model.name + "')";
-    m_compiled.push_back(compile_form(m_scene, built(form, orientation), orientation, m_invariants,
-                                      command, m_timings));
-    m_result.kernels_cached = m_result.kernels_cached && m_compiled.back().lib.was_cached();
-    return m_compiled.back();
+    m_compiled.push_back(&m_prepared.compiled(form, m_timings, &m_result.kernels_cached));
+    m_parameters.emplace_back();
+    return *m_compiled.back();
 }
 
 // The state vector of a form from the initial kinematics (rounded to double).
@@ -208,8 +191,21 @@ Eigen::VectorXd scene_run::state_of(const form_expressions& f, const initial_kin
 std::vector<double> scene_run::parameters_of(const form_expressions& f,
                                              const initial_kinematics& k) const {
     std::vector<double> values;
-    for (const auto& fp : f.parameters)
-        values.push_back(static_cast<double>(scene_parameter_value(m_scene, k, fp.name)));
+    const model_spec& spec = m_scene.model;
+    for (const auto& fp : f.parameters) {
+        std::optional<long double> v;
+        for (std::size_t i = 0; i < spec.parameters.size() && !v; ++i)
+            if (spec.parameters[i].name == fp.name) v = m_model_parameters[i];
+        for (int i = 0; i < 3 && !v; ++i)
+            if (fp.name == "p_" + coordinate_names()[i]) {
+                if (!k.have_rates)
+                    throw user_error(m_scene.initial_where,
+                                     "the reduced form needs the initial momenta");
+                v = k.p[static_cast<std::size_t>(i)];
+            }
+        if (!v) throw std::logic_error("no value for the form parameter " + fp.name);
+        values.push_back(static_cast<double>(*v));
+    }
     return values;
 }
 
@@ -218,8 +214,9 @@ std::vector<double> scene_run::parameters_of(const form_expressions& f,
 // form's state and parameters, f(t0, y0), and the invariants at t0 must be finite — as the kernels
 // compute them — or the scene's `initial` is the error.
 void scene_run::check_finite_start(const initial_kinematics& k, const compiled_form& cf,
-                                   const Eigen::VectorXd& y,
-                                   const std::vector<double>& parameters) const {
+                                   const Eigen::VectorXd& y) const {
+    const std::vector<double>& parameters = m_parameters[m_current];
+    const loaded_system sys = cf.system(parameters);
     const auto check = [&](const std::string& what, double v, const std::string& in = "") {
         if (std::isfinite(v)) return;
         throw user_error(
@@ -241,14 +238,15 @@ void scene_run::check_finite_start(const initial_kinematics& k, const compiled_f
     for (std::size_t i = 0; i < f.parameters.size(); ++i)
         check(f.parameters[i].name, parameters[i]);
     Eigen::VectorXd dydt(y.size());
-    cf.sys.rhs(m_scene.t_start, y.data(), dydt.data());
+    sys.rhs(m_scene.t_start, y.data(), dydt.data());
     for (std::size_t i = 0; i < f.rate_names.size(); ++i)
         check(f.rate_names[i], dydt[static_cast<Eigen::Index>(i)], " in f(t0, y0)");
     std::vector<double> out(cf.outputs);
-    cf.record(m_scene.t_start, y.data(), out.data());
+    cf.record(parameters.data(), m_scene.t_start, y.data(), out.data());
     std::optional<euler_angles<double>> e;
-    for (std::size_t i = 0; i < m_invariants.size(); ++i)
-        check(m_invariants[i].name, source_value(cf.invariants[i], y, out, m_inertia, e));
+    const std::vector<invariant>& invariants = m_prepared.invariants();
+    for (std::size_t i = 0; i < invariants.size(); ++i)
+        check(invariants[i].name, source_value(cf.invariants[i], y, out, m_inertia, e));
 }
 
 // The initial kinematics in the Euler-angle chart from a body-form state (quaternion, omega):
@@ -282,7 +280,9 @@ double sin_theta_of(form_kind form, const Eigen::VectorXd& y) {
 // run that exhausts max_steps elsewhere just stops); the body form returns to the scene's form at
 // a sample with |sin theta| > switch_back_above.
 scene_run::next scene_run::integrate_segment(Eigen::VectorXd& y, double t_from) {
-    compiled_form& cf = m_compiled[m_current];
+    const compiled_form& cf = *m_compiled[m_current];
+    const loaded_system sys = cf.system(m_parameters[m_current]);
+    const bool can_switch = m_prepared.can_switch();
     const bool euler_chart = cf.form == form_kind::lagrangian || cf.form == form_kind::hamiltonian;
     const std::vector<double> times(m_times.begin() + static_cast<std::ptrdiff_t>(m_next_sample),
                                     m_times.end());
@@ -292,32 +292,30 @@ scene_run::next scene_run::integrate_segment(Eigen::VectorXd& y, double t_from) 
         const auto observe = [&](double t, const Eigen::VectorXd& yt) {
             m_samples.push_back({t, yt, m_current});
             if (m_on_sample) m_on_sample(t);
-            if (!m_can_switch || m_samples.size() <= first_sample + 1 || t >= m_scene.t_end)
+            if (!can_switch || m_samples.size() <= first_sample + 1 || t >= m_scene.t_end)
                 return true;
             const double st = sin_theta_of(cf.form, yt);
             return !(euler_chart ? st < switch_below : st > switch_back_above);
         };
-        m_last = m_split ? m_split->integrate(cf.sys, t_from, y, times, observe)
-                         : integrate(cf.sys, *m_method, t_from, y, times, observe);
+        m_last = m_split ? m_split->integrate(sys, t_from, y, times, observe)
+                         : integrate(sys, *m_method, t_from, y, times, observe);
     });
     m_left_chart = m_last.code == status::stopped_by_observer;
     add_stats(m_result.stats, m_last.stats);
-    if (!m_can_switch || m_samples.empty() || m_samples.back().t >= m_scene.t_end)
-        return next::done;
+    if (!can_switch || m_samples.empty() || m_samples.back().t >= m_scene.t_end) return next::done;
     if (m_left_chart) return euler_chart ? next::body : next::euler;
     return euler_chart && !m_last.ok() && sin_theta_of(cf.form, y) < switch_below ? next::body
                                                                                   : next::done;
 }
 
 // Continues from the last sample in the other chart.
-void scene_run::switch_chart(next to, Eigen::VectorXd& y, std::vector<double>& parameters,
-                             double& t_from) {
+void scene_run::switch_chart(next to, Eigen::VectorXd& y, double& t_from) {
     const sample& last = m_samples.back();
-    const compiled_form& from = m_compiled[m_current];
+    const compiled_form& from = *m_compiled[m_current];
     initial_kinematics k;
     if (to == next::body) {
         Eigen::VectorXd dydt(last.y.size());
-        from.sys.rhs(last.t, last.y.data(), dydt.data());
+        from.system(m_parameters[m_current]).rhs(last.t, last.y.data(), dydt.data());
         k = continuation(last.y, dydt);
     } else {
         k = from_body(last.y, m_inertia);
@@ -332,30 +330,30 @@ void scene_run::switch_chart(next to, Eigen::VectorXd& y, std::vector<double>& p
                                (to == next::body ? "body" : to_string(m_scene.form)) +
                                " form at t = " + short_number(last.t) +
                                " (|sin theta| = " + short_number(st) + why + ")";
-    const compiled_form& next_form =
-        to == next::body ? compile(form_kind::body, true) : compile(m_scene.form, m_orientation);
+    const compiled_form& next_form = compile(to == next::body ? form_kind::body : m_scene.form);
     y = state_of(next_form.f, k);
-    parameters = parameters_of(next_form.f, k);
+    m_parameters[m_current] = parameters_of(next_form.f, k);
     t_from = last.t;
     m_next_sample = m_samples.size();
 }
 
 // Records and invariants at every sample, each by the form that integrated it.
 void scene_run::record() {
+    const std::vector<invariant>& invariants = m_prepared.invariants();
     m_result.invariants.clear();
-    for (const auto& inv : m_invariants)
+    for (const auto& inv : invariants)
         m_result.invariants.push_back({inv, 0, 0});
     for (std::size_t k = 0; k < m_samples.size(); ++k) {
-        const compiled_form& cf = m_compiled[m_samples[k].form];
+        const compiled_form& cf = *m_compiled[m_samples[k].form];
         const Eigen::VectorXd& ys = m_samples[k].y;
         std::vector<double> out(cf.outputs);
-        cf.record(m_samples[k].t, ys.data(), out.data());
+        cf.record(m_parameters[m_samples[k].form].data(), m_samples[k].t, ys.data(), out.data());
         std::optional<euler_angles<double>> e;
         std::vector<double> row{m_samples[k].t};
         for (const auto& src : cf.columns)
             row.push_back(source_value(src, ys, out, m_inertia, e));
         m_result.rows.push_back(std::move(row));
-        for (std::size_t i = 0; i < m_invariants.size(); ++i) {
+        for (std::size_t i = 0; i < invariants.size(); ++i) {
             invariant_drift& d = m_result.invariants[i];
             const double v = source_value(cf.invariants[i], ys, out, m_inertia, e);
             if (k == 0) d.first = v;
@@ -365,66 +363,49 @@ void scene_run::record() {
     }
 }
 
-run_result scene_run::run() {
-    const model_spec& spec = m_scene.model;
-    m_d = m_timings.time("derive", spec.name, [&] { return derive(spec); });
-    GiNaC::exmap parameter_values;
-    for (std::size_t i = 0; i < spec.parameters.size(); ++i)
-        parameter_values[spec.parameters[i].symbol] = float_numeric(m_scene.parameters[i]);
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-            m_inertia(i, j) = number(spec.inertia[i][j], parameter_values);
-    const bool split = is_split_method(m_scene.integrator.method);
-    if (split) { // the body form, no chart to leave
+// The integrator of the scene, with its step bound (a split method: the body form as a split
+// system, its model checked at this member's inertia).
+void scene_run::start_method() {
+    const integrator_spec& ig = m_scene.integrator;
+    if (is_split_method(ig.method)) {
         check_split_model(m_scene, m_inertia);
-        m_scene.form = form_kind::body;
-        m_scene.switch_chart = false;
+        m_split.emplace(m_scene, m_inertia);
+        return;
     }
-    decide_chart();
-    const initial_kinematics k0 = initial_kinematics_of(m_scene, m_d);
-    if (m_scene.initial == initial_kind::momenta && !k0.have_rates)
-        throw user_error(m_scene.initial_where,
-                         "momenta cannot give the rates at theta = 0 or pi (the mass matrix is "
-                         "singular there); give body omega1..3 instead");
-    default_record_follows_form();
-    list_invariants();
-    m_orientation = m_orientation || split;
+    m_method = make_method<double>(ig.method, ig.rtol, ig.atol, ig.fixed_step() ? ig.step : 0.0);
+    if (!m_method) throw std::logic_error("run: unknown method " + ig.method);
+    std::visit([&](auto& m) { m.max_steps = ig.max_steps; }, *m_method);
+    if (auto* r = std::get_if<rodas4<double>>(&*m_method))
+        r->autonomous = !m_scene.model.has_torque;
+}
+
+run_result scene_run::run() {
+    const initial_kinematics k0 = exact_start();
     m_result.record = m_scene.record;
-    const compiled_form& first =
-        compile(m_start_in_body ? form_kind::body : m_scene.form, m_orientation);
+    const compiled_form& first = compile(m_start_in_body ? form_kind::body : m_scene.form);
     for (const auto& name : m_scene.record)
         for (const auto& c : record_columns(name))
             m_result.columns.push_back(c);
     m_result.state_size = first.f.state.size();
-
-    const integrator_spec& ig = m_scene.integrator;
-    if (split) {
-        m_split.emplace(m_scene, m_inertia);
-    } else {
-        m_method =
-            make_method<double>(ig.method, ig.rtol, ig.atol, ig.fixed_step() ? ig.step : 0.0);
-        if (!m_method) throw std::logic_error("run: unknown method " + ig.method);
-        std::visit([&](auto& m) { m.max_steps = ig.max_steps; }, *m_method);
-        if (auto* r = std::get_if<rodas4<double>>(&*m_method)) r->autonomous = !spec.has_torque;
-    }
+    start_method();
     m_times = sample_times(m_scene);
     m_samples.reserve(m_times.size());
 
     Eigen::VectorXd y = state_of(first.f, k0);
-    std::vector<double> parameters = parameters_of(first.f, k0);
-    first.set_parameters(parameters);
-    check_finite_start(k0, first, y, parameters);
+    m_parameters[m_current] = parameters_of(first.f, k0);
+    check_finite_start(k0, first, y);
     if (m_split) {
-        m_split->choose_step(first.sys, m_scene.t_start, y, m_scene.t_end - m_scene.t_start);
+        const integrator_spec& ig = m_scene.integrator;
+        m_split->choose_step(first.system(m_parameters[m_current]), m_scene.t_start, y,
+                             m_scene.t_end - m_scene.t_start);
         m_result.chart_note = "body form (quaternion, omega) for " + ig.method + ", step " +
                               short_number(m_split->step()) +
                               (ig.step > 0 ? "" : " (from rtol " + short_number(ig.rtol) + ")");
     }
     double t_from = m_scene.t_start;
     for (next to = next::body; to != next::done;) {
-        m_compiled[m_current].set_parameters(parameters);
         to = integrate_segment(y, t_from);
-        if (to != next::done) switch_chart(to, y, parameters, t_from);
+        if (to != next::done) switch_chart(to, y, t_from);
     }
     if (m_switches > 1)
         m_result.chart_note += "; " + std::to_string(m_switches) +
@@ -440,9 +421,19 @@ run_result scene_run::run() {
 
 } // namespace
 
+member_values values_of(const scene_spec& scene) {
+    return {scene.angles, scene.initial_rates, scene.parameters};
+}
+
+run_result run_member(const prepared_scene& prepared, const member_values& values,
+                      stage_timings& timings, const sample_callback& on_sample) {
+    return scene_run(prepared, values, timings, on_sample).run();
+}
+
 run_result run_scene(const scene_spec& scene, stage_timings& timings,
                      const sample_callback& on_sample) {
-    return scene_run(scene, timings, on_sample).run();
+    const prepared_scene prepared(scene, timings);
+    return run_member(prepared, values_of(scene), timings, on_sample);
 }
 
 bool needs_orientation(const scene_spec& scene, bool chart_switch) {

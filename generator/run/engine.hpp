@@ -15,6 +15,7 @@
 #include "scene/scene.hpp"
 #include "support/timings.hpp"
 
+#include <array>
 #include <functional>
 #include <string>
 #include <vector>
@@ -45,10 +46,27 @@ struct run_result {
 // Called at each sample with its time (e.g. to show progress); may be empty.
 using sample_callback = std::function<void(double t)>;
 
-// Runs the scene. Throws user_error for a scene the model cannot run (an unrecordable quantity,
-// a start at the singularity that cannot be left, initial values that overflow double).
+// Runs the scene (prepare_scene, then run_member with the scene's own values). Throws user_error
+// for a scene the model cannot run (an unrecordable quantity, a start at the singularity that
+// cannot be left, initial values that overflow double).
 run_result run_scene(const scene_spec& scene, stage_timings& timings,
                      const sample_callback& on_sample = {});
+
+class prepared_scene; // run/prepared.hpp: derivation and compiled kernels, shared by members
+
+// What a member of an ensemble sets: the initial angles (z-x-z, radians), the initial rates (as
+// the scene's `initial` gives them: q_dot, p or body omega) and the model's parameters (in model
+// order). Everything else is the prepared scene's.
+struct member_values {
+    std::array<double, 3> angles{}, initial_rates{};
+    std::vector<double> parameters;
+};
+member_values values_of(const scene_spec& scene);
+
+// Runs one member on a prepared scene. Thread-safe: members may run concurrently on one prepared
+// scene (each with its own `timings`). Throws user_error as run_scene does, for this member.
+run_result run_member(const prepared_scene& prepared, const member_values& values,
+                      stage_timings& timings, const sample_callback& on_sample = {});
 
 // Whether the body form must keep the orientation (the quaternion) for this scene: a chart switch,
 // or a recorded angle, body axis, Euler-angle rate or momentum, quaternion or space-axes L needs

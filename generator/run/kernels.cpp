@@ -97,7 +97,9 @@ std::vector<ex> record_program(const scene_spec& scene, compiled_form& c, bool o
 }
 
 // The translation unit compiled for the runtime: the header and extern "C" entry points
-// rotgen_set_parameters, rotgen_rhs, rotgen_jacobian, rotgen_record.
+// rotgen_rhs, rotgen_jacobian, rotgen_record, each given the parameter values `v` (in the form's
+// parameter order) with every call: the compiled object keeps no state, so members of an ensemble
+// run its kernels concurrently with their own values.
 std::string entry_points(const form_expressions& f, const std::string& unit,
                          const std::vector<ex>& program) {
     std::vector<program_input> inputs;
@@ -109,19 +111,21 @@ std::string entry_points(const form_expressions& f, const std::string& unit,
     const lowered_program lowered = lower(program, inputs);
     const std::vector<bool> used = used_inputs(lowered);
     std::ostringstream shim;
-    shim << "\n// ---- rotgen simulate: entry points for the runtime ----\n"
+    shim << "\n// ---- rotgen run: entry points for the runtime ----\n"
          << "namespace {\nnamespace rg_model = rotgen::models::" << unit << ";\n"
-         << "rg_model::params<double> rg_p;\n}\n\nextern \"C\" {\n"
-         << "void rotgen_set_parameters(const double* v) {\n";
+         << "rg_model::params<double> rg_params(const double* v) {\n"
+         << "    rg_model::params<double> p;\n";
     for (std::size_t i = 0; i < f.parameters.size(); ++i)
-        shim << "    rg_p." << f.parameters[i].name << " = v[" << i << "];\n";
-    shim << (f.parameters.empty() ? "    (void)v;\n" : "") << "}\n"
-         << "void rotgen_rhs(double t, const double* y, double* dydt) { rg_model::rhs(t, y, dydt, "
-            "rg_p); }\n"
-         << "void rotgen_jacobian(double t, const double* y, double* J) { rg_model::jacobian(t, y, "
-            "J, rg_p); }\n"
-         << "void rotgen_record(double t, const double* y, double* out) {\n"
-         << "    using namespace std;\n    (void)t;\n    (void)y;\n    (void)out;\n";
+        shim << "    p." << f.parameters[i].name << " = v[" << i << "];\n";
+    shim << (f.parameters.empty() ? "    (void)v;\n" : "") << "    return p;\n}\n}\n\n"
+         << "extern \"C\" {\n"
+         << "void rotgen_rhs(const double* v, double t, const double* y, double* dydt) {\n"
+         << "    rg_model::rhs(t, y, dydt, rg_params(v));\n}\n"
+         << "void rotgen_jacobian(const double* v, double t, const double* y, double* J) {\n"
+         << "    rg_model::jacobian(t, y, J, rg_params(v));\n}\n"
+         << "void rotgen_record(const double* v, double t, const double* y, double* out) {\n"
+         << "    using namespace std;\n    const rg_model::params<double> rg_p = rg_params(v);\n"
+         << "    (void)rg_p;\n    (void)t;\n    (void)y;\n    (void)out;\n";
     for (std::size_t i = 0; i < inputs.size(); ++i)
         if (used[i] && !inputs[i].definition.empty())
             shim << "    const double " << inputs[i].name << " = " << inputs[i].definition << ";\n";
@@ -139,11 +143,6 @@ std::string entry_points(const form_expressions& f, const std::string& unit,
 
 bool form_gives(const form_expressions& f, const std::string& name) {
     return record_expression(f, name).has_value();
-}
-
-void compiled_form::set_parameters(const std::vector<double>& values) const {
-    using set_fn = void (*)(const double*);
-    reinterpret_cast<set_fn>(lib.symbol("rotgen_set_parameters"))(values.data());
 }
 
 compiled_form compile_form(const scene_spec& scene, form_expressions f, bool orientation,

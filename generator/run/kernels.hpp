@@ -22,14 +22,16 @@
 
 namespace rotgen {
 
-// A system whose kernels were compiled and loaded at run time (runtime/system.hpp concept).
+// A system whose kernels were compiled and loaded at run time (runtime/system.hpp concept), with
+// the parameter values `p` it passes to every call (the form's parameter order; set by the run).
 struct loaded_system {
-    using kernel = void (*)(double, const double*, double*);
+    using kernel = void (*)(const double* p, double t, const double* y, double* out);
     kernel f = nullptr, jac = nullptr;
     std::size_t n = 0;
+    const double* p = nullptr;
     std::size_t size() const { return n; }
-    void rhs(double t, const double* y, double* dydt) const { f(t, y, dydt); }
-    void jacobian(double t, const double* y, double* J) const { jac(t, y, J); }
+    void rhs(double t, const double* y, double* dydt) const { f(p, t, y, dydt); }
+    void jacobian(double t, const double* y, double* J) const { jac(p, t, y, J); }
 };
 
 // Where a recorded column (or a monitored invariant) comes from in one compiled form.
@@ -51,17 +53,23 @@ struct invariant {
     bool conserved;
 };
 
+// Immutable once compiled: runs with their own parameter values share it (system(values)).
 struct compiled_form {
     form_kind form = form_kind::lagrangian;
     form_expressions f;
     loaded_library lib;
-    loaded_system sys;
-    loaded_system::kernel record = nullptr;
-    std::vector<value_source> columns;    // one per quantity column (body_x expands to 3)
-    std::vector<value_source> invariants; // as the invariants are listed
-    std::size_t outputs = 0;              // of the record program
+    loaded_system sys;                      // without parameter values (p null)
+    loaded_system::kernel record = nullptr; // record(p, t, y, out): the record program
+    std::vector<value_source> columns;      // one per quantity column (body_x expands to 3)
+    std::vector<value_source> invariants;   // as the invariants are listed
+    std::size_t outputs = 0;                // of the record program
 
-    void set_parameters(const std::vector<double>& values) const;
+    // The system with these parameter values (they must outlive it).
+    loaded_system system(const std::vector<double>& values) const {
+        loaded_system s = sys;
+        s.p = values.data();
+        return s;
+    }
 };
 
 // Emits, lowers and compiles (or loads from the cache) the built form `f` of the scene's model,

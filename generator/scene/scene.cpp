@@ -42,7 +42,7 @@ class scene_reader {
         const YAML::Node root = load_yaml_file(m_file, &source);
         check_keys(root,
                    {"model", "parameters", "form", "initial", "time", "integrator", "record",
-                    "description", "switch_chart"},
+                    "description", "switch_chart", "sweep"},
                    m_file, "the scene");
         m_scene.file = m_file;
         m_scene.where = {m_file, 1, 1};

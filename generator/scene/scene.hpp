@@ -9,6 +9,7 @@
 //   integrator: {method: dop853, rtol: 1e-10, atol: 1e-12}   # rk4/implicit_midpoint: {step: 1e-3}
 //   record: [theta, omega1, omega2, omega3, energy, p_phi, p_psi]
 //   switch_chart: true           # continue in the body form near theta = 0, pi (default true)
+//   sweep: {...}                 # for `rotgen sweep` only (read by sweep/members.hpp)
 //
 // Angles: z-x-z Euler angles in radians, theta in [0, pi]; rates in rad per time unit; omega in
 // body axes.

@@ -7,9 +7,9 @@
 
 namespace rotgen {
 
-progress_line::progress_line(double t_start, double t_end, bool enabled)
-    : m_start(t_start), m_end(t_end), m_enabled(enabled && ::isatty(STDERR_FILENO) == 1),
-      m_began(clock::now()), m_last(m_began) {}
+progress_line::progress_line(double t_start, double t_end, bool enabled, const char* label)
+    : m_start(t_start), m_end(t_end), m_label(label),
+      m_enabled(enabled && ::isatty(STDERR_FILENO) == 1), m_began(clock::now()), m_last(m_began) {}
 
 void progress_line::update(double t) {
     if (!m_enabled) return;
@@ -22,11 +22,11 @@ void progress_line::update(double t) {
     char line[160];
     if (done > 0)
         std::snprintf(line, sizeof line,
-                      "rotgen: t = %.4g of %.4g (%.0f%%), %.1f s elapsed, about %.1f s to go", t,
-                      m_end, 100 * done, elapsed, elapsed * (1 - done) / done);
+                      "rotgen: %s = %.4g of %.4g (%.0f%%), %.1f s elapsed, about %.1f s to go",
+                      m_label, t, m_end, 100 * done, elapsed, elapsed * (1 - done) / done);
     else
-        std::snprintf(line, sizeof line, "rotgen: t = %.4g of %.4g, %.1f s elapsed", t, m_end,
-                      elapsed);
+        std::snprintf(line, sizeof line, "rotgen: %s = %.4g of %.4g, %.1f s elapsed", m_label, t,
+                      m_end, elapsed);
     std::fprintf(stderr, "\r%s\033[K", line);
     std::fflush(stderr);
     m_shown = true;

@@ -13,8 +13,9 @@ namespace rotgen {
 
 class progress_line {
   public:
-    // `enabled` false (e.g. --quiet) or standard error not a terminal: shows nothing.
-    progress_line(double t_start, double t_end, bool enabled);
+    // `enabled` false (e.g. --quiet) or standard error not a terminal: shows nothing. `label`
+    // names what is counted ("t = 41.2 of 100", "members = 96 of 1024").
+    progress_line(double t_start, double t_end, bool enabled, const char* label = "t");
     progress_line(const progress_line&) = delete;
     progress_line& operator=(const progress_line&) = delete;
     ~progress_line() { finish(); }
@@ -25,6 +26,7 @@ class progress_line {
   private:
     using clock = std::chrono::steady_clock;
     double m_start, m_end;
+    const char* m_label;
     bool m_enabled, m_shown = false;
     clock::time_point m_began, m_last;
 };

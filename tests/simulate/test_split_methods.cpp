@@ -32,9 +32,10 @@ double max_abs_change(const std::vector<double>& v) {
     return m;
 }
 
-const std::string top_run = "initial: {theta: 0.5, psi_dot: 30}\n"
-                            "time: {end: 5, samples: 51}\n"
-                            "record: [theta, phi, energy, p_phi]\n";
+const std::string top_run =
+    "initial: {phi: 0, theta: 0.5, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 30}\n"
+    "time: {end: 5, samples: 51}\n"
+    "record: [theta, phi, energy, p_phi]\n";
 
 // V = k cos^2 theta = k A33^2, smooth on the rotation group (a gravity-gradient-like torque) on
 // an asymmetric body

@@ -1,0 +1,97 @@
+#include "run/prepared.hpp"
+
+#include "expr/symbols.hpp"
+#include "run/engine.hpp"
+#include "run/split_run.hpp"
+
+namespace rotgen {
+
+std::mutex& symbolic_mutex() {
+    static std::mutex m;
+    return m;
+}
+
+prepared_scene::prepared_scene(const scene_spec& scene, stage_timings& timings) : m_scene(scene) {
+    const model_spec& spec = m_scene.model;
+    m_d = timings.time("derive", spec.name, [&] { return derive(spec); });
+    const bool split = is_split_method(m_scene.integrator.method);
+    if (split) { // the split methods run the body form: no chart to leave
+        m_scene.form = form_kind::body;
+        m_scene.switch_chart = false;
+    }
+    // The chart switch: possible for the Euler-angle forms when the model's body form does not go
+    // through the chart itself.
+    const form_kind form = m_scene.form;
+    m_can_switch = m_scene.switch_chart &&
+                   (form == form_kind::lagrangian || form == form_kind::hamiltonian) &&
+                   !built(form_kind::body, true, timings).uses_euler_chart;
+    default_record_follows_form(timings);
+    list_invariants();
+    m_orientation = m_orientation || split; // the split system's torque needs the attitude
+}
+
+const form_expressions& prepared_scene::built(form_kind form, bool orientation,
+                                              stage_timings& timings) const {
+    const auto key = std::make_pair(form, form == form_kind::body && orientation);
+    auto it = m_forms.find(key);
+    if (it == m_forms.end())
+        it = m_forms
+                 .emplace(key,
+                          timings.time("forms", to_string(form),
+                                       [&] {
+                                           return build_form(m_scene.model, m_d, form,
+                                                             lagrangian_strategy::explicit_inverse,
+                                                             key.second);
+                                       }))
+                 .first;
+    return it->second;
+}
+
+// Without `record:` the scene records phi, theta, psi and energy; the reduced form has no ignored
+// angle to record, so the default keeps only what the form gives (an explicit record is checked
+// in compile_form, and an angle the form lacks is an error there).
+void prepared_scene::default_record_follows_form(stage_timings& timings) {
+    if (!m_scene.record_default || m_scene.form != form_kind::reduced) return;
+    const form_expressions& f = built(form_kind::reduced, false, timings);
+    for (std::size_t r = m_scene.record.size(); r-- > 0;)
+        if (!form_gives(f, m_scene.record[r])) {
+            m_scene.record.erase(m_scene.record.begin() + static_cast<std::ptrdiff_t>(r));
+            m_scene.record_where.erase(m_scene.record_where.begin() +
+                                       static_cast<std::ptrdiff_t>(r));
+        }
+}
+
+// The energy, and every momentum the derivation found conserved.
+void prepared_scene::list_invariants() {
+    const model_spec& spec = m_scene.model;
+    m_invariants = {{"energy", !spec.has_damping && !spec.has_torque}};
+    for (int i : m_d.cyclic)
+        if (m_scene.form != form_kind::reduced)
+            m_invariants.push_back({"p_" + coordinate_names()[i], true});
+    m_orientation = needs_orientation(m_scene, m_can_switch) ||
+                    (m_scene.form == form_kind::body && m_invariants.size() > 1);
+}
+
+const compiled_form& prepared_scene::compiled(form_kind form, stage_timings& timings,
+                                              bool* cached) const {
+    const std::lock_guard<std::mutex> lock(symbolic_mutex());
+    auto it = m_compiled.find(form);
+    if (it != m_compiled.end()) return *it->second;
+    // The stamp in the compiled source names no path, so the same kernels are compiled once,
+    // whatever scene file asks for them.
+    const std::string command = "rotgen simulate (kernels of model '" + m_scene.model.name + "')";
+    // The body form keeps the quaternion when the chart switches to it; as the scene's own form,
+    // when the records or invariants need it.
+    const bool orientation = form != m_scene.form || m_orientation;
+    auto c = std::make_unique<compiled_form>(compile_form(
+        m_scene, built(form, orientation, timings), orientation, m_invariants, command, timings));
+    if (cached && !c->lib.was_cached()) *cached = false;
+    return *m_compiled.emplace(form, std::move(c)).first->second;
+}
+
+void prepared_scene::compile_all(stage_timings& timings) const {
+    (void)compiled(m_scene.form, timings, nullptr);
+    if (m_can_switch) (void)compiled(form_kind::body, timings, nullptr);
+}
+
+} // namespace rotgen

@@ -1,0 +1,60 @@
+// rotgen — the part of a run that does not depend on the initial values or the parameter values:
+// the derivation, the forms built from it and their kernels, compiled once. `rotgen simulate` runs
+// one member on it; `rotgen sweep` runs many, concurrently, on the one prepared scene.
+//
+// GiNaC is not thread-safe (DESIGN.md: its reference counts and flyweights are unguarded), so
+// every use of it after preparation — a form compiled on first use, a member's exact initial
+// kinematics — holds symbolic_mutex(), and a member never copies a GiNaC object outside it.
+#pragma once
+
+#include "derive/derive.hpp"
+#include "run/kernels.hpp"
+#include "scene/scene.hpp"
+#include "support/timings.hpp"
+
+#include <map>
+#include <memory>
+#include <mutex>
+#include <vector>
+
+namespace rotgen {
+
+// Held by every use of GiNaC that may run beside a member (the one process-wide lock: GiNaC's own
+// state is process-wide).
+std::mutex& symbolic_mutex();
+
+class prepared_scene {
+  public:
+    // Derives the model and decides what members share: whether the Euler-angle forms can switch
+    // to the body form, the default record fitted to the form, the monitored invariants.
+    prepared_scene(const scene_spec& scene, stage_timings& timings);
+    prepared_scene(const prepared_scene&) = delete;
+    prepared_scene& operator=(const prepared_scene&) = delete;
+
+    const scene_spec& scene() const { return m_scene; } // its default record fitted to the form
+    const derivation& derived() const { return m_d; }
+    bool can_switch() const { return m_can_switch; }
+    bool orientation() const { return m_orientation; } // the body form keeps the quaternion
+    const std::vector<invariant>& invariants() const { return m_invariants; }
+
+    // The kernels of `form`, compiled (or loaded from the cache) on first use; thread-safe, and the
+    // reference stays valid. Throws user_error when the form cannot give a recorded quantity.
+    // `*cached` is set false when this call compiled kernels not found in the cache.
+    const compiled_form& compiled(form_kind form, stage_timings& timings, bool* cached) const;
+    // Compiles now every form a member may use: the scene's, and the body form when it can switch.
+    void compile_all(stage_timings& timings) const;
+
+  private:
+    const form_expressions& built(form_kind form, bool orientation, stage_timings& timings) const;
+    void default_record_follows_form(stage_timings& timings);
+    void list_invariants();
+
+    scene_spec m_scene;
+    derivation m_d;
+    bool m_can_switch = false, m_orientation = false;
+    std::vector<invariant> m_invariants;
+    mutable std::map<std::pair<form_kind, bool>, form_expressions> m_forms; // each built once
+    mutable std::map<form_kind, std::unique_ptr<compiled_form>> m_compiled;
+};
+
+} // namespace rotgen

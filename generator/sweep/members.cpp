@@ -1,0 +1,313 @@
+#include "sweep/members.hpp"
+
+#include "expr/numbers.hpp"
+#include "expr/symbols.hpp"
+#include "spec/spec.hpp"
+#include "support/format.hpp"
+
+#include <cmath>
+#include <cstdlib>
+#include <random>
+
+namespace rotgen {
+
+namespace {
+
+constexpr double largest_member_count = 1e8; // a bound on memory, not on the method
+constexpr double pi = 3.141592653589793238;
+
+// The names `initial.<name>` may use in this scene: the angles and the rates it gives.
+std::vector<std::string> initial_names(const scene_spec& scene) {
+    static const char* const rates[3][3] = {{"phi_dot", "theta_dot", "psi_dot"},
+                                            {"p_phi", "p_theta", "p_psi"},
+                                            {"omega1", "omega2", "omega3"}};
+    std::vector<std::string> names(coordinate_names().begin(), coordinate_names().end());
+    for (const char* r : rates[static_cast<int>(scene.initial)])
+        names.push_back(r);
+    return names;
+}
+
+// Resolves `key` to what it sets in the scene; user_error at `where` if it sets nothing.
+void resolve(const scene_spec& scene, sweep_key& k) {
+    const auto dot = k.key.find('.');
+    const std::string group = k.key.substr(0, dot),
+                      name = dot == std::string::npos ? std::string() : k.key.substr(dot + 1);
+    std::vector<std::string> names;
+    if (group == "initial") {
+        names = initial_names(scene);
+        for (std::size_t i = 0; i < names.size(); ++i)
+            if (names[i] == name) {
+                k.target = i < 3 ? sweep_key::angle : sweep_key::rate;
+                k.index = i % 3;
+                return;
+            }
+    } else if (group == "parameters") {
+        for (std::size_t i = 0; i < scene.model.parameters.size(); ++i) {
+            names.push_back(scene.model.parameters[i].name);
+            if (names.back() == name) {
+                k.target = sweep_key::parameter;
+                k.index = i;
+                return;
+            }
+        }
+    } else {
+        throw user_error(k.where, "unknown sweep key '" + k.key +
+                                      "' (expected initial.<name> or parameters.<name>)");
+    }
+    std::vector<std::string> keys;
+    for (const auto& n : names)
+        keys.push_back(group + "." + n);
+    const std::string best = closest_name(k.key, keys);
+    throw user_error(k.where, "unknown sweep key '" + k.key + "' for this scene" +
+                                  (best.empty() ? "" : "; did you mean '" + best + "'?"));
+}
+
+double checked(double v, const source_location& where, const std::string& what) {
+    if (!std::isfinite(v) || std::fpclassify(v) == FP_SUBNORMAL)
+        throw user_error(where, what + " must be a finite number, 0 or at least 2.2e-308 in size");
+    return v;
+}
+
+double decimal(const std::string& text, const source_location& where, const std::string& what) {
+    if (!is_decimal(text)) throw user_error(where, what + " must be a number, got '" + text + "'");
+    return checked(std::strtod(text.c_str(), nullptr), where, what);
+}
+
+double yaml_number(const YAML::Node& n, const std::string& file, const std::string& what) {
+    if (!n.IsScalar()) throw user_error(location_of(n, file), what + " must be a number");
+    return decimal(n.Scalar(), location_of(n, file), what);
+}
+
+// from + (to - from) i / (count - 1), the last exactly `to`.
+std::vector<double> range(double from, double to, double count, const source_location& where) {
+    if (!(count >= 1) || count != std::floor(count) || count > largest_member_count)
+        throw user_error(where, "count must be a whole number from 1 to 1e8");
+    if (count > 1 && from == to)
+        throw user_error(where, "empty range: from = to = " + format_double(from) + " with count " +
+                                    format_double(count) +
+                                    " (give {values: [...]} for repeated values)");
+    std::vector<double> v(static_cast<std::size_t>(count), from);
+    for (std::size_t i = 1; i < v.size(); ++i)
+        v[i] = i + 1 == v.size() ? to : from + (to - from) * double(i) / double(v.size() - 1);
+    return v;
+}
+
+// One `vary:` entry of the scene: {from, to, count}, {values: [...]}, or (random) {from, to}.
+sweep_key read_entry(const YAML::Node& key, const YAML::Node& n, const std::string& file,
+                     sweep_mode mode) {
+    sweep_key k;
+    k.key = key.Scalar();
+    k.where = location_of(key, file);
+    if (!n.IsMap()) throw user_error(location_of(n, file), "'" + k.key + "' must be a mapping");
+    const bool random = mode == sweep_mode::random;
+    if (random)
+        check_keys(n, {"from", "to"}, file, "a random sweep entry");
+    else
+        check_keys(n, {"from", "to", "count", "values"}, file, "a sweep entry");
+    if (n["values"]) {
+        if (n["from"] || n["to"] || n["count"])
+            throw user_error(location_of(n, file), "give either values or from, to, count");
+        if (!n["values"].IsSequence() || n["values"].size() == 0)
+            throw user_error(location_of(n["values"], file), "empty range: values must be a "
+                                                             "non-empty list of numbers");
+        for (const auto& v : n["values"])
+            k.values.push_back(yaml_number(v, file, "a value of '" + k.key + "'"));
+        return k;
+    }
+    for (const char* need : random ? std::vector<const char*>{"from", "to"}
+                                   : std::vector<const char*>{"from", "to", "count"})
+        if (!n[need])
+            throw user_error(location_of(n, file), "'" + k.key + "' needs " + need +
+                                                       (random ? "" : " (or values: [...])"));
+    k.from = yaml_number(n["from"], file, "from");
+    k.to = yaml_number(n["to"], file, "to");
+    if (!random)
+        k.values = range(k.from, k.to, yaml_number(n["count"], file, "count"),
+                         location_of(n["count"], file));
+    else if (k.from == k.to)
+        throw user_error(location_of(n, file), "empty range: from = to");
+    return k;
+}
+
+// --vary KEY=FROM:TO:COUNT, KEY=V1,V2,... or (random) KEY=FROM:TO.
+sweep_key read_cli(const std::string& arg, sweep_mode mode) {
+    const source_location where{"rotgen sweep --vary " + arg};
+    const auto eq = arg.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == arg.size())
+        throw user_error(where, "expected KEY=FROM:TO:COUNT or KEY=V1,V2,...");
+    sweep_key k;
+    k.key = arg.substr(0, eq);
+    k.where = where;
+    std::vector<std::string> parts;
+    const std::string rest = arg.substr(eq + 1);
+    const char sep = rest.find(':') != std::string::npos ? ':' : ',';
+    for (std::size_t b = 0, e; b <= rest.size(); b = e + 1) {
+        e = rest.find(sep, b);
+        if (e == std::string::npos) e = rest.size();
+        parts.push_back(rest.substr(b, e - b));
+    }
+    if (mode == sweep_mode::random) {
+        if (sep != ':' || parts.size() != 2)
+            throw user_error(where, "a random sweep takes KEY=FROM:TO");
+        k.from = decimal(parts[0], where, "from");
+        k.to = decimal(parts[1], where, "to");
+        if (k.from == k.to) throw user_error(where, "empty range: from = to");
+    } else if (sep == ':') {
+        if (parts.size() != 3) throw user_error(where, "expected KEY=FROM:TO:COUNT");
+        k.values = range(decimal(parts[0], where, "from"), decimal(parts[1], where, "to"),
+                         decimal(parts[2], where, "count"), where);
+    } else {
+        for (const auto& p : parts)
+            k.values.push_back(decimal(p, where, "a value"));
+    }
+    return k;
+}
+
+// theta in [0, pi] (z-x-z Euler angles), as the scene requires of its own value.
+void check_values(const sweep_key& k) {
+    if (k.target != sweep_key::angle || k.index != 1) return;
+    std::vector<double> v = k.values;
+    if (v.empty()) v = {k.from, k.to};
+    for (double x : v)
+        if (x < 0 || x > pi)
+            throw user_error(k.where, "initial theta = " + format_double(x) +
+                                          " is outside [0, pi] (z-x-z Euler angles)");
+}
+
+void read_block(const YAML::Node& block, const std::string& file, sweep_plan& plan) {
+    plan.where = location_of(block, file);
+    if (!block.IsMap()) throw user_error(plan.where, "'sweep' must be a mapping");
+    check_keys(block, {"mode", "vary", "members", "seed"}, file, "sweep");
+    if (const YAML::Node m = block["mode"]) {
+        const std::string s = m.IsScalar() ? m.Scalar() : "";
+        if (s == "grid" || s == "zip" || s == "random")
+            plan.mode = s == "grid"  ? sweep_mode::grid
+                        : s == "zip" ? sweep_mode::zip
+                                     : sweep_mode::random;
+        else
+            throw user_error(location_of(m, file),
+                             "unknown sweep mode '" + s + "' (expected grid, zip or random)");
+    }
+    for (const char* key : {"members", "seed"})
+        if (block[key] && plan.mode != sweep_mode::random)
+            throw user_error(location_of(block[key], file),
+                             std::string(key) + " is for mode: random only");
+    if (plan.mode == sweep_mode::random) {
+        if (!block["members"]) throw user_error(plan.where, "a random sweep needs members");
+        const double m = yaml_number(block["members"], file, "members");
+        if (!(m >= 1) || m != std::floor(m) || m > largest_member_count)
+            throw user_error(location_of(block["members"], file),
+                             "members must be a whole number from 1 to 1e8");
+        plan.members = static_cast<long>(m);
+        if (block["seed"]) {
+            const double s = yaml_number(block["seed"], file, "seed");
+            if (s < 0 || s != std::floor(s) || s > 9e15)
+                throw user_error(location_of(block["seed"], file),
+                                 "seed must be a whole number from 0 to 9e15");
+            plan.seed = static_cast<std::uint64_t>(s);
+        }
+    }
+    if (const YAML::Node vary = block["vary"]) {
+        if (!vary.IsMap()) throw user_error(location_of(vary, file), "'vary' must be a mapping");
+        for (const auto& kv : vary) {
+            for (const auto& k : plan.keys)
+                if (k.key == kv.first.Scalar())
+                    throw user_error(location_of(kv.first, file),
+                                     "'" + k.key + "' given twice in vary");
+            plan.keys.push_back(read_entry(kv.first, kv.second, file, plan.mode));
+        }
+    }
+}
+
+} // namespace
+
+sweep_plan read_sweep_plan(const scene_spec& scene, const std::vector<std::string>& cli_vary) {
+    sweep_plan plan;
+    plan.where = scene.where;
+    const YAML::Node root = load_yaml_file(scene.file);
+    if (const YAML::Node block = root["sweep"]) read_block(block, scene.file, plan);
+    for (const auto& arg : cli_vary) {
+        sweep_key k = read_cli(arg, plan.mode);
+        bool replaced = false;
+        for (auto& old : plan.keys)
+            if (old.key == k.key) old = k, replaced = true;
+        if (!replaced) plan.keys.push_back(k);
+    }
+    if (plan.keys.empty())
+        throw user_error(plan.where, "nothing to vary: give a sweep: block with vary: or "
+                                     "--vary KEY=FROM:TO:COUNT");
+    for (auto& k : plan.keys) {
+        resolve(scene, k);
+        check_values(k);
+        for (const auto& other : plan.keys)
+            if (&other != &k && other.target == k.target && other.index == k.index &&
+                other.key != k.key)
+                throw user_error(k.where,
+                                 "'" + k.key + "' and '" + other.key + "' set the same value");
+    }
+    if (plan.mode == sweep_mode::zip)
+        for (const auto& k : plan.keys)
+            if (k.values.size() != plan.keys.front().values.size())
+                throw user_error(k.where, "zip lengths differ: '" + k.key + "' has " +
+                                              std::to_string(k.values.size()) + " values, '" +
+                                              plan.keys.front().key + "' has " +
+                                              std::to_string(plan.keys.front().values.size()));
+    if (plan.mode == sweep_mode::grid) {
+        double n = 1;
+        for (const auto& k : plan.keys)
+            n *= double(k.values.size());
+        if (n > largest_member_count)
+            throw user_error(plan.where,
+                             "the grid has " + short_number(n) + " members; at most 1e8");
+    }
+    return plan;
+}
+
+std::vector<std::vector<double>> member_rows(const sweep_plan& plan) {
+    std::vector<std::vector<double>> rows;
+    const std::size_t nk = plan.keys.size();
+    if (plan.mode == sweep_mode::random) {
+        std::mt19937_64 gen(plan.seed);
+        rows.assign(static_cast<std::size_t>(plan.members), std::vector<double>(nk));
+        for (auto& row : rows)
+            for (std::size_t k = 0; k < nk; ++k) {
+                const double u = double(gen() >> 11) * 0x1.0p-53; // 53 random bits: [0, 1)
+                row[k] = plan.keys[k].from + (plan.keys[k].to - plan.keys[k].from) * u;
+            }
+        return rows;
+    }
+    if (plan.mode == sweep_mode::zip) {
+        rows.assign(plan.keys.front().values.size(), std::vector<double>(nk));
+        for (std::size_t m = 0; m < rows.size(); ++m)
+            for (std::size_t k = 0; k < nk; ++k)
+                rows[m][k] = plan.keys[k].values[m];
+        return rows;
+    }
+    std::size_t n = 1;
+    for (const auto& k : plan.keys)
+        n *= k.values.size();
+    rows.assign(n, std::vector<double>(nk));
+    for (std::size_t m = 0; m < n; ++m)
+        for (std::size_t k = nk, rest = m; k-- > 0;) { // the last key fastest
+            rows[m][k] = plan.keys[k].values[rest % plan.keys[k].values.size()];
+            rest /= plan.keys[k].values.size();
+        }
+    return rows;
+}
+
+member_values member_of(const sweep_plan& plan, const member_values& base,
+                        const std::vector<double>& row) {
+    member_values v = base;
+    for (std::size_t k = 0; k < plan.keys.size(); ++k) {
+        const sweep_key& key = plan.keys[k];
+        if (key.target == sweep_key::angle)
+            v.angles[key.index] = row[k];
+        else if (key.target == sweep_key::rate)
+            v.initial_rates[key.index] = row[k];
+        else
+            v.parameters[key.index] = row[k];
+    }
+    return v;
+}
+
+} // namespace rotgen

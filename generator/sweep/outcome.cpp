@@ -1,0 +1,86 @@
+#include "sweep/outcome.hpp"
+
+#include "support/format.hpp"
+
+#include <limits>
+
+namespace rotgen {
+
+namespace {
+
+std::string csv_field(const std::string& s) {
+    if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
+    std::string q = "\"";
+    for (char c : s)
+        q += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return q + "\"";
+}
+
+} // namespace
+
+summary_layout layout_of(const prepared_scene& prepared) {
+    summary_layout l;
+    for (const auto& name : prepared.scene().record)
+        for (const auto& c : record_columns(name))
+            l.columns.push_back(c);
+    for (const auto& inv : prepared.invariants())
+        l.invariants.push_back(inv.name);
+    l.samples = static_cast<std::size_t>(prepared.scene().samples);
+    return l;
+}
+
+member_outcome run_one(const prepared_scene& prepared, const summary_layout& layout,
+                       const member_values& values, bool keep_trajectory) {
+    member_outcome o;
+    const std::size_t width = 1 + layout.columns.size();
+    if (keep_trajectory)
+        o.trajectory.assign(layout.samples * width, std::numeric_limits<double>::quiet_NaN());
+    run_result r;
+    try {
+        stage_timings timings; // a member's own (the sweep reports preparation only)
+        r = run_member(prepared, values, timings);
+    } catch (const user_error& e) {
+        o.status = e.message(); // no final values, no drifts: empty fields
+        return o;
+    }
+    if (!r.rows.empty()) o.final_row = r.rows.back();
+    for (const auto& d : r.invariants)
+        o.drifts.push_back(d.drift);
+    o.steps = r.stats.accepted;
+    o.rhs_evals = r.stats.rhs_evals;
+    if (!r.ok)
+        o.status = "stopped at t = " +
+                   format_double(r.rows.empty() ? prepared.scene().t_start : r.rows.back()[0]) +
+                   ": " + r.message;
+    for (std::size_t s = 0; keep_trajectory && s < r.rows.size() && s < layout.samples; ++s)
+        for (std::size_t c = 0; c < width && c < r.rows[s].size(); ++c)
+            o.trajectory[s * width + c] = r.rows[s][c];
+    return o;
+}
+
+void write_summary(std::ostream& os, const sweep_plan& plan,
+                   const std::vector<std::vector<double>>& rows, const summary_layout& layout,
+                   const std::vector<member_outcome>& outcomes) {
+    os << "member";
+    for (const auto& k : plan.keys)
+        os << "," << k.key;
+    os << ",final.t";
+    for (const auto& c : layout.columns)
+        os << ",final." << c;
+    for (const auto& inv : layout.invariants)
+        os << ",drift." << inv;
+    os << ",steps,rhs_evals,status\n";
+    for (std::size_t m = 0; m < outcomes.size(); ++m) {
+        const member_outcome& o = outcomes[m];
+        os << m;
+        for (double v : rows[m])
+            os << "," << format_double(v);
+        for (std::size_t c = 0; c <= layout.columns.size(); ++c)
+            os << "," << (c < o.final_row.size() ? format_number(o.final_row[c]) : "");
+        for (std::size_t i = 0; i < layout.invariants.size(); ++i)
+            os << "," << (i < o.drifts.size() ? format_number(o.drifts[i]) : "");
+        os << "," << o.steps << "," << o.rhs_evals << "," << csv_field(o.status) << "\n";
+    }
+}
+
+} // namespace rotgen

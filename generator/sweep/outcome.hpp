@@ -1,0 +1,46 @@
+// rotgen sweep — one member's run reduced to what the ensemble keeps (its summary row and,
+// optionally, its trajectory), and the summary table.
+#pragma once
+
+#include "run/engine.hpp"
+#include "run/prepared.hpp"
+#include "sweep/members.hpp"
+
+#include <cstdint>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace rotgen {
+
+struct member_outcome {
+    std::vector<double> final_row; // t and the recorded columns at the last sample reached
+    std::vector<double> drifts;    // max |v(t) - v(t0)|, one per monitored invariant
+    std::uint64_t steps = 0, rhs_evals = 0;
+    std::string status = "ok"; // or why the member stopped (or could not start)
+    // With trajectories: samples x (1 + columns), row-major; NaN past the last sample reached.
+    std::vector<double> trajectory;
+    bool ok() const { return status == "ok"; }
+};
+
+// What every member's row has: the record columns (after t) and the monitored invariants.
+struct summary_layout {
+    std::vector<std::string> columns;    // recorded columns, body_x expanded
+    std::vector<std::string> invariants; // energy, p_phi, ...
+    std::size_t samples = 0;
+};
+summary_layout layout_of(const prepared_scene& prepared);
+
+// Runs one member. A user error of this member (its values cannot start a run) and a run that
+// stops early are outcomes (status), not exceptions.
+member_outcome run_one(const prepared_scene& prepared, const summary_layout& layout,
+                       const member_values& values, bool keep_trajectory);
+
+// summary.csv: member, the keys as written, final.t, final.<column>..., drift.<invariant>...,
+// steps, rhs_evals, status. Numbers with 17 significant digits; a status with a comma or a quote
+// is quoted (RFC 4180).
+void write_summary(std::ostream& os, const sweep_plan& plan,
+                   const std::vector<std::vector<double>>& rows, const summary_layout& layout,
+                   const std::vector<member_outcome>& outcomes);
+
+} // namespace rotgen
