@@ -1,5 +1,7 @@
 #include "run/kernels.hpp"
 
+#include "run/event_kernels.hpp"
+
 #include "emit/emit.hpp"
 #include "expr/symbols.hpp"
 #include "lower/lower.hpp"
@@ -86,10 +88,9 @@ std::vector<ex> record_program(const scene_spec& scene, compiled_form& c, bool o
     return program;
 }
 
-// The translation unit compiled for the runtime: the header and extern "C" entry points
-// rotgen_set_parameters, rotgen_rhs, rotgen_jacobian, rotgen_record.
-std::string entry_points(const form_expressions& f, const std::string& unit,
-                         const std::vector<ex>& program) {
+// The body of a function (t, y, out) that computes `program` into out[0..]: the inputs it uses
+// (the state y, the parameters rg_p, t), the CSE steps, the outputs.
+void print_body(std::ostream& shim, const form_expressions& f, const std::vector<ex>& program) {
     std::vector<program_input> inputs;
     for (std::size_t i = 0; i < f.state.size(); ++i)
         inputs.push_back({f.state[i].symbol, f.state[i].name, "y[" + std::to_string(i) + "]"});
@@ -98,6 +99,23 @@ std::string entry_points(const form_expressions& f, const std::string& unit,
     inputs.push_back({f.time, "t", ""});
     const lowered_program lowered = lower(program, inputs);
     const std::vector<bool> used = used_inputs(lowered);
+    shim << "    using namespace std;\n    (void)t;\n    (void)y;\n    (void)out;\n";
+    for (std::size_t i = 0; i < inputs.size(); ++i)
+        if (used[i] && !inputs[i].definition.empty())
+            shim << "    const double " << inputs[i].name << " = " << inputs[i].definition << ";\n";
+    for (const auto& step : lowered.steps)
+        shim << "    const double " << step.name << " = "
+             << print_definition(lowered, step.node, "double") << ";\n";
+    for (std::size_t i = 0; i < lowered.outputs.size(); ++i)
+        shim << "    out[" << i << "] = " << print_node(lowered, lowered.outputs[i], "double")
+             << ";\n";
+}
+
+// The translation unit compiled for the runtime: the header and extern "C" entry points
+// rotgen_set_parameters, rotgen_rhs, rotgen_jacobian, rotgen_record, and rotgen_event_<i> per
+// scene event (each its own function: a run evaluates one event without the others).
+std::string entry_points(const form_expressions& f, const std::string& unit,
+                         const std::vector<ex>& program, const std::vector<ex>& events) {
     std::ostringstream shim;
     shim << "\n// ---- rotgen simulate: entry points for the runtime ----\n"
          << "namespace {\nnamespace rg_model = rotgen::models::" << unit << ";\n"
@@ -110,18 +128,15 @@ std::string entry_points(const form_expressions& f, const std::string& unit,
             "rg_p); }\n"
          << "void rotgen_jacobian(double t, const double* y, double* J) { rg_model::jacobian(t, y, "
             "J, rg_p); }\n"
-         << "void rotgen_record(double t, const double* y, double* out) {\n"
-         << "    using namespace std;\n    (void)t;\n    (void)y;\n    (void)out;\n";
-    for (std::size_t i = 0; i < inputs.size(); ++i)
-        if (used[i] && !inputs[i].definition.empty())
-            shim << "    const double " << inputs[i].name << " = " << inputs[i].definition << ";\n";
-    for (const auto& step : lowered.steps)
-        shim << "    const double " << step.name << " = "
-             << print_definition(lowered, step.node, "double") << ";\n";
-    for (std::size_t i = 0; i < lowered.outputs.size(); ++i)
-        shim << "    out[" << i << "] = " << print_node(lowered, lowered.outputs[i], "double")
-             << ";\n";
-    shim << "}\n}\n";
+         << "void rotgen_record(double t, const double* y, double* out) {\n";
+    print_body(shim, f, program);
+    shim << "}\n";
+    for (std::size_t e = 0; e < events.size(); ++e) {
+        shim << "void rotgen_event_" << e << "(double t, const double* y, double* out) {\n";
+        print_body(shim, f, {events[e]});
+        shim << "}\n";
+    }
+    shim << "}\n";
     return shim.str();
 }
 
@@ -129,6 +144,10 @@ std::string entry_points(const form_expressions& f, const std::string& unit,
 
 bool form_gives(const form_expressions& f, const std::string& name) {
     return record_expression(f, name).has_value();
+}
+
+std::optional<GiNaC::ex> form_value(const form_expressions& f, const std::string& name) {
+    return record_expression(f, name);
 }
 
 void compiled_form::set_parameters(const std::vector<double>& values) const {
@@ -156,13 +175,17 @@ compiled_form compile_form(const scene_spec& scene, form_expressions f, bool ori
     if (header.text.find(size_decl) == std::string::npos)
         throw std::logic_error("run: the emitted " + header.unit + " does not have " + size_decl);
     const std::vector<ex> program = record_program(scene, c, orientation, invariants);
-    const std::string source = header.text + entry_points(c.f, header.unit, program);
+    const std::vector<ex> events = event_programs(scene, c.f);
+    const std::string source = header.text + entry_points(c.f, header.unit, program, events);
     c.lib =
         timings.time("compile", header.unit, [&] { return compile_and_load(source, header.unit); });
     c.sys.n = c.f.state.size();
     c.sys.f = reinterpret_cast<loaded_system::kernel>(c.lib.symbol("rotgen_rhs"));
     c.sys.jac = reinterpret_cast<loaded_system::kernel>(c.lib.symbol("rotgen_jacobian"));
     c.record = reinterpret_cast<loaded_system::kernel>(c.lib.symbol("rotgen_record"));
+    for (std::size_t e = 0; e < events.size(); ++e)
+        c.events.push_back(reinterpret_cast<loaded_system::kernel>(
+            c.lib.symbol("rotgen_event_" + std::to_string(e))));
     return c;
 }
 
