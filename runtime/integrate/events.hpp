@@ -6,7 +6,8 @@
 //
 //   bracket    g is evaluated at the end of each accepted step. The step is searched on its
 //              interpolant (the stepper's continuous extension: DOP853 order 7, DOPRI5 order 4;
-//              cubic Hermite for the others, sampling.hpp) when g changed sign over the step, or
+//              cubic Hermite for the others, sampling.hpp) when g changed sign over the step in
+//              the direction the event watches, or
 //              when a pair of zeros could hide in it: g at both ends no larger than
 //              2 |g''| h² (|g''| estimated by the second divided difference of g at the last three
 //              step ends; always in a run's first step). A pair of zeros in a step needs
@@ -144,7 +145,7 @@ template <class T, class State> class event_set {
         for (std::size_t i = 0; i < size(); ++i) {
             track& k = m_track[i];
             k.g1 = m_events[i].g(t1, y1);
-            search = search || may_hold_zero(k, t1 - t);
+            search = search || may_hold_zero(k, t1 - t, m_events[i].direction);
         }
         return search;
     }
@@ -218,13 +219,17 @@ template <class T, class State> class event_set {
 
     T& node(int j, std::size_t i) { return m_nodes[static_cast<std::size_t>(j) * size() + i]; }
 
-    // A sign change over the step, or |g| at both ends within 4 · |g''| h² / 2.
-    bool may_hold_zero(const track& k, T h) const {
+    // A sign change over the step in the direction watched, or |g| at both ends within
+    // 4 · |g''| h² / 2. (A change the direction filter drops needs no search unless more zeros,
+    // one of them watched, could hide beside it: the same curvature test.)
+    bool may_hold_zero(const track& k, T h, event_direction d) const {
         using std::abs;
         using std::isnan;
         if (isnan(k.g1) || isnan(k.g0)) return false;
         const int s1 = sign_of(k.g1);
-        if (s1 != 0 && k.sign != 0 && s1 != k.sign) return true;
+        if (s1 != 0 && k.sign != 0 && s1 != k.sign &&
+            (d == event_direction::both || (d == event_direction::rising) == (s1 > 0)))
+            return true;
         if (!k.have_prev) return true;
         const T hm = k.t0 - k.tm;
         const T g2 = T(2) * ((k.g1 - k.g0) / h - (k.g0 - k.gm) / hm) / (h + hm); // ≈ g''

@@ -220,3 +220,24 @@ TEST_CASE("backward integration reports events in its own time order", "[events]
     CHECK(events.hits()[0].sign == -1);
     CHECK(events.hits()[1].sign == 1);
 }
+
+TEST_CASE("sign changes the direction filter drops are not searched", "[events]") {
+    // cos t over 20 periods: 40 sign changes, 20 of them rising; the search on the interpolant
+    // costs three evaluations of f per step with DOP853.
+    const auto sys = oscillator();
+    std::size_t searched[2] = {0, 0};
+    const event_direction directions[2] = {event_direction::both, event_direction::rising};
+    for (int k = 0; k < 2; ++k) {
+        osc_state y(1.0, 0.0);
+        event_set<double, osc_state> events;
+        events.add([](double, const osc_state& s) { return s[0]; }, directions[k]);
+        const dop853<double> method(1e-10, 1e-10);
+        const auto r = integrate(
+            sys, method, 0.0, y, std::vector<double>{40 * pi}, [](double, const auto&) {}, events);
+        REQUIRE(r.ok());
+        CHECK(events.hits().size() == (k == 0 ? 40u : 20u));
+        searched[k] = events.steps_searched();
+    }
+    CHECK(searched[0] >= 40);
+    CHECK(searched[1] < searched[0] * 3 / 4); // about half
+}
