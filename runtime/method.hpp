@@ -57,6 +57,16 @@ integration_result<T> integrate(const S& sys, const any_method<T>& method, detai
         [&](const auto& m) { return integrate(sys, m, t0, y, sample_times, observer); }, method);
 }
 
+// The same with events (integrate/events.hpp).
+template <class S, class T, class Times, class Observer>
+integration_result<T> integrate(const S& sys, const any_method<T>& method, detail::identity_t<T> t0,
+                                state_vector<T, S>& y, const Times& sample_times,
+                                Observer&& observer, event_set<T, state_vector<T, S>>& events) {
+    return std::visit(
+        [&](const auto& m) { return integrate(sys, m, t0, y, sample_times, observer, events); },
+        method);
+}
+
 template <class S, class T>
 integration_result<T> integrate(const S& sys, const any_method<T>& method, detail::identity_t<T> t0,
                                 state_vector<T, S>& y, detail::identity_t<T> t_end) {

@@ -16,8 +16,9 @@ enum class status {
     newton_failure,      // the implicit solve (implicit midpoint) did not converge
     max_steps,           // the step budget (`max_steps`) was used up before the end time
     non_finite,          // NaN/Inf in the state or its derivative; stopped at the last good state
-    invalid_argument,   // bad options or sample times (non-positive tolerance, unsorted times, …)
-    stopped_by_observer // the observer returned false at the sample t (integrate/observer.hpp)
+    invalid_argument, // bad options or sample times (non-positive tolerance, unsorted times, …)
+    stopped_by_observer, // the observer returned false at the sample t (integrate/observer.hpp)
+    stopped_by_event     // a terminal event occurred at t (integrate/events.hpp)
 };
 
 inline const char* status_name(status s) {
@@ -36,6 +37,8 @@ inline const char* status_name(status s) {
         return "invalid_argument";
     case status::stopped_by_observer:
         return "stopped_by_observer";
+    case status::stopped_by_event:
+        return "stopped_by_event";
     }
     return "unknown";
 }
@@ -58,7 +61,8 @@ struct step_stats {
 
 // Result of `integrate`. On return the caller's state vector holds the state at `t`:
 // the end time when `code == status::ok`, the state delivered at the sample `t` when
-// `code == status::stopped_by_observer`, otherwise the last good (accepted, finite) state.
+// `code == status::stopped_by_observer`, the state at the event when `code ==
+// status::stopped_by_event`, otherwise the last good (accepted, finite) state.
 template <class T> struct integration_result {
     status code = status::ok;
     std::string message; // one line, empty when ok

@@ -14,6 +14,7 @@
 //   steppers/rosenbrock.hpp      RODAS4, L-stable Rosenbrock 4(3) for stiff problems
 //   integrate/integrate.hpp      integrate(system, method, t0, y, sample_times, observer)
 //                                (fixed.hpp, adaptive.hpp, sampling.hpp, observer.hpp)
+//   integrate/events.hpp        event_set: zeros of g(t, y) on the dense output, terminal events
 //   integrate/monitor.hpp        invariant_monitor: first value and max drift of invariants
 //   integrate/chart_switch.hpp   chart_switch: stop a run near gimbal lock (|sin θ| < threshold)
 //   method.hpp                   run-time choice of a method by name
@@ -27,6 +28,7 @@
 #include "combine.hpp"
 #include "derivatives.hpp"
 #include "integrate/chart_switch.hpp"
+#include "integrate/events.hpp"
 #include "integrate/integrate.hpp"
 #include "integrate/monitor.hpp"
 #include "integrate/observer.hpp"

@@ -1,8 +1,9 @@
-// rotgen inspect MODEL.yaml [--format text|latex|json] [--inertia [--symbolic]]
+// rotgen inspect MODEL.yaml|SCENE.yaml [--format text|latex|json] [--inertia [--symbolic]]
 #include "cli/commands.hpp"
 #include "cli/options.hpp"
 #include "derive/derive.hpp"
 #include "inspect/inspect.hpp"
+#include "scene/scene.hpp"
 #include "spec/spec.hpp"
 
 #include <iostream>
@@ -13,12 +14,13 @@ namespace {
 
 const command_spec inspect_command{
     "inspect",
-    "model file",
-    "MODEL.yaml [--format text|latex|json] [--inertia [--symbolic]]",
+    "model or scene file",
+    "MODEL.yaml|SCENE.yaml [--format text|latex|json] [--inertia [--symbolic]]",
     "Prints the derived equations of the model: kinetic and potential energy, Lagrangian, "
     "momenta,\n"
     "mass matrix, Euler-Lagrange equations, Hamiltonian and Hamilton's equations, cyclic\n"
-    "coordinates and the energy, as text, LaTeX or JSON (expressions SymPy can parse).",
+    "coordinates and the energy, as text, LaTeX or JSON (expressions SymPy can parse).\n"
+    "Given a scene file, those of its model, then the scene's event functions.",
     {{"--format", "text|latex|json", "the output format (default text)", {}},
      {"--inertia",
       "",
@@ -45,11 +47,30 @@ int cmd_inspect(const std::vector<std::string>& args) {
         return 0;
     }
     const output_format format = format_of(o.value("--format"));
-    const model_spec spec = load_model(o.operand);
-    const derivation d = derive(spec);
     if (o.has("--symbolic") && !o.has("--inertia"))
         usage_error(inspect_command, "--symbolic needs --inertia");
-    std::cout << inspect(spec, d, format, o.has("--inertia"), o.has("--symbolic"));
+    const bool inertia = o.has("--inertia"), symbolic = o.has("--symbolic");
+    const YAML::Node root = load_yaml_file(o.operand);
+    if (!(root.IsMap() && root["model"])) { // a model file
+        const model_spec spec = load_model(o.operand);
+        std::cout << inspect(spec, derive(spec), format, inertia, symbolic);
+        return 0;
+    }
+    const scene_spec scene = load_scene(o.operand); // a scene names its model
+    std::string text = inspect(scene.model, derive(scene.model), format, inertia, symbolic);
+    if (scene.events.empty()) {
+        std::cout << text;
+        return 0;
+    }
+    const std::string events = describe_events(scene.events, format);
+    if (format == output_format::json) { // one more member of the object
+        const auto close = text.rfind('}');
+        const auto last = text.find_last_not_of(" \n", close - 1);
+        text = text.substr(0, last + 1) + ",\n  " + events + "\n" + text.substr(close);
+    } else {
+        text += events;
+    }
+    std::cout << text;
     return 0;
 }
 

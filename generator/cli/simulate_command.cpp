@@ -1,4 +1,4 @@
-// rotgen simulate SCENE.yaml [-o out.csv] [--plot out.png] [--timings]
+// rotgen simulate SCENE.yaml [-o out.csv] [--events FILE] [--plot out.png] [--timings]
 #include "cli/commands.hpp"
 #include "cli/options.hpp"
 #include "simulate/simulate.hpp"
@@ -12,7 +12,7 @@ namespace {
 const command_spec simulate_command{
     "simulate",
     "scene file",
-    "SCENE.yaml [-o out.csv] [--plot out.png] [--timings] [--quiet]",
+    "SCENE.yaml [-o out.csv] [--events FILE] [--plot out.png] [--timings] [--quiet]",
     "Integrates the scene: derives the model's equations, emits and compiles the scene's form\n"
     "(cached), integrates it and records the scene's quantities at its sample times. Prints a\n"
     "summary (steps, evaluations, invariant drifts) on standard output. A run that cannot finish\n"
@@ -24,6 +24,11 @@ const command_spec simulate_command{
       "the samples as CSV (header t,<recorded columns>); - for standard output;\n"
       "                     default <scene name>.csv",
       {"--output"}},
+     {"--events",
+      "FILE",
+      "the scene's events as CSV (header event,t,<recorded columns>);\n"
+      "                     default <output stem>.events.csv when the scene has events",
+      {}},
      {"--plot", "FILE", "the recorded quantities against t (gnuplot): .png, .svg or .pdf", {}},
      {"--timings", "", "print the wall time of each pipeline stage to standard error", {}},
      {"--quiet", "", "no summary and no progress line (errors are still reported)", {"-q"}}}};
@@ -36,8 +41,8 @@ int cmd_simulate(const std::vector<std::string>& args) {
         std::cout << help_text(simulate_command);
         return 0;
     }
-    return simulate(
-        {o.operand, o.value("-o"), o.value("--plot"), o.has("--timings"), o.has("--quiet")});
+    return simulate({o.operand, o.value("-o"), o.value("--plot"), o.value("--events"),
+                     o.has("--timings"), o.has("--quiet")});
 }
 
 } // namespace rotgen

@@ -83,8 +83,12 @@ class scene_run {
                             const Eigen::VectorXd& y) const;
     enum class next { done, body, euler }; // after a segment: finished, or continue in that chart
     next integrate_segment(Eigen::VectorXd& y, double t_from);
+    void set_up_events();
+    void use_event_functions(const compiled_form& cf);
+    void collect_events(std::size_t from);
     void switch_chart(next to, Eigen::VectorXd& y, double& t_from);
     void record();
+    std::pair<std::vector<double>, std::vector<double>> record_row(const sample& s) const;
     void start_method();
 
     const prepared_scene& m_prepared;
@@ -106,6 +110,8 @@ class scene_run {
     std::optional<any_method<double>> m_method;
     std::optional<split_runner> m_split; // split2/4/6: the body form as a split system
     integration_result<double> m_last;
+    event_set<double, Eigen::VectorXd> m_events; // the scene's events, across chart switches
+    std::vector<sample> m_event_samples;         // the state at each event (form: its own)
     run_result m_result;
 };
 
@@ -133,6 +139,42 @@ initial_kinematics scene_run::exact_start() {
                          "momenta cannot give the rates at theta = 0 or pi (the mass matrix is "
                          "singular there); give body omega1..3 instead");
     return k0;
+}
+
+void scene_run::set_up_events() {
+    for (const event_spec& e : m_scene.events) {
+        m_events.add({},
+                     e.direction > 0   ? event_direction::rising
+                     : e.direction < 0 ? event_direction::falling
+                                       : event_direction::both,
+                     e.stop, e.name);
+        m_result.event_names.push_back(e.name);
+    }
+}
+
+// The events' g are the compiled functions of the form integrating now; their signs and last
+// times carry over a chart switch (events.hpp).
+void scene_run::use_event_functions(const compiled_form& cf) {
+    for (std::size_t i = 0; i < m_events.size(); ++i)
+        m_events.set_function(i, [g = cf.events[i], p = m_parameters[m_current].data()](
+                                     double t, const Eigen::VectorXd& y) {
+            double out = 0;
+            g(p, t, y.data(), &out);
+            return out;
+        });
+}
+
+// The events found by the last segment (hits from `from` on), with the state where each occurred.
+void scene_run::collect_events(std::size_t from) {
+    const auto& hits = m_events.hits();
+    for (std::size_t h = from; h < hits.size(); ++h) {
+        m_event_samples.push_back({hits[h].t, hits[h].y, m_current});
+        m_result.event_index.push_back(hits[h].index);
+    }
+    if (m_last.code != status::stopped_by_event) return;
+    m_result.stopped_by = static_cast<int>(m_events.stopped_by());
+    if (m_samples.empty() || m_samples.back().t != m_last.t) // the event's state ends the rows
+        m_samples.push_back(m_event_samples.back());
 }
 
 // A start near the singularity starts in the body form (when the chart can switch).
@@ -287,21 +329,26 @@ scene_run::next scene_run::integrate_segment(Eigen::VectorXd& y, double t_from) 
     const std::vector<double> times(m_times.begin() + static_cast<std::ptrdiff_t>(m_next_sample),
                                     m_times.end());
     const std::size_t first_sample = m_samples.size();
+    // returning false stops the run at this sample: the chart is left there
+    const auto observe = [&](double t, const Eigen::VectorXd& yt) {
+        m_samples.push_back({t, yt, m_current});
+        if (m_on_sample) m_on_sample(t);
+        if (!can_switch || m_samples.size() <= first_sample + 1 || t >= m_scene.t_end) return true;
+        const double st = sin_theta_of(cf.form, yt);
+        return !(euler_chart ? st < switch_below : st > switch_back_above);
+    };
+    const std::size_t first_hit = m_events.hits().size();
+    if (m_events.size() > 0) use_event_functions(cf);
     m_timings.time("integrate", to_string(cf.form), [&] {
-        // returning false stops the run at this sample: the chart is left there
-        const auto observe = [&](double t, const Eigen::VectorXd& yt) {
-            m_samples.push_back({t, yt, m_current});
-            if (m_on_sample) m_on_sample(t);
-            if (!can_switch || m_samples.size() <= first_sample + 1 || t >= m_scene.t_end)
-                return true;
-            const double st = sin_theta_of(cf.form, yt);
-            return !(euler_chart ? st < switch_below : st > switch_back_above);
-        };
         m_last = m_split ? m_split->integrate(sys, t_from, y, times, observe)
-                         : integrate(sys, *m_method, t_from, y, times, observe);
+                 : m_events.size() > 0
+                     ? integrate(sys, *m_method, t_from, y, times, observe, m_events)
+                     : integrate(sys, *m_method, t_from, y, times, observe);
     });
+    collect_events(first_hit);
     m_left_chart = m_last.code == status::stopped_by_observer;
     add_stats(m_result.stats, m_last.stats);
+    if (m_last.code == status::stopped_by_event) return next::done;
     if (!can_switch || m_samples.empty() || m_samples.back().t >= m_scene.t_end) return next::done;
     if (m_left_chart) return euler_chart ? next::body : next::euler;
     return euler_chart && !m_last.ok() && sin_theta_of(cf.form, y) < switch_below ? next::body
@@ -337,21 +384,31 @@ void scene_run::switch_chart(next to, Eigen::VectorXd& y, double& t_from) {
     m_next_sample = m_samples.size();
 }
 
-// Records and invariants at every sample, each by the form that integrated it.
+// The row (t, the recorded columns) at a sample, and the record program's outputs there.
+std::pair<std::vector<double>, std::vector<double>> scene_run::record_row(const sample& s) const {
+    const compiled_form& cf = *m_compiled[s.form];
+    std::vector<double> out(cf.outputs);
+    cf.record(m_parameters[s.form].data(), s.t, s.y.data(), out.data());
+    std::optional<euler_angles<double>> e;
+    std::vector<double> row{s.t};
+    for (const auto& src : cf.columns)
+        row.push_back(source_value(src, s.y, out, m_inertia, e));
+    return {std::move(row), std::move(out)};
+}
+
+// Records and invariants at every sample (and event), each by the form that integrated it.
 void scene_run::record() {
     const std::vector<invariant>& invariants = m_prepared.invariants();
     m_result.invariants.clear();
     for (const auto& inv : invariants)
         m_result.invariants.push_back({inv, 0, 0});
+    for (const sample& s : m_event_samples)
+        m_result.event_rows.push_back(record_row(s).first);
     for (std::size_t k = 0; k < m_samples.size(); ++k) {
         const compiled_form& cf = *m_compiled[m_samples[k].form];
         const Eigen::VectorXd& ys = m_samples[k].y;
-        std::vector<double> out(cf.outputs);
-        cf.record(m_parameters[m_samples[k].form].data(), m_samples[k].t, ys.data(), out.data());
+        auto [row, out] = record_row(m_samples[k]);
         std::optional<euler_angles<double>> e;
-        std::vector<double> row{m_samples[k].t};
-        for (const auto& src : cf.columns)
-            row.push_back(source_value(src, ys, out, m_inertia, e));
         m_result.rows.push_back(std::move(row));
         for (std::size_t i = 0; i < invariants.size(); ++i) {
             invariant_drift& d = m_result.invariants[i];
@@ -368,6 +425,10 @@ void scene_run::record() {
 void scene_run::start_method() {
     const integrator_spec& ig = m_scene.integrator;
     if (is_split_method(ig.method)) {
+        if (!m_scene.events.empty())
+            throw user_error(m_scene.integrator_where,
+                             ig.method + " does not locate events yet; use dop853, dopri5, rk4, "
+                                         "implicit_midpoint or rosenbrock for a scene with events");
         check_split_model(m_scene, m_inertia);
         m_split.emplace(m_scene, m_inertia);
         return;
@@ -390,6 +451,7 @@ run_result scene_run::run() {
     start_method();
     m_times = sample_times(m_scene);
     m_samples.reserve(m_times.size());
+    set_up_events();
 
     Eigen::VectorXd y = state_of(first.f, k0);
     m_parameters[m_current] = parameters_of(first.f, k0);
@@ -412,7 +474,7 @@ run_result scene_run::run() {
                                " changes of chart in all (to the body form below " +
                                short_number(switch_below) + ", back above " +
                                short_number(switch_back_above) + ")";
-    m_result.ok = m_last.ok();
+    m_result.ok = m_last.ok() || m_last.code == status::stopped_by_event;
     m_result.message = m_last.message;
     m_result.integrate_seconds = m_timings.total("integrate");
     record();

@@ -36,6 +36,12 @@ struct run_result {
     std::vector<std::vector<double>> rows; // t, then one value per column, per sample
     std::vector<invariant_drift> invariants;
     step_stats stats;
+    // Events (the scene's `events:`), in time order: which (index into event_names) and the row
+    // t, then the recorded columns at the event, as in `rows`.
+    std::vector<std::string> event_names;
+    std::vector<std::size_t> event_index;
+    std::vector<std::vector<double>> event_rows;
+    int stopped_by = -1;    // the terminal event that ended the run (its state is the last row)
     std::string chart_note; // the chart switch, if one happened (empty otherwise)
     bool ok = true;         // the integration reached the end time
     std::string message;    // why not, when !ok

@@ -1,5 +1,7 @@
 #include "run/kernels.hpp"
 
+#include "run/event_kernels.hpp"
+
 #include "emit/emit.hpp"
 #include "expr/symbols.hpp"
 #include "lower/lower.hpp"
@@ -96,12 +98,9 @@ std::vector<ex> record_program(const scene_spec& scene, compiled_form& c, bool o
     return program;
 }
 
-// The translation unit compiled for the runtime: the header and extern "C" entry points
-// rotgen_rhs, rotgen_jacobian, rotgen_record, each given the parameter values `v` (in the form's
-// parameter order) with every call: the compiled object keeps no state, so members of an ensemble
-// run its kernels concurrently with their own values.
-std::string entry_points(const form_expressions& f, const std::string& unit,
-                         const std::vector<ex>& program) {
+// The body of a function (t, y, out) that computes `program` into out[0..]: the inputs it uses
+// (the state y, the parameters rg_p, t), the CSE steps, the outputs.
+void print_body(std::ostream& shim, const form_expressions& f, const std::vector<ex>& program) {
     std::vector<program_input> inputs;
     for (std::size_t i = 0; i < f.state.size(); ++i)
         inputs.push_back({f.state[i].symbol, f.state[i].name, "y[" + std::to_string(i) + "]"});
@@ -110,6 +109,25 @@ std::string entry_points(const form_expressions& f, const std::string& unit,
     inputs.push_back({f.time, "t", ""});
     const lowered_program lowered = lower(program, inputs);
     const std::vector<bool> used = used_inputs(lowered);
+    shim << "    using namespace std;\n    (void)t;\n    (void)y;\n    (void)out;\n";
+    for (std::size_t i = 0; i < inputs.size(); ++i)
+        if (used[i] && !inputs[i].definition.empty())
+            shim << "    const double " << inputs[i].name << " = " << inputs[i].definition << ";\n";
+    for (const auto& step : lowered.steps)
+        shim << "    const double " << step.name << " = "
+             << print_definition(lowered, step.node, "double") << ";\n";
+    for (std::size_t i = 0; i < lowered.outputs.size(); ++i)
+        shim << "    out[" << i << "] = " << print_node(lowered, lowered.outputs[i], "double")
+             << ";\n";
+}
+
+// The translation unit compiled for the runtime: the header and extern "C" entry points
+// rotgen_rhs, rotgen_jacobian, rotgen_record, and rotgen_event_<i> per scene event (each its own
+// function: a run evaluates one event without the others), each given the parameter values `v`
+// (in the form's parameter order) with every call: the compiled object keeps no state, so members
+// of an ensemble run its kernels concurrently with their own values.
+std::string entry_points(const form_expressions& f, const std::string& unit,
+                         const std::vector<ex>& program, const std::vector<ex>& events) {
     std::ostringstream shim;
     shim << "\n// ---- rotgen run: entry points for the runtime ----\n"
          << "namespace {\nnamespace rg_model = rotgen::models::" << unit << ";\n"
@@ -122,20 +140,18 @@ std::string entry_points(const form_expressions& f, const std::string& unit,
          << "void rotgen_rhs(const double* v, double t, const double* y, double* dydt) {\n"
          << "    rg_model::rhs(t, y, dydt, rg_params(v));\n}\n"
          << "void rotgen_jacobian(const double* v, double t, const double* y, double* J) {\n"
-         << "    rg_model::jacobian(t, y, J, rg_params(v));\n}\n"
-         << "void rotgen_record(const double* v, double t, const double* y, double* out) {\n"
-         << "    using namespace std;\n    const rg_model::params<double> rg_p = rg_params(v);\n"
-         << "    (void)rg_p;\n    (void)t;\n    (void)y;\n    (void)out;\n";
-    for (std::size_t i = 0; i < inputs.size(); ++i)
-        if (used[i] && !inputs[i].definition.empty())
-            shim << "    const double " << inputs[i].name << " = " << inputs[i].definition << ";\n";
-    for (const auto& step : lowered.steps)
-        shim << "    const double " << step.name << " = "
-             << print_definition(lowered, step.node, "double") << ";\n";
-    for (std::size_t i = 0; i < lowered.outputs.size(); ++i)
-        shim << "    out[" << i << "] = " << print_node(lowered, lowered.outputs[i], "double")
-             << ";\n";
-    shim << "}\n}\n";
+         << "    rg_model::jacobian(t, y, J, rg_params(v));\n}\n";
+    // the record program and each event: rg_p from v, then the program's body
+    const auto function = [&](const std::string& name, const std::vector<ex>& outputs) {
+        shim << "void " << name << "(const double* v, double t, const double* y, double* out) {\n"
+             << "    const rg_model::params<double> rg_p = rg_params(v);\n    (void)rg_p;\n";
+        print_body(shim, f, outputs);
+        shim << "}\n";
+    };
+    function("rotgen_record", program);
+    for (std::size_t e = 0; e < events.size(); ++e)
+        function("rotgen_event_" + std::to_string(e), {events[e]});
+    shim << "}\n";
     return shim.str();
 }
 
@@ -143,6 +159,10 @@ std::string entry_points(const form_expressions& f, const std::string& unit,
 
 bool form_gives(const form_expressions& f, const std::string& name) {
     return record_expression(f, name).has_value();
+}
+
+std::optional<GiNaC::ex> form_value(const form_expressions& f, const std::string& name) {
+    return record_expression(f, name);
 }
 
 compiled_form compile_form(const scene_spec& scene, form_expressions f, bool orientation,
@@ -165,13 +185,17 @@ compiled_form compile_form(const scene_spec& scene, form_expressions f, bool ori
     if (header.text.find(size_decl) == std::string::npos)
         throw std::logic_error("run: the emitted " + header.unit + " does not have " + size_decl);
     const std::vector<ex> program = record_program(scene, c, orientation, invariants);
-    const std::string source = header.text + entry_points(c.f, header.unit, program);
+    const std::vector<ex> events = event_programs(scene, c.f);
+    const std::string source = header.text + entry_points(c.f, header.unit, program, events);
     c.lib =
         timings.time("compile", header.unit, [&] { return compile_and_load(source, header.unit); });
     c.sys.n = c.f.state.size();
     c.sys.f = reinterpret_cast<loaded_system::kernel>(c.lib.symbol("rotgen_rhs"));
     c.sys.jac = reinterpret_cast<loaded_system::kernel>(c.lib.symbol("rotgen_jacobian"));
     c.record = reinterpret_cast<loaded_system::kernel>(c.lib.symbol("rotgen_record"));
+    for (std::size_t e = 0; e < events.size(); ++e)
+        c.events.push_back(reinterpret_cast<loaded_system::kernel>(
+            c.lib.symbol("rotgen_event_" + std::to_string(e))));
     return c;
 }
 

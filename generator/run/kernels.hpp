@@ -58,11 +58,12 @@ struct compiled_form {
     form_kind form = form_kind::lagrangian;
     form_expressions f;
     loaded_library lib;
-    loaded_system sys;                      // without parameter values (p null)
-    loaded_system::kernel record = nullptr; // record(p, t, y, out): the record program
-    std::vector<value_source> columns;      // one per quantity column (body_x expands to 3)
-    std::vector<value_source> invariants;   // as the invariants are listed
-    std::size_t outputs = 0;                // of the record program
+    loaded_system sys;                         // without parameter values (p null)
+    loaded_system::kernel record = nullptr;    // record(p, t, y, out): the record program
+    std::vector<loaded_system::kernel> events; // g of each scene event, out[0] (event_kernels.hpp)
+    std::vector<value_source> columns;         // one per quantity column (body_x expands to 3)
+    std::vector<value_source> invariants;      // as the invariants are listed
+    std::size_t outputs = 0;                   // of the record program
 
     // The system with these parameter values (they must outlive it).
     loaded_system system(const std::vector<double>& values) const {
@@ -73,7 +74,8 @@ struct compiled_form {
 };
 
 // Emits, lowers and compiles (or loads from the cache) the built form `f` of the scene's model,
-// with the record program for the scene's `record` list and `invariants`. `command` stamps the
+// with the record program for the scene's `record` list and `invariants`, and one function per
+// scene event. `command` stamps the
 // header. Throws user_error when the form cannot give a recorded quantity.
 compiled_form compile_form(const scene_spec& scene, form_expressions f, bool orientation,
                            const std::vector<invariant>& invariants, const std::string& command,
@@ -81,6 +83,8 @@ compiled_form compile_form(const scene_spec& scene, form_expressions f, bool ori
 
 // Whether the form itself gives the quantity `name` (a state, an output or a rate).
 bool form_gives(const form_expressions& f, const std::string& name);
+// Its expression in the form's state, if the form gives it.
+std::optional<GiNaC::ex> form_value(const form_expressions& f, const std::string& name);
 
 // A recorded column or monitored invariant at a sample (t, y): an output `out` of the form's
 // record program, or in the body form from the quaternion and omega: the Euler angles, their

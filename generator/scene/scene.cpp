@@ -42,7 +42,7 @@ class scene_reader {
         const YAML::Node root = load_yaml_file(m_file, &source);
         check_keys(root,
                    {"model", "parameters", "form", "initial", "time", "integrator", "record",
-                    "description", "switch_chart", "sweep"},
+                    "description", "switch_chart", "sweep", "events"},
                    m_file, "the scene");
         m_scene.file = m_file;
         m_scene.where = {m_file, 1, 1};
@@ -57,6 +57,7 @@ class scene_reader {
         read_time(root["time"]);
         if (root["integrator"]) read_integrator(root["integrator"]);
         read_record(root["record"]);
+        m_scene.events = read_events(root["events"], m_scene.model, m_file);
         if (const YAML::Node sw = root["switch_chart"]) {
             if (!sw.IsScalar() || (sw.Scalar() != "true" && sw.Scalar() != "false"))
                 throw user_error(at(sw), "switch_chart must be true or false");

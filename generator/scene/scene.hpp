@@ -8,6 +8,7 @@
 //   time: {start: 0, end: 100, samples: 1001}
 //   integrator: {method: dop853, rtol: 1e-10, atol: 1e-12}   # rk4/implicit_midpoint: {step: 1e-3}
 //   record: [theta, omega1, omega2, omega3, energy, p_phi, p_psi]
+//   events: [{name: floor, when: theta - pi/2, direction: rising, action: stop}]   (events.hpp)
 //   switch_chart: true           # continue in the body form near theta = 0, pi (default true)
 //   sweep: {...}                 # for `rotgen sweep` only (read by sweep/members.hpp)
 //
@@ -16,6 +17,7 @@
 #pragma once
 
 #include "forms/form_kind.hpp"
+#include "scene/events.hpp"
 #include "spec/spec.hpp"
 
 #include <array>
@@ -66,6 +68,7 @@ struct scene_spec {
     // Leave the Euler-angle chart for the body form near theta = 0, pi (lagrangian and
     // hamiltonian forms); `switch_chart: false` keeps the chart (to measure its failure).
     bool switch_chart = true;
+    std::vector<event_spec> events; // zeros of expressions located along the run (events.hpp)
 
     // Where things were written, for errors found later (an unrecordable quantity, a failed run).
     source_location where;            // the scene file itself

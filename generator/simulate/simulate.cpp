@@ -36,6 +36,35 @@ void write_csv(atomic_file& out, const run_result& r) {
     out.commit();
 }
 
+// One row per event in time order: its name, t, the recorded columns at the event.
+void write_events(atomic_file& out, const run_result& r) {
+    std::ostream& os = out.stream();
+    os << "event,t";
+    for (const auto& c : r.columns)
+        os << "," << c;
+    os << "\n";
+    for (std::size_t k = 0; k < r.event_rows.size(); ++k) {
+        os << r.event_names[r.event_index[k]];
+        for (double v : r.event_rows[k])
+            os << "," << format_number(v);
+        os << "\n";
+    }
+    out.commit();
+}
+
+// How many times each event occurred, and which one stopped the run.
+void print_events(std::ostream& os, const run_result& r) {
+    for (std::size_t i = 0; i < r.event_names.size(); ++i) {
+        std::size_t n = 0;
+        for (std::size_t k : r.event_index)
+            n += k == i ? 1 : 0;
+        os << "  event   " << r.event_names[i] << ": " << n << (n == 1 ? " time" : " times");
+        if (r.stopped_by == static_cast<int>(i))
+            os << "; stopped the run at t = " << format_double(r.rows.back()[0]);
+        os << "\n";
+    }
+}
+
 // max |v(t) - v(0)|, relative to |v(0)| unless v starts near 0 (below 1e-9 of its largest value
 // along the run): a relative drift of a momentum that starts at 0 means nothing.
 void print_invariants(std::ostream& os, const run_result& r) {
@@ -85,6 +114,7 @@ void print_summary(std::ostream& os, const simulate_request& q, const scene_spec
                             : "emitting and compiling the kernels")
        << "\n";
     print_invariants(os, r);
+    print_events(os, r);
 }
 
 // The plot, from the CSV written (or from a scratch CSV beside the PNG when none was asked for).
@@ -115,11 +145,23 @@ std::string csv_path(const simulate_request& q) {
     return stem + ".csv";
 }
 
+// Where the events go: --events, or <output stem>.events.csv beside the samples (the scene's
+// name when the samples go to standard output); empty when the scene has no events.
+std::string events_path(const simulate_request& q, const std::string& csv,
+                        const scene_spec& scene) {
+    if (!q.events.empty()) return q.events;
+    if (scene.events.empty()) return "";
+    std::string base = csv == "-" ? csv_path({q.scene, "", "", "", false, false}) : csv;
+    if (base.size() > 4 && base.compare(base.size() - 4, 4, ".csv") == 0)
+        base.erase(base.size() - 4);
+    return base + ".events.csv";
+}
+
 // A run that could not finish: the rows so far go to <output stem>.partial.csv (never under the
 // requested name); exit status 3.
 int report_partial(const simulate_request& q, const std::string& csv, const scene_spec& scene,
                    const run_result& r, std::ostream& summary) {
-    std::string base = csv == "-" ? csv_path({q.scene, "", "", false, false}) : csv;
+    std::string base = csv == "-" ? csv_path({q.scene, "", "", "", false, false}) : csv;
     if (base.size() > 4 && base.compare(base.size() - 4, 4, ".csv") == 0)
         base.erase(base.size() - 4);
     const std::string partial = base + ".partial.csv";
@@ -144,6 +186,9 @@ int simulate(const simulate_request& q) {
     if (!q.plot.empty()) plot_terminal(q.plot, 1);
     atomic_file csv_out(csv, inputs);
     if (!q.plot.empty()) atomic_file probe(q.plot, inputs);
+    const std::string events = events_path(q, csv, scene);
+    std::optional<atomic_file> events_out;
+    if (!events.empty()) events_out.emplace(events, inputs);
 
     stage_timings timings;
     std::ostringstream discarded;
@@ -161,6 +206,11 @@ int simulate(const simulate_request& q) {
     summary << "  wrote   " << (csv == "-" ? "standard output" : csv) << " (" << r.rows.size()
             << " samples" << (q.csv.empty() ? ", the default name: -o chooses another" : "")
             << ")\n";
+    if (events_out) {
+        timings.time("write", events, [&] { write_events(*events_out, r); });
+        summary << "  wrote   " << (events == "-" ? "standard output" : events) << " ("
+                << r.event_rows.size() << " events)\n";
+    }
     if (!q.plot.empty()) {
         timings.time("plot", q.plot, [&] { draw_plot(q, csv, scene, r); });
         summary << "  wrote   " << q.plot << "\n";

@@ -1,6 +1,8 @@
 // rotgen simulate — integrate one scene (the run engine, run/engine.hpp) and write what it
 // recorded: a CSV with the header `t,<recorded columns>`, an optional plot, and a summary on
-// standard output (model, form, chart switch, method, steps, time, invariant drifts, files).
+// standard output (model, form, chart switch, method, steps, time, invariant drifts, events,
+// files); a scene with `events:` also gets `<output stem>.events.csv` (header `event,t,<recorded
+// columns>`, one row per event in time order).
 #pragma once
 
 #include <string>
@@ -11,6 +13,7 @@ struct simulate_request {
     std::string scene;    // the scene file
     std::string csv;      // where to write the samples; empty: not written
     std::string plot;     // a PNG of the recorded columns; empty: none
+    std::string events;   // the scene's events as CSV; empty: <output stem>.events.csv
     bool timings = false; // one line per pipeline stage to stderr
     bool quiet = false;   // no summary and no progress line
 };

@@ -69,7 +69,9 @@ ROTGEN_NOINLINE integration_result<T> run_adaptive(const S& sys, const Method& m
         }
         ++stats.steps;
         const bool need_dense = samples.before(t_next);
-        const auto out = st.attempt(sys, t, y_now, h, stats, need_dense);
+        // with events the stages are kept in every step: whether the interpolant is needed is known
+        // only from g at the step's end (event_step.hpp)
+        const auto out = st.attempt(sys, t, y_now, h, stats, need_dense || Sampler::has_events);
         if (out.code == status::newton_failure) {
             res.code = status::newton_failure;
             res.message = newton_message(t, h);

@@ -12,7 +12,8 @@
 // The parts: the stepper concept in ../stepper.hpp; fixed.hpp, the fixed-step loop on the grid
 // t_k = t0 + k·h; adaptive.hpp, the controlled loop; sampling.hpp, the samples between step
 // boundaries (the stepper's continuous extension or cubic Hermite); observer.hpp, observers that
-// stop a run and their combination; monitor.hpp and chart_switch.hpp, two ready-made observers.
+// stop a run and their combination; monitor.hpp and chart_switch.hpp, two ready-made observers;
+// events.hpp and event_step.hpp, zeros of event functions located on the dense output.
 //
 // Guards (status values, never exceptions): invalid arguments → invalid_argument; non-finite
 // initial state or f(t0, y0) → non_finite; the loops' own guards are listed in fixed.hpp and
@@ -30,6 +31,8 @@
 #include "../stepper.hpp"
 #include "../system.hpp"
 #include "adaptive.hpp"
+#include "event_step.hpp"
+#include "events.hpp"
 #include "fixed.hpp"
 #include "messages.hpp"
 #include "observer.hpp"
@@ -78,6 +81,49 @@ std::optional<integration_result<T>> check_arguments(const S& sys, const Method&
 
 } // namespace detail
 
+namespace detail {
+
+// The loop the method asks for, from (t0, y) with the samples (and events) still to deliver.
+template <class S, class Method, class Sampler, class T>
+integration_result<T> run_loop(const S& sys, const Method& method, T t0, T t_end,
+                               state_vector<T, S>& y, const Sampler& samples) {
+    if constexpr (Method::adaptive) {
+        if (method.fixed_step == T(0)) return run_adaptive(sys, method, t0, t_end, y, samples);
+        return run_fixed(sys, method, t0, t_end, method.fixed_step, y, samples);
+    } else {
+        return run_fixed(sys, method, t0, t_end, method.step, y, samples);
+    }
+}
+
+// integrate() after its arguments were checked; `events` is null or an event_set.
+template <class S, class Method, class Times, class Observer, class Events>
+integration_result<typename Method::scalar>
+integrate_checked(const S& sys, const Method& method, typename Method::scalar t0,
+                  state_vector<typename Method::scalar, S>& y, const Times& sample_times,
+                  Observer& observer, Events* events) {
+    using T = typename Method::scalar;
+    using vector = state_vector<T, S>;
+    const T t_end = T(sample_times[static_cast<std::size_t>(sample_times.size()) - 1]);
+    const T dir = t_end >= t0 ? T(1) : T(-1);
+    sampler<T, Times, Observer> samples(sample_times, dir, observer);
+    integration_result<T> res;
+    res.t = t0;
+    if (!samples.deliver_at(t0, static_cast<const vector&>(y))) {
+        res.code = status::stopped_by_observer;
+        res.message = stopped_message(t0);
+        return res;
+    }
+    if (samples.done()) return res;
+    if constexpr (std::is_same_v<Events, std::nullptr_t>) {
+        return run_loop(sys, method, t0, t_end, y, samples);
+    } else {
+        events->begin(t0, static_cast<const vector&>(y), t_end);
+        return run_loop(sys, method, t0, t_end, y, event_sampler(samples, *events));
+    }
+}
+
+} // namespace detail
+
 template <class S, class Method, class Times, class Observer,
           std::enable_if_t<is_method_v<Method>, int> = 0>
 integration_result<typename Method::scalar>
@@ -85,27 +131,24 @@ integrate(const S& sys, const Method& method, detail::identity_t<typename Method
           state_vector<typename Method::scalar, S>& y, const Times& sample_times,
           Observer&& observer) {
     using T = typename Method::scalar;
-    using vector = state_vector<T, S>;
     if (auto failed = detail::check_arguments<T>(sys, method, t0, y, sample_times)) return *failed;
-    const T t_end = T(sample_times[static_cast<std::size_t>(sample_times.size()) - 1]);
-    const T dir = t_end >= t0 ? T(1) : T(-1);
-    detail::sampler<T, Times, std::remove_reference_t<Observer>> samples(sample_times, dir,
-                                                                         observer);
-    integration_result<T> res;
-    res.t = t0;
-    if (!samples.deliver_at(t0, static_cast<const vector&>(y))) {
-        res.code = status::stopped_by_observer;
-        res.message = detail::stopped_message(t0);
-        return res;
-    }
-    if (samples.done()) return res;
-    if constexpr (Method::adaptive) {
-        if (method.fixed_step == T(0))
-            return detail::run_adaptive(sys, method, t0, t_end, y, samples);
-        return detail::run_fixed(sys, method, t0, t_end, method.fixed_step, y, samples);
-    } else {
-        return detail::run_fixed(sys, method, t0, t_end, method.step, y, samples);
-    }
+    std::nullptr_t no_events = nullptr;
+    return detail::integrate_checked(sys, method, t0, y, sample_times, observer, &no_events);
+}
+
+// The same, watching events (events.hpp): zeros of each event's g(t, y) located on the dense
+// output and recorded in `events` (hits()); a terminal event ends the run with
+// status::stopped_by_event at its time.
+template <class S, class Method, class Times, class Observer,
+          std::enable_if_t<is_method_v<Method>, int> = 0>
+integration_result<typename Method::scalar>
+integrate(const S& sys, const Method& method, detail::identity_t<typename Method::scalar> t0,
+          state_vector<typename Method::scalar, S>& y, const Times& sample_times,
+          Observer&& observer,
+          event_set<typename Method::scalar, state_vector<typename Method::scalar, S>>& events) {
+    using T = typename Method::scalar;
+    if (auto failed = detail::check_arguments<T>(sys, method, t0, y, sample_times)) return *failed;
+    return detail::integrate_checked(sys, method, t0, y, sample_times, observer, &events);
 }
 
 // Integrate to t_end without samples; y holds the state at result.t on return.

@@ -49,6 +49,8 @@ template <class St, class T, class V> void interpolate(const St& st, T theta, V&
 // apart, so that the compiler can keep both out of memory.
 template <class T, class Times, class Observer> class sampler {
   public:
+    static constexpr bool has_events = false; // event_step.hpp's event_sampler: true
+
     sampler(const Times& times, T dir, Observer& observer)
         : m_times(times), m_n(static_cast<std::size_t>(times.size())), m_dir(dir),
           m_observer(observer) {}

@@ -5,6 +5,7 @@
 
 #include "../combine.hpp"
 #include "../result.hpp"
+#include "event_step.hpp"
 #include "messages.hpp"
 
 namespace rotgen::detail {
@@ -16,8 +17,14 @@ template <class S, class St, class Sampler, class T, class V>
 ROTGEN_ALWAYS_INLINE bool end_of_step(const S& sys, St& st, step_stats& stats, Sampler& samples,
                                       bool need_dense, T& t, T t_next, T h, bool last, V& y_now,
                                       V& ys, integration_result<T>& res) {
-    const bool f_ok = st.accept(sys, stats, need_dense);
+    bool f_ok = true;
     res.last_step = h;
+    if constexpr (Sampler::has_events) {
+        if (!step_events(sys, st, stats, samples, need_dense, f_ok, t, t_next, h, y_now, ys, res))
+            return false;
+    } else {
+        f_ok = st.accept(sys, stats, need_dense);
+    }
     if (need_dense && !samples.deliver_inside(st, t, h, t_next, ys)) {
         y_now = ys;
         t = samples.stop_time();

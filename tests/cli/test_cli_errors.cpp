@@ -34,9 +34,10 @@ TEST_CASE("cli: bad command lines of inspect give one line and exit 2", "[cli][e
             "rotgen inspect: unknown format 'xml' (expected text, latex or json)"},
         row{"'" + model + "' --verbose", "rotgen inspect: unknown option '--verbose' for inspect"},
         row{"'" + model + "' other.yaml",
-            "rotgen inspect: inspect takes one model file, got '" + model + "' and 'other.yaml'"},
-        row{"", "rotgen inspect: inspect needs a model file: rotgen inspect MODEL.yaml [--format "
-                "text|latex|json] [--inertia [--symbolic]]"},
+            "rotgen inspect: inspect takes one model or scene file, got '" + model +
+                "' and 'other.yaml'"},
+        row{"", "rotgen inspect: inspect needs a model or scene file: rotgen inspect "
+                "MODEL.yaml|SCENE.yaml [--format text|latex|json] [--inertia [--symbolic]]"},
     }));
     INFO(args);
     check_usage_error(run_rotgen("inspect " + args), line);

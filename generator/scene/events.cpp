@@ -1,0 +1,143 @@
+#include "scene/events.hpp"
+
+#include "expr/print.hpp"
+#include "expr/symbols.hpp"
+#include "scene/scene.hpp"
+
+#include <algorithm>
+#include <map>
+#include <set>
+#include <sstream>
+
+namespace rotgen {
+
+namespace {
+
+// One symbol per record name that is not a coordinate, rate, momentum or omega (energy, ...).
+const GiNaC::ex& record_symbol(const std::string& name) {
+    static std::map<std::string, GiNaC::ex> table;
+    auto it = table.find(name);
+    if (it == table.end()) it = table.emplace(name, GiNaC::realsymbol(name)).first;
+    return it->second;
+}
+
+bool is_name(const std::string& s) {
+    if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
+    return std::all_of(s.begin(), s.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+    });
+}
+
+class event_reader {
+  public:
+    event_reader(const model_spec& model, const std::string& file)
+        : m_names(event_names(model)), m_file(file) {}
+
+    event_spec read(const YAML::Node& n) {
+        if (!n.IsMap())
+            throw user_error(at(n), "an event must be a mapping {name, when, direction, action}");
+        check_keys(n, {"name", "when", "direction", "action"}, m_file, "an event");
+        event_spec e;
+        read_name(n, e);
+        const YAML::Node when = n["when"];
+        if (!when) throw user_error(at(n), "event '" + e.name + "' needs 'when' (an expression)");
+        e.where = at(when);
+        e.when_text = when.IsScalar() ? when.Scalar() : "";
+        if (e.when_text.find_first_not_of(" \t") == std::string::npos)
+            throw user_error(e.where, "event '" + e.name + "': 'when' is an empty expression");
+        e.when = parse_expression(e.when_text, m_names, e.where, "event '" + e.name + "'");
+        if (const YAML::Node d = n["direction"]) {
+            const std::string s = d.IsScalar() ? d.Scalar() : "";
+            if (s != "rising" && s != "falling" && s != "both")
+                throw user_error(at(d), "event '" + e.name + "': unknown direction '" + s +
+                                            "' (expected rising, falling or both)");
+            e.direction = s == "rising" ? 1 : s == "falling" ? -1 : 0;
+        }
+        if (const YAML::Node a = n["action"]) {
+            const std::string s = a.IsScalar() ? a.Scalar() : "";
+            if (s != "stop" && s != "record")
+                throw user_error(at(a), "event '" + e.name + "': unknown action '" + s +
+                                            "' (expected stop or record)");
+            e.stop = s == "stop";
+        }
+        return e;
+    }
+
+  private:
+    source_location at(const YAML::Node& n) const { return location_of(n, m_file); }
+
+    void read_name(const YAML::Node& n, event_spec& e) {
+        const YAML::Node name = n["name"];
+        if (!name) throw user_error(at(n), "an event needs 'name'");
+        e.name = name.IsScalar() ? name.Scalar() : "";
+        if (!is_name(e.name))
+            throw user_error(at(name), "event name '" + e.name +
+                                           "' must be a name: letters, digits and '_', "
+                                           "not starting with a digit");
+        if (!m_seen.insert(e.name).second)
+            throw user_error(at(name), "event name '" + e.name + "' is used twice");
+    }
+
+    name_table m_names;
+    std::string m_file;
+    std::set<std::string> m_seen;
+};
+
+} // namespace
+
+name_table event_names(const model_spec& model) {
+    name_table names = model.parameter_names();
+    const coordinate_symbols& s = symbols();
+    const auto& q = coordinate_names();
+    for (int i = 0; i < 3; ++i) {
+        names[q[i]] = s.q[i];
+        names[q[i] + "_dot"] = s.qd[i];
+        names["p_" + q[i]] = s.p[i];
+        names["omega" + std::to_string(i + 1)] = s.omega[i];
+    }
+    names["t"] = s.t;
+    for (const auto& r : recordable_names())
+        if (names.count(r) == 0 && record_columns(r).size() == 1) names[r] = record_symbol(r);
+    return names;
+}
+
+std::vector<event_spec> read_events(const YAML::Node& n, const model_spec& model,
+                                    const std::string& file) {
+    if (!n) return {};
+    if (!n.IsSequence() || n.size() == 0)
+        throw user_error(location_of(n, file),
+                         "'events' must be a list of {name, when, direction, action}");
+    event_reader reader(model, file);
+    std::vector<event_spec> events;
+    for (const auto& item : n)
+        events.push_back(reader.read(item));
+    return events;
+}
+
+const char* direction_name(int direction) {
+    return direction > 0 ? "rising" : direction < 0 ? "falling" : "both";
+}
+
+std::string describe_events(const std::vector<event_spec>& events, output_format format) {
+    std::ostringstream os;
+    if (format == output_format::json) {
+        os << "\"events\": [";
+        for (std::size_t i = 0; i < events.size(); ++i)
+            os << (i ? ", " : "") << "{\"name\": " << json_quote(events[i].name)
+               << ", \"when\": " << json_quote(to_text(events[i].when)) << ", \"direction\": \""
+               << direction_name(events[i].direction) << "\", \"action\": \""
+               << (events[i].stop ? "stop" : "record") << "\"}";
+        os << "]";
+        return os.str();
+    }
+    const bool latex = format == output_format::latex;
+    os << (latex ? "\n\\section*{Events}\n\\begin{itemize}\n" : "\nEvents (zeros of g, scene)\n");
+    for (const event_spec& e : events)
+        os << (latex ? "\\item " : "  ") << e.name << ": "
+           << (latex ? "$" + to_latex(e.when) + " = 0$" : to_text(e.when) + " = 0") << ", "
+           << direction_name(e.direction) << ", " << (e.stop ? "stop" : "record") << "\n";
+    if (latex) os << "\\end{itemize}\n";
+    return os.str();
+}
+
+} // namespace rotgen

@@ -1,0 +1,313 @@
+// rotgen runtime — events: zeros of functions g(t, y) located on each step's dense output.
+//
+// An event is a callable g(t, y) -> T with a direction and a terminal flag; an event_set holds
+// several and records where they occurred. Passed to integrate() (integrate.hpp), it is checked
+// after every accepted step:
+//
+//   bracket    g is evaluated at the end of each accepted step. The step is searched on its
+//              interpolant (the stepper's continuous extension: DOP853 order 7, DOPRI5 order 4;
+//              cubic Hermite for the others, sampling.hpp) when g changed sign over the step in
+//              the direction the event watches, or
+//              when a pair of zeros could hide in it: g at both ends no larger than
+//              2 |g''| h² (|g''| estimated by the second divided difference of g at the last three
+//              step ends; always in a run's first step). A pair of zeros in a step needs
+//              min(|g(t)|, |g(t + h)|) <= |g''| h² / 2 (Taylor about the extremum between them),
+//              so the factor 4 over that bound leaves room for a changing |g''|.
+//   subdivide  the step is cut into `subdivisions` (default 8) equal parts on the interpolant and
+//              every part over which g changes sign brackets a zero: several zeros in one step are
+//              all found, as long as no part holds two (the parts are h/8 long).
+//   refine     each bracket is refined on the interpolant by the Illinois variant of regula falsi
+//              (Dowell & Jarratt, BIT 11 (1971) 168–174: superlinear, order 1.44, and the bracket
+//              shrinks from both sides) to a bracket of width <= max(1e-14 |t|, 1e-15).
+//   report     zeros in the direction of integration, with the state interpolated there (hits());
+//              `rising` keeps zeros where g goes from negative to positive as the integration
+//              proceeds, `falling` the opposite, `both` either.
+//
+// Rules:
+//   - a zero where g touches 0 without changing sign (an even-order zero) is not an event;
+//   - an event exactly at the initial time is not reported (g(t0) = 0 sets no sign: the first
+//     nonzero value does), so a run continued from an event does not report it again;
+//   - chattering guard: after an event at t_e, the same event is not reported again at times
+//     within 1e-12 · max(|t_e|, |t_end − t0|) of t_e (rounding in g near the zero could otherwise
+//     report one crossing twice);
+//   - a terminal event ends the run at its time (status::stopped_by_event, the caller's state
+//     vector at the event): nothing after it is integrated, delivered to the observer or reported,
+//     except the other events found at the same time (within the refinement tolerance), which are
+//     reported too; samples before the event are delivered first;
+//   - a NaN value of g is skipped (no sign).
+// The event_set keeps each event's last sign and last time across integrate() calls (a run
+// continued in another chart keeps its history); clear() forgets them and the hits.
+//
+//   event_set<double, Eigen::Vector2d> events;
+//   events.add([](double, const Eigen::Vector2d& y) { return y[0]; }, event_direction::falling,
+//              true, "floor");
+//   auto r = integrate(sys, method, t0, y, times, observer, events);
+//   for (const auto& hit : events.hits()) std::cout << events.name(hit.index) << " " << hit.t;
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <functional>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace rotgen {
+
+enum class event_direction {
+    rising,  // g from negative to positive, in the direction of integration
+    falling, // g from positive to negative
+    both
+};
+
+inline const char* to_string(event_direction d) {
+    return d == event_direction::rising    ? "rising"
+           : d == event_direction::falling ? "falling"
+                                           : "both";
+}
+
+template <class T, class State> struct event {
+    std::function<T(T, const State&)> g;
+    event_direction direction = event_direction::both;
+    bool terminal = false;
+    std::string name;
+};
+
+// One event that occurred: which, when, which way g crossed (+1 rising, −1 falling), the state.
+template <class T, class State> struct event_hit {
+    std::size_t index;
+    T t;
+    int sign;
+    State y;
+};
+
+template <class T, class State> class event_set {
+  public:
+    using function = std::function<T(T, const State&)>;
+
+    int subdivisions = 8; // parts of a step searched on the interpolant
+
+    std::size_t add(event<T, State> e) {
+        m_events.push_back(std::move(e));
+        m_track.push_back({});
+        return m_events.size() - 1;
+    }
+    std::size_t add(function g, event_direction d = event_direction::both, bool terminal = false,
+                    std::string name = "") {
+        return add({std::move(g), d, terminal, std::move(name)});
+    }
+
+    std::size_t size() const { return m_events.size(); }
+    const event<T, State>& operator[](std::size_t i) const { return m_events[i]; }
+    const std::string& name(std::size_t i) const { return m_events[i].name; }
+    // The event functions may be exchanged between runs (the same zero in another state layout).
+    void set_function(std::size_t i, function g) { m_events[i].g = std::move(g); }
+
+    const std::vector<event_hit<T, State>>& hits() const { return m_hits; }
+    // The terminal event that ended the last run, if one did.
+    bool stopped() const { return m_stopped; }
+    std::size_t stopped_by() const { return m_stopped_by; }
+    std::size_t steps_searched() const { return m_searched; }
+
+    void clear() {
+        m_hits.clear();
+        m_stopped = false;
+        for (auto& k : m_track)
+            k = {};
+    }
+
+    // ---- used by the driver (integrate/step_end.hpp) ----
+
+    // A run starts at (t0, y0) towards t_end.
+    void begin(T t0, const State& y0, T t_end) {
+        using std::abs;
+        m_dir = t_end >= t0 ? T(1) : T(-1);
+        m_span = abs(t_end - t0);
+        m_stopped = false;
+        m_first_step = true;
+        m_y = y0;
+        for (std::size_t i = 0; i < size(); ++i) {
+            track& k = m_track[i];
+            k.g0 = m_events[i].g(t0, y0);
+            k.t0 = t0;
+            k.have_prev = false;
+            if (sign_of(k.g0) != 0) k.sign = sign_of(k.g0);
+        }
+    }
+
+    // After an accepted step [t, t1] with the new state y1: g at t1, and whether the step must be
+    // searched on its interpolant (a sign change, or a pair of zeros could hide in it).
+    bool check_step(T t, T t1, const State& y1) {
+        bool search = m_first_step;
+        m_first_step = false;
+        for (std::size_t i = 0; i < size(); ++i) {
+            track& k = m_track[i];
+            k.g1 = m_events[i].g(t1, y1);
+            search = search || may_hold_zero(k, t1 - t, m_events[i].direction);
+        }
+        return search;
+    }
+
+    // Searches the step [t, t + h] on the interpolant `interp(theta, State& out)`, theta in
+    // [0, 1], and lists its zeros in time order (found()).
+    template <class Interp> void search(T t, T h, const Interp& interp) {
+        ++m_searched;
+        m_found.clear();
+        const int parts = std::max(subdivisions, 1);
+        m_nodes.resize(static_cast<std::size_t>(parts + 1) * size());
+        for (int j = 0; j <= parts; ++j)
+            for (std::size_t i = 0; i < size(); ++i)
+                node(j, i) = j == 0 ? m_track[i].g0 : j == parts ? m_track[i].g1 : T(0);
+        for (int j = 1; j < parts; ++j) {
+            const T theta = T(j) / T(parts);
+            interp(theta, m_y);
+            for (std::size_t i = 0; i < size(); ++i)
+                node(j, i) = m_events[i].g(t + theta * h, m_y);
+        }
+        for (std::size_t i = 0; i < size(); ++i)
+            bracket_zeros(i, t, h, parts, interp);
+        std::stable_sort(m_found.begin(), m_found.end(),
+                         [&](const zero& a, const zero& b) { return m_dir * (a.t - b.t) < T(0); });
+    }
+
+    struct zero {
+        std::size_t index;
+        T t;
+        int sign;
+    };
+    const std::vector<zero>& found() const { return m_found; }
+
+    // Reports a found zero with the state there; false when it is terminal.
+    bool report(const zero& z, const State& y) {
+        m_hits.push_back({z.index, z.t, z.sign, y});
+        m_track[z.index].last_fire = z.t;
+        m_track[z.index].fired = true;
+        if (!m_events[z.index].terminal) return true;
+        m_stopped = true;
+        m_stopped_by = z.index;
+        return false;
+    }
+
+    // The refinement tolerance at t: max(1e-14 |t|, 1e-15).
+    static T tolerance(T t) {
+        using std::abs;
+        return std::max(T(1e-14) * abs(t), T(1e-15));
+    }
+
+    // The step is done: g at its end becomes g at the next step's start.
+    void end_step(T t1) {
+        for (auto& k : m_track) {
+            if (sign_of(k.g1) != 0) k.sign = sign_of(k.g1);
+            k.gm = k.g0, k.tm = k.t0, k.have_prev = true;
+            k.g0 = k.g1, k.t0 = t1;
+        }
+    }
+
+  private:
+    struct track {
+        T g0 = T(0), g1 = T(0), t0 = T(0); // g at the step's start and end
+        T gm = T(0), tm = T(0);            // g at the previous step's start
+        bool have_prev = false;
+        int sign = 0; // last nonzero sign of g seen
+        T last_fire = T(0);
+        bool fired = false;
+    };
+
+    static int sign_of(T v) { return v > T(0) ? 1 : v < T(0) ? -1 : 0; }
+
+    T& node(int j, std::size_t i) { return m_nodes[static_cast<std::size_t>(j) * size() + i]; }
+
+    // A sign change over the step in the direction watched, or |g| at both ends within
+    // 4 · |g''| h² / 2. (A change the direction filter drops needs no search unless more zeros,
+    // one of them watched, could hide beside it: the same curvature test.)
+    bool may_hold_zero(const track& k, T h, event_direction d) const {
+        using std::abs;
+        using std::isnan;
+        if (isnan(k.g1) || isnan(k.g0)) return false;
+        const int s1 = sign_of(k.g1);
+        if (s1 != 0 && k.sign != 0 && s1 != k.sign &&
+            (d == event_direction::both || (d == event_direction::rising) == (s1 > 0)))
+            return true;
+        if (!k.have_prev) return true;
+        const T hm = k.t0 - k.tm;
+        const T g2 = T(2) * ((k.g1 - k.g0) / h - (k.g0 - k.gm) / hm) / (h + hm); // ≈ g''
+        return std::min(abs(k.g0), abs(k.g1)) <= T(2) * abs(g2) * h * h;
+    }
+
+    // The zeros of event i between the nodes; the sign before the step is the last nonzero one.
+    template <class Interp>
+    void bracket_zeros(std::size_t i, T t, T h, int parts, const Interp& f) {
+        const track& k = m_track[i];
+        int before = k.sign;
+        for (int j = 1; j <= parts; ++j) {
+            const int s = sign_of(node(j, i));
+            if (s == 0 || s == before) continue;
+            if (before == 0) { // the first nonzero value: no sign before it, no event
+                before = s;
+                continue;
+            }
+            // node j−1 has the sign before, or is 0: the zero is there
+            const T ta = t + T(j - 1) / T(parts) * h;
+            const T tb = j == parts ? t + h : t + T(j) / T(parts) * h;
+            const T ga = node(j - 1, i);
+            const T tz = ga == T(0) ? ta : refine(i, ta, ga, tb, node(j, i), t, h, f);
+            before = s;
+            accept_zero(i, tz, s);
+        }
+    }
+
+    // Keeps a zero unless the direction filter or the chattering guard drops it.
+    void accept_zero(std::size_t i, T tz, int s) {
+        using std::abs;
+        const event<T, State>& e = m_events[i];
+        const track& k = m_track[i];
+        if ((e.direction == event_direction::rising && s < 0) ||
+            (e.direction == event_direction::falling && s > 0))
+            return;
+        const T guard = T(1e-12) * std::max(abs(k.last_fire), m_span);
+        for (const zero& z : m_found) // zeros of this step not yet reported
+            if (z.index == i && abs(z.t - tz) <= guard) return;
+        if (k.fired && abs(tz - k.last_fire) <= guard) return;
+        m_found.push_back({i, tz, s});
+    }
+
+    // Illinois: regula falsi on [a, b] (g(a) g(b) < 0); when the same end is kept twice in a row
+    // its value is halved, so that both ends move. Stops at a bracket no wider than tolerance().
+    template <class Interp>
+    T refine(std::size_t i, T a, T ga, T b, T gb, T t, T h, const Interp& interp) {
+        using std::abs;
+        int kept = 0; // +1: a was kept last time, −1: b
+        T c = a;
+        for (int it = 0; it < 200 && abs(b - a) > tolerance(c); ++it) {
+            c = (a * gb - b * ga) / (gb - ga);
+            if (!(std::min(a, b) < c && c < std::max(a, b))) c = a + (b - a) / T(2);
+            interp((c - t) / h, m_y);
+            const T gc = m_events[i].g(c, m_y);
+            if (gc == T(0) || !(gc == gc)) break;
+            if ((gc > T(0)) == (gb > T(0))) {
+                b = c, gb = gc;
+                if (kept == 1) ga /= T(2);
+                kept = 1;
+            } else {
+                a = c, ga = gc;
+                if (kept == -1) gb /= T(2);
+                kept = -1;
+            }
+        }
+        return c;
+    }
+
+    std::vector<event<T, State>> m_events;
+    std::vector<track> m_track;
+    std::vector<T> m_nodes;
+    std::vector<zero> m_found;
+    std::vector<event_hit<T, State>> m_hits;
+    State m_y;
+    T m_dir = T(1), m_span = T(0);
+    bool m_first_step = true, m_stopped = false;
+    std::size_t m_stopped_by = 0, m_searched = 0;
+};
+
+} // namespace rotgen

@@ -1,0 +1,175 @@
+// Scene events end to end (scene/events.hpp, run/event_kernels.hpp, simulate's events CSV): the
+// heavy top's turning points against the roots of the chapter's cubic in u = cos theta and the
+// nutation half-period (an elliptic integral); the shipped falling top stopped at theta = pi/2;
+// every form and the chart switch; `inspect` of a scene.
+#include "support.hpp"
+
+#include <boost/math/special_functions/ellint_1.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+using namespace rotgen::test;
+
+namespace {
+
+std::string scratch(const std::string& name) {
+    return std::string(ROTGEN_BINARY_DIR) + "/" + name;
+}
+
+// The first column (event names) of an events CSV.
+std::vector<std::string> event_names(const std::string& path) {
+    std::istringstream in(read_file(path));
+    std::string line;
+    std::vector<std::string> names;
+    std::getline(in, line);
+    while (std::getline(in, line))
+        names.push_back(line.substr(0, line.find(',')));
+    return names;
+}
+
+// The time the heavy top without spin (a pendulum about its inverted position, 5.73 with
+// phi_dot = psi_dot = 0: I1 theta_ddot = M g h sin theta) takes to fall from rest at theta0 to
+// theta. With alpha = pi - theta measured from below, sin(alpha/2) = k sn(w t' + K, k),
+// k = sin(alpha0/2) = cos(theta0/2), w^2 = M g h / I1 (the pendulum; Lawden, Elliptic Functions
+// and Applications, §5.2), so t = (K(k) - F(asin(cos(theta/2)/k), k)) / w.
+double fall_time(double theta0, double theta) {
+    const double k = std::cos(theta0 / 2), w = std::sqrt(9.81 * 0.1 / 1.0); // heavy_top.yaml
+    return (boost::math::ellint_1(k) -
+            boost::math::ellint_1(k, std::asin(std::cos(theta / 2) / k))) /
+           w;
+}
+
+} // namespace
+
+TEST_CASE("heavy top: theta_dot = 0 at the roots of the cubic in u = cos theta, every nutation "
+          "half-period",
+          "[simulate][events]") {
+    const double I1 = 1.0, I3 = 0.5, M = 1.0, g = 9.81, h = 0.1; // models/heavy_top.yaml
+    const double theta0 = 0.5, spin = 30;
+    const scratch_file scene(
+        "turning_scene.yaml",
+        "model: " + model_path("heavy_top") +
+            "\ninitial: {phi: 0, theta: 0.5, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 30}\ntime: "
+            "{end: 5, samples: 11}\n"
+            "integrator: {method: dop853, rtol: 1e-12, atol: 1e-14}\n"
+            "record: [theta, energy]\nevents: [{name: turn, when: theta_dot}]\n");
+    const run_result r = run_rotgen("simulate '" + scene.path + "' -o '" + scratch("turn.csv") +
+                                    "' --events '" + scratch("turn_events.csv") + "'");
+    INFO(r.out << r.err);
+    REQUIRE(r.status == 0);
+    const csv_table ev = read_csv(scratch("turn_events.csv"));
+    CHECK(ev.header == std::vector<std::string>{"event", "t", "theta", "energy"});
+    REQUIRE(ev.rows.size() >= 10); // theta_dot = 0 at t0 is not an event
+    // (5.79) with u = cos theta: u_dot^2 = f(u) = (beta - alpha u)(1 - u^2) - (b - a u)^2,
+    // a = p_psi/I1, b = p_phi/I1, alpha = 2 M g h/I1, beta = 2 E'/I1, E' = E - p_psi^2/(2 I3):
+    //   f(u) = alpha u^3 - (beta + a^2) u^2 + (2 a b - alpha) u + beta - b^2
+    //        = alpha (u - u1)(u - u2)(u - u3),  u1 < u2 = cos theta0 < 1 < u3.
+    const double p_psi = I3 * spin, p_phi = p_psi * std::cos(theta0);
+    const double E = ev.values("energy").front();
+    const double a = p_psi / I1, b = p_phi / I1, alpha = 2 * M * g * h / I1;
+    const double beta = 2 * (E - p_psi * p_psi / (2 * I3)) / I1;
+    const double u2 = std::cos(theta0);
+    const double q1 = -(beta + a * a) + alpha * u2, q0 = (2 * a * b - alpha) + u2 * q1; // f/(u-u2)
+    const double disc = std::sqrt(q1 * q1 - 4 * alpha * q0);
+    const double u1 = (-q1 - disc) / (2 * alpha), u3 = (-q1 + disc) / (2 * alpha);
+    REQUIRE(u1 < u2);
+    REQUIRE(u3 > 1);
+    // Half-period: the integral of du / sqrt(f) from u1 to u2 = 2 K(k) / sqrt(alpha (u3 - u1)),
+    // k^2 = (u2 - u1)/(u3 - u1) (Byrd & Friedman, Handbook of Elliptic Integrals, 233.00).
+    const double k = std::sqrt((u2 - u1) / (u3 - u1));
+    const double half = 2 * boost::math::ellint_1(k) / std::sqrt(alpha * (u3 - u1));
+    const double theta_max = std::acos(u1);
+    const auto t = ev.values("t"), theta = ev.values("theta");
+    double worst_t = 0, worst_theta = 0;
+    for (std::size_t j = 0; j < t.size(); ++j) {
+        worst_t = std::max(worst_t, std::abs(t[j] - double(j + 1) * half));
+        worst_theta = std::max(worst_theta, std::abs(theta[j] - (j % 2 == 0 ? theta_max : theta0)));
+    }
+    CHECK(worst_t < 5e-12);     // observed 8.2e-13 over 23 turning points
+    CHECK(worst_theta < 1e-13); // observed 1.2e-14
+    CHECK(r.out.find("  event   turn: " + std::to_string(t.size()) + " times\n") !=
+          std::string::npos);
+}
+
+TEST_CASE("the falling top stops at theta = pi/2: the event's row ends the samples",
+          "[simulate][events]") {
+    const std::string csv = scratch("falling.csv");
+    const run_result r = run_rotgen("simulate '" + std::string(ROTGEN_SOURCE_DIR) +
+                                    "/models/scenes/falling_top.yaml' -o '" + csv + "'");
+    INFO(r.out << r.err);
+    REQUIRE(r.status == 0);
+    const csv_table samples = read_csv(csv), ev = read_csv(scratch("falling.events.csv"));
+    CHECK(event_names(scratch("falling.events.csv")) ==
+          std::vector<std::string>{"halfway", "floor"});
+    REQUIRE(ev.rows.size() == 2);
+    CHECK(ev.header == std::vector<std::string>{"event", "t", "theta", "theta_dot", "energy"});
+    // the last sample row is the terminal event's row, exactly; every earlier sample is before it
+    std::vector<double> floor_row(ev.rows[1].begin() + 1, ev.rows[1].end());
+    CHECK(samples.rows.back() == floor_row);
+    CHECK(samples.rows[samples.rows.size() - 2][0] < floor_row[0]);
+    CHECK(samples.rows.size() == 244); // samples every 0.01 up to t = 2.43, then the event
+    CHECK_THAT(ev.rows[0][2], Catch::Matchers::WithinAbs(M_PI / 4, 1e-14)); // observed 1e-16
+    CHECK_THAT(floor_row[1], Catch::Matchers::WithinAbs(M_PI / 2, 1e-14));  // observed 0
+    CHECK_THAT(ev.rows[0][1], Catch::Matchers::WithinAbs(fall_time(0.3, M_PI / 4), 1e-11));
+    CHECK_THAT(floor_row[0], Catch::Matchers::WithinAbs(fall_time(0.3, M_PI / 2), 1e-11));
+    // observed 1.3e-12 both; energy: (1/2) I1 theta_dot^2 = M g h (cos 0.3 - cos theta) (5.73)
+    CHECK_THAT(floor_row[2], Catch::Matchers::WithinAbs(std::sqrt(2 * 0.981 * std::cos(0.3)),
+                                                        5e-12)); // observed 5.3e-13
+    CHECK(r.out.find("  event   halfway: 1 time\n") != std::string::npos);
+    CHECK(r.out.find("  event   floor: 1 time; stopped the run at t = 2.4287803196") !=
+          std::string::npos);
+}
+
+TEST_CASE("events in every form and across the chart switch agree", "[simulate][events]") {
+    // theta0 = 0.05 (|sin theta| < 0.1) starts the Euler-angle forms in the body form, which
+    // returns to the scene's form above |sin theta| = 0.3 before the event.
+    struct row {
+        const char* form;
+        double theta0;
+    };
+    const row c = GENERATE(values<row>({{"lagrangian", 0.3},
+                                        {"hamiltonian", 0.3},
+                                        {"reduced", 0.3},
+                                        {"body", 0.3},
+                                        {"lagrangian", 0.05},
+                                        {"body", 0.05}}));
+    CAPTURE(c.form, c.theta0);
+    const scratch_file scene(
+        "falling_forms.yaml",
+        "model: " + model_path("heavy_top") + "\nform: " + c.form +
+            "\ninitial: {phi: 0, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 0, theta: " +
+            std::to_string(c.theta0) +
+            "}\ntime: {end: 6, samples: 7}\n"
+            "integrator: {method: dop853, rtol: 1e-12, atol: 1e-12}\nrecord: [theta, energy]\n"
+            "events: [{name: floor, when: theta - pi/2, direction: rising, action: stop}]\n");
+    const run_result r =
+        run_rotgen("simulate '" + scene.path + "' -o '" + scratch("falling_forms.csv") + "'");
+    INFO(r.out << r.err);
+    REQUIRE(r.status == 0);
+    CHECK((r.out.find("chart") != std::string::npos) == (c.theta0 < 0.1 && c.form[0] == 'l'));
+    const csv_table ev = read_csv(scratch("falling_forms.events.csv"));
+    REQUIRE(ev.rows.size() == 1);
+    // observed 1.1e-11 (Lagrangian from 0.05, through the body form), 2.7e-12 (body from 0.05)
+    CHECK_THAT(ev.rows[0][1], Catch::Matchers::WithinAbs(fall_time(c.theta0, M_PI / 2), 1e-10));
+}
+
+TEST_CASE("inspect of a scene lists its event functions", "[inspect][events]") {
+    const std::string scene = std::string(ROTGEN_SOURCE_DIR) + "/models/scenes/falling_top.yaml";
+    const run_result text = run_rotgen("inspect '" + scene + "'");
+    INFO(text.out << text.err);
+    REQUIRE(text.status == 0);
+    CHECK(text.out.find("Lagrangian") != std::string::npos); // the model's equations first
+    CHECK(text.out.find("\nEvents (zeros of g, scene)\n"
+                        "  halfway: -pi/4 + theta = 0, rising, record\n"
+                        "  floor: -pi/2 + theta = 0, rising, stop\n") != std::string::npos);
+    const run_result json = run_rotgen("inspect '" + scene + "' --format json");
+    REQUIRE(json.status == 0);
+    CHECK(json.out.find(",\n  \"events\": [{\"name\": \"halfway\", \"when\": \"-pi/4 + theta\", "
+                        "\"direction\": \"rising\", \"action\": \"record\"}, ") !=
+          std::string::npos);
+}
