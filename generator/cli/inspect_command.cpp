@@ -45,10 +45,16 @@ int cmd_inspect(const std::vector<std::string>& args) {
         return 0;
     }
     const output_format format = format_of(o.value("--format"));
-    const model_spec spec = load_model(o.operand);
-    const derivation d = derive(spec);
     if (o.has("--symbolic") && !o.has("--inertia"))
         usage_error(inspect_command, "--symbolic needs --inertia");
+    const model_spec spec = load_model(o.operand);
+    // text and LaTeX --inertia show the inertia report alone, which needs no derivation (and a
+    // linear rotor has none)
+    if (o.has("--inertia") && format != output_format::json) {
+        std::cout << inspect_inertia(spec, format, o.has("--symbolic"));
+        return 0;
+    }
+    const derivation d = derive(spec);
     std::cout << inspect(spec, d, format, o.has("--inertia"), o.has("--symbolic"));
     return 0;
 }
