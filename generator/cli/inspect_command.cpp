@@ -38,6 +38,23 @@ output_format format_of(const std::string& f) {
     usage_error(inspect_command, "unknown format '" + f + "' (expected text, latex or json)");
 }
 
+// The model's report: text and LaTeX --inertia show the inertia report alone, which needs no
+// derivation (and a linear rotor has none).
+std::string model_text(const model_spec& spec, output_format format, bool inertia, bool symbolic) {
+    if (inertia && format != output_format::json) return inspect_inertia(spec, format, symbolic);
+    return inspect(spec, derive(spec), format, inertia, symbolic);
+}
+
+// The report followed by the scene's event functions (in JSON: one more member of the object).
+std::string with_events(std::string text, const scene_spec& scene, output_format format) {
+    if (scene.events.empty()) return text;
+    const std::string events = describe_events(scene.events, format);
+    if (format != output_format::json) return text + events;
+    const auto close = text.rfind('}');
+    const auto last = text.find_last_not_of(" \n", close - 1);
+    return text.substr(0, last + 1) + ",\n  " + events + "\n" + text.substr(close);
+}
+
 } // namespace
 
 int cmd_inspect(const std::vector<std::string>& args) {
@@ -52,25 +69,11 @@ int cmd_inspect(const std::vector<std::string>& args) {
     const bool inertia = o.has("--inertia"), symbolic = o.has("--symbolic");
     const YAML::Node root = load_yaml_file(o.operand);
     if (!(root.IsMap() && root["model"])) { // a model file
-        const model_spec spec = load_model(o.operand);
-        std::cout << inspect(spec, derive(spec), format, inertia, symbolic);
+        std::cout << model_text(load_model(o.operand), format, inertia, symbolic);
         return 0;
     }
     const scene_spec scene = load_scene(o.operand); // a scene names its model
-    std::string text = inspect(scene.model, derive(scene.model), format, inertia, symbolic);
-    if (scene.events.empty()) {
-        std::cout << text;
-        return 0;
-    }
-    const std::string events = describe_events(scene.events, format);
-    if (format == output_format::json) { // one more member of the object
-        const auto close = text.rfind('}');
-        const auto last = text.find_last_not_of(" \n", close - 1);
-        text = text.substr(0, last + 1) + ",\n  " + events + "\n" + text.substr(close);
-    } else {
-        text += events;
-    }
-    std::cout << text;
+    std::cout << with_events(model_text(scene.model, format, inertia, symbolic), scene, format);
     return 0;
 }
 

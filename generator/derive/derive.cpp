@@ -74,9 +74,21 @@ matrix3 inverse_inertia(const model_spec& spec) {
     return inv;
 }
 
+// A linear rotor has two angles, not three: its mass matrix in (phi, theta, psi) is singular.
+void refuse_rotor(const model_spec& spec) {
+    if (spec.rotor)
+        throw user_error(spec.rotor_where,
+                         "model '" + spec.name +
+                             "' is a linear rotor (I1 = 0, I2 = I3: a body on a line, Example "
+                             "5.4); its motion has two angles (phi, theta) and rotgen derives "
+                             "three-angle tops only; 'rotgen inspect " +
+                             spec.file + " --inertia' reports it");
+}
+
 } // namespace
 
 derivation derive(const model_spec& spec) {
+    refuse_rotor(spec);
     const auto& s = symbols();
     derivation d;
     d.omega_jacobian = omega_jacobian();

@@ -126,6 +126,14 @@ struct principal_axes {
 // det A = +1.
 principal_axes find_principal_axes(const matrix3& tensor, const GiNaC::exmap& defaults);
 
+// How many principal moments are exactly zero (0, 1, 2 or 3), decided exactly from the tensor's
+// characteristic polynomial (c3 = det I = 0: one at least; c2 = Σ principal minors = 0 too: two;
+// tr I = 0 too: all), the entries compared after sin² → 1 − cos² (rotor.cpp).
+int exact_zero_moments(const matrix3& tensor);
+// For a tensor with exactly one zero moment (with the triangle inequality: a linear rotor,
+// Example 5.4) the two equal moments across the line, I2 = I3 = tr I / 2, exactly; else nullopt.
+std::optional<GiNaC::ex> exact_rotor_moment(const matrix3& tensor);
+
 // Spherical I1 = I2 = I3; rotor: one moment 0, the other two equal; symmetric: two equal;
 // asymmetric: all different. Equal means within `rel_tol` of the largest moment.
 top_class classify(const std::array<double, 3>& moments, double rel_tol = 1e-12);

@@ -424,11 +424,20 @@ principal_axes find_principal_axes(const matrix3& tensor, const GiNaC::exmap& de
         }
         return r;
     }
+    principal_axes fallback = numeric_axes(tn);
+    if (const auto across = exact_rotor_moment(tensor)) {
+        // a linear rotor (rotor.cpp): moments (0, I, I) exactly, ascending like the fallback's;
+        // the axes numeric (the line is the eigenvector of the zero moment)
+        fallback.exact_moments = true;
+        fallback.moments = {ex(0), *across, *across};
+        const double v = value_or_throw(*across, defaults);
+        fallback.moment_values = {0.0, v, v};
+        return fallback;
+    }
     matrix3 t;
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j)
             t[i][j] = canonical_radicals(tensor[i][j]);
-    principal_axes fallback = numeric_axes(tn);
     const auto roots = exact_roots(t, defaults);
     if (!roots) return fallback;
     const double scale =

@@ -155,6 +155,11 @@ std::string inertia_text(const model_spec& spec, const inertia_report& r, bool s
            << text_vector(r.principal.axes[k]) << "\n";
     }
     os << "class: " << class_description(r.kind) << "\n";
+    if (r.kind == top_class::rotor)
+        os << "a linear rotor (Example 5.4): rotation about its line (axis 1) moves no mass, so "
+              "its attitude\nhas two angles (phi, theta), with T = 1/2 I (theta_dot^2 + "
+              "sin(theta)^2 "
+              "phi_dot^2), I = I2 = I3;\nemit and simulate model three-angle tops only\n";
     os << "\nsteady rotation about each principal axis, force-free (5.87-5.89), per unit spin\n"
        << "(rates scale with the spin omega; numbers at the parameters' defaults"
        << (!symbolic && std::any_of(r.stability.begin(), r.stability.end(), symbolic_rate)

@@ -50,9 +50,10 @@ void model_reader::set_diagonal_flag() {
             if (i != j && !m_spec.inertia[i][j].is_zero()) m_spec.inertia_diagonal = false;
 }
 
-// With the parameters at their defaults the tensor must be positive definite and its principal
-// moments must satisfy the triangle inequality I1 + I2 >= I3 (and permutations).
-void model_reader::check_physical(const YAML::Node& n, const std::string& what) const {
+// With the parameters at their defaults the principal moments must be non-negative and satisfy
+// the triangle inequality I1 + I2 >= I3 (and permutations); a moment may be zero only exactly,
+// and only one: the linear rotor (flagged in the spec, Example 5.4).
+void model_reader::check_physical(const YAML::Node& n, const std::string& what) {
     const GiNaC::exmap defaults = m_spec.parameter_defaults();
     Eigen::Matrix3d I;
     for (int i = 0; i < 3; ++i)
@@ -71,10 +72,21 @@ void model_reader::check_physical(const YAML::Node& n, const std::string& what) 
     if (m[0] < -1e-12 * scale)
         throw user_error(at(n), what + " is not physical: a principal moment is negative " +
                                     moments.str());
+    // Zero moments decided exactly (inertia/rotor.cpp), not from the eigensolver's 1e-17.
+    const int zeros = exact_zero_moments(m_spec.inertia);
+    if (zeros >= 2)
+        throw user_error(at(n), what + " has every principal moment zero " + moments.str() +
+                                    ": a point at the fixed point has no rotation to describe");
+    if (zeros == 1) { // with the triangle inequality above: I1 = 0, I2 = I3
+        m_spec.rotor = true;
+        m_spec.rotor_where = at(n);
+        return;
+    }
     if (!(scale > 0) || m[0] <= 1e-14 * scale)
-        throw user_error(at(n), what + " has a zero principal moment " + moments.str() +
-                                    ": a rotor (a body on a line, section 5.5) has no Euler-angle "
-                                    "equations of motion; give all three moments positive");
+        throw user_error(at(n), what + " has a principal moment that is zero to double precision " +
+                                    moments.str() +
+                                    " but not exactly; a body on a line (a linear rotor, Example "
+                                    "5.4) has I1 = 0 exactly: give its moments exactly");
     // m ascending: m0 + m1 >= m2 is the one of the three inequalities that can fail; equality
     // is the planar limit (a lamina: I3 = I1 + I2, the perpendicular-axis theorem).
     if (m[0] + m[1] < m[2] * (1 - 1e-12)) {

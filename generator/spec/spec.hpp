@@ -60,6 +60,10 @@ struct model_spec {
     vector3 torque;  // body-frame torque, may depend on t, q and q_dot
     bool has_damping = false;
     bool has_torque = false;
+    // A linear rotor (exactly one principal moment zero, exactly: a body on a line, Example 5.4):
+    // `inspect --inertia` reports it; the three-angle derivation refuses it, at `rotor_where`.
+    bool rotor = false;
+    source_location rotor_where;
 
     // parameter name -> symbol, for parsing further expressions (scenes) in this model's terms.
     name_table parameter_names() const;

@@ -45,7 +45,7 @@ class model_reader {
     // inertia_input.cpp: the tensor given directly, and the checks every tensor passes
     void read_inertia(const YAML::Node& n);
     void set_diagonal_flag();
-    void check_physical(const YAML::Node& n, const std::string& what) const;
+    void check_physical(const YAML::Node& n, const std::string& what);
 
     // body_parts.cpp: the tensor from parts
     void read_body(const YAML::Node& n);
