@@ -85,6 +85,23 @@ void refuse_rotor(const model_spec& spec) {
                              spec.file + " --inertia' reports it");
 }
 
+// Q = -c q_dot + J^T tau (virtual work of a body torque: tau . J dq); tau may use omega (body
+// damping -c_i omega_i), which is J q_dot here (5.30).
+vector3 generalized_force(const model_spec& spec, const derivation& d) {
+    const auto& s = symbols();
+    GiNaC::exmap omega_of_rates;
+    for (int i = 0; i < 3; ++i)
+        omega_of_rates[s.omega[i]] = d.omega[i];
+    vector3 Q;
+    for (int i = 0; i < 3; ++i) {
+        ex q = -spec.damping[i] * s.qd[i];
+        for (int k = 0; k < 3; ++k)
+            q += d.omega_jacobian[k][i] * spec.torque[k].subs(omega_of_rates);
+        Q[i] = canonical(q);
+    }
+    return Q;
+}
+
 } // namespace
 
 derivation derive(const model_spec& spec) {
@@ -119,13 +136,7 @@ derivation derive(const model_spec& spec) {
         for (int j = 0; j < 3; ++j)
             d.mass_matrix[i][j] = canonical(d.momenta[i].diff(s.qd[j]));
 
-    // Q = -c q_dot + J^T tau (virtual work of a body torque: tau . J dq)
-    for (int i = 0; i < 3; ++i) {
-        ex Q = -spec.damping[i] * s.qd[i];
-        for (int k = 0; k < 3; ++k)
-            Q += d.omega_jacobian[k][i] * spec.torque[k];
-        d.generalized_force[i] = canonical(Q);
-    }
+    d.generalized_force = generalized_force(spec, d);
 
     // f_i = dL/dq_i - sum_j (dp_i/dq_j) q_dot_j + Q_i, so that d/dt p_i - dL/dq_i = Q_i reads
     // M q_ddot = f.

@@ -65,6 +65,7 @@ bool model_reader::finite_at_generic_state(const ex& e) const {
     for (int i = 0; i < 3; ++i) {
         generic[s.q[i]] = float_numeric(values[i]);
         generic[s.qd[i]] = float_numeric(values[i] / 2);
+        generic[s.omega[i]] = float_numeric(values[i] / 3);
     }
     generic[s.t] = float_numeric(0.5);
     try {
@@ -190,11 +191,15 @@ gravity_spec model_reader::read_gravity(const YAML::Node& g) const {
     return grav;
 }
 
+// damping: c, [c1, c2, c3] (the generalised force -c_i q_dot_i) or {body: [c1, c2, c3]} (the
+// body-axis torque -c_i omega_i, added to the torque); torque: three body-axis components in t,
+// the angles, their rates and omega1..3.
 void model_reader::read_forces(const YAML::Node& root) {
     for (auto& d : m_spec.damping)
         d = 0;
     for (auto& d : m_spec.torque)
         d = 0;
+    vector3 body_damping{0, 0, 0};
     if (const YAML::Node d = root["damping"]) {
         if (d.IsScalar()) {
             const ex c = expression(d, m_names, "damping");
@@ -203,8 +208,18 @@ void model_reader::read_forces(const YAML::Node& root) {
         } else if (d.IsSequence() && d.size() == 3) {
             for (std::size_t i = 0; i < 3; ++i)
                 m_spec.damping[i] = expression(d[i], m_names, "damping");
+        } else if (d.IsMap()) {
+            check_keys(d, {"body"}, m_file, "damping");
+            const YAML::Node b = d["body"];
+            if (!b || !b.IsSequence() || b.size() != 3)
+                throw user_error(at(b ? b : d), "damping 'body' must be a list of three "
+                                                "coefficients [c1, c2, c3] (the torque "
+                                                "-c_i omega_i about body axis i)");
+            for (std::size_t i = 0; i < 3; ++i)
+                body_damping[i] = expression(b[i], m_names, "damping");
         } else {
-            throw user_error(at(d), "'damping' must be one coefficient or a list of three");
+            throw user_error(at(d), "'damping' must be one coefficient, a list of three, or "
+                                    "{body: [c1, c2, c3]}");
         }
         m_spec.has_damping = true;
     }
@@ -214,11 +229,18 @@ void model_reader::read_forces(const YAML::Node& root) {
         name_table names = angle_names();
         const auto& s = symbols();
         names["t"] = s.t;
-        for (int i = 0; i < 3; ++i)
+        for (int i = 0; i < 3; ++i) {
             names[coordinate_names()[i] + "_dot"] = s.qd[i];
+            names["omega" + std::to_string(i + 1)] = s.omega[i];
+        }
         for (std::size_t i = 0; i < 3; ++i)
             m_spec.torque[i] = expression(tq[i], names, "torque");
         m_spec.has_torque = true;
     }
+    for (std::size_t i = 0; i < 3; ++i)
+        if (!body_damping[i].is_zero()) {
+            m_spec.torque[i] += -body_damping[i] * symbols().omega[i];
+            m_spec.has_torque = true;
+        }
 }
 } // namespace rotgen::spec_detail

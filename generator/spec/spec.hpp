@@ -57,7 +57,8 @@ struct model_spec {
     GiNaC::ex potential; // the `potential:` field plus the gravity shorthand
     std::optional<gravity_spec> gravity;
     vector3 damping; // generalised force -damping[i] * q_dot[i]
-    vector3 torque;  // body-frame torque, may depend on t, q and q_dot
+    vector3 torque;  // body-frame torque, may depend on t, q, q_dot and omega (the symbols
+                     // omega1..3); includes the body damping -c_i omega_i
     bool has_damping = false;
     bool has_torque = false;
     // A linear rotor (exactly one principal moment zero, exactly: a body on a line, Example 5.4):

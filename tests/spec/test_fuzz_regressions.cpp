@@ -286,7 +286,7 @@ TEST_CASE("fuzz regressions: hostile model files give one user error line", "[fu
         row{"a file over 1 MiB", top + "# " + std::string(1100000, 'x') + "\n",
             "file is larger than 1 MiB"},
         row{"billion laughs (aliases are shared, never expanded)", top + bomb + "damping: *h\n",
-            "'damping' must be one coefficient or a list of three"},
+            "'damping' must be one coefficient, a list of three, or {body: [c1, c2, c3]}"},
         row{"deeply nested YAML",
             "name: top\ninertia: " + repeat("[", 100000) + repeat("]", 100000) + "\n",
             "fuzz_regression_model.yaml:2:200010: malformed YAML: bad file"},

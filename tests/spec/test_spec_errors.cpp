@@ -91,7 +91,7 @@ TEST_CASE("bad model files give one clear line and exit 2", "[spec][errors]") {
             top + "potential: 9.81*cos(theta)\ngravity: {mass: 1, g: 9.81, com: [0, 0, 1]}\n",
             "5:1", "give 'gravity' or 'potential', not both"},
         row{"damping of the wrong length", top + "damping: [1, 2]\n", "4:10",
-            "'damping' must be one coefficient or a list of three"},
+            "'damping' must be one coefficient, a list of three, or {body: [c1, c2, c3]}"},
         row{"torque not a list", top + "torque: 1\n", "4:9", "'torque' must be a list of three"},
         row{"inertia and body together",
             "name: top\ninertia: [1, 1, 1]\nbody: {parts: [{point: {mass: 1, at: [1, 0, 0]}}]}\n",
