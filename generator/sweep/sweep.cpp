@@ -10,13 +10,16 @@
 #include "sweep/members.hpp"
 #include "sweep/outcome.hpp"
 #include "sweep/parallel.hpp"
+#include "sweep/trajectories.hpp"
 
 #include <sys/stat.h>
 
 #include <atomic>
 #include <cerrno>
 #include <cstring>
+#include <fstream>
 #include <iostream>
+#include <iterator>
 #include <sstream>
 
 namespace rotgen {
@@ -46,7 +49,7 @@ std::string mode_name(sweep_mode m) {
 std::vector<member_outcome> run_members(const prepared_scene& prepared,
                                         const summary_layout& layout, const sweep_plan& plan,
                                         const std::vector<std::vector<double>>& rows, unsigned jobs,
-                                        progress_line& progress) {
+                                        bool trajectories, progress_line& progress) {
     const member_values base = values_of(prepared.scene());
     std::vector<member_outcome> outcomes(rows.size());
     std::atomic<std::size_t> next{0}, done{0};
@@ -57,7 +60,7 @@ std::vector<member_outcome> run_members(const prepared_scene& prepared,
             return m < rows.size() ? m : none;
         },
         [&](std::size_t m) {
-            outcomes[m] = run_one(prepared, layout, member_of(plan, base, rows[m]), false);
+            outcomes[m] = run_one(prepared, layout, member_of(plan, base, rows[m]), trajectories);
             ++done;
         },
         [&] { progress.update(double(done)); });
@@ -85,6 +88,26 @@ void print_summary(std::ostream& os, const sweep_request& q, const scene_spec& s
        << evals << " RHS evaluations\n"
        << "  time    " << short_number(seconds) << " s running the members ("
        << short_number(outcomes.empty() ? 0 : outcomes.size() / seconds) << " members/s)\n";
+}
+
+// DIR/trajectories.h5 from the members' samples.
+void write_h5(const std::string& path, const scene_spec& scene, const sweep_plan& plan,
+              const std::vector<std::vector<double>>& rows, const summary_layout& layout,
+              const std::vector<member_outcome>& outcomes) {
+    trajectory_file f;
+    f.columns = {"t"};
+    f.columns.insert(f.columns.end(), layout.columns.begin(), layout.columns.end());
+    for (const auto& k : plan.keys)
+        f.keys.push_back(k.key);
+    std::ifstream in(scene.file, std::ios::binary);
+    f.scene_text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    f.scene_file = scene.file;
+    f.members = outcomes.size();
+    f.samples = layout.samples;
+    f.values = &rows;
+    for (const auto& o : outcomes)
+        f.data.push_back(&o.trajectory);
+    write_trajectories(path, f);
 }
 
 // One line per failed member (the first ten), on stderr.
@@ -120,8 +143,9 @@ int sweep(const sweep_request& q) {
     const unsigned jobs = q.jobs == 0 ? all_cores() : q.jobs;
     const auto start = std::chrono::steady_clock::now();
     const std::vector<member_outcome> outcomes =
-        timings.time("members", std::to_string(rows.size()),
-                     [&] { return run_members(prepared, layout, plan, rows, jobs, progress); });
+        timings.time("members", std::to_string(rows.size()), [&] {
+            return run_members(prepared, layout, plan, rows, jobs, q.trajectories, progress);
+        });
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     progress.finish();
@@ -129,10 +153,17 @@ int sweep(const sweep_request& q) {
         write_summary(summary_out.stream(), plan, rows, layout, outcomes);
         summary_out.commit();
     });
+    if (q.trajectories)
+        timings.time("write", q.directory + "/trajectories.h5", [&] {
+            write_h5(q.directory + "/trajectories.h5", scene, plan, rows, layout, outcomes);
+        });
     std::ostringstream discarded;
     std::ostream& summary = q.quiet ? discarded : std::cerr;
     print_summary(summary, q, scene, plan, outcomes, jobs, seconds);
     summary << "  wrote   " << summary_out.path() << " (" << outcomes.size() << " members)\n";
+    if (q.trajectories)
+        summary << "  wrote   " << q.directory << "/trajectories.h5 (" << outcomes.size() << " x "
+                << layout.samples << " x " << layout.columns.size() + 1 << ")\n";
     if (q.timings) timings.print(std::cerr);
     bool failed = false;
     for (const auto& o : outcomes)
