@@ -33,33 +33,42 @@ YAML
 scene rk4 "{method: rk4, step: 0.01}"
 scene dop853 "{method: dop853, rtol: 1e-8, atol: 1e-10}"
 
-# seconds running the members: the best of 3 runs of "$@" (the sweep's own summary line)
+# "WALL CPU" of the best of 3 runs of "$@" (by wall time): WALL the sweep's own "running the
+# members" seconds, CPU the user + system seconds of the whole command (every rank, preparation
+# included) from /usr/bin/time
 best_of_3() {
-  local best=""
+  local best="" best_cpu=""
   for _ in 1 2 3; do
     rm -rf "$work/out"
-    local t
-    t=$("$@" -o "$work/out" 2>&1 | sed -n 's/^  time    \([0-9.e+-]*\) s running the members.*/\1/p')
+    local t cpu
+    t=$(/usr/bin/time -f "cpu %U %S" -o "$work/cpu" "$@" -o "$work/out" 2>&1 |
+        sed -n 's/^  time    \([0-9.e+-]*\) s running the members.*/\1/p')
     [[ -n $t ]] || { echo "sweep.sh: no time from: $*" >&2; exit 1; }
-    best=$(awk -v a="$t" -v b="$best" 'BEGIN { print (b == "" || a < b) ? a : b }')
+    cpu=$(awk '/^cpu/ { print $2 + $3 }' "$work/cpu")
+    if [[ -z $best ]] || awk -v a="$t" -v b="$best" 'BEGIN { exit !(a < b) }'; then
+      best=$t best_cpu=$cpu
+    fi
   done
-  echo "$best"
+  echo "$best $best_cpu"
 }
 rate() { awk -v n=$members -v t="$1" 'BEGIN { printf "%.0f", n / t }'; }
 ratio() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", a / b }'; }
+us() { awk -v t="$1" -v n=$members 'BEGIN { printf "%.0f", t / n * 1e6 }'; }
 
 "$rotgen" sweep "$work/rk4.yaml" -o "$work/warm" -q -j 1 # compile the kernels into the cache
+"$rotgen" sweep "$work/dop853.yaml" -o "$work/warm" -q -j 1
 echo "rk4, 1 thread" >&2
-rk4_1=$(best_of_3 "$rotgen" sweep "$work/rk4.yaml" -j 1)
+read -r rk4_1 rk4_1c < <(best_of_3 "$rotgen" sweep "$work/rk4.yaml" -j 1)
 echo "dop853, 1 thread" >&2
-dop_1=$(best_of_3 "$rotgen" sweep "$work/dop853.yaml" -j 1)
+read -r dop_1 dop_1c < <(best_of_3 "$rotgen" sweep "$work/dop853.yaml" -j 1)
 echo "dop853, 2 threads" >&2
-dop_2=$(best_of_3 "$rotgen" sweep "$work/dop853.yaml" -j 2)
+read -r dop_2 dop_2c < <(best_of_3 "$rotgen" sweep "$work/dop853.yaml" -j 2)
 echo "dop853, mpirun -n 2" >&2
-mpi_2=$(best_of_3 mpirun -n 2 --oversubscribe "${root_flag[@]}" "$rotgen" sweep "$work/dop853.yaml")
-# overhead per member: the core-seconds two ranks spend beyond one process's, per member
-overhead=$(awk -v n=$members -v one="$dop_1" -v two="$mpi_2" \
-  'BEGIN { printf "%.1f", (2 * two - one) / n * 1e6 }')
+read -r mpi_2 mpi_2c < <(best_of_3 mpirun -n 2 --oversubscribe "${root_flag[@]}" "$rotgen" sweep \
+  "$work/dop853.yaml")
+# overhead per member: the core time two ranks spend beyond one process's, per member
+overhead=$(awk -v n=$members -v one="$dop_1c" -v two="$mpi_2c" \
+  'BEGIN { printf "%.0f", (two - one) / n * 1e6 }')
 
 cat <<EOF2
 # rotgen sweep: ensemble throughput
@@ -71,13 +80,14 @@ figures are the best of 3 runs and still move with the load).
 The heavy top, $members members (initial theta 0.1 .. 1.5), t = 0 .. 10, 101 samples, records theta and
 energy; the time is the sweep's own "running the members" (the kernels compiled once, before).
 
-| run | seconds | members/s | per member | speed-up |
+| run | wall s | members/s (wall) | wall speed-up | CPU µs per member |
 |---|---:|---:|---:|---:|
-| RK4, step 0.01, 1 thread | $rk4_1 | $(rate "$rk4_1") | $(awk -v t="$rk4_1" -v n=$members 'BEGIN { printf "%.0f µs", t / n * 1e6 }') | |
-| DOP853, rtol 1e-8, 1 thread | $dop_1 | $(rate "$dop_1") | $(awk -v t="$dop_1" -v n=$members 'BEGIN { printf "%.0f µs", t / n * 1e6 }') | 1 |
-| DOP853, 2 threads (\`-j 2\`) | $dop_2 | $(rate "$dop_2") | | $(ratio "$dop_1" "$dop_2") (goal 1.8) |
-| DOP853, \`mpirun -n 2\` | $mpi_2 | $(rate "$mpi_2") | | $(ratio "$dop_1" "$mpi_2") (goal 1.7) |
+| RK4, step 0.01, 1 thread | $rk4_1 | $(rate "$rk4_1") | | $(us "$rk4_1c") |
+| DOP853, rtol 1e-8, 1 thread | $dop_1 | $(rate "$dop_1") | 1 | $(us "$dop_1c") |
+| DOP853, 2 threads (\`-j 2\`) | $dop_2 | $(rate "$dop_2") | $(ratio "$dop_1" "$dop_2") (goal 1.8) | $(us "$dop_2c") |
+| DOP853, \`mpirun -n 2\` | $mpi_2 | $(rate "$mpi_2") | $(ratio "$dop_1" "$mpi_2") (goal 1.7) | $(us "$mpi_2c") |
 
-MPI overhead per member (2 x the 2-rank time - the 1-process time, over $members members): $overhead µs of
-core time.
+CPU µs per member: the command's user + system time (all ranks, preparation included) over the
+$members members. MPI overhead per member (the 2-rank CPU time minus the 1-process CPU time, over
+the members): $overhead µs (rank 0's queue, the messages, the second rank's preparation).
 EOF2
