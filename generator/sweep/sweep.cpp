@@ -90,14 +90,12 @@ void write_h5(const std::string& path, const scene_spec& scene, const sweep_plan
 
 // One line per failed member (the first ten), on stderr.
 void report_failures(const std::string& scene_file, const std::vector<member_outcome>& outcomes) {
-    std::size_t shown = 0, failed = 0;
-    for (std::size_t m = 0; m < outcomes.size(); ++m) {
-        if (outcomes[m].ok()) continue;
-        if (++failed <= 10)
+    constexpr std::size_t shown = 10;
+    std::size_t failed = 0;
+    for (std::size_t m = 0; m < outcomes.size(); ++m)
+        if (!outcomes[m].ok() && ++failed <= shown)
             std::cerr << "rotgen: error: " << scene_file << ": member " << m << ": "
-                      << outcomes[m].status << "\n",
-                ++shown;
-    }
+                      << outcomes[m].status << "\n";
     if (failed > shown)
         std::cerr << "rotgen: error: " << failed - shown << " more members failed (status in "
                   << "summary.csv)\n";
