@@ -1,4 +1,5 @@
-// rotgen sweep SCENE.yaml -o DIR [--vary KEY=FROM:TO:COUNT]... [-j N] [--timings] [--quiet]
+// rotgen sweep SCENE.yaml -o DIR [--vary KEY=FROM:TO:COUNT]... [-j N] [--trajectories] [--timings]
+// [--quiet]
 #include "cli/commands.hpp"
 #include "cli/options.hpp"
 #include "sweep/sweep.hpp"
@@ -13,7 +14,8 @@ namespace {
 const command_spec sweep_command{
     "sweep",
     "scene file",
-    "SCENE.yaml -o DIR [--vary KEY=FROM:TO:COUNT]... [-j N] [--timings] [--quiet]",
+    "SCENE.yaml -o DIR [--vary KEY=FROM:TO:COUNT]... [-j N] [--trajectories] [--timings] "
+    "[--quiet]",
     "Runs an ensemble of the scene: the members vary its initial values and parameters as its\n"
     "sweep: block and the --vary options say (grid, zip or random). The model is derived and its\n"
     "kernels compiled once for all members. Writes DIR/summary.csv, one row per member in member\n"
@@ -32,6 +34,10 @@ const command_spec sweep_command{
       false,
       true},
      {"-j", "N", "run N members at a time, on N threads (default: every core)", {"--jobs"}},
+     {"--trajectories",
+      "",
+      "also write DIR/trajectories.h5: every member's samples, [member, sample, column]",
+      {}},
      {"--timings", "", "print the wall time of each pipeline stage to standard error", {}},
      {"--quiet", "", "no summary and no progress line (errors are still reported)", {"-q"}}}};
 
@@ -57,6 +63,7 @@ int cmd_sweep(const std::vector<std::string>& args) {
                         "-j needs a whole number of threads from 1 to 4096, got '" + j + "'");
         q.jobs = static_cast<unsigned>(n);
     }
+    q.trajectories = o.has("--trajectories");
     q.timings = o.has("--timings");
     q.quiet = o.has("--quiet");
     return sweep(q);

@@ -26,13 +26,6 @@ struct sample {
     std::size_t form; // index into scene_run::m_compiled
 };
 
-double number(const GiNaC::ex& e, const GiNaC::exmap& at) {
-    const GiNaC::ex v = GiNaC::evalf(e.subs(at));
-    if (!GiNaC::is_a<GiNaC::numeric>(v) || !GiNaC::ex_to<GiNaC::numeric>(v).is_real())
-        throw std::logic_error("run: expression did not evaluate to a real number");
-    return GiNaC::ex_to<GiNaC::numeric>(v).to_double();
-}
-
 // The sample times: samples points from t_start to t_end, the last exactly t_end.
 std::vector<double> sample_times(const scene_spec& scene) {
     std::vector<double> times(static_cast<std::size_t>(scene.samples));
@@ -115,30 +108,18 @@ class scene_run {
     run_result m_result;
 };
 
-// The member's exact start, with GiNaC (under the lock; the scene copy dies inside it): the
-// inertia tensor, the parameter values and the initial kinematics at this member's values.
+// The member's exact start (prepared_scene::exact_start, GiNaC under the lock): the inertia
+// tensor, the parameter values and the initial kinematics at this member's values.
 initial_kinematics scene_run::exact_start() {
-    const std::lock_guard<std::mutex> lock(symbolic_mutex());
-    scene_spec scene = m_scene;
-    scene.angles = m_values.angles;
-    scene.initial_rates = m_values.initial_rates;
-    scene.parameters = m_values.parameters;
-    const model_spec& spec = scene.model;
-    GiNaC::exmap parameter_values;
-    for (std::size_t i = 0; i < spec.parameters.size(); ++i)
-        parameter_values[spec.parameters[i].symbol] = float_numeric(scene.parameters[i]);
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-            m_inertia(i, j) = number(spec.inertia[i][j], parameter_values);
-    for (const auto& p : spec.parameters)
-        m_model_parameters.push_back(scene_parameter_value(scene, {}, p.name));
     decide_chart();
-    const initial_kinematics k0 = initial_kinematics_of(scene, m_prepared.derived());
-    if (scene.initial == initial_kind::momenta && !k0.have_rates)
-        throw user_error(scene.initial_where,
+    member_start start = m_prepared.exact_start(m_values);
+    m_inertia = start.inertia;
+    m_model_parameters = std::move(start.model_parameters);
+    if (m_scene.initial == initial_kind::momenta && !start.k0.have_rates)
+        throw user_error(m_scene.initial_where,
                          "momenta cannot give the rates at theta = 0 or pi (the mass matrix is "
                          "singular there); give body omega1..3 instead");
-    return k0;
+    return start.k0;
 }
 
 void scene_run::set_up_events() {

@@ -1,5 +1,6 @@
 #include "run/prepared.hpp"
 
+#include "expr/numbers.hpp"
 #include "expr/symbols.hpp"
 #include "run/engine.hpp"
 #include "run/split_run.hpp"
@@ -11,7 +12,8 @@ std::mutex& symbolic_mutex() {
     return m;
 }
 
-prepared_scene::prepared_scene(const scene_spec& scene, stage_timings& timings) : m_scene(scene) {
+prepared_scene::prepared_scene(const scene_spec& scene, stage_timings& timings)
+    : m_scene(scene), m_scratch(scene) {
     const model_spec& spec = m_scene.model;
     m_d = timings.time("derive", spec.name, [&] { return derive(spec); });
     const bool split = is_split_method(m_scene.integrator.method);
@@ -87,6 +89,39 @@ const compiled_form& prepared_scene::compiled(form_kind form, stage_timings& tim
         m_scene, built(form, orientation, timings), orientation, m_invariants, command, timings));
     if (cached && !c->lib.was_cached()) *cached = false;
     return *m_compiled.emplace(form, std::move(c)).first->second;
+}
+
+member_start prepared_scene::exact_start(const member_values& values) const {
+    const std::lock_guard<std::mutex> lock(symbolic_mutex());
+    m_scratch.angles = values.angles;
+    m_scratch.initial_rates = values.initial_rates;
+    m_scratch.parameters = values.parameters;
+    const model_spec& spec = m_scratch.model;
+    member_start start;
+    auto it = m_by_parameters.find(values.parameters);
+    if (it == m_by_parameters.end()) {
+        if (m_by_parameters.size() >= 4096) m_by_parameters.clear(); // bounded memory
+        GiNaC::exmap at;
+        for (std::size_t i = 0; i < spec.parameters.size(); ++i)
+            at[spec.parameters[i].symbol] = float_numeric(values.parameters[i]);
+        Eigen::Matrix3d inertia;
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) {
+                const GiNaC::ex v = GiNaC::evalf(spec.inertia[i][j].subs(at));
+                if (!GiNaC::is_a<GiNaC::numeric>(v) || !GiNaC::ex_to<GiNaC::numeric>(v).is_real())
+                    throw std::logic_error("run: expression did not evaluate to a real number");
+                inertia(i, j) = GiNaC::ex_to<GiNaC::numeric>(v).to_double();
+            }
+        std::vector<long double> model_parameters;
+        for (const auto& p : spec.parameters)
+            model_parameters.push_back(scene_parameter_value(m_scratch, {}, p.name));
+        it = m_by_parameters.emplace(values.parameters, std::make_pair(inertia, model_parameters))
+                 .first;
+    }
+    start.inertia = it->second.first;
+    start.model_parameters = it->second.second;
+    start.k0 = initial_kinematics_of(m_scratch, m_d);
+    return start;
 }
 
 void prepared_scene::compile_all(stage_timings& timings) const {

@@ -9,6 +9,7 @@
 
 #include "derive/derive.hpp"
 #include "run/kernels.hpp"
+#include "run/kinematics.hpp"
 #include "scene/scene.hpp"
 #include "support/timings.hpp"
 
@@ -22,6 +23,16 @@ namespace rotgen {
 // Held by every use of GiNaC that may run beside a member (the one process-wide lock: GiNaC's own
 // state is process-wide).
 std::mutex& symbolic_mutex();
+
+struct member_values; // run/engine.hpp
+
+// What a member's values give exactly (GiNaC, 30 digits): the initial kinematics, the inertia
+// tensor (5.39) and the model's parameter values.
+struct member_start {
+    initial_kinematics k0;
+    Eigen::Matrix3d inertia;
+    std::vector<long double> model_parameters;
+};
 
 class prepared_scene {
   public:
@@ -43,6 +54,9 @@ class prepared_scene {
     const compiled_form& compiled(form_kind form, stage_timings& timings, bool* cached) const;
     // Compiles now every form a member may use: the scene's, and the body form when it can switch.
     void compile_all(stage_timings& timings) const;
+    // A member's exact start (thread-safe: under symbolic_mutex(), on a scratch copy of the scene
+    // kept for it; the tensor and parameter values are kept per parameter vector).
+    member_start exact_start(const member_values& values) const;
 
   private:
     const form_expressions& built(form_kind form, bool orientation, stage_timings& timings) const;
@@ -55,6 +69,9 @@ class prepared_scene {
     std::vector<invariant> m_invariants;
     mutable std::map<std::pair<form_kind, bool>, form_expressions> m_forms; // each built once
     mutable std::map<form_kind, std::unique_ptr<compiled_form>> m_compiled;
+    mutable scene_spec m_scratch; // the scene with a member's values (under the lock)
+    mutable std::map<std::vector<double>, std::pair<Eigen::Matrix3d, std::vector<long double>>>
+        m_by_parameters;
 };
 
 } // namespace rotgen

@@ -7,7 +7,8 @@
 //                     final.t and final.<column> for every recorded column (the last sample
 //                     reached), drift.<invariant> (max |v(t) - v(t0)| over the samples), steps
 //                     (accepted), rhs_evals, status (ok, or why the run stopped); no timings, so
-//                     the file is the same byte for byte on every run.
+//                     the file is the same byte for byte on every run;
+//   trajectories.h5   with --trajectories: every member's samples (sweep/trajectories.hpp).
 // A member that fails does not stop the others; the exit status is then 3. Members run on `jobs`
 // threads (sweep/parallel.hpp); the files are the same for every number of threads.
 #pragma once
@@ -22,6 +23,7 @@ struct sweep_request {
     std::string directory;         // where the files go (created if missing)
     std::vector<std::string> vary; // --vary KEY=FROM:TO:COUNT entries
     unsigned jobs = 0;             // threads; 0: every core
+    bool trajectories = false;     // also DIR/trajectories.h5 (sweep/trajectories.hpp)
     bool timings = false;          // one line per pipeline stage to stderr
     bool quiet = false;            // no summary and no progress line
 };

@@ -169,7 +169,7 @@ TEST_CASE("sweep: a failing member is reported with its reason while the others 
     CHECK(r.err.find("member 3: stopped at t = ") != std::string::npos);
 }
 
-TEST_CASE("sweep: -j 1 and -j 2 write the same file, byte for byte", "[sweep]") {
+TEST_CASE("sweep: -j 1 and -j 2 write the same files, byte for byte", "[sweep]") {
     // Members of different costs (spin 5 .. 200) and one that fails, so that two threads finish
     // them in another order than one thread does.
     const scratch_file scene(
@@ -177,15 +177,18 @@ TEST_CASE("sweep: -j 1 and -j 2 write the same file, byte for byte", "[sweep]") 
         heavy_top_scene("{phi: 0, theta: 0.5, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 30}",
                         "sweep:\n  vary:\n    initial.psi_dot: {from: 5, to: 200, count: 12}\n"
                         "    initial.theta: {values: [0.3, 0, 1.2]}\nswitch_chart: false\n"));
-    std::string files[2];
+    std::string files[2], h5[2];
     for (int j = 1; j <= 2; ++j) {
         const std::string dir = scratch("sweep_threads_" + std::to_string(j));
-        const test::run_result r =
-            run_rotgen("sweep '" + scene.path + "' -o '" + dir + "' -q -j " + std::to_string(j));
+        const test::run_result r = run_rotgen("sweep '" + scene.path + "' -o '" + dir +
+                                              "' -q --trajectories -j " + std::to_string(j));
         INFO(r.err);
         CHECK(r.status == 3); // the theta = 0 members
         files[j - 1] = read_file(dir + "/summary.csv");
+        h5[j - 1] = read_file(dir + "/trajectories.h5");
     }
+    CHECK(h5[0].size() > 36 * 201 * 5 * 8); // members x samples x columns x 8 bytes
+    CHECK(h5[0] == h5[1]);
     CHECK(lines(files[0]).size() == 37);
     CHECK(files[0] == files[1]);
 }

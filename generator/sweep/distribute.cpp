@@ -1,0 +1,252 @@
+#include "sweep/distribute.hpp"
+
+#include "sweep/parallel.hpp"
+
+#include <atomic>
+#include <cstdlib>
+#include <cstring>
+#include <exception>
+#include <mutex>
+#include <stdexcept>
+
+#ifdef ROTGEN_HAVE_MPI
+#include <mpi.h>
+
+#include <chrono>
+#include <thread>
+#endif
+
+namespace rotgen {
+
+namespace {
+
+template <class T> void put(std::string& out, const T& v) {
+    out.append(reinterpret_cast<const char*>(&v), sizeof v);
+}
+
+template <class T> T get(const std::string& in, std::size_t& at) {
+    if (at + sizeof(T) > in.size()) throw std::runtime_error("sweep: a truncated MPI message");
+    T v;
+    std::memcpy(&v, in.data() + at, sizeof v);
+    at += sizeof v;
+    return v;
+}
+
+void put_doubles(std::string& out, const std::vector<double>& v) {
+    put<std::uint64_t>(out, v.size());
+    out.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(double));
+}
+
+std::vector<double> get_doubles(const std::string& in, std::size_t& at) {
+    std::vector<double> v(get<std::uint64_t>(in, at));
+    if (at + v.size() * sizeof(double) > in.size())
+        throw std::runtime_error("sweep: a truncated MPI message");
+    std::memcpy(v.data(), in.data() + at, v.size() * sizeof(double));
+    at += v.size() * sizeof(double);
+    return v;
+}
+
+// The members this process takes from the shared index `next` (up to count), on its threads, each
+// outcome into its slot; `done` counts them.
+void run_here(std::atomic<std::size_t>& next, std::size_t count, unsigned jobs,
+              const member_work& work, std::vector<member_outcome>& outcomes,
+              std::atomic<std::size_t>& done, const std::function<void()>& tick) {
+    run_pool(
+        jobs,
+        [&] {
+            const std::size_t m = next++;
+            return m < count ? m : none;
+        },
+        [&](std::size_t m) {
+            outcomes[m] = work(m);
+            ++done;
+        },
+        tick);
+}
+
+// One process: every member on this process's threads.
+std::vector<member_outcome> run_here(std::size_t count, unsigned jobs, const member_work& work,
+                                     const std::function<void(std::size_t)>& progress) {
+    std::vector<member_outcome> outcomes(count);
+    std::atomic<std::size_t> next{0}, done{0};
+    run_here(next, count, jobs, work, outcomes, done, [&] { progress(done); });
+    return outcomes;
+}
+
+} // namespace
+
+std::string pack(const std::vector<std::pair<std::size_t, member_outcome>>& outcomes) {
+    std::string out;
+    put<std::uint64_t>(out, outcomes.size());
+    for (const auto& [m, o] : outcomes) {
+        put<std::uint64_t>(out, m);
+        put_doubles(out, o.final_row);
+        put_doubles(out, o.drifts);
+        put<std::uint64_t>(out, o.steps);
+        put<std::uint64_t>(out, o.rhs_evals);
+        put<std::uint64_t>(out, o.status.size());
+        out += o.status;
+        put_doubles(out, o.trajectory);
+    }
+    return out;
+}
+
+std::vector<std::pair<std::size_t, member_outcome>> unpack(const std::string& in) {
+    std::size_t at = 0;
+    std::vector<std::pair<std::size_t, member_outcome>> outcomes(get<std::uint64_t>(in, at));
+    for (auto& [m, o] : outcomes) {
+        m = get<std::uint64_t>(in, at);
+        o.final_row = get_doubles(in, at);
+        o.drifts = get_doubles(in, at);
+        o.steps = get<std::uint64_t>(in, at);
+        o.rhs_evals = get<std::uint64_t>(in, at);
+        const std::size_t n = get<std::uint64_t>(in, at);
+        if (at + n > in.size()) throw std::runtime_error("sweep: a truncated MPI message");
+        o.status = in.substr(at, n);
+        at += n;
+        o.trajectory = get_doubles(in, at);
+    }
+    return outcomes;
+}
+
+#ifndef ROTGEN_HAVE_MPI
+
+mpi_session::mpi_session() = default;
+mpi_session::~mpi_session() = default;
+bool mpi_session::all(bool ok) const {
+    return ok;
+}
+
+std::vector<member_outcome> run_distributed(const mpi_session&, std::size_t count, unsigned jobs,
+                                            const member_work& work,
+                                            const std::function<void(std::size_t)>& progress) {
+    return run_here(count, jobs, work, progress);
+}
+
+#else
+
+namespace {
+
+enum tag : int { request = 1, assignment = 2, results = 3 };
+
+bool started_by_mpirun() {
+    for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK", "MPI_LOCALNRANKS"})
+        if (std::getenv(v)) return true;
+    return false;
+}
+
+// A rank other than 0: ask for a chunk, run it on the threads, send the outcomes, until told that
+// the queue is empty (an empty chunk).
+void serve_as_worker(unsigned jobs, const member_work& work) {
+    for (;;) {
+        MPI_Send(nullptr, 0, MPI_BYTE, 0, request, MPI_COMM_WORLD);
+        std::uint64_t chunk[2];
+        MPI_Recv(chunk, 2, MPI_UINT64_T, 0, assignment, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+        if (chunk[0] == chunk[1]) return;
+        std::vector<std::pair<std::size_t, member_outcome>> out(chunk[1] - chunk[0]);
+        std::atomic<std::size_t> next{chunk[0]};
+        run_pool(
+            jobs,
+            [&] {
+                const std::size_t m = next++;
+                return m < chunk[1] ? m : none;
+            },
+            [&](std::size_t m) {
+                out[m - chunk[0]] = {m, work(m)};
+            },
+            {});
+        const std::string bytes = pack(out);
+        MPI_Send(bytes.data(), int(bytes.size()), MPI_BYTE, 0, results, MPI_COMM_WORLD);
+    }
+}
+
+// Rank 0's main thread: answers every pending message (requests: the next chunk of the shared
+// queue; results: into their members' slots). Returns the number of outcomes received.
+std::size_t answer(const mpi_session& s, std::atomic<std::size_t>& next, std::size_t count,
+                   std::vector<member_outcome>& outcomes, int& finished) {
+    std::size_t received = 0;
+    for (int flag = 1; flag;) {
+        MPI_Status st;
+        MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &st);
+        if (!flag) break;
+        int bytes = 0;
+        MPI_Get_count(&st, MPI_BYTE, &bytes);
+        std::string buffer(std::size_t(bytes), '\0');
+        MPI_Recv(buffer.data(), bytes, MPI_BYTE, st.MPI_SOURCE, st.MPI_TAG, MPI_COMM_WORLD,
+                 MPI_STATUS_IGNORE);
+        if (st.MPI_TAG == results) {
+            for (auto& [m, o] : unpack(buffer))
+                outcomes[m] = std::move(o), ++received;
+            continue;
+        }
+        const std::size_t remaining = count - std::min(count, next.load());
+        const std::size_t size = std::max<std::size_t>(1, remaining / (4 * std::size_t(s.size())));
+        const std::size_t begin = std::min(count, next.fetch_add(size));
+        const std::uint64_t chunk[2] = {begin, std::min(count, begin + size)};
+        if (chunk[0] == chunk[1]) ++finished;
+        MPI_Send(chunk, 2, MPI_UINT64_T, st.MPI_SOURCE, assignment, MPI_COMM_WORLD);
+    }
+    return received;
+}
+
+} // namespace
+
+mpi_session::mpi_session() {
+    if (!started_by_mpirun()) return;
+    int provided = 0;
+    MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
+    MPI_Comm_rank(MPI_COMM_WORLD, &m_rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &m_size);
+    m_active = true;
+}
+
+mpi_session::~mpi_session() {
+    if (m_active) MPI_Finalize();
+}
+
+bool mpi_session::all(bool ok) const {
+    if (!m_active) return ok;
+    int mine = ok ? 1 : 0, every = 0;
+    MPI_Allreduce(&mine, &every, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+    return every == 1;
+}
+
+std::vector<member_outcome> run_distributed(const mpi_session& s, std::size_t count, unsigned jobs,
+                                            const member_work& work,
+                                            const std::function<void(std::size_t)>& progress) {
+    if (s.size() == 1) return run_here(count, jobs, work, progress);
+    if (s.rank() != 0) {
+        serve_as_worker(jobs, work);
+        return {};
+    }
+    std::vector<member_outcome> outcomes(count);
+    std::atomic<std::size_t> next{0}, done{0};
+    std::size_t received = 0;
+    int finished = 0; // ranks told that the queue is empty
+    std::exception_ptr failure;
+    std::atomic<bool> stopped{false};
+    std::thread local([&] {
+        try {
+            run_here(next, count, jobs, work, outcomes, done, {});
+        } catch (...) {
+            failure = std::current_exception();
+        }
+        stopped = true;
+    });
+    auto last = std::chrono::steady_clock::now();
+    while (!(stopped && failure) && (finished < s.size() - 1 || done + received < count)) {
+        received += answer(s, next, count, outcomes, finished);
+        if (std::chrono::steady_clock::now() - last > std::chrono::milliseconds(100)) {
+            progress(done + received);
+            last = std::chrono::steady_clock::now();
+        }
+        std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
+    local.join();
+    if (failure) MPI_Abort(MPI_COMM_WORLD, 1); // an internal error: the other ranks would wait
+    return outcomes;
+}
+
+#endif
+
+} // namespace rotgen
