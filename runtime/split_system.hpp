@@ -40,6 +40,21 @@ struct has_split_interface<
 template <class S, class T>
 inline constexpr bool has_split_interface_v = detail::has_split_interface<S, T>::value;
 
+// The torque of uniform gravity on a body whose centre of mass is r (body axes) from the fixed
+// point: τ = r × (−M g ê) = M g ê × r, ê the space vertical in body axes, ê = R(q)ᵀ e_z =
+// (2(xz − wy), 2(yz + wx), 1 − 2(x² + y²)); the potential is V = M g r·ê (M g h cos θ for
+// r = (0, 0, h), (5.73)). `mg_r` holds M g r.
+template <class T> struct gravity_torque {
+    std::array<T, 3> mg_r;
+    void operator()(T, const T* y, T* tau) const {
+        const T e[3] = {T(2) * (y[1] * y[3] - y[0] * y[2]), T(2) * (y[2] * y[3] + y[0] * y[1]),
+                        T(1) - T(2) * (y[1] * y[1] + y[2] * y[2])};
+        tau[0] = e[1] * mg_r[2] - e[2] * mg_r[1];
+        tau[1] = e[2] * mg_r[0] - e[0] * mg_r[2];
+        tau[2] = e[0] * mg_r[1] - e[1] * mg_r[0];
+    }
+};
+
 template <class T, class Torque> class split_body_system {
   public:
     static constexpr std::size_t state_size = 7;

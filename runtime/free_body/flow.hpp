@@ -91,6 +91,19 @@ template <class T> class free_body_flow {
         return p;
     }
 
+    // |m| = G is an invariant; the elliptic formulas keep it to a few eps per call only, and a
+    // splitting run of many calls drifts in G and hence in the spin rate: 1.6e-10 rad after 3e4
+    // calls at spin 100 (asymmetric heavy top), 6.2e-11 with this correction (1.4e-11 and 1.5e-12
+    // with a larger nutation). The dn component is set from G² and the other two, where it
+    // dominates (m_a² > G²/2: the square root is then well conditioned).
+    static void keep_norm(vec3& m, T g2, int a) {
+        using std::sqrt;
+        const T axis2 = m[a] * m[a];
+        if (!(axis2 > g2 / T(2))) return;
+        const T rest = m.squaredNorm() - axis2;
+        m[a] = (m[a] >= T(0) ? T(1) : T(-1)) * sqrt(g2 - rest);
+    }
+
     // Sphere, symmetric top, or a spin about a principal axis (see the file comment).
     void symmetric(quat& q, vec3& m, T h, int distinct) const {
         const T g = m.norm();
@@ -113,8 +126,10 @@ template <class T> class free_body_flow {
         const T g = motion.g();
         const vec3 e = T(motion.axis_sign()) * vec3::Unit(motion.axis());
         const quat p0 = to_axis(m, g, e);
+        const T g2 = m.squaredNorm();
         const auto end = motion.at(h);
         m = vec3(end.m[0], end.m[1], end.m[2]);
+        keep_norm(m, g2, motion.axis());
         const T psi = motion.precession(h, end);
         q = q * p0.conjugate() * axis_angle(e, psi) * to_axis(m, g, e);
     }

@@ -20,20 +20,8 @@ namespace {
 using ld = long double;
 constexpr double mgh = 0.981;
 
-// Gravity on a body with its centre of mass at (0, 0, h) in body axes: τ = r × (−M g ê), ê the
-// space vertical in body axes, ê = R(q)ᵀ e_z = (2(xz − wy), 2(yz + wx), 1 − 2(x² + y²)), so
-// τ = M g h (ê_y, −ê_x, 0) and V = M g h ê_z (= M g h cos θ, (5.73)).
-template <class T> struct gravity_torque {
-    T mgh;
-    void operator()(T, const T* y, T* tau) const {
-        const T ex = T(2) * (y[1] * y[3] - y[0] * y[2]);
-        const T ey = T(2) * (y[2] * y[3] + y[0] * y[1]);
-        tau[0] = mgh * ey;
-        tau[1] = -mgh * ex;
-        tau[2] = T(0);
-    }
-};
-
+// gravity_torque (split_system.hpp) with the centre of mass at (0, 0, h): τ = M g h (ê_y, −ê_x, 0),
+// V = M g h ê_z (= M g h cos θ, (5.73)).
 // gravity plus a body torque given in time, (0.3 sin 2t, 0, 0.2 cos 3t), when `driven`
 template <class T> struct driven_torque {
     gravity_torque<T> gravity;
@@ -49,7 +37,7 @@ template <class T> struct driven_torque {
 };
 
 template <class T> auto heavy_top(std::array<T, 3> moments, bool driven = false) {
-    return make_split_system<T>(moments, driven_torque<T>{{T(mgh)}, driven});
+    return make_split_system<T>(moments, driven_torque<T>{{{T(0), T(0), T(mgh)}}, driven});
 }
 
 // φ = 0, θ = 0.5, ψ = 0, φ̇ = θ̇ = 0, ψ̇ = spin: ω = (0, 0, spin) by (5.30).

@@ -16,6 +16,7 @@ std::string scratch(const std::string& name) {
     return std::string(ROTGEN_BINARY_DIR) + "/" + name;
 }
 
+// `name` names the scratch scene and CSV: unique per test case (ctest runs cases in parallel).
 csv_table simulate(const std::string& model, const std::string& rest, const std::string& name) {
     const scratch_file scene(name + ".yaml", model + rest);
     const run_result r =
@@ -52,11 +53,12 @@ TEST_CASE("split methods from a scene agree with DOP853 to their order", "[simul
         const auto ref = simulate(model,
                                   top_run + "integrator: {method: dop853, rtol: 1e-13, "
                                             "atol: 1e-15}\n",
-                                  "split_ref");
+                                  "split_order_ref");
         double previous = 0;
         for (const char* step : {"0.02", "0.01"}) {
-            const auto got = simulate(
-                model, top_run + "integrator: {method: split4, step: " + step + "}\n", "split4");
+            const auto got =
+                simulate(model, top_run + "integrator: {method: split4, step: " + step + "}\n",
+                         "split_order");
             REQUIRE(got.rows.size() == 51);
             double err = 0;
             for (const char* c : {"theta", "phi"})
@@ -77,7 +79,7 @@ TEST_CASE("split methods take a step from rtol", "[simulate][split]") {
     const auto ref = simulate(model,
                               top_run + "integrator: {method: dop853, rtol: 1e-13, "
                                         "atol: 1e-15}\n",
-                              "split_ref");
+                              "split_rtol_ref");
     for (const char* method : {"split2", "split4", "split6"}) {
         const auto got = simulate(
             model, top_run + "integrator: {method: " + method + ", rtol: 1e-7}\n", "split_rtol");
