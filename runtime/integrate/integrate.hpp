@@ -11,7 +11,8 @@
 //
 // The parts: the stepper concept in ../stepper.hpp; fixed.hpp, the fixed-step loop on the grid
 // t_k = t0 + k·h; adaptive.hpp, the controlled loop; sampling.hpp, the samples between step
-// boundaries (the stepper's continuous extension or cubic Hermite); observer.hpp, observers that
+// boundaries (the stepper's continuous extension or cubic Hermite); self_stepping.hpp, the loop
+// of a stepper that chooses its own step (Taylor); observer.hpp, observers that
 // stop a run and their combination; monitor.hpp and chart_switch.hpp, two ready-made observers.
 //
 // Guards (status values, never exceptions): invalid arguments → invalid_argument; non-finite
@@ -34,6 +35,7 @@
 #include "messages.hpp"
 #include "observer.hpp"
 #include "sampling.hpp"
+#include "self_stepping.hpp"
 
 namespace rotgen {
 
@@ -99,7 +101,18 @@ integrate(const S& sys, const Method& method, detail::identity_t<typename Method
         return res;
     }
     if (samples.done()) return res;
-    if constexpr (Method::adaptive) {
+    if constexpr (detail::chooses_step<Method>::value) {
+        if constexpr (!Method::template supports<S>) {
+            return detail::fail<T>(status::invalid_argument,
+                                   method.name() + ": the system gives no Taylor coefficients "
+                                                   "(emit them with --outputs taylor)",
+                                   t0, step_stats{});
+        } else {
+            if (method.step == T(0))
+                return detail::run_self_stepping(sys, method, t0, t_end, y, samples);
+            return detail::run_fixed(sys, method, t0, t_end, method.step, y, samples);
+        }
+    } else if constexpr (Method::adaptive) {
         if (method.fixed_step == T(0))
             return detail::run_adaptive(sys, method, t0, t_end, y, samples);
         return detail::run_fixed(sys, method, t0, t_end, method.fixed_step, y, samples);
