@@ -87,9 +87,10 @@ std::vector<ex> record_program(const scene_spec& scene, compiled_form& c, bool o
 }
 
 // The translation unit compiled for the runtime: the header and extern "C" entry points
-// rotgen_set_parameters, rotgen_rhs, rotgen_jacobian, rotgen_record.
+// rotgen_set_parameters, rotgen_rhs, rotgen_jacobian, rotgen_record (and with `taylor`,
+// rotgen_taylor_series and rotgen_taylor).
 std::string entry_points(const form_expressions& f, const std::string& unit,
-                         const std::vector<ex>& program) {
+                         const std::vector<ex>& program, bool taylor) {
     std::vector<program_input> inputs;
     for (std::size_t i = 0; i < f.state.size(); ++i)
         inputs.push_back({f.state[i].symbol, f.state[i].name, "y[" + std::to_string(i) + "]"});
@@ -110,6 +111,10 @@ std::string entry_points(const form_expressions& f, const std::string& unit,
             "rg_p); }\n"
          << "void rotgen_jacobian(double t, const double* y, double* J) { rg_model::jacobian(t, y, "
             "J, rg_p); }\n"
+         << (taylor ? "unsigned long rotgen_taylor_series() { return rg_model::taylor_series; }\n"
+                      "void rotgen_taylor(double t, double* c, int order) { rg_model::taylor(t, c, "
+                      "order, rg_p); }\n"
+                    : "")
          << "void rotgen_record(double t, const double* y, double* out) {\n"
          << "    using namespace std;\n    (void)t;\n    (void)y;\n    (void)out;\n";
     for (std::size_t i = 0; i < inputs.size(); ++i)
@@ -146,6 +151,8 @@ compiled_form compile_form(const scene_spec& scene, form_expressions f, bool ori
     kernel_request request;
     request.outputs = {"rhs", "jacobian"};
     if (c.form == form_kind::body && orientation) request.outputs.push_back("rotation");
+    const bool taylor = scene.integrator.method == "taylor";
+    if (taylor) request.outputs.push_back("taylor");
     const lowered_form lowered =
         timings.time("lower", to_string(c.form), [&] { return lower_form(spec, c.f, request); });
     const emitted_header header = timings.time("emit", to_string(c.form), [&] {
@@ -156,13 +163,18 @@ compiled_form compile_form(const scene_spec& scene, form_expressions f, bool ori
     if (header.text.find(size_decl) == std::string::npos)
         throw std::logic_error("run: the emitted " + header.unit + " does not have " + size_decl);
     const std::vector<ex> program = record_program(scene, c, orientation, invariants);
-    const std::string source = header.text + entry_points(c.f, header.unit, program);
+    const std::string source = header.text + entry_points(c.f, header.unit, program, taylor);
     c.lib =
         timings.time("compile", header.unit, [&] { return compile_and_load(source, header.unit); });
     c.sys.n = c.f.state.size();
     c.sys.f = reinterpret_cast<loaded_system::kernel>(c.lib.symbol("rotgen_rhs"));
     c.sys.jac = reinterpret_cast<loaded_system::kernel>(c.lib.symbol("rotgen_jacobian"));
     c.record = reinterpret_cast<loaded_system::kernel>(c.lib.symbol("rotgen_record"));
+    if (taylor) {
+        c.sys.tay = reinterpret_cast<loaded_system::taylor_kernel>(c.lib.symbol("rotgen_taylor"));
+        using count_fn = unsigned long (*)();
+        c.sys.series = reinterpret_cast<count_fn>(c.lib.symbol("rotgen_taylor_series"))();
+    }
     return c;
 }
 

@@ -25,11 +25,15 @@ namespace rotgen {
 // A system whose kernels were compiled and loaded at run time (runtime/system.hpp concept).
 struct loaded_system {
     using kernel = void (*)(double, const double*, double*);
+    using taylor_kernel = void (*)(double, double*, int); // taylor(t, c, order), emit/taylor.hpp
     kernel f = nullptr, jac = nullptr;
-    std::size_t n = 0;
+    taylor_kernel tay = nullptr; // compiled only for a scene integrated by the Taylor method
+    std::size_t n = 0, series = 0;
     std::size_t size() const { return n; }
     void rhs(double t, const double* y, double* dydt) const { f(t, y, dydt); }
     void jacobian(double t, const double* y, double* J) const { jac(t, y, J); }
+    std::size_t taylor_series() const { return series; }
+    void taylor(double t, double* c, int order) const { tay(t, c, order); }
 };
 
 // Where a recorded column (or a monitored invariant) comes from in one compiled form.

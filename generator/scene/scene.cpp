@@ -215,15 +215,16 @@ class scene_reader {
         m_scene.integrator_where = at(n);
         integrator_spec& ig = m_scene.integrator;
         if (n["method"]) {
-            const std::vector<std::string> methods{"rk4", "dopri5", "dop853", "implicit_midpoint",
-                                                   "rosenbrock"};
+            const std::vector<std::string> methods{
+                "rk4", "dopri5", "dop853", "implicit_midpoint", "rosenbrock", "taylor"};
             ig.method = n["method"].Scalar();
             if (std::find(methods.begin(), methods.end(), ig.method) == methods.end()) {
                 const std::string best = closest_name(ig.method, methods);
                 throw user_error(
                     at(n["method"]),
                     "unknown integrator '" + ig.method +
-                        "' (expected rk4, dopri5, dop853, implicit_midpoint or rosenbrock)" +
+                        "' (expected rk4, dopri5, dop853, implicit_midpoint, rosenbrock or "
+                        "taylor)" +
                         (best.empty() ? "" : "; did you mean '" + best + "'?"));
             }
         }

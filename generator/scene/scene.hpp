@@ -26,7 +26,8 @@ namespace rotgen {
 enum class initial_kind { rates, momenta, omega };
 
 struct integrator_spec {
-    std::string method = "dop853"; // rk4 | dopri5 | dop853 | implicit_midpoint | rosenbrock
+    std::string method = "dop853"; // rk4 | dopri5 | dop853 | implicit_midpoint | rosenbrock |
+                                   // taylor
     double rtol = 1e-8, atol = 1e-10;
     double step = 0; // the step of rk4 and implicit_midpoint; an adaptive method given a step
                      // takes fixed steps of that size without error control (and no rtol, atol)
