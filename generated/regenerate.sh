@@ -11,4 +11,9 @@ for model in heavy_top free_asymmetric_top full_tensor_top damped_driven_top cub
     "$rotgen" emit "models/$model.yaml" -o generated --form "$form" >/dev/null
   done
 done
+# Examples of the Taylor coefficients (--outputs taylor), readable beside the rhs they expand.
+"$rotgen" emit models/free_asymmetric_top.yaml -o generated --form body --outputs rhs,taylor \
+  --name free_asymmetric_top_body_taylor >/dev/null
+"$rotgen" emit models/heavy_top.yaml -o generated --outputs rhs,energy,momenta,taylor \
+  --name heavy_top_taylor >/dev/null
 ls generated/*.hpp

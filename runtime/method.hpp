@@ -1,10 +1,12 @@
 // rotgen runtime — choosing a method at run time (for scene files and the `simulate` command).
 //
-//   any_method<T>                       std::variant of the five method option structs
+//   any_method<T>                       std::variant of the six method option structs
 //   make_method<T>(name, rtol, atol, step) -> std::optional<any_method<T>>
-//       names: rk4, dopri5, dop853, implicit_midpoint (or midpoint), rodas4 (or rosenbrock);
+//       names: rk4, dopri5, dop853, implicit_midpoint (or midpoint), rodas4 (or rosenbrock),
+//       taylor;
 //       rk4 and implicit_midpoint take `step`; the adaptive methods take rtol/atol, and `step`
-//       if > 0 switches them to fixed steps without error control.
+//       if > 0 switches them to fixed steps without error control; taylor takes rtol/atol
+//       (and `step` > 0: fixed steps) and needs a system with Taylor coefficients.
 //   integrate(system, any_method, t0, y, sample_times, observer)   dispatches with std::visit.
 #pragma once
 
@@ -19,11 +21,13 @@
 #include "steppers/implicit_midpoint.hpp"
 #include "steppers/rk4.hpp"
 #include "steppers/rosenbrock.hpp"
+#include "steppers/taylor.hpp"
 
 namespace rotgen {
 
 template <class T>
-using any_method = std::variant<rk4<T>, dopri5<T>, dop853<T>, implicit_midpoint<T>, rodas4<T>>;
+using any_method =
+    std::variant<rk4<T>, dopri5<T>, dop853<T>, implicit_midpoint<T>, rodas4<T>, taylor<T>>;
 
 template <class T>
 std::optional<any_method<T>> make_method(std::string_view name, T rtol, T atol, T step) {
@@ -46,6 +50,13 @@ std::optional<any_method<T>> make_method(std::string_view name, T rtol, T atol, 
     if (name == "dopri5") return adaptive(dopri5<T>());
     if (name == "dop853") return adaptive(dop853<T>());
     if (name == "rodas4" || name == "rosenbrock") return adaptive(rodas4<T>());
+    if (name == "taylor") {
+        taylor<T> m;
+        m.rtol = rtol;
+        m.atol = atol;
+        m.step = step;
+        return any_method<T>(m);
+    }
     return std::nullopt;
 }
 

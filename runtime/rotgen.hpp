@@ -12,6 +12,9 @@
 //   steppers/dop853.hpp          Dormand–Prince 8(5,3), dense output of order 7
 //   steppers/implicit_midpoint.hpp  symplectic implicit midpoint rule, Newton with Eigen LU
 //   steppers/rosenbrock.hpp      RODAS4, L-stable Rosenbrock 4(3) for stiff problems
+//   steppers/taylor.hpp          Taylor method of variable order and step (Jorba–Zou), dense
+//                                output from its polynomial; taylor_system.hpp wraps a header
+//                                emitted with --outputs rhs,taylor
 //   integrate/integrate.hpp      integrate(system, method, t0, y, sample_times, observer)
 //                                (fixed.hpp, adaptive.hpp, sampling.hpp, observer.hpp)
 //   integrate/events.hpp        event_set: zeros of g(t, y) on the dense output, terminal events
@@ -42,4 +45,6 @@
 #include "steppers/implicit_midpoint.hpp"
 #include "steppers/rk4.hpp"
 #include "steppers/rosenbrock.hpp"
+#include "steppers/taylor.hpp"
 #include "system.hpp"
+#include "taylor_system.hpp"

@@ -55,6 +55,15 @@
 //   and for sampling inside an accepted step (θ = (t_sample − t)/h ∈ [0, 1)):
 //   void dense(T θ, state_vector<T, S>& out) const          if continuous_extension
 //   step_ends<T, W> hermite_ends() const                    if hermite: h, y and f at both ends
+// Optional, for a stepper that chooses its own step (the Taylor method; M::chooses_step and
+// St::chooses_step true, M::adaptive false; M has rtol, atol, step, hmax, max_steps and
+// `template <class S> static constexpr bool supports`, false for a system it cannot integrate):
+//   T choose_step(const S&, T t, const state_vector<T, S>& y, step_stats&)
+//                                                 the step the tolerance allows from (t, y) (> 0;
+//                                                 not > 0: the coefficients are not finite);
+//                                                 attempt() then takes a step of at most that size
+//                                                 and is never rejected
+//                                                 (integrate/self_stepping.hpp)
 // W is any vector type with size() and operator[] (state_vector or the work vectors of
 // combine.hpp). A stepper never includes the driver; the driver never names a stepper.
 #pragma once

@@ -1,5 +1,6 @@
 // rotgen emit MODEL.yaml -o DIR [--form lagrangian|hamiltonian|reduced|body]
-//             [--outputs rhs,jacobian,energy,momenta,mass_matrix,omega,rotation,ignored_rates]
+//             [--outputs rhs,jacobian,energy,momenta,mass_matrix,omega,rotation,ignored_rates,
+//                        taylor]
 //             [--specialise | --specialise=NAME,NAME...] [--strategy explicit|solve] [--name UNIT]
 //
 // Writes DIR/<unit>.hpp (unit: the model's name, plus _<form> for forms other than lagrangian),
@@ -50,7 +51,7 @@ const command_spec emit_command{
      {"--outputs",
       "LIST",
       "comma-separated: rhs,jacobian,energy,momenta,mass_matrix,omega,rotation,\n"
-      "                        ignored_rates (default: all the form gives)",
+      "                        ignored_rates,taylor (default: all the form gives but taylor)",
       {}},
      {"--specialise",
       "NAMES",
@@ -142,7 +143,9 @@ void print_written(const std::string& dir, const emitted_header& h) {
     std::string summary;
     for (const auto& s : h.stats)
         summary += (summary.empty() ? "" : ", ") + s.function + " " +
-                   std::to_string(s.before.total()) + " -> " + std::to_string(s.after.total());
+                   (s.summary.empty() ? std::to_string(s.before.total()) + " -> " +
+                                            std::to_string(s.after.total())
+                                      : s.summary);
     std::cout << "rotgen: wrote " << (std::filesystem::path(dir) / h.file_name).string()
               << " (operations: " << summary << ")\n";
 }

@@ -1,6 +1,7 @@
 // clang-format off: clang-format 14 moves this include block to the end of the file
 #include "emit/emit.hpp"
 
+#include "emit/taylor.hpp"
 #include "expr/print.hpp"
 #include "support/error.hpp"
 #include "support/hash.hpp"
@@ -356,9 +357,12 @@ std::string description(const lowered_form& lf, const std::vector<function_stats
     }
     desc += "//\n// Operations (+ - * / and calls), before lowering -> after:\n";
     for (const auto& s : stats)
-        desc += "//   " + s.function + ": " + std::to_string(s.before.total()) + " -> " +
-                std::to_string(s.after.total()) + " (" + std::to_string(s.temporaries) +
-                " temporaries)\n";
+        if (!s.summary.empty())
+            desc += "//   " + s.function + ": " + s.summary + "\n";
+        else
+            desc += "//   " + s.function + ": " + std::to_string(s.before.total()) + " -> " +
+                    std::to_string(s.after.total()) + " (" + std::to_string(s.temporaries) +
+                    " temporaries)\n";
     if (!desc.empty() && desc.back() == '\n') desc.pop_back();
     return desc;
 }
@@ -379,6 +383,26 @@ std::string constants_text(const model_spec& spec, const lowered_form& lf) {
          {"parameter_names", np == 0 ? "" : "{" + quoted_list(param_names) + "}"}});
 }
 
+// The Taylor coefficients (emit/taylor.hpp) and the recurrences' helpers.
+std::string taylor_text(const lowered_form& lf, const lowered_function& fn,
+                        std::vector<function_stats>& stats) {
+    const taylor_body b = print_taylor_body(fn.program);
+    const std::size_t n = lf.state_names.size();
+    stats.push_back({fn.name,
+                     {},
+                     {},
+                     b.series,
+                     std::to_string(b.series) + " series, " + std::to_string(b.operations) +
+                         " recurrences per order"});
+    return fill_template("taylor_helpers.hpp.in", {}) +
+           fill_template("taylor.hpp.in", {{"n", std::to_string(n)},
+                                           {"n_minus_1", std::to_string(n - 1)},
+                                           {"layout", layout_of(lf)},
+                                           {"series", std::to_string(b.series)},
+                                           {"operations", std::to_string(b.operations)},
+                                           {"body", b.text}});
+}
+
 } // namespace
 
 emitted_header emit_header(const model_spec& spec, const lowered_form& lf,
@@ -388,8 +412,12 @@ emitted_header emit_header(const model_spec& spec, const lowered_form& lf,
     h.file_name = h.unit + ".hpp";
     std::string functions;
     for (const lowered_function& fn : lf.functions) {
+        if (fn.name == "taylor") {
+            functions += taylor_text(lf, fn, h.stats);
+            continue;
+        }
         const function_body b = write_body(fn);
-        h.stats.push_back({fn.name, b.before, b.after, b.temporaries});
+        h.stats.push_back({fn.name, b.before, b.after, b.temporaries, ""});
         functions += function_text(lf, fn, b);
     }
     if (lf.form == form_kind::body && lf.state_names.size() == 7)

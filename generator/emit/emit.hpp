@@ -24,6 +24,8 @@
 //     template <class T> void omega(const T* y, T* w, const params<T>& p);            (3)
 //     template <class T> void rotation(const T* y, T* A, const params<T>& p);         (3x3, 5.25)
 //     template <class T> void ignored_rates(const T* y, T* rates, const params<T>& p); (reduced)
+//     template <class T> void taylor(T t, T* c, int order, const params<T>& p);  (taylor.hpp)
+//       + constexpr taylor_series, the coefficient blocks it fills
 //   body form with a quaternion: quaternion_from_angles(angles, q), angles_from_quaternion(q,
 //   angles).
 #pragma once
@@ -50,6 +52,7 @@ struct function_stats {
     std::string function;
     op_count before, after;
     std::size_t temporaries = 0;
+    std::string summary; // when set, the header's description says this instead of the counts
 };
 
 struct emitted_header {

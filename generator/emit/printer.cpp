@@ -266,6 +266,11 @@ std::string print_node(const lowered_program& program, int node, const std::stri
     return program_printer(program, scalar).ref(node).text;
 }
 
+std::string print_number(const numeric& value, const std::string& scalar) {
+    const std::string lit = number_literal(abs(value), scalar);
+    return value.is_negative() ? "-" + lit : lit;
+}
+
 std::string print_definition(const lowered_program& program, int node, const std::string& scalar) {
     return program_printer(program, scalar).definition(node).text;
 }

@@ -30,6 +30,9 @@ std::string print_node(const lowered_program& program, int node, const std::stri
 std::string print_definition(const lowered_program& program, int node,
                              const std::string& scalar = "S");
 
+// A number as printed in expressions: `S(2)`, `S(1)/S(3)`, `-S(2)`.
+std::string print_number(const GiNaC::numeric& value, const std::string& scalar = "S");
+
 // The operations (+ - * / and calls) of the program as print_node/print_definition print it:
 // its temporaries plus its outputs. Equal to program.after.
 op_count printed_op_count(const lowered_program& program);

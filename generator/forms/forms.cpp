@@ -23,9 +23,9 @@ const std::array<GiNaC::realsymbol, 4>& quaternion_symbols() {
 }
 
 const std::vector<std::string>& output_names() {
-    static const std::vector<std::string> names{"rhs",      "jacobian",     "energy",
-                                                "momenta",  "mass_matrix",  "omega",
-                                                "rotation", "ignored_rates"};
+    static const std::vector<std::string> names{"rhs",      "jacobian",      "energy",
+                                                "momenta",  "mass_matrix",   "omega",
+                                                "rotation", "ignored_rates", "taylor"};
     return names;
 }
 

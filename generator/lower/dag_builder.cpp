@@ -59,6 +59,16 @@ std::vector<int> children(const lowered_node& n) {
     return c;
 }
 
+} // namespace rotgen::lowering
+
+namespace rotgen {
+std::vector<int> node_children(const lowered_node& node) {
+    return lowering::children(node);
+}
+} // namespace rotgen
+
+namespace rotgen::lowering {
+
 dag_builder::dag_builder(lowered_program& program) : m_p(program) {
     for (std::size_t i = 0; i < m_p.inputs.size(); ++i) {
         const program_input& in = m_p.inputs[i];

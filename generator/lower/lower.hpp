@@ -140,6 +140,9 @@ op_count count_ops(const GiNaC::ex& e);
 // against the original expressions). `values` maps input symbols to numbers; returns the outputs.
 std::vector<GiNaC::numeric> evaluate(const lowered_program& program, const GiNaC::exmap& values);
 
+// The children of a node: sum terms, numerator, denominator, call arguments.
+std::vector<int> node_children(const lowered_node& node);
+
 // Which inputs the printed program uses (to emit only the definitions it needs).
 std::vector<bool> used_inputs(const lowered_program& program);
 

@@ -69,7 +69,7 @@ std::vector<std::string> resolve_outputs(const model_spec& spec, const form_expr
             if (f.outputs.count(name)) requested.push_back(name);
     }
     for (const auto& r : requested)
-        if (r != "rhs" && r != "jacobian" && !f.outputs.count(r)) {
+        if (r != "rhs" && r != "jacobian" && r != "taylor" && !f.outputs.count(r)) {
             const auto why = f.unavailable.find(r);
             throw user_error(
                 {where}, std::string("the ") + to_string(f.form) + " form of '" + spec.name +
@@ -327,7 +327,8 @@ lowered_form lower_form(const model_spec& spec, const form_expressions& runtime_
     if (contains(outputs, "jacobian")) jac = jacobians(f, runtime_f, choose, r.jacobian_zero);
     const std::vector<std::string> tyt{"t", "y", "p"};
     for (const auto& name : outputs) {
-        if (name == "rhs") {
+        if (name == "rhs" || name == "taylor") {
+            // taylor: the coefficients of the rhs's own program (emit/taylor.hpp)
             r.functions.push_back(
                 {name, choose.best(rate_candidates_of(f), runtime_rates), dydt, tyt, f.rate_names});
         } else if (name == "jacobian") {

@@ -123,11 +123,13 @@ void print_body(std::ostream& shim, const form_expressions& f, const std::vector
 
 // The translation unit compiled for the runtime: the header and extern "C" entry points
 // rotgen_rhs, rotgen_jacobian, rotgen_record, and rotgen_event_<i> per scene event (each its own
-// function: a run evaluates one event without the others), each given the parameter values `v`
+// function: a run evaluates one event without the others), and with `taylor` rotgen_taylor_series
+// and rotgen_taylor; each given the parameter values `v`
 // (in the form's parameter order) with every call: the compiled object keeps no state, so members
 // of an ensemble run its kernels concurrently with their own values.
 std::string entry_points(const form_expressions& f, const std::string& unit,
-                         const std::vector<ex>& program, const std::vector<ex>& events) {
+                         const std::vector<ex>& program, const std::vector<ex>& events,
+                         bool taylor) {
     std::ostringstream shim;
     shim << "\n// ---- rotgen run: entry points for the runtime ----\n"
          << "namespace {\nnamespace rg_model = rotgen::models::" << unit << ";\n"
@@ -141,6 +143,10 @@ std::string entry_points(const form_expressions& f, const std::string& unit,
          << "    rg_model::rhs(t, y, dydt, rg_params(v));\n}\n"
          << "void rotgen_jacobian(const double* v, double t, const double* y, double* J) {\n"
          << "    rg_model::jacobian(t, y, J, rg_params(v));\n}\n";
+    if (taylor)
+        shim << "unsigned long rotgen_taylor_series() { return rg_model::taylor_series; }\n"
+             << "void rotgen_taylor(const double* v, double t, double* c, int order) {\n"
+             << "    rg_model::taylor(t, c, order, rg_params(v));\n}\n";
     // the record program and each event: rg_p from v, then the program's body
     const auto function = [&](const std::string& name, const std::vector<ex>& outputs) {
         shim << "void " << name << "(const double* v, double t, const double* y, double* out) {\n"
@@ -175,6 +181,8 @@ compiled_form compile_form(const scene_spec& scene, form_expressions f, bool ori
     kernel_request request;
     request.outputs = {"rhs", "jacobian"};
     if (c.form == form_kind::body && orientation) request.outputs.push_back("rotation");
+    const bool taylor = scene.integrator.method == "taylor";
+    if (taylor) request.outputs.push_back("taylor");
     const lowered_form lowered =
         timings.time("lower", to_string(c.form), [&] { return lower_form(spec, c.f, request); });
     const emitted_header header = timings.time("emit", to_string(c.form), [&] {
@@ -186,7 +194,7 @@ compiled_form compile_form(const scene_spec& scene, form_expressions f, bool ori
         throw std::logic_error("run: the emitted " + header.unit + " does not have " + size_decl);
     const std::vector<ex> program = record_program(scene, c, orientation, invariants);
     const std::vector<ex> events = event_programs(scene, c.f);
-    const std::string source = header.text + entry_points(c.f, header.unit, program, events);
+    const std::string source = header.text + entry_points(c.f, header.unit, program, events, taylor);
     c.lib =
         timings.time("compile", header.unit, [&] { return compile_and_load(source, header.unit); });
     c.sys.n = c.f.state.size();
@@ -196,6 +204,11 @@ compiled_form compile_form(const scene_spec& scene, form_expressions f, bool ori
     for (std::size_t e = 0; e < events.size(); ++e)
         c.events.push_back(reinterpret_cast<loaded_system::kernel>(
             c.lib.symbol("rotgen_event_" + std::to_string(e))));
+    if (taylor) {
+        c.sys.tay = reinterpret_cast<loaded_system::taylor_kernel>(c.lib.symbol("rotgen_taylor"));
+        using count_fn = unsigned long (*)();
+        c.sys.series = reinterpret_cast<count_fn>(c.lib.symbol("rotgen_taylor_series"))();
+    }
     return c;
 }
 

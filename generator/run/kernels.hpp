@@ -26,12 +26,17 @@ namespace rotgen {
 // the parameter values `p` it passes to every call (the form's parameter order; set by the run).
 struct loaded_system {
     using kernel = void (*)(const double* p, double t, const double* y, double* out);
+    // taylor(p, t, c, order), emit/taylor.hpp
+    using taylor_kernel = void (*)(const double* p, double t, double* c, int order);
     kernel f = nullptr, jac = nullptr;
-    std::size_t n = 0;
+    taylor_kernel tay = nullptr; // compiled only for a scene integrated by the Taylor method
+    std::size_t n = 0, series = 0;
     const double* p = nullptr;
     std::size_t size() const { return n; }
     void rhs(double t, const double* y, double* dydt) const { f(p, t, y, dydt); }
     void jacobian(double t, const double* y, double* J) const { jac(p, t, y, J); }
+    std::size_t taylor_series() const { return series; }
+    void taylor(double t, double* c, int order) const { tay(p, t, c, order); }
 };
 
 // Where a recorded column (or a monitored invariant) comes from in one compiled form.

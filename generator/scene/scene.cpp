@@ -245,7 +245,7 @@ class scene_reader {
         if (n["method"]) {
             const std::vector<std::string> methods{
                 "rk4",        "dopri5", "dop853", "implicit_midpoint",
-                "rosenbrock", "split2", "split4", "split6"};
+                "rosenbrock", "split2", "split4", "split6", "taylor"};
             ig.method = n["method"].Scalar();
             if (std::find(methods.begin(), methods.end(), ig.method) == methods.end()) {
                 const std::string best = closest_name(ig.method, methods);
@@ -253,7 +253,7 @@ class scene_reader {
                     at(n["method"]),
                     "unknown integrator '" + ig.method +
                         "' (expected rk4, dopri5, dop853, implicit_midpoint, rosenbrock, "
-                        "split2, split4 or split6)" +
+                        "split2, split4, split6 or taylor)" +
                         (best.empty() ? "" : "; did you mean '" + best + "'?"));
             }
         }

@@ -39,7 +39,8 @@ struct written_value {
 
 struct integrator_spec {
     std::string method = "dop853"; // rk4 | dopri5 | dop853 | implicit_midpoint | rosenbrock |
-                                   // split2 | split4 | split6 (step, or rtol: a step by rule)
+                                   // split2 | split4 | split6 (step, or rtol: a step by rule) |
+                                   // taylor
     double rtol = 1e-8, atol = 1e-10;
     double step = 0; // the step of rk4 and implicit_midpoint; an adaptive method given a step
                      // takes fixed steps of that size without error control (and no rtol, atol)

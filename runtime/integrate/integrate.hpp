@@ -11,9 +11,10 @@
 //
 // The parts: the stepper concept in ../stepper.hpp; fixed.hpp, the fixed-step loop on the grid
 // t_k = t0 + k·h; adaptive.hpp, the controlled loop; sampling.hpp, the samples between step
-// boundaries (the stepper's continuous extension or cubic Hermite); observer.hpp, observers that
-// stop a run and their combination; monitor.hpp and chart_switch.hpp, two ready-made observers;
-// events.hpp and event_step.hpp, zeros of event functions located on the dense output.
+// boundaries (the stepper's continuous extension or cubic Hermite); self_stepping.hpp, the loop
+// of a stepper that chooses its own step (Taylor); observer.hpp, observers that stop a run and
+// their combination; monitor.hpp and chart_switch.hpp, two ready-made observers; events.hpp and
+// event_step.hpp, zeros of event functions located on the dense output.
 //
 // Guards (status values, never exceptions): invalid arguments → invalid_argument; non-finite
 // initial state or f(t0, y0) → non_finite; the loops' own guards are listed in fixed.hpp and
@@ -37,6 +38,7 @@
 #include "messages.hpp"
 #include "observer.hpp"
 #include "sampling.hpp"
+#include "self_stepping.hpp"
 
 namespace rotgen {
 
@@ -87,7 +89,17 @@ namespace detail {
 template <class S, class Method, class Sampler, class T>
 integration_result<T> run_loop(const S& sys, const Method& method, T t0, T t_end,
                                state_vector<T, S>& y, const Sampler& samples) {
-    if constexpr (Method::adaptive) {
+    if constexpr (chooses_step<Method>::value) {
+        if constexpr (!Method::template supports<S>) {
+            return fail<T>(status::invalid_argument,
+                           method.name() + ": the system gives no Taylor coefficients "
+                                           "(emit them with --outputs taylor)",
+                           t0, step_stats{});
+        } else {
+            if (method.step == T(0)) return run_self_stepping(sys, method, t0, t_end, y, samples);
+            return run_fixed(sys, method, t0, t_end, method.step, y, samples);
+        }
+    } else if constexpr (Method::adaptive) {
         if (method.fixed_step == T(0)) return run_adaptive(sys, method, t0, t_end, y, samples);
         return run_fixed(sys, method, t0, t_end, method.fixed_step, y, samples);
     } else {

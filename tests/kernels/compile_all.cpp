@@ -31,7 +31,11 @@ template <class T> struct buffers {
         ns::jacobian(scalar(0.25), b.y, b.J, p);                                                   \
         ns::rhs_and_jacobian(scalar(0.25), b.y, b.f, b.J, p);                                      \
         b.out[0] = ns::energy(b.y, p);                                                             \
-        ns::momenta(b.y, b.out, p);
+        ns::momenta(b.y, b.out, p);                                                                \
+        scalar c[ns::taylor_series * 4];                                                           \
+        for (auto& v : c)                                                                          \
+            v = scalar(0.5);                                                                       \
+        ns::taylor(scalar(0.25), c, 3, p);
 #define ROTGEN_USE_FULL(u)                                                                         \
     ROTGEN_USE_COMMON(u)                                                                           \
     ns::omega(b.y, b.out, p);                                                                      \

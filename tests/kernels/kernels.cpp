@@ -51,6 +51,8 @@ P make_params_long(const std::vector<double>& v, std::index_sequence<I...>) {
             };                                                                                     \
             k.energy = [p](const double* y) { return ns::energy(y, p); };                          \
             k.momenta = [p](const double* y, double* o) { ns::momenta(y, o, p); };                 \
+            k.taylor = [p](double t, double* c, int order) { ns::taylor(t, c, order, p); };        \
+            k.taylor_series = ns::taylor_series;                                                   \
             EXTRA                                                                                  \
             k.with_parameters = [self](const std::vector<double>& v) {                             \
                 return self(self,                                                                  \

@@ -27,6 +27,9 @@ struct kernel {
     std::function<void(const double*, double*)> momenta, omega, rotation, mass_matrix,
         ignored_rates;
     std::function<void(const double*, double*)> quaternion_from_angles, angles_from_quaternion;
+    // taylor(t, c, order): the Taylor coefficients (c: taylor_series blocks of order + 1)
+    std::function<void(double, double*, int)> taylor;
+    std::size_t taylor_series = 0;
     // The same kernel with other parameter values (in parameter_names order).
     std::function<kernel(const std::vector<double>&)> with_parameters;
 };

@@ -1,0 +1,230 @@
+// rotgen runtime — the Taylor method of variable order and step (Jorba & Zou, "A software package
+// for the numerical integration of ODEs by means of high-order Taylor methods", Exp. Math. 14
+// (2005) 99-117; heyoka, Biscani & Izzo, MNRAS 504 (2021) 2614-2628).
+//
+// Each step expands the solution through (t, y) into its Taylor polynomial, from the system's
+// generated coefficient function (`rotgen emit --outputs taylor`; x^[k] = x^(k)/k!):
+//   y(t + h) = sum_{k=0..p} y^[k] h^k                                 (Horner's scheme)
+// The order and the step come from the tolerance and the last two coefficients (Jorba & Zou,
+// section 3.2, as heyoka applies it, with rotgen's rtol/atol):
+//   control  relative (eps = rtol) when rtol ||y||_inf > atol, else absolute (eps = atol)
+//   order    p = ceil(-ln(eps)/2 + 1)                     (JZ (3.12): the cost per unit time
+//                                                           is smallest there)
+//   radius   rho_k = (s / ||y^[k]||_inf)^(1/k), s = ||y||_inf (relative) or 1 (absolute),
+//            rho = min(rho_{p-1}, rho_p)                   (an estimate of the radius of
+//                                                           convergence from the series' tail)
+//   step     h = rho / e^2 · exp(-0.7 / (p - 1))           (JZ (3.14): the truncation error
+//                                                           ~ eps s, with a safety factor)
+// There is no error estimate and no rejected step: the step is chosen before it is taken (the
+// driver asks choose_step(), integrate/self_stepping.hpp). With `step > 0` the method takes fixed
+// steps of order `order` (or the order of the tolerance) instead. Dense output is the step's own
+// polynomial at theta h: free, and of the step's accuracy.
+//
+// The system must provide, beyond the system concept (system.hpp),
+//   std::size_t taylor_series() const;            coefficient series taylor() fills
+//   void taylor(T t, T* c, int order) const;      the generated taylor(t, c, order, p)
+// (generated_taylor_system in taylor_system.hpp wraps a generated header). An expansion is
+// counted as one rhs evaluation in step_stats (its cost is about that of order/2 evaluations).
+// Stepper concept (stepper.hpp): nominal order 20, no error estimate, its own dense output, no
+// Jacobian, chooses_step.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "../stepper.hpp"
+
+namespace rotgen {
+
+template <class T, class S> class taylor_stepper;
+
+namespace detail {
+template <class S, class T, class = void> struct has_taylor : std::false_type {};
+template <class S, class T>
+struct has_taylor<
+    S, T,
+    std::void_t<decltype(std::declval<const S&>().taylor(std::declval<T>(), std::declval<T*>(), 1)),
+                decltype(std::declval<const S&>().taylor_series())>> : std::true_type {};
+} // namespace detail
+
+// True when the system gives its Taylor coefficients (the taylor method can integrate it).
+template <class S, class T> inline constexpr bool has_taylor_v = detail::has_taylor<S, T>::value;
+
+template <class T> struct taylor {
+    using scalar = T;
+    static constexpr bool is_rotgen_method = true;
+    static constexpr bool adaptive = false; // no error estimate: the step is chosen, not checked
+    static constexpr bool chooses_step = true;
+    template <class S> static constexpr bool supports = has_taylor_v<S, T>;
+    template <class S> using stepper = taylor_stepper<T, S>;
+
+    T rtol = T(1e-10); // relative tolerance (eps of the relative control)
+    T atol = T(1e-10); // absolute tolerance (eps of the absolute control)
+    T step = T(0);     // > 0: fixed steps of this size, no step-size choice
+    T hmax = T(0);     // largest step; 0: |t_end - t0|
+    int order = 0;     // 0: from the tolerance, per step; > 0: always this order
+    std::size_t max_steps = 1000000;
+
+    std::string name() const { return "taylor"; }
+    std::string check() const {
+        using std::isfinite;
+        const T eps = std::numeric_limits<T>::epsilon();
+        if (!(step >= T(0)) || !isfinite(step)) return "step must be finite and >= 0";
+        if (order < 0 || order > 60) return "order must lie in 1..60 (0: from the tolerance)";
+        if (!(rtol >= T(0)) || !(atol >= T(0)) || !isfinite(rtol) || !isfinite(atol))
+            return "tolerances must be finite and >= 0";
+        if (rtol == T(0) && atol == T(0)) return "rtol and atol are both 0";
+        if ((rtol != T(0) && rtol < eps) || (atol != T(0) && atol < eps * eps))
+            return "a tolerance is below the precision of the scalar type";
+        if (!(hmax >= T(0))) return "hmax must be >= 0";
+        return "";
+    }
+
+    // Jorba & Zou (3.12): the order for the tolerance eps.
+    static int order_for(T eps) {
+        using std::ceil;
+        using std::log;
+        return std::max(2, static_cast<int>(ceil(-log(eps) / T(2) + T(1))));
+    }
+};
+
+template <class T, class S> class taylor_stepper {
+  public:
+    using scalar = T;
+    using system_type = S;
+    using vector = state_vector<T, S>;
+    using outcome = step_outcome<T>;
+
+    static constexpr int order = 20; // nominal: the order of each step follows the tolerance
+    static constexpr bool error_estimate = false;
+    static constexpr dense_kind dense_output = dense_kind::continuous_extension;
+    static constexpr int dense_order = 20;
+    static constexpr bool uses_jacobian = false;
+    static constexpr bool chooses_step = true;
+
+    taylor_stepper(const taylor<T>& m, std::size_t n)
+        : m_method(m), m_n(n), m_y1(vector::Zero(static_cast<Eigen::Index>(n))), m_f0(m_y1) {
+        const bool rel = m.rtol > T(0), abs_ = m.atol > T(0);
+        m_max_order = m.order > 0 ? m.order
+                                  : std::max(rel ? taylor<T>::order_for(m.rtol) : 2,
+                                             abs_ ? taylor<T>::order_for(m.atol) : 2);
+    }
+
+    bool start(const S& sys, T t0, const vector& y0, step_stats& stats) {
+        if constexpr (has_taylor_v<S, T>) {
+            m_c.assign(sys.taylor_series() * static_cast<std::size_t>(m_max_order + 1), T(0));
+            expand(sys, t0, y0, stats);
+            for (std::size_t i = 0; i < m_n; ++i)
+                m_f0[static_cast<Eigen::Index>(i)] = coefficient(i, 1);
+            return m_f0.allFinite();
+        } else {
+            (void)sys, (void)t0, (void)y0, (void)stats;
+            return false;
+        }
+    }
+    const vector& f_start() const { return m_f0; }
+
+    // The step the tolerance allows from (t, y) (> 0; +inf when the series ends; NaN when the
+    // coefficients are not finite). Expands the solution there; attempt() uses the expansion.
+    T choose_step(const S& sys, T t, const vector& y, step_stats& stats) {
+        using std::exp;
+        using std::max;
+        using std::min;
+        using std::pow;
+        if (!m_expanded) expand(sys, t, y, stats);
+        const int p = m_p;
+        const T s = m_relative ? m_norm0 : T(1);
+        const T np1 = norm(p - 1), np = norm(p);
+        if (!(np1 == np1) || !(np == np)) return std::numeric_limits<T>::quiet_NaN();
+        const T inf = std::numeric_limits<T>::infinity();
+        const T rho_p1 = np1 > T(0) ? pow(s / np1, T(1) / T(p - 1)) : inf;
+        const T rho_p = np > T(0) ? pow(s / np, T(1) / T(p)) : inf;
+        const T e2 = T(7.389056098930650227230427460575); // e^2
+        return min(rho_p1, rho_p) / e2 * exp(T(-0.7) / T(p - 1));
+    }
+
+    outcome attempt(const S& sys, T t, const vector& y, T h, step_stats& stats, bool) {
+        if (!m_expanded) expand(sys, t, y, stats);
+        m_h = h;
+        for (std::size_t i = 0; i < m_n; ++i)
+            m_y1[static_cast<Eigen::Index>(i)] = horner(i, h);
+        return {m_y1.allFinite() ? status::ok : status::non_finite, T(0)};
+    }
+
+    bool accept(const S&, step_stats&, bool) {
+        m_expanded = false; // the coefficients stay for dense(): the next step expands anew
+        return true;
+    }
+
+    const vector& y_new() const { return m_y1; }
+
+    // The step's polynomial at theta h.
+    void dense(T theta, vector& out) const {
+        for (std::size_t i = 0; i < m_n; ++i)
+            out[static_cast<Eigen::Index>(i)] = horner(i, theta * m_h);
+    }
+
+    int last_order() const { return m_p; } // the order of the last expansion
+
+  private:
+    T coefficient(std::size_t i, int k) const {
+        return m_c[i * static_cast<std::size_t>(m_p + 1) + static_cast<std::size_t>(k)];
+    }
+
+    // max_i |y_i^[k]|
+    T norm(int k) const {
+        using std::abs;
+        using std::max;
+        T r = T(0);
+        for (std::size_t i = 0; i < m_n; ++i) {
+            const T v = abs(coefficient(i, k));
+            if (!(v == v)) return v;
+            r = max(r, v);
+        }
+        return r;
+    }
+
+    T horner(std::size_t i, T h) const {
+        const T* c = m_c.data() + i * static_cast<std::size_t>(m_p + 1);
+        T r = c[m_p];
+        for (int k = m_p - 1; k >= 0; --k)
+            r = r * h + c[k];
+        return r;
+    }
+
+    // The control and order at (t, y), then the coefficients up to that order.
+    void expand(const S& sys, T t, const vector& y, step_stats& stats) {
+        using std::abs;
+        using std::max;
+        m_norm0 = T(0);
+        for (std::size_t i = 0; i < m_n; ++i)
+            m_norm0 = max(m_norm0, abs(y[static_cast<Eigen::Index>(i)]));
+        const taylor<T>& m = m_method;
+        m_relative = m.rtol > T(0) && m.rtol * m_norm0 > m.atol;
+        m_p = m.order > 0 ? m.order : taylor<T>::order_for(m_relative ? m.rtol : m.atol);
+        const std::size_t stride = static_cast<std::size_t>(m_p + 1);
+        for (std::size_t i = 0; i < m_n; ++i)
+            m_c[i * stride] = y[static_cast<Eigen::Index>(i)];
+        sys.taylor(t, m_c.data(), m_p);
+        ++stats.rhs_evals;
+        m_expanded = true;
+    }
+
+    taylor<T> m_method;
+    std::size_t m_n;
+    int m_max_order = 2, m_p = 2;
+    bool m_expanded = false, m_relative = false;
+    T m_norm0 = T(0), m_h = T(0);
+    std::vector<T> m_c; // series s, coefficient k at s * (m_p + 1) + k
+    vector m_y1, m_f0;
+};
+
+static_assert(check_method<taylor<double>>());
+
+} // namespace rotgen

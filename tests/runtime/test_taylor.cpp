@@ -1,0 +1,156 @@
+// The Taylor method (steppers/taylor.hpp) on the checked-in generated headers with Taylor
+// coefficients: the free top I = (1, 2, 3) against its exact elliptic solution, in double and
+// long double; the heavy top against DOP853 and its invariants; dense output; the concept.
+#include <catch2/catch.hpp>
+
+#include "exact_free_top.hpp"
+#include "integrate/integrate.hpp"
+#include "method.hpp"
+#include "steppers/dop853.hpp"
+#include "steppers/taylor.hpp"
+#include "taylor_system.hpp"
+
+#include "free_asymmetric_top_body_taylor.hpp"
+#include "heavy_top_taylor.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+using namespace rotgen;
+namespace free_top = rotgen::models::free_asymmetric_top_body_taylor;
+namespace heavy_top = rotgen::models::heavy_top_taylor;
+
+namespace {
+
+// The largest error over 101 samples of t = 0..t_end against the exact solution, and the steps.
+template <class T> struct free_top_run {
+    T error = 0;
+    std::size_t steps = 0;
+    status code = status::ok;
+};
+
+template <class T> free_top_run<T> run_free_top(T tol, T t_end) {
+    const std::array<T, 3> inertia = {1, 2, 3}, w0 = {1, T(0.1L), T(0.5L)};
+    const free_top_exact<T> exact(inertia, w0);
+    const auto sys = ROTGEN_GENERATED_TAYLOR_SYSTEM(free_top, T);
+    taylor<T> m;
+    m.rtol = m.atol = tol;
+    Eigen::Matrix<T, 3, 1> y(w0[0], w0[1], w0[2]);
+    std::vector<T> times;
+    for (int i = 1; i <= 100; ++i)
+        times.push_back(t_end * T(i) / T(100));
+    free_top_run<T> r;
+    const auto res = integrate(sys, m, T(0), y, times, [&](T t, const Eigen::Matrix<T, 3, 1>& w) {
+        const auto e = exact(t);
+        for (int i = 0; i < 3; ++i) {
+            using std::abs;
+            r.error = std::max(r.error, T(abs(w[i] - e[static_cast<std::size_t>(i)])));
+        }
+    });
+    r.steps = res.stats.steps;
+    r.code = res.code;
+    return r;
+}
+
+} // namespace
+
+TEST_CASE("taylor models the stepper concept and refuses a system without coefficients",
+          "[taylor]") {
+    STATIC_REQUIRE(check_method<taylor<double>>());
+    STATIC_REQUIRE(check_method<taylor<long double>>());
+    auto plain = make_system<double, 1>([](double, const double* y, double* d) { d[0] = -y[0]; });
+    Eigen::Matrix<double, 1, 1> y(1.0);
+    const auto res = integrate(plain, taylor<double>(), 0.0, y, 1.0);
+    CHECK(res.code == status::invalid_argument);
+    CHECK(res.message == "taylor: the system gives no Taylor coefficients (emit them with "
+                         "--outputs taylor)");
+    CHECK(taylor<double>{1e-17}.check() == "a tolerance is below the precision of the scalar type");
+}
+
+TEST_CASE("taylor on the free top follows the tolerance, 1e-6 to 1e-15", "[taylor]") {
+    // observed (t = 0..20, max over 100 samples, dense output included):
+    //   tol 1e-6: 2.1e-8   1e-8: 1.5e-10   1e-10: 3.9e-12   1e-12: 2.8e-14   1e-14: 4.4e-15
+    //   1e-15: 1.05e-15 (rounding: the sum of ~45 steps' roundings)
+    const auto [tol, bound] = GENERATE(table<double, double>({{1e-6, 2e-7},
+                                                              {1e-8, 1.5e-9},
+                                                              {1e-10, 4e-11},
+                                                              {1e-12, 2.8e-13},
+                                                              {1e-14, 4e-14},
+                                                              {1e-15, 1e-14}}));
+    CAPTURE(tol);
+    const auto r = run_free_top<double>(tol, 20.0);
+    REQUIRE(r.code == status::ok);
+    CHECK(r.error < bound);
+    CHECK(r.error > 0);
+}
+
+TEST_CASE("taylor in long double reaches below 1e-17 on the free top", "[taylor]") {
+    // At t = 20 (along the way Boost's long double elliptic functions themselves err by up to
+    // 2e-17, at t = 11, where Taylor and DOP853 in long double agree to 9e-19).
+    using T = long double;
+    const std::array<T, 3> w0 = {1, T(0.1L), T(0.5L)};
+    const free_top_exact<T> exact({1, 2, 3}, w0);
+    taylor<T> m;
+    m.rtol = m.atol = 2e-19L; // eps(long double) = 1.08e-19
+    Eigen::Matrix<T, 3, 1> y(w0[0], w0[1], w0[2]);
+    REQUIRE(integrate(ROTGEN_GENERATED_TAYLOR_SYSTEM(free_top, T), m, T(0), y, T(20)).code ==
+            status::ok);
+    const auto e = exact(T(20));
+    T error = 0;
+    for (int i = 0; i < 3; ++i)
+        error = std::max(error, std::abs(y[i] - e[static_cast<std::size_t>(i)]));
+    // observed: 1.1e-18
+    CHECK(error < 1e-17L);
+}
+
+TEST_CASE("taylor agrees with DOP853 on the heavy top and keeps its invariants", "[taylor]") {
+    using vec = Eigen::Matrix<double, 6, 1>;
+    const vec y0 = (vec() << 0.1, 0.5, 0.2, 0.3, 0.1, 10.0).finished();
+    const double t_end = 10;
+    const heavy_top::params<double> p;
+    const auto sys = ROTGEN_GENERATED_TAYLOR_SYSTEM(heavy_top, double);
+    taylor<double> m;
+    m.rtol = m.atol = 1e-14;
+    dop853<double> ref;
+    ref.rtol = ref.atol = 1e-14;
+    double e_drift = 0, pphi_drift = 0, ppsi_drift = 0;
+    double mom0[3];
+    heavy_top::momenta(y0.data(), mom0, p);
+    const double e0 = heavy_top::energy(y0.data(), p);
+    std::vector<double> times;
+    for (int i = 1; i <= 200; ++i)
+        times.push_back(t_end * i / 200);
+    vec y = y0;
+    const auto res = integrate(sys, m, 0.0, y, times, [&](double, const vec& s) {
+        double mom[3];
+        heavy_top::momenta(s.data(), mom, p);
+        e_drift = std::max(e_drift, std::abs(heavy_top::energy(s.data(), p) - e0) / std::abs(e0));
+        pphi_drift = std::max(pphi_drift, std::abs(mom[0] - mom0[0]) / std::abs(mom0[2]));
+        ppsi_drift = std::max(ppsi_drift, std::abs(mom[2] - mom0[2]) / std::abs(mom0[2]));
+    });
+    REQUIRE(res.code == status::ok);
+    vec y_ref = y0;
+    REQUIRE(
+        integrate(ROTGEN_GENERATED_SYSTEM_RHS(heavy_top, double), ref, 0.0, y_ref, t_end).code ==
+        status::ok);
+    // observed: |y - y_ref| 8.5e-13 (psi reaches 100 rad; DOP853's own error: against DOP853 in
+    // long double at 2e-18, Taylor errs by 3e-14 at t = 20, DOP853 by 1.2e-12); drifts over
+    // 200 samples 6.5e-16 (energy, relative), 5.2e-16 (p_phi), 3.5e-16 (p_psi, relative to p_psi)
+    CHECK((y - y_ref).cwiseAbs().maxCoeff() < 2e-12);
+    CHECK(e_drift < 5e-15);
+    CHECK(pphi_drift < 5e-15);
+    CHECK(ppsi_drift < 3e-15);
+}
+
+TEST_CASE("taylor chooses a higher order, not more steps, for a tighter tolerance", "[taylor]") {
+    // Jorba-Zou's order ceil(-ln(eps)/2 + 1), and a step ~ rho/e^2 that barely depends on the
+    // tolerance: observed (free top, t = 0..20) 1e-8: order 11, 45 steps; 1e-14: order 18,
+    // 44 steps
+    const auto loose = run_free_top<double>(1e-8, 20.0), tight = run_free_top<double>(1e-14, 20.0);
+    CHECK(taylor<double>::order_for(1e-8) == 11);
+    CHECK(taylor<double>::order_for(1e-14) == 18);
+    CHECK(loose.steps > 40);
+    CHECK(tight.steps <= loose.steps);
+}
