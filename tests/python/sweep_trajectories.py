@@ -25,7 +25,7 @@ def main():
     a = ap.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         scene = os.path.join(tmp, "scene.yaml")
-        text = (f"model: {a.model}\ninitial: {{theta: 0.5, psi_dot: 30}}\n"
+        text = (f"model: {a.model}\ninitial: {{phi: 0, theta: 0.5, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 30}}\n"
                 "time: {end: 1, samples: 11}\n"
                 "integrator: {method: dop853, rtol: 1e-10, atol: 1e-12, max_steps: 150}\n"
                 "record: [theta, body_z, energy]\n"

@@ -13,11 +13,13 @@ using namespace rotgen::test;
 
 TEST_CASE("a taylor scene agrees with dop853 and keeps the heavy top's invariants", "[simulate]") {
     const auto scene = [](const std::string& name, const std::string& integrator) {
-        return scratch_file(name, "model: " + model_path("heavy_top") +
-                                      "\ninitial: {theta: 0.5, psi_dot: 30}\n"
-                                      "time: {end: 5, samples: 501}\n"
-                                      "integrator: " +
-                                      integrator + "\nrecord: [theta, energy, p_phi, p_psi]\n");
+        return scratch_file(
+            name,
+            "model: " + model_path("heavy_top") +
+                "\ninitial: {phi: 0, theta: 0.5, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 30}\n"
+                "time: {end: 5, samples: 501}\n"
+                "integrator: " +
+                integrator + "\nrecord: [theta, energy, p_phi, p_psi]\n");
     };
     const scratch_file taylor =
         scene("taylor_scene.yaml", "{method: taylor, rtol: 1e-13, atol: 1e-13}");

@@ -8,7 +8,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cat >"$work/scene.yaml" <<YAML
 model: $src/models/heavy_top.yaml
-initial: {theta: 0.5, psi_dot: 30}
+initial: {phi: 0, theta: 0.5, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 30}
 time: {end: 2, samples: 101}
 integrator: {method: dop853, rtol: 1e-10, atol: 1e-12, max_steps: 300}
 record: [theta, energy, body_z]
