@@ -16,6 +16,7 @@ const char* const usage =
     "usage: rotgen <command> [options]   (rotgen <command> --help for each command's options)\n"
     "\n"
     "  inspect MODEL.yaml   the derived equations (text, LaTeX or JSON)\n"
+    "  inspect SCENE.yaml   the same for the scene's model, then the scene's events\n"
     "  emit MODEL.yaml -o DIR\n"
     "                       a C++ header with the model's kernels (rhs, jacobian, energy, ...)\n"
     "  simulate SCENE.yaml  integrate a scene: CSV, plot, invariant drifts\n"
