@@ -406,10 +406,6 @@ void scene_run::record() {
 void scene_run::start_method() {
     const integrator_spec& ig = m_scene.integrator;
     if (is_split_method(ig.method)) {
-        if (!m_scene.events.empty())
-            throw user_error(m_scene.integrator_where,
-                             ig.method + " does not locate events yet; use dop853, dopri5, rk4, "
-                                         "implicit_midpoint or rosenbrock for a scene with events");
         check_split_model(m_scene, m_inertia);
         m_split.emplace(m_scene, m_inertia);
         return;

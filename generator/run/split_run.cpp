@@ -10,7 +10,7 @@ namespace rotgen {
 
 namespace {
 
-const char* other_methods = "dop853, dopri5, rk4, implicit_midpoint or rosenbrock";
+const char* other_methods = "dop853, dopri5, rk4, implicit_midpoint, rosenbrock or taylor";
 
 bool depends_on_rates(const GiNaC::ex& e) {
     const coordinate_symbols& s = symbols();
@@ -29,6 +29,10 @@ void check_split_model(const scene_spec& scene, const Eigen::Matrix3d& inertia) 
     const model_spec& spec = scene.model;
     const std::string head =
         "integrator " + scene.integrator.method + " cannot run model '" + spec.name + "': ";
+    if (!scene.events.empty())
+        throw user_error(scene.integrator_where, "integrator " + scene.integrator.method +
+                                                     " does not locate events yet; use " +
+                                                     other_methods + " for a scene with events");
     bool rates = spec.has_damping;
     for (const auto& c : spec.torque)
         rates = rates || depends_on_rates(c);
