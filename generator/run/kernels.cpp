@@ -194,7 +194,8 @@ compiled_form compile_form(const scene_spec& scene, form_expressions f, bool ori
         throw std::logic_error("run: the emitted " + header.unit + " does not have " + size_decl);
     const std::vector<ex> program = record_program(scene, c, orientation, invariants);
     const std::vector<ex> events = event_programs(scene, c.f);
-    const std::string source = header.text + entry_points(c.f, header.unit, program, events, taylor);
+    const std::string source =
+        header.text + entry_points(c.f, header.unit, program, events, taylor);
     c.lib =
         timings.time("compile", header.unit, [&] { return compile_and_load(source, header.unit); });
     c.sys.n = c.f.state.size();

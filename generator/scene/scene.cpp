@@ -244,8 +244,8 @@ class scene_reader {
         integrator_spec& ig = m_scene.integrator;
         if (n["method"]) {
             const std::vector<std::string> methods{
-                "rk4",        "dopri5", "dop853", "implicit_midpoint",
-                "rosenbrock", "split2", "split4", "split6", "taylor"};
+                "rk4",    "dopri5", "dop853", "implicit_midpoint", "rosenbrock", "split2",
+                "split4", "split6", "taylor"};
             ig.method = n["method"].Scalar();
             if (std::find(methods.begin(), methods.end(), ig.method) == methods.end()) {
                 const std::string best = closest_name(ig.method, methods);
