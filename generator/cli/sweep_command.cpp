@@ -19,9 +19,9 @@ const command_spec sweep_command{
     "Runs an ensemble of the scene: the members vary its initial values and parameters as its\n"
     "sweep: block and the --vary options say (grid, zip or random). The model is derived and its\n"
     "kernels compiled once for all members. Writes DIR/summary.csv, one row per member in member\n"
-    "order (the varied values, the final recorded values, invariant drifts, steps, RHS\n"
-    "evaluations, status), the same byte for byte on every run. A member that fails does not stop\n"
-    "the others; the exit status is then 3.\n\n"
+    "order (the varied values, the final recorded values, the first time of each event,\n"
+    "invariant drifts, steps, RHS evaluations, status), the same byte for byte on every run. A\n"
+    "member that fails does not stop the others; the exit status is then 3.\n\n"
     "example: rotgen sweep models/scenes/heavy_top_nutation.yaml -o tilt --vary "
     "initial.theta=0.1:1.5:64",
     {{"-o", "DIR", "the output directory (created if missing)", {"--output"}},

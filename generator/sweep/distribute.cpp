@@ -82,6 +82,7 @@ std::string pack(const std::vector<std::pair<std::size_t, member_outcome>>& outc
         put<std::uint64_t>(out, m);
         put_doubles(out, o.final_row);
         put_doubles(out, o.drifts);
+        put_doubles(out, o.event_times);
         put<std::uint64_t>(out, o.steps);
         put<std::uint64_t>(out, o.rhs_evals);
         put<std::uint64_t>(out, o.status.size());
@@ -98,6 +99,7 @@ std::vector<std::pair<std::size_t, member_outcome>> unpack(const std::string& in
         m = get<std::uint64_t>(in, at);
         o.final_row = get_doubles(in, at);
         o.drifts = get_doubles(in, at);
+        o.event_times = get_doubles(in, at);
         o.steps = get<std::uint64_t>(in, at);
         o.rhs_evals = get<std::uint64_t>(in, at);
         const std::size_t n = get<std::uint64_t>(in, at);

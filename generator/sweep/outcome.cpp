@@ -2,6 +2,7 @@
 
 #include "support/format.hpp"
 
+#include <cmath>
 #include <limits>
 
 namespace rotgen {
@@ -23,6 +24,8 @@ summary_layout layout_of(const prepared_scene& prepared) {
     for (const auto& name : prepared.scene().record)
         for (const auto& c : record_columns(name))
             l.columns.push_back(c);
+    for (const auto& e : prepared.scene().events)
+        l.events.push_back(e.name);
     for (const auto& inv : prepared.invariants())
         l.invariants.push_back(inv.name);
     l.samples = static_cast<std::size_t>(prepared.scene().samples);
@@ -46,6 +49,12 @@ member_outcome run_one(const prepared_scene& prepared, const summary_layout& lay
     if (!r.rows.empty()) o.final_row = r.rows.back();
     for (const auto& d : r.invariants)
         o.drifts.push_back(d.drift);
+    o.event_times.assign(layout.events.size(), std::numeric_limits<double>::quiet_NaN());
+    for (std::size_t k = 0; k < r.event_index.size(); ++k) { // in time order: the first counts
+        const std::size_t i = r.event_index[k];
+        if (i < o.event_times.size() && std::isnan(o.event_times[i]))
+            o.event_times[i] = r.event_rows[k][0];
+    }
     o.steps = r.stats.accepted;
     o.rhs_evals = r.stats.rhs_evals;
     if (!r.ok)
@@ -67,6 +76,8 @@ void write_summary(std::ostream& os, const sweep_plan& plan,
     os << ",final.t";
     for (const auto& c : layout.columns)
         os << ",final." << c;
+    for (const auto& e : layout.events)
+        os << ",event." << e;
     for (const auto& inv : layout.invariants)
         os << ",drift." << inv;
     os << ",steps,rhs_evals,status\n";
@@ -77,6 +88,11 @@ void write_summary(std::ostream& os, const sweep_plan& plan,
             os << "," << format_double(v);
         for (std::size_t c = 0; c <= layout.columns.size(); ++c)
             os << "," << (c < o.final_row.size() ? format_number(o.final_row[c]) : "");
+        for (std::size_t i = 0; i < layout.events.size(); ++i)
+            os << ","
+               << (i < o.event_times.size() && !std::isnan(o.event_times[i])
+                       ? format_number(o.event_times[i])
+                       : "");
         for (std::size_t i = 0; i < layout.invariants.size(); ++i)
             os << "," << (i < o.drifts.size() ? format_number(o.drifts[i]) : "");
         os << "," << o.steps << "," << o.rhs_evals << "," << csv_field(o.status) << "\n";

@@ -14,8 +14,9 @@
 namespace rotgen {
 
 struct member_outcome {
-    std::vector<double> final_row; // t and the recorded columns at the last sample reached
-    std::vector<double> drifts;    // max |v(t) - v(t0)|, one per monitored invariant
+    std::vector<double> final_row;   // t and the recorded columns at the last sample reached
+    std::vector<double> drifts;      // max |v(t) - v(t0)|, one per monitored invariant
+    std::vector<double> event_times; // the first time of each scene event; NaN: it never occurred
     std::uint64_t steps = 0, rhs_evals = 0;
     std::string status = "ok"; // or why the member stopped (or could not start)
     // With trajectories: samples x (1 + columns), row-major; NaN past the last sample reached.
@@ -23,9 +24,11 @@ struct member_outcome {
     bool ok() const { return status == "ok"; }
 };
 
-// What every member's row has: the record columns (after t) and the monitored invariants.
+// What every member's row has: the record columns (after t), the scene's events and the monitored
+// invariants.
 struct summary_layout {
     std::vector<std::string> columns;    // recorded columns, body_x expanded
+    std::vector<std::string> events;     // the scene's events, in the scene's order
     std::vector<std::string> invariants; // energy, p_phi, ...
     std::size_t samples = 0;
 };
@@ -36,9 +39,9 @@ summary_layout layout_of(const prepared_scene& prepared);
 member_outcome run_one(const prepared_scene& prepared, const summary_layout& layout,
                        const member_values& values, bool keep_trajectory);
 
-// summary.csv: member, the keys as written, final.t, final.<column>..., drift.<invariant>...,
-// steps, rhs_evals, status. Numbers with 17 significant digits; a status with a comma or a quote
-// is quoted (RFC 4180).
+// summary.csv: member, the keys as written, final.t, final.<column>..., event.<name>... (the time
+// of the event's first occurrence, empty if none), drift.<invariant>..., steps, rhs_evals, status.
+// Numbers with 17 significant digits; a status with a comma or a quote is quoted (RFC 4180).
 void write_summary(std::ostream& os, const sweep_plan& plan,
                    const std::vector<std::vector<double>>& rows, const summary_layout& layout,
                    const std::vector<member_outcome>& outcomes);

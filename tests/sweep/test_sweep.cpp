@@ -192,3 +192,60 @@ TEST_CASE("sweep: -j 1 and -j 2 write the same files, byte for byte", "[sweep]")
     CHECK(lines(files[0]).size() == 37);
     CHECK(files[0] == files[1]);
 }
+
+TEST_CASE("sweep: event.<name> is the time of the event's first occurrence, empty if none",
+          "[sweep]") {
+    // The heavy top spun at 10 nods between theta0 and a turning point: theta0 = 0.8 turns at
+    // theta 0.861 (twice in t = 0..2) and passes 0.85 on the way; theta0 = 0.3 never gets there.
+    const std::string events = "events:\n  - {name: turn, when: theta_dot, direction: falling}\n"
+                               "  - {name: deep, when: theta - 0.85, direction: rising}\n";
+    const auto scene_at = [&](const std::string& theta, const std::string& rest) {
+        return heavy_top_scene("{phi: 0, theta: " + theta +
+                                   ", psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 10}",
+                               events + rest);
+    };
+    const scratch_file scene("sweep_events.yaml",
+                             scene_at("0.5", "sweep:\n  vary:\n    initial.theta: "
+                                             "{values: [0.3, 0.8]}\n"));
+    std::string summaries[2];
+    for (int j = 1; j <= 2; ++j) {
+        const std::string dir = scratch("sweep_events_" + std::to_string(j));
+        const test::run_result r =
+            run_rotgen("sweep '" + scene.path + "' -o '" + dir + "' -q -j " + std::to_string(j));
+        INFO(r.err);
+        REQUIRE(r.status == 0);
+        summaries[j - 1] = read_file(dir + "/summary.csv");
+    }
+    CHECK(summaries[0] == summaries[1]);
+    const auto summary = lines(summaries[0]);
+    REQUIRE(summary.size() == 3);
+    CHECK(summary[0] == "member,initial.theta,final.t,final.theta,final.phi,final.energy,"
+                        "final.p_phi,event.turn,event.deep,drift.energy,drift.p_phi,drift.p_psi,"
+                        "steps,rhs_evals,status");
+    for (int m = 0; m < 2; ++m) {
+        const std::string theta = m == 0 ? "0.3" : "0.8";
+        const scratch_file single("sweep_events_single.yaml", scene_at(theta, ""));
+        const std::string csv = scratch("sweep_events_" + theta + ".csv");
+        const test::run_result s = run_rotgen("simulate '" + single.path + "' -o '" + csv + "'");
+        REQUIRE(s.status == 0);
+        // The first row of each event in <output>.events.csv: its t, digit for digit.
+        std::string first_turn, first_deep;
+        std::size_t turns = 0;
+        for (const auto& line :
+             lines(read_file(scratch("sweep_events_" + theta + ".events.csv")))) {
+            const auto f = fields(line);
+            if (f[0] == "turn" && turns++ == 0) first_turn = f[1];
+            if (f[0] == "deep" && first_deep.empty()) first_deep = f[1];
+        }
+        const std::vector<std::string> row = fields(summary[1 + m]);
+        INFO("member " << m);
+        REQUIRE(row.size() == 15);
+        CHECK(row[1] == theta);
+        CHECK(!first_turn.empty());
+        CHECK(row[7] == first_turn);
+        CHECK(row[8] == first_deep);
+        CHECK(row.back() == "ok");
+        if (m == 0) CHECK(first_deep.empty()); // the empty field: theta0 = 0.3 stays below 0.85
+        if (m == 1) CHECK(turns == 2);         // the first of two turning points
+    }
+}
