@@ -9,6 +9,7 @@
 #include "cli/options.hpp"
 #include "derive/derive.hpp"
 #include "emit/emit.hpp"
+#include "emit/taylor.hpp"
 #include "spec/spec.hpp"
 #include "support/atomic_file.hpp"
 #include "support/error.hpp"
@@ -183,8 +184,14 @@ int cmd_emit(const std::vector<std::string>& args) {
     });
     const lowered_form lowered =
         timings.time("lower", to_string(form), [&] { return lower_form(spec, f, request); });
-    const emitted_header h =
-        timings.time("emit", to_string(form), [&] { return emit_header(spec, lowered, header); });
+    const emitted_header h = timings.time("emit", to_string(form), [&] {
+        try {
+            return emit_header(spec, lowered, header);
+        } catch (const taylor_unsupported& e) { // --outputs taylor: a model-wide refusal
+            throw user_error({spec.file, 1, 1}, "model '" + spec.name + "': " + e.what() +
+                                                    "; leave taylor out of --outputs");
+        }
+    });
     timings.time("write", h.file_name, [&] { write_header(dir, h.file_name, h.text); });
     print_written(dir, h);
     if (o.has("--timings")) timings.print(std::cerr);

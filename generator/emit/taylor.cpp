@@ -280,8 +280,7 @@ int taylor_builder::product_series(const lowered_node& n) {
 int taylor_builder::call_series(const lowered_node& n) {
     const std::string& f = n.name;
     const auto unsupported = [&](const std::string& why) {
-        return user_error({"rotgen emit"}, "the Taylor recurrences do not cover " + why +
-                                               " (in the rates); use another method");
+        return taylor_unsupported("the Taylor recurrences do not cover " + why + " (in the rates)");
     };
     for (int a : n.args)
         if (constant(a) && f != "pow")

@@ -30,9 +30,16 @@
 #include "lower/lower.hpp"
 
 #include <cstddef>
+#include <stdexcept>
 #include <string>
 
 namespace rotgen {
+
+// A rate the recurrences do not cover; what() names it. The caller locates it: the model file
+// (rotgen emit), the scene's integrator (a run).
+struct taylor_unsupported : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
 
 struct taylor_body {
     std::string text;           // the statements of taylor(t, c, order, p)
@@ -41,8 +48,8 @@ struct taylor_body {
 };
 
 // The body of taylor() for the rhs program `rhs` (its inputs: the state as y[i], the parameters,
-// t; its outputs: the rates, in state order). Throws user_error ("rotgen emit: ...") for a
-// function the recurrences do not cover (tan, asin, abs, ...; pow with a varying exponent).
+// t; its outputs: the rates, in state order). Throws taylor_unsupported for a function the
+// recurrences do not cover (tan, asin, abs, ...; pow with a varying exponent).
 taylor_body print_taylor_body(const lowered_program& rhs);
 
 } // namespace rotgen

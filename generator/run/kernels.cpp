@@ -3,6 +3,7 @@
 #include "run/event_kernels.hpp"
 
 #include "emit/emit.hpp"
+#include "emit/taylor.hpp"
 #include "expr/symbols.hpp"
 #include "lower/lower.hpp"
 #include "run/records.hpp"
@@ -186,7 +187,13 @@ compiled_form compile_form(const scene_spec& scene, form_expressions f, bool ori
     const lowered_form lowered =
         timings.time("lower", to_string(c.form), [&] { return lower_form(spec, c.f, request); });
     const emitted_header header = timings.time("emit", to_string(c.form), [&] {
-        return emit_header(spec, lowered, {command, ""});
+        try {
+            return emit_header(spec, lowered, {command, ""});
+        } catch (const taylor_unsupported& e) {
+            throw user_error(scene.integrator_where,
+                             "integrator taylor cannot run model '" + spec.name + "': " + e.what() +
+                                 "; use dop853, dopri5, rk4, implicit_midpoint or rosenbrock");
+        }
     });
     // The compiled kernels and the state built here must agree on the layout.
     const std::string size_decl = "state_size = " + std::to_string(c.f.state.size()) + ";";

@@ -1,5 +1,6 @@
 // `integrator: {method: taylor}` in a scene: the run engine compiles the Taylor coefficients with
 // the kernels and integrates with the Taylor method (runtime/steppers/taylor.hpp).
+#include "error_sites.hpp"
 #include "support.hpp"
 
 #include <catch2/catch.hpp>
@@ -41,4 +42,31 @@ TEST_CASE("a taylor scene agrees with dop853 and keeps the heavy top's invariant
     // observed: theta within 5.9e-14 of dop853's; energy drift 3.1e-13 of E = 225.9 (1.4e-15)
     CHECK(diff < 5e-13);
     CHECK(drift < 1e-14 * a.values("energy")[0]);
+}
+
+TEST_CASE(
+    "a model whose rates the Taylor recurrences do not cover is refused where it is asked for",
+    "[simulate][errors]") {
+    const scratch_file model("taylor_tan.yaml",
+                             "name: tan_top\ninertia: [1, 1, 2]\npotential: 0.1*tan(theta)\n");
+    const scratch_file scene(
+        "taylor_tan_scene.yaml",
+        "model: taylor_tan.yaml\n"
+        "initial: {phi: 0, theta: 0.5, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 3}\n"
+        "time: {end: 1}\nintegrator: {method: taylor}\n");
+    const std::string csv = std::string(ROTGEN_BINARY_DIR) + "/taylor_tan.csv";
+    std::remove(csv.c_str());
+    check_error_line(
+        run_rotgen("simulate taylor_tan_scene.yaml -o '" + csv + "'", ROTGEN_BINARY_DIR),
+        "taylor_tan_scene.yaml:4:13: integrator taylor cannot run model 'tan_top': "
+        "the Taylor recurrences do not cover 'tan' (in the rates); use dop853, "
+        "dopri5, rk4, implicit_midpoint or rosenbrock");
+    CHECK(read_file(csv).empty());
+    const scratch_dir out("taylor_tan_out");
+    check_error_line(
+        run_rotgen("emit taylor_tan.yaml --outputs rhs,taylor -o '" + out.path.string() + "'",
+                   ROTGEN_BINARY_DIR),
+        "taylor_tan.yaml:1:1: model 'tan_top': the Taylor recurrences do not cover "
+        "'tan' (in the rates); leave taylor out of --outputs");
+    CHECK(!std::filesystem::exists(out.path));
 }
