@@ -7,6 +7,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <functional>
 #include <sstream>
 
 using namespace rotgen;
@@ -28,10 +29,11 @@ std::string heavy_top_scene(const std::string& initial, const std::string& rest)
 
 std::vector<std::vector<double>> rows_of(const std::string& sweep_block,
                                          const std::vector<std::string>& cli = {}) {
-    const scratch_file f(
-        "sweep_plan.yaml",
-        heavy_top_scene("{phi: 0, theta: 0.5, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 30}",
-                        sweep_block));
+    const std::string text = heavy_top_scene(
+        "{phi: 0, theta: 0.5, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 30}", sweep_block);
+    // one file per text: the test cases run as parallel processes under ctest -j
+    const scratch_file f("sweep_plan_" + std::to_string(std::hash<std::string>{}(text)) + ".yaml",
+                         text);
     return member_rows(read_sweep_plan(load_scene(f.path), cli));
 }
 
