@@ -21,7 +21,7 @@ root_flag=()
 scene() { # $1: name, $2: integrator mapping
   cat >"$work/$1.yaml" <<YAML
 model: $root/models/heavy_top.yaml
-initial: {theta: 0.5, psi_dot: 30}
+initial: {phi: 0, theta: 0.5, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 30}
 time: {start: 0, end: 10, samples: 101}
 integrator: $2
 record: [theta, energy]
@@ -64,7 +64,7 @@ read -r dop_1 dop_1c < <(best_of_3 "$rotgen" sweep "$work/dop853.yaml" -j 1)
 echo "dop853, 2 threads" >&2
 read -r dop_2 dop_2c < <(best_of_3 "$rotgen" sweep "$work/dop853.yaml" -j 2)
 echo "dop853, mpirun -n 2" >&2
-read -r mpi_2 mpi_2c < <(best_of_3 mpirun -n 2 --oversubscribe "${root_flag[@]}" "$rotgen" sweep \
+read -r mpi_2 mpi_2c < <(best_of_3 mpirun -n 2 --oversubscribe "${root_flag[@]}" "$rotgen" sweep -j 1 \
   "$work/dop853.yaml")
 # overhead per member: the core time two ranks spend beyond one process's, per member
 overhead=$(awk -v n=$members -v one="$dop_1c" -v two="$mpi_2c" \
