@@ -2,6 +2,7 @@
 
 #include "sweep/parallel.hpp"
 
+#include <array>
 #include <atomic>
 #include <cstdlib>
 #include <cstring>
@@ -138,13 +139,21 @@ bool started_by_mpirun() {
 }
 
 // A rank other than 0: ask for a chunk, run it on the threads, send the outcomes, until told that
-// the queue is empty (an empty chunk).
+// the queue is empty (an empty chunk). The next chunk is asked for before the current one runs, so
+// that rank 0's answer arrives while this rank computes and the rank never waits for work.
 void serve_as_worker(unsigned jobs, const member_work& work) {
-    for (;;) {
+    const auto ask = [] {
         MPI_Send(nullptr, 0, MPI_BYTE, 0, request, MPI_COMM_WORLD);
-        std::uint64_t chunk[2];
-        MPI_Recv(chunk, 2, MPI_UINT64_T, 0, assignment, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-        if (chunk[0] == chunk[1]) return;
+        std::array<std::uint64_t, 2> chunk{};
+        MPI_Recv(chunk.data(), 2, MPI_UINT64_T, 0, assignment, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+        return chunk;
+    };
+    std::array<std::uint64_t, 2> chunk = ask();
+    while (chunk[0] != chunk[1]) {
+        MPI_Send(nullptr, 0, MPI_BYTE, 0, request, MPI_COMM_WORLD); // the next one, ahead
+        std::array<std::uint64_t, 2> next_chunk{};
+        MPI_Request pending;
+        MPI_Irecv(next_chunk.data(), 2, MPI_UINT64_T, 0, assignment, MPI_COMM_WORLD, &pending);
         std::vector<std::pair<std::size_t, member_outcome>> out(chunk[1] - chunk[0]);
         std::atomic<std::size_t> next{chunk[0]};
         run_pool(
@@ -159,6 +168,8 @@ void serve_as_worker(unsigned jobs, const member_work& work) {
             {});
         const std::string bytes = pack(out);
         MPI_Send(bytes.data(), int(bytes.size()), MPI_BYTE, 0, results, MPI_COMM_WORLD);
+        MPI_Wait(&pending, MPI_STATUS_IGNORE);
+        chunk = next_chunk;
     }
 }
 
@@ -242,7 +253,7 @@ std::vector<member_outcome> run_distributed(const mpi_session& s, std::size_t co
             progress(done + received);
             last = std::chrono::steady_clock::now();
         }
-        std::this_thread::sleep_for(std::chrono::microseconds(200));
+        std::this_thread::sleep_for(std::chrono::microseconds(1000));
     }
     local.join();
     if (failure) MPI_Abort(MPI_COMM_WORLD, 1); // an internal error: the other ranks would wait
