@@ -134,9 +134,9 @@ template <class T, class S> class taylor_stepper {
     // coefficients are not finite). Expands the solution there; attempt() uses the expansion.
     T choose_step(const S& sys, T t, const vector& y, step_stats& stats) {
         using std::exp;
+        using std::log;
         using std::max;
         using std::min;
-        using std::log;
         if (!m_expanded) expand(sys, t, y, stats);
         const int p = m_p;
         const T s = m_relative ? m_norm0 : T(1);
