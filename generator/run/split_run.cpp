@@ -32,10 +32,6 @@ void check_split_model(const scene_spec& scene, const Eigen::Matrix3d& inertia) 
     const model_spec& spec = scene.model;
     const std::string head =
         "integrator " + scene.integrator.method + " cannot run model '" + spec.name + "': ";
-    if (!scene.events.empty())
-        throw user_error(scene.integrator_where, "integrator " + scene.integrator.method +
-                                                     " does not locate events yet; use " +
-                                                     other_methods + " for a scene with events");
     bool rates = spec.has_damping;
     for (const auto& c : spec.torque)
         rates = rates || depends_on_rates(c);
@@ -91,15 +87,16 @@ void split_runner::choose_step(const loaded_system& body, double t0, const Eigen
     m_step = split_step_for_tolerance(system(body), m_order, m_rtol, t0, y0, span);
 }
 
-integration_result<double> split_runner::integrate(const loaded_system& body, double t0,
-                                                   Eigen::VectorXd& y,
-                                                   const std::vector<double>& times,
-                                                   const observer& observe) const {
+integration_result<double>
+split_runner::integrate(const loaded_system& body, double t0, Eigen::VectorXd& y,
+                        const std::vector<double>& times, const observer& observe,
+                        event_set<double, Eigen::VectorXd>* events) const {
     const body_split_system<loaded_system> sys = system(body);
     const auto run = [&](auto method) {
         method.step = m_step;
         method.max_steps = m_max_steps;
-        return rotgen::integrate(sys, method, t0, y, times, observe);
+        return events ? rotgen::integrate(sys, method, t0, y, times, observe, *events)
+                      : rotgen::integrate(sys, method, t0, y, times, observe);
     };
     if (m_order == 2) return run(split2<double>());
     if (m_order == 4) return run(split4<double>());

@@ -48,10 +48,14 @@ class split_runner {
     void choose_step(const loaded_system& body, double t0, const Eigen::VectorXd& y0, double span);
     double step() const { return m_step; }
 
+    // Events (when not null) are located on the methods' continuous extension: the method run
+    // from the step's start by θh, which moves the free body exactly however many turns the step
+    // holds (a cubic Hermite interpolant of the quaternion across such a step would not), with the
+    // search and refinement every method uses (runtime/integrate/events.hpp).
     using observer = std::function<bool(double, const Eigen::VectorXd&)>;
     integration_result<double> integrate(const loaded_system& body, double t0, Eigen::VectorXd& y,
-                                         const std::vector<double>& times,
-                                         const observer& observe) const;
+                                         const std::vector<double>& times, const observer& observe,
+                                         event_set<double, Eigen::VectorXd>* events) const;
 
   private:
     body_split_system<loaded_system> system(const loaded_system& body) const;
