@@ -12,10 +12,18 @@
 // torque(t, y, tau); its rhs is the body form of the same model,
 //   q̇ = ½ q ⊗ (0, ω),    I ω̇ = τ − ω × I ω                             (5.87)–(5.89) with τ,
 // so every other method runs the same system too (the tests compare them).
+// A split system may also provide
+//   std::array<T, 4> principal_axes() const;         the unit quaternion p = (w, x, y, z) whose
+//                                                    rotation P has the principal axes (body
+//                                                    components) as columns: v_body = P v_principal
+// when its body axes are not principal (products of inertia, (5.39)); principal_moments() are
+// then the moments along P's columns and torque() stays in body axes. The split methods move the
+// body in the principal frame (steppers/splitting.hpp): attitude q ⊗ p (R(q) P carries principal
+// to space components), ω_p = Pᵀ ω, τ_p = Pᵀ τ (the inertia P D Pᵀ of (5.69) with A = Pᵀ).
 // body_split_system<S> makes a split system of any body-form system S (7 states, the layout above:
-// a generated model's body form, or the loaded kernels of `rotgen simulate`) with diagonal inertia:
-// at ω = 0 the gyroscopic term vanishes, so the torque is τ_i = I_i ω̇_i(t, q, ω = 0) — valid when
-// S's torque does not depend on ω (no damping), which the caller checks.
+// a generated model's body form, or the loaded kernels of `rotgen simulate`): at ω = 0 the
+// gyroscopic term vanishes, so the torque is τ = I ω̇(t, q, ω = 0), I the full inertia tensor in
+// body axes — valid when S's torque does not depend on ω (no damping), which the caller checks.
 #pragma once
 
 #include <array>
@@ -39,6 +47,17 @@ struct has_split_interface<
 // True when S can be run by the splitting methods.
 template <class S, class T>
 inline constexpr bool has_split_interface_v = detail::has_split_interface<S, T>::value;
+
+namespace detail {
+template <class S, class = void> struct has_principal_axes : std::false_type {};
+template <class S>
+struct has_principal_axes<S, std::void_t<decltype(std::declval<const S&>().principal_axes()[0])>>
+    : std::true_type {};
+} // namespace detail
+
+// True when S's body axes may differ from its principal axes (principal_axes() above).
+template <class S>
+inline constexpr bool has_principal_axes_v = detail::has_principal_axes<S>::value;
 
 // The torque of uniform gravity on a body whose centre of mass is r (body axes) from the fixed
 // point: τ = r × (−M g ê) = M g ê × r, ê the space vertical in body axes, ê = R(q)ᵀ e_z =
@@ -94,22 +113,34 @@ template <class S> class body_split_system {
   public:
     std::size_t size() const { return 7; } // run-time size: works on Eigen::VectorXd states
 
+    // Principal body axes: the moments along them.
     body_split_system(const S& body, std::array<double, 3> moments)
-        : m_body(body), m_moments(moments) {}
+        : m_body(body), m_moments(moments) {
+        for (std::size_t i = 0; i < 3; ++i)
+            m_tensor[i][i] = moments[i];
+    }
+    // Any body axes: the tensor in body axes, its principal moments and the quaternion p of the
+    // axes (the file comment).
+    body_split_system(const S& body, const std::array<std::array<double, 3>, 3>& tensor,
+                      std::array<double, 3> moments, std::array<double, 4> axes)
+        : m_body(body), m_moments(moments), m_tensor(tensor), m_axes(axes) {}
 
     const std::array<double, 3>& principal_moments() const { return m_moments; }
+    const std::array<double, 4>& principal_axes() const { return m_axes; }
     void torque(double t, const double* y, double* tau) const {
         const double y0[7] = {y[0], y[1], y[2], y[3], 0.0, 0.0, 0.0};
         double d[7];
         m_body.rhs(t, y0, d);
-        for (int i = 0; i < 3; ++i)
-            tau[i] = m_moments[static_cast<std::size_t>(i)] * d[4 + i];
+        for (std::size_t i = 0; i < 3; ++i)
+            tau[i] = m_tensor[i][0] * d[4] + m_tensor[i][1] * d[5] + m_tensor[i][2] * d[6];
     }
     void rhs(double t, const double* y, double* dydt) const { m_body.rhs(t, y, dydt); }
 
   private:
     const S& m_body;
     std::array<double, 3> m_moments;
+    std::array<std::array<double, 3>, 3> m_tensor{};
+    std::array<double, 4> m_axes{1.0, 0.0, 0.0, 0.0};
 };
 
 } // namespace rotgen

@@ -22,6 +22,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -153,9 +154,13 @@ int main(int argc, char** argv) {
     }
     const std::array<std::pair<const char*, std::array<double, 3>>, 2> bodies = {
         {{"symmetric", {1, 1, 0.5}}, {"asymmetric", {1, 1.2, 0.5}}}};
+    // optional: one body and spin only (split_bench asymmetric 1000), for before/after runs
+    const std::string only_body = argc > 2 ? argv[1] : "";
+    const double only_spin = argc > 2 ? std::atof(argv[2]) : 0;
     std::printf("body spin method knob steps error seconds\n");
     for (const auto& [name, in] : bodies)
         for (double spin : {10.0, 100.0, 1000.0, 10000.0}) {
+            if (!only_body.empty() && (only_body != name || only_spin != spin)) continue;
             const Eigen::Quaterniond ref = reference(in, spin);
             for (double tol = 1e-4; tol >= 1e-13; tol /= 10) {
                 dop853<double> m(tol, tol);

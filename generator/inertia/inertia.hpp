@@ -125,6 +125,9 @@ struct principal_axes {
 // Each axis has its largest component positive, except that the third may be flipped to make
 // det A = +1.
 principal_axes find_principal_axes(const matrix3& tensor, const GiNaC::exmap& defaults);
+// The numeric branch alone, for a tensor of numbers (a run's inertia at its member's values): the
+// moments ascending, the axes as above (the split methods' principal frame, run/split_run.cpp).
+principal_axes numeric_principal_axes(const std::array<std::array<double, 3>, 3>& tensor);
 
 // How many principal moments are exactly zero (0, 1, 2 or 3), decided exactly from the tensor's
 // characteristic polynomial (c3 = det I = 0: one at least; c2 = Σ principal minors = 0 too: two;

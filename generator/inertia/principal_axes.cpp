@@ -402,6 +402,14 @@ std::optional<principal_axes> exact_axes(const matrix3& t, const Eigen::Matrix3d
 
 } // namespace
 
+principal_axes numeric_principal_axes(const std::array<std::array<double, 3>, 3>& tensor) {
+    Eigen::Matrix3d tn;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            tn(i, j) = tensor[i][j];
+    return numeric_axes(tn);
+}
+
 principal_axes find_principal_axes(const matrix3& tensor, const GiNaC::exmap& defaults) {
     Eigen::Matrix3d tn;
     for (int i = 0; i < 3; ++i)

@@ -321,7 +321,8 @@ scene_run::next scene_run::integrate_segment(Eigen::VectorXd& y, double t_from) 
     const std::size_t first_hit = m_events.hits().size();
     if (m_events.size() > 0) use_event_functions(cf);
     m_timings.time("integrate", to_string(cf.form), [&] {
-        m_last = m_split ? m_split->integrate(sys, t_from, y, times, observe)
+        m_last = m_split ? m_split->integrate(sys, t_from, y, times, observe,
+                                              m_events.size() > 0 ? &m_events : nullptr)
                  : m_events.size() > 0
                      ? integrate(sys, *m_method, t_from, y, times, observe, m_events)
                      : integrate(sys, *m_method, t_from, y, times, observe);

@@ -1,10 +1,13 @@
 #include "run/split_run.hpp"
 
 #include "expr/symbols.hpp"
+#include "inertia/inertia.hpp"
 #include "support/error.hpp"
 
 #include <split_step_rule.hpp>
 #include <steppers/splitting.hpp>
+
+#include <algorithm>
 
 namespace rotgen {
 
@@ -29,10 +32,6 @@ void check_split_model(const scene_spec& scene, const Eigen::Matrix3d& inertia) 
     const model_spec& spec = scene.model;
     const std::string head =
         "integrator " + scene.integrator.method + " cannot run model '" + spec.name + "': ";
-    if (!scene.events.empty())
-        throw user_error(scene.integrator_where, "integrator " + scene.integrator.method +
-                                                     " does not locate events yet; use " +
-                                                     other_methods + " for a scene with events");
     bool rates = spec.has_damping;
     for (const auto& c : spec.torque)
         rates = rates || depends_on_rates(c);
@@ -41,42 +40,63 @@ void check_split_model(const scene_spec& scene, const Eigen::Matrix3d& inertia) 
                          head + "its " + (spec.has_damping ? "damping" : "torque") +
                              " depends on the rates, which a kick cannot hold; use " +
                              other_methods);
-    const Eigen::Matrix3d off = inertia - Eigen::Matrix3d(inertia.diagonal().asDiagonal());
-    if (off.cwiseAbs().maxCoeff() > 0)
-        throw user_error(scene.integrator_where,
-                         head +
-                             "its body axes are not principal axes (the inertia has products "
-                             "of inertia); give the principal moments, or use " +
-                             other_methods);
-    if (!(inertia.diagonal().minCoeff() > 0))
+    const std::array<double, 3> moments = split_frame(inertia).moments;
+    if (!(*std::min_element(moments.begin(), moments.end()) > 0))
         throw user_error(scene.integrator_where,
                          head + "a principal moment is not positive (a rotor); use " +
                              other_methods);
 }
 
+split_frame_values split_frame(const Eigen::Matrix3d& inertia) {
+    split_frame_values f;
+    const Eigen::Matrix3d off = inertia - Eigen::Matrix3d(inertia.diagonal().asDiagonal());
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            f.tensor[i][j] = inertia(i, j);
+    f.principal = off.cwiseAbs().maxCoeff() > 0;
+    if (!f.principal) {
+        f.moments = {inertia(0, 0), inertia(1, 1), inertia(2, 2)};
+        return f;
+    }
+    // the principal axes of the inertia stage (rows of A = Pᵀ, (5.69)), proper
+    const principal_axes pa = numeric_principal_axes(f.tensor);
+    f.moments = pa.moment_values;
+    Eigen::Matrix3d p;
+    for (int k = 0; k < 3; ++k)
+        for (int j = 0; j < 3; ++j)
+            p(j, k) = pa.axis_values[k][j];
+    const Eigen::Quaterniond q(p);
+    f.axes = {q.w(), q.x(), q.y(), q.z()};
+    return f;
+}
+
 split_runner::split_runner(const scene_spec& scene, const Eigen::Matrix3d& inertia)
     : m_method(scene.integrator.method), m_order(m_method.back() - '0'),
       m_rtol(scene.integrator.rtol), m_step(scene.integrator.step),
-      m_max_steps(static_cast<std::size_t>(scene.integrator.max_steps)), m_moments{inertia(0, 0),
-                                                                                   inertia(1, 1),
-                                                                                   inertia(2, 2)} {}
+      m_max_steps(static_cast<std::size_t>(scene.integrator.max_steps)),
+      m_frame(split_frame(inertia)) {}
+
+body_split_system<loaded_system> split_runner::system(const loaded_system& body) const {
+    if (!m_frame.principal) return body_split_system<loaded_system>(body, m_frame.moments);
+    return body_split_system<loaded_system>(body, m_frame.tensor, m_frame.moments, m_frame.axes);
+}
 
 void split_runner::choose_step(const loaded_system& body, double t0, const Eigen::VectorXd& y0,
                                double span) {
     if (m_step > 0) return;
-    const body_split_system<loaded_system> sys(body, m_moments);
-    m_step = split_step_for_tolerance(sys, m_order, m_rtol, t0, y0, span);
+    m_step = split_step_for_tolerance(system(body), m_order, m_rtol, t0, y0, span);
 }
 
-integration_result<double> split_runner::integrate(const loaded_system& body, double t0,
-                                                   Eigen::VectorXd& y,
-                                                   const std::vector<double>& times,
-                                                   const observer& observe) const {
-    const body_split_system<loaded_system> sys(body, m_moments);
+integration_result<double>
+split_runner::integrate(const loaded_system& body, double t0, Eigen::VectorXd& y,
+                        const std::vector<double>& times, const observer& observe,
+                        event_set<double, Eigen::VectorXd>* events) const {
+    const body_split_system<loaded_system> sys = system(body);
     const auto run = [&](auto method) {
         method.step = m_step;
         method.max_steps = m_max_steps;
-        return rotgen::integrate(sys, method, t0, y, times, observe);
+        return events ? rotgen::integrate(sys, method, t0, y, times, observe, *events)
+                      : rotgen::integrate(sys, method, t0, y, times, observe);
     };
     if (m_order == 2) return run(split2<double>());
     if (m_order == 4) return run(split4<double>());

@@ -23,7 +23,9 @@
 // and 19.25.14), for |φ| <= π/2, with s = sin φ, c = cos φ, Δ² = mc + m c²:
 //   F(φ | m)    = s R_F(c², Δ², 1)
 //   Π(φ; n | m) = s R_F(c², Δ², 1) + (n/3) s³ R_J(c², Δ², 1, 1 − n s²)    (Π with 1 − n sin²)
-// and the complete ones at φ = π/2 (c = 0, Δ² = mc).
+// and the complete ones at φ = π/2 (c = 0, Δ² = mc). Where φ = am(r) came from the AGM, F(φ | m) =
+// r is known and only R_J is evaluated; the complete Π takes K from the AGM. (For m <= 0.03 the
+// free body uses the series of small_parameter.hpp instead.)
 #pragma once
 
 #include <boost/math/constants/constants.hpp>
@@ -44,6 +46,7 @@ template <class T> struct jacobi_values {
     T am, sn, cn, dn;
     long long half_periods; // j in u = 2K j + r
     T reduced_am;           // am(r) ∈ [−π/2, π/2]
+    T reduced_u;            // r = F(am(r) | m)
 };
 
 // The AGM table of one parameter (m, mc), built once and used for every u.
@@ -90,6 +93,7 @@ template <class T> class jacobi_amplitude {
             v.half_periods = static_cast<long long>(j);
             r = u - T(2) * m_k_complete * j;
         }
+        v.reduced_u = r;
         v.reduced_am = reduced(r);
         v.am = T(v.half_periods) * boost::math::constants::pi<T>() + v.reduced_am;
         const T sign = (v.half_periods % 2 == 0) ? T(1) : T(-1);
@@ -131,17 +135,23 @@ template <class T> class jacobi_amplitude {
     T m_k_complete = T(0);
 };
 
-// F(φ | m) and Π(φ; n | m) for |φ| <= π/2 (Π's integrand 1/((1 − n sin²) Δ)), n <= 0 here.
+// Π(φ; n | m) for |φ| <= π/2 given F = F(φ | m) (Π's integrand 1/((1 − n sin²) Δ)), n <= 0 here:
+// where φ = am(r) is known, F = r and only R_J is evaluated.
+template <class T> T incomplete_pi(T n, T f, T s, T c, T delta2) {
+    return f + n / T(3) * s * s * s *
+                   boost::math::ellint_rj(c * c, delta2, T(1), T(1) - n * s * s, carlson_policy());
+}
+
+// F(φ | m) and Π(φ; n | m) for |φ| <= π/2.
 template <class T> struct incomplete_f_pi { T f, pi; };
 template <class T> incomplete_f_pi<T> incomplete_integrals(T n, T s, T c, T delta2) {
     const T f = s * boost::math::ellint_rf(c * c, delta2, T(1), carlson_policy());
-    const T rj = boost::math::ellint_rj(c * c, delta2, T(1), T(1) - n * s * s, carlson_policy());
-    return {f, f + n / T(3) * s * s * s * rj};
+    return {f, incomplete_pi(n, f, s, c, delta2)};
 }
 
-// Π(n | m), the complete integral (φ = π/2); mc > 0.
-template <class T> T complete_pi(T n, T mc) {
-    return boost::math::ellint_rf(T(0), mc, T(1), carlson_policy()) +
+// Π(n | m), the complete integral (φ = π/2), from K(m) (the AGM's, jacobi_amplitude); mc > 0.
+template <class T> T complete_pi(T n, T mc, T k_complete) {
+    return k_complete +
            n / T(3) * boost::math::ellint_rj(T(0), mc, T(1), T(1) - n, carlson_policy());
 }
 

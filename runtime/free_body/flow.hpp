@@ -31,8 +31,10 @@
 //   W(u) = (G²/c) Π(am u; −d/c | m) − G A/sqrt(c (c + d)) · atan(sqrt((c + d)/c) tan am u),
 // c = G² − A² (the transverse momentum squared where dn = 1), d = A² m, obtained by
 // rationalising G/(G + A dn) = G (G − A dn)/(c + d sn²) and dn du = d(am u). W is continued
-// over half periods by W(2Kj + r) = j W(2K) + W(r). Every case is checked against DOP853 at
-// rtol 1e-14 in tests/runtime/test_free_body.cpp (the published formulas carry sign errors).
+// over half periods by W(2Kj + r) = j W(2K) + W(r); for m <= 0.03 (a spin near a principal axis)
+// W and F are power series in m instead (small_parameter.hpp: about half the cost). Every case is
+// checked against DOP853 at rtol 1e-14 in tests/runtime/test_free_body.cpp (the published formulas
+// carry sign errors).
 //
 // Special cases, where the general formulas divide by moment differences or by c: the sphere and
 // the symmetric top (two equal moments, the distinct one I_d along axis a): T = G²/(2 I_s) +

@@ -25,6 +25,7 @@
 #include <utility>
 
 #include "amplitude.hpp"
+#include "small_parameter.hpp"
 
 namespace rotgen::detail {
 
@@ -96,7 +97,8 @@ template <class T> class free_body_momentum {
     T precession(T t, const momentum_at<T>& end) const {
         // Δ_e = G² − 2T I_e = Σ_i m_i² (I_i − I_e)/I_i = l, the invariant of the file comment
         const T g = this->g();
-        const T w1 = w_of(end.jv.half_periods, end.jv.reduced_am);
+        const T w1 = m_use_series ? m_series.at(end.jv.half_periods, end.jv.reduced_am).w
+                                  : w_of(end.jv.half_periods, end.jv.reduced_am, end.jv.reduced_u);
         return m_twice_t * t / g + m_l / (m_j[0] * g) * (t - (w1 - m_w0) / m_lambda);
     }
 
@@ -137,6 +139,8 @@ template <class T> class free_body_momentum {
         m_n = -(big_a * big_a * k2) / m_c;
         m_coef_pi = m_g2 / m_c;
         m_coef_atan = sqrt(m_g2) * big_a / sqrt(m_c * m_cd);
+        m_use_series = k2 <= small_parameter_limit<T>;
+        if (m_use_series) m_series = phase_series<T>(k2, sqrt(m_g2), big_a);
         start_phase(atan2(v[1] / (m_sigma * m_a2), v[2] / m_a3));
     }
 
@@ -149,6 +153,12 @@ template <class T> class free_body_momentum {
         if (phi0 > pi / T(2)) j = 1;
         if (phi0 < -pi / T(2)) j = -1;
         const T r = phi0 - T(j) * pi;
+        if (m_use_series) {                    // small m: the series of small_parameter.hpp
+            const auto ps = m_series.at(j, r); // F(jπ + r) = 2jK + F(r)
+            m_u0 = ps.f;
+            m_w0 = ps.w;
+            return;
+        }
         const T s = sin(r), c = cos(r);
         const auto fp = incomplete_integrals(m_n, s, c, delta2(c));
         m_u0 = T(2) * T(j) * m_amp.complete_k() + fp.f;
@@ -164,7 +174,7 @@ template <class T> class free_body_momentum {
         T w = m_coef_pi * pi_incomplete - m_coef_atan * atan2(sqrt(m_cd) * s, sqrt(m_c) * c);
         if (j != 0) {
             if (!m_w_period_known) { // W(2K), once per flow (mc > 0 here: K is finite)
-                const T pi_c = complete_pi(m_n, m_amp.complement());
+                const T pi_c = complete_pi(m_n, m_amp.complement(), m_amp.complete_k());
                 m_w_period =
                     T(2) * (m_coef_pi * pi_c - m_coef_atan * boost::math::constants::half_pi<T>());
                 m_w_period_known = true;
@@ -173,11 +183,12 @@ template <class T> class free_body_momentum {
         }
         return w;
     }
-    T w_of(long long j, T reduced_am) const {
+    // The same from am(r) and r = F(am r) (jacobi_values): no R_F.
+    T w_of(long long j, T reduced_am, T reduced_u) const {
         using std::cos;
         using std::sin;
         const T s = sin(reduced_am), c = cos(reduced_am);
-        return w_of(j, s, c, incomplete_integrals(m_n, s, c, delta2(c)).pi);
+        return w_of(j, s, c, incomplete_pi(m_n, reduced_u, s, c, delta2(c)));
     }
 
     std::array<T, 3> m_in;
@@ -188,6 +199,8 @@ template <class T> class free_body_momentum {
     T m_a1 = 0, m_a2 = 0, m_a3 = 0, m_lambda = 0, m_s1 = 1, m_sigma = 1, m_u0 = 0;
     jacobi_amplitude<T> m_amp{T(0), T(1)};
     T m_c = 0, m_cd = 0, m_n = 0, m_coef_pi = 0, m_coef_atan = 0, m_w0 = 0;
+    bool m_use_series = false; // m <= small_parameter_limit: W and F by phase_series
+    phase_series<T> m_series{T(0), T(1), T(1)};
     mutable T m_w_period = 0;
     mutable bool m_w_period_known = false;
 };

@@ -22,8 +22,8 @@
 //
 // Fixed step h (`step`); the driver's grid (integrate/fixed.hpp) shortens the last step. Samples
 // inside a step are the method itself run from the step's start by θh (continuous extension of
-// order p). step_stats::rhs_evals counts torque evaluations (kicks). A rule that picks h from a
-// tolerance is split_step_for_tolerance (split_step_rule.hpp).
+// order p; events are located on it). step_stats::rhs_evals counts torque evaluations (kicks). A
+// rule that picks h from a tolerance is split_step_for_tolerance (split_step_rule.hpp).
 // Stepper concept (stepper.hpp): order 2/4/6, no error estimate, continuous extension, no Jacobian.
 // Needs a split system (split_system.hpp) and Boost.Math (through free_body/flow.hpp).
 #pragma once
@@ -136,37 +136,60 @@ template <class T, class S, int Order> class split_stepper {
         advance(*m_sys, m_t, m_y0, theta * m_h, out, unused);
     }
 
-    // One step of the composition from (t, y) by h into out.
+    // One step of the composition from (t, y) by h into out. A system whose body axes are not
+    // principal (split_system.hpp) is moved in the principal frame: q ⊗ p and Pᵀ ω in, back out.
     static void advance(const S& sys, T t, const vector& y, T h, vector& out, step_stats& stats) {
         using vec3 = Eigen::Matrix<T, 3, 1>;
         const std::array<T, 3> in = sys.principal_moments();
         const free_body_flow<T> flow(in);
+        const Eigen::Quaternion<T> p = axes_of(sys);
+        const bool rotated = p.w() != T(1);
         Eigen::Quaternion<T> q(y[0], y[1], y[2], y[3]);
-        vec3 m(in[0] * y[4], in[1] * y[5], in[2] * y[6]);
+        vec3 w(y[4], y[5], y[6]);
+        if (rotated) q = q * p, w = p.conjugate() * w;
+        vec3 m(in[0] * w[0], in[1] * w[1], in[2] * w[2]);
         const auto g = detail::split_coefficients<T, Order>::gamma();
         T tk = t;
-        kick(sys, tk, q, m, g[0] * h / T(2), stats);
+        kick(sys, tk, q, m, g[0] * h / T(2), p, rotated, stats);
         for (std::size_t i = 0; i < g.size(); ++i) {
             flow.advance(q, m, g[i] * h);
             tk = i + 1 == g.size() ? t + h : tk + g[i] * h;
             const T a = i + 1 < g.size() ? (g[i] + g[i + 1]) / T(2) : g[i] / T(2);
-            kick(sys, tk, q, m, a * h, stats);
+            kick(sys, tk, q, m, a * h, p, rotated, stats);
         }
+        for (int i = 0; i < 3; ++i)
+            w[i] = m[i] / in[static_cast<std::size_t>(i)];
+        if (rotated) q = q * p.conjugate(), w = p * w;
         out[0] = q.w(), out[1] = q.x(), out[2] = q.y(), out[3] = q.z();
         for (int i = 0; i < 3; ++i)
-            out[4 + i] = m[i] / in[static_cast<std::size_t>(i)];
+            out[4 + i] = w[i];
     }
 
   private:
-    // m ← m + dt τ(t, q): the exact flow of the potential for a time dt (q does not move).
+    // The quaternion p of the principal axes (identity when the body axes are principal).
+    static Eigen::Quaternion<T> axes_of(const S& sys) {
+        if constexpr (has_principal_axes_v<S>) {
+            const auto& a = sys.principal_axes();
+            return Eigen::Quaternion<T>(T(a[0]), T(a[1]), T(a[2]), T(a[3]));
+        } else {
+            return Eigen::Quaternion<T>::Identity();
+        }
+    }
+
+    // m ← m + dt τ(t, q): the exact flow of the potential for a time dt (q does not move); in the
+    // principal frame (rotated) the torque is taken at the body attitude q ⊗ p* and τ_p = Pᵀ τ.
     template <class Q, class M>
-    static void kick(const S& sys, T t, const Q& q, M& m, T dt, step_stats& stats) {
-        const T yq[7] = {q.w(), q.x(), q.y(), q.z(), T(0), T(0), T(0)};
+    static void kick(const S& sys, T t, const Q& q, M& m, T dt, const Eigen::Quaternion<T>& p,
+                     bool rotated, step_stats& stats) {
+        const Q qb = rotated ? Q(q * p.conjugate()) : q;
+        const T yq[7] = {qb.w(), qb.x(), qb.y(), qb.z(), T(0), T(0), T(0)};
         T tau[3];
         sys.torque(t, yq, tau);
         ++stats.rhs_evals;
+        Eigen::Matrix<T, 3, 1> tv(tau[0], tau[1], tau[2]);
+        if (rotated) tv = p.conjugate() * tv;
         for (int i = 0; i < 3; ++i)
-            m[i] += dt * tau[i];
+            m[i] += dt * tv[i];
     }
 
     vector m_y0, m_y1, m_f;
