@@ -4,7 +4,9 @@
 
 #include "timing.hpp"
 
+#include <cmath>
 #include <cstddef>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -29,5 +31,13 @@ struct run_record {
     timed_job job; // what is timed: the same integration again, from the initial state
     timing time;   // filled by the driver from job's samples
 };
+
+// A number as the driver writes it: 21 significant digits, "nan" for NaN.
+inline std::string number(long double x) {
+    if (std::isnan(x)) return "nan";
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.21Lg", x);
+    return buf;
+}
 
 } // namespace rotgen::bench
