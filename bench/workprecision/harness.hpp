@@ -14,6 +14,8 @@
 //     energy(y, e) -> bool          the energy in long double, if the form gives it
 //     momenta(y, out) -> int        the conserved momenta (cyclic coordinates), their count
 //     common(y, c)                  the common representation (common_state.hpp)
+//     taylor_series, taylor(t, c, order, p)   the Taylor coefficients (a variant the plan runs
+//                                   taylor on; split_taylor.hpp)
 //     double_methods, float_methods, long_double_methods, drift_methods   bit masks of rotgen's
 //                                   methods (method_bit) the plan uses with each scalar type
 //     peers                         bit mask: odeint_method bits, and cvode_bit
@@ -25,6 +27,7 @@
 //     autonomous 0|1                rodas4 skips df/dt when the model has no driving torque
 //     exact I1 I2 I3 W1 W2 W3 PHI THETA PSI   an exact reference: the free body (principal
 //                                   moments, body omega and z-x-z angles at T0)
+//     moments I1 I2 I3              the principal moments the split methods use (split_taylor.hpp)
 //     reference V RTOL RTOL_CHECK   DOP853 in long double on variant V at RTOL (the reference if
 //                                   there is no exact one) and at RTOL_CHECK (its error estimate)
 //     run V PEER METHOD SCALAR TOL STEP        one configuration (rotgen|odeint|cvode)
@@ -151,6 +154,8 @@ inline bool read_plan_line(const std::string& line, driver_plan& p) {
         long double phi = 0, theta = 0, psi = 0;
         in >> I[0] >> I[1] >> I[2] >> w[0] >> w[1] >> w[2] >> phi >> theta >> psi;
         p.exact.emplace(I, w, euler_matrix(phi, theta, psi));
+    } else if (what == "moments") {
+        in >> p.s.moments[0] >> p.s.moments[1] >> p.s.moments[2];
     } else if (what == "reference") {
         in >> p.ref_variant >> p.ref_rtol >> p.ref_check;
     } else if (what == "run") {

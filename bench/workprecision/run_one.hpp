@@ -5,6 +5,7 @@
 #include "peers.hpp"
 #include "run_record.hpp"
 #include "runners.hpp"
+#include "split_taylor.hpp"
 
 #include <rotgen.hpp>
 
@@ -52,6 +53,7 @@ run_record run_rotgen(const run_spec& spec, const driver_settings& s) {
             m.max_steps = budget;
             return run_method<V, T>(m, spec, s);
         }
+    if (auto rec = run_split_taylor<V, T, Mask>(spec, s)) return *rec;
     run_record rec;
     rec.spec = spec;
     rec.status = "not_compiled";

@@ -16,8 +16,8 @@ namespace rotgen::bench {
 struct run_spec {
     int variant = 0;
     std::string peer = "rotgen"; // rotgen | odeint | cvode
-    std::string method;          // rk4 dopri5 dop853 implicit_midpoint rodas4 | dopri5 rkf78 rk4
-                                 // | adams bdf
+    std::string method;          // rk4 dopri5 dop853 implicit_midpoint rodas4 split2 split4
+                                 // split6 taylor | dopri5 rkf78 rk4 | adams bdf
     std::string scalar = "double";
     double tol = 0;  // adaptive methods (rtol = atol = tol), else 0
     double step = 0; // fixed-step methods, else 0

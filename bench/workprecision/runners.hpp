@@ -7,6 +7,7 @@
 
 #include <rotgen.hpp>
 
+#include <array>
 #include <cstddef>
 #include <memory>
 #include <string>
@@ -34,26 +35,27 @@ struct driver_settings {
     double target = 0.02;
     int repeats = 5;
     bool autonomous = true;
+    std::array<double, 3> moments{}; // the split methods' principal moments (split_taylor.hpp)
 };
 
-template <class V, class T, class Method>
-run_record run_method(const Method& m, const run_spec& spec, const driver_settings& s) {
-    using system = variant_system<V, T>;
-    using vector = state_vector<T, system>;
+// One configuration: `sys` (shared with the timed job) integrated by `m` from y0 over the span,
+// once now (the final state, the counters) and again each time the job is timed.
+template <class T, class System, class Method, class Vector>
+run_record run_system(std::shared_ptr<const System> sys, const Method& m, const Vector& y0,
+                      const run_spec& spec, const driver_settings& s) {
     struct state {
-        system sys;
+        std::shared_ptr<const System> sys;
         Method method;
-        vector y0, y;
+        Vector y0, y;
         integration_result<T> r;
         T t0, t1;
     };
-    const auto st = std::make_shared<state>(state{system{V::template parameters<T>()}, m,
-                                                  initial_state<V, T>(), initial_state<V, T>(),
-                                                  integration_result<T>{}, T(s.t0), T(s.t1)});
+    const auto st = std::make_shared<state>(
+        state{std::move(sys), m, y0, y0, integration_result<T>{}, T(s.t0), T(s.t1)});
     // one integration from the initial state (the same code runs untimed and timed)
     auto once = [st]() -> double {
         st->y = st->y0;
-        st->r = integrate(st->sys, st->method, st->t0, st->y, st->t1);
+        st->r = integrate(*st->sys, st->method, st->t0, st->y, st->t1);
         return static_cast<double>(st->y[0]);
     };
     run_record rec;
@@ -72,13 +74,25 @@ run_record run_method(const Method& m, const run_spec& spec, const driver_settin
     return rec;
 }
 
+// A method on the variant's kernels with its parameters.
+template <class V, class T, class Method>
+run_record run_method(const Method& m, const run_spec& spec, const driver_settings& s) {
+    using system = variant_system<V, T>;
+    return run_system<T>(std::make_shared<const system>(system{V::template parameters<T>()}), m,
+                         initial_state<V, T>(), spec, s);
+}
+
 // rotgen's methods, one bit each.
 enum method_bit : unsigned {
     rk4_bit = 1,
     dopri5_bit = 2,
     dop853_bit = 4,
     midpoint_bit = 8,
-    rodas4_bit = 16
+    rodas4_bit = 16,
+    split2_bit = 32, // split_taylor.hpp
+    split4_bit = 64,
+    split6_bit = 128,
+    taylor_bit = 256
 };
 inline constexpr unsigned cvode_bit = 8; // in V::peers, beside the odeint_method bits
 
