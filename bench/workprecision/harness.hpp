@@ -14,6 +14,8 @@
 //     energy(y, e) -> bool          the energy in long double, if the form gives it
 //     momenta(y, out) -> int        the conserved momenta (cyclic coordinates), their count
 //     common(y, c)                  the common representation (common_state.hpp)
+//     taylor_series, taylor(t, c, order, p)   the Taylor coefficients (a variant the plan runs
+//                                   taylor on; split_taylor.hpp)
 //     double_methods, float_methods, long_double_methods, drift_methods   bit masks of rotgen's
 //                                   methods (method_bit) the plan uses with each scalar type
 //     peers                         bit mask: odeint_method bits, and cvode_bit
@@ -25,6 +27,7 @@
 //     autonomous 0|1                rodas4 skips df/dt when the model has no driving torque
 //     exact I1 I2 I3 W1 W2 W3 PHI THETA PSI   an exact reference: the free body (principal
 //                                   moments, body omega and z-x-z angles at T0)
+//     moments I1 I2 I3              the principal moments the split methods use (split_taylor.hpp)
 //     reference V RTOL RTOL_CHECK   DOP853 in long double on variant V at RTOL (the reference if
 //                                   there is no exact one) and at RTOL_CHECK (its error estimate)
 //     run V PEER METHOD SCALAR TOL STEP        one configuration (rotgen|odeint|cvode)
@@ -35,12 +38,17 @@
 //     row V PEER METHOD FORM SCALAR TOL STEP STATUS ERROR ORIENTATION RHS JAC STEPS MEDIAN MIN
 //         MAX ENERGY_DRIFT MOMENTUM_DRIFT N Y1..YN
 //     drift LABEL STEPS RHS T RELATIVE_ENERGY_ERROR
+// The pieces: runners.hpp and run_one.hpp (one configuration: rotgen's integrators, and the
+// peers of peers.hpp), drift.hpp (the long runs), common_state.hpp and exact_reference.hpp (the
+// error), timing.hpp.
 #pragma once
 
 #include "common_state.hpp"
+#include "drift.hpp"
 #include "exact_reference.hpp"
-#include "peers.hpp"
+#include "run_one.hpp"
 #include "run_record.hpp"
+#include "runners.hpp"
 #include "timing.hpp"
 
 #include <rotgen.hpp>
@@ -60,158 +68,6 @@
 #include <vector>
 
 namespace rotgen::bench {
-
-// The runtime's system concept over a variant's kernels.
-template <class V, class T> struct variant_system {
-    static constexpr std::size_t state_size = V::state_size;
-    typename V::template params<T> p;
-    void rhs(T t, const T* y, T* dydt) const { V::rhs(t, y, dydt, p); }
-    void jacobian(T t, const T* y, T* J) const { V::jacobian(t, y, J, p); }
-};
-
-template <class V, class T> state_vector<T, variant_system<V, T>> initial_state() {
-    const auto y0 = V::initial();
-    state_vector<T, variant_system<V, T>> y;
-    for (std::size_t i = 0; i < V::state_size; ++i)
-        y[static_cast<Eigen::Index>(i)] = static_cast<T>(y0[i]);
-    return y;
-}
-
-struct driver_settings {
-    double t0 = 0, t1 = 1;
-    double target = 0.02;
-    int repeats = 5;
-    bool autonomous = true;
-};
-
-template <class V, class T, class Method>
-run_record run_method(const Method& m, const run_spec& spec, const driver_settings& s) {
-    using system = variant_system<V, T>;
-    using vector = state_vector<T, system>;
-    struct state {
-        system sys;
-        Method method;
-        vector y0, y;
-        integration_result<T> r;
-        T t0, t1;
-    };
-    const auto st = std::make_shared<state>(state{system{V::template parameters<T>()}, m,
-                                                  initial_state<V, T>(), initial_state<V, T>(),
-                                                  integration_result<T>{}, T(s.t0), T(s.t1)});
-    // one integration from the initial state (the same code runs untimed and timed)
-    auto once = [st]() -> double {
-        st->y = st->y0;
-        st->r = integrate(st->sys, st->method, st->t0, st->y, st->t1);
-        return static_cast<double>(st->y[0]);
-    };
-    run_record rec;
-    rec.spec = spec;
-    once();
-    rec.rhs_evals = st->r.stats.rhs_evals;
-    rec.jac_evals = st->r.stats.jac_evals;
-    rec.steps = st->r.stats.steps;
-    for (Eigen::Index i = 0; i < st->y.size(); ++i)
-        rec.y.push_back(static_cast<long double>(st->y[i]));
-    if (!st->r.ok()) {
-        rec.status = status_name(st->r.code);
-        return rec;
-    }
-    rec.job.once = once;
-    return rec;
-}
-
-// rotgen's methods, one bit each.
-enum method_bit : unsigned {
-    rk4_bit = 1,
-    dopri5_bit = 2,
-    dop853_bit = 4,
-    midpoint_bit = 8,
-    rodas4_bit = 16
-};
-inline constexpr unsigned cvode_bit = 8; // in V::peers, beside the odeint_method bits
-
-template <class V, class T, unsigned Mask>
-run_record run_rotgen(const run_spec& spec, const driver_settings& s) {
-    const T tol = T(spec.tol), step = T(spec.step);
-    const std::size_t budget = 100000000;
-    (void)tol, (void)step, (void)budget;
-    if constexpr ((Mask & rk4_bit) != 0)
-        if (spec.method == "rk4") {
-            rk4<T> m;
-            m.step = step;
-            m.max_steps = budget;
-            return run_method<V, T>(m, spec, s);
-        }
-    if constexpr ((Mask & dopri5_bit) != 0)
-        if (spec.method == "dopri5") {
-            dopri5<T> m(tol, tol);
-            m.max_steps = budget;
-            return run_method<V, T>(m, spec, s);
-        }
-    if constexpr ((Mask & dop853_bit) != 0)
-        if (spec.method == "dop853") {
-            dop853<T> m(tol, tol);
-            m.fixed_step = step; // > 0: fixed steps, no error control
-            m.max_steps = budget;
-            return run_method<V, T>(m, spec, s);
-        }
-    if constexpr ((Mask & midpoint_bit) != 0)
-        if (spec.method == "implicit_midpoint") {
-            implicit_midpoint<T> m;
-            m.step = step;
-            m.max_steps = budget;
-            return run_method<V, T>(m, spec, s);
-        }
-    if constexpr ((Mask & rodas4_bit) != 0)
-        if (spec.method == "rodas4") {
-            rodas4<T> m(tol, tol);
-            m.autonomous = s.autonomous;
-            m.max_steps = budget;
-            return run_method<V, T>(m, spec, s);
-        }
-    run_record rec;
-    rec.spec = spec;
-    rec.status = "not_compiled";
-    return rec;
-}
-
-template <class V> double odeint_initial_step(const run_spec& spec, const driver_settings& s) {
-    // the starting step rotgen's own heuristic picks for this tolerance and order
-    const variant_system<V, double> sys{V::template parameters<double>()};
-    const auto y0 = initial_state<V, double>();
-    auto f0 = y0;
-    step_stats st;
-    sys.rhs(s.t0, y0.data(), f0.data());
-    return detail::initial_step(sys, s.t0, y0, f0, 1.0, s.t1 - s.t0, spec.tol, spec.tol,
-                                spec.method == "rkf78" ? 8 : 5, st);
-}
-
-template <class V> run_record run_one(const run_spec& spec, const driver_settings& s) {
-    if (spec.peer == "rotgen") {
-        if (spec.scalar == "double") return run_rotgen<V, double, V::double_methods>(spec, s);
-        if (spec.scalar == "float") return run_rotgen<V, float, V::float_methods>(spec, s);
-        if (spec.scalar == "long_double")
-            return run_rotgen<V, long double, V::long_double_methods>(spec, s);
-    }
-    if (spec.peer == "odeint" && spec.scalar == "double") {
-        if constexpr ((V::peers & odeint_dopri5) != 0)
-            if (spec.method == "dopri5")
-                return run_odeint<V, odeint_dopri5>(spec, s.t0, s.t1,
-                                                    odeint_initial_step<V>(spec, s));
-        if constexpr ((V::peers & odeint_rkf78) != 0)
-            if (spec.method == "rkf78")
-                return run_odeint<V, odeint_rkf78>(
-                    spec, s.t0, s.t1, spec.step > 0 ? 0.0 : odeint_initial_step<V>(spec, s));
-        if constexpr ((V::peers & odeint_rk4) != 0)
-            if (spec.method == "rk4") return run_odeint<V, odeint_rk4>(spec, s.t0, s.t1, spec.step);
-    }
-    if constexpr ((V::peers & cvode_bit) != 0)
-        if (spec.peer == "cvode" && spec.scalar == "double") return run_cvode<V>(spec, s.t0, s.t1);
-    run_record rec;
-    rec.spec = spec;
-    rec.status = "not_compiled";
-    return rec;
-}
 
 // ---- dispatch over the variants of this translation unit ---------------------------------------
 
@@ -235,13 +91,6 @@ template <class V> std::vector<long double> initial_vector() {
     return std::vector<long double>(a.begin(), a.end());
 }
 
-inline std::string number(long double x) {
-    if (std::isnan(x)) return "nan";
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.21Lg", x);
-    return buf;
-}
-
 // Energy and momentum drift between the initial and the final state, relative to the initial
 // values (the momenta's to the largest of them).
 template <class V> std::pair<long double, long double> drifts(const std::vector<long double>& y) {
@@ -263,84 +112,6 @@ template <class V> std::pair<long double, long double> drifts(const std::vector<
         md = d / std::max(scale, 1e-300L);
     }
     return {ed, md};
-}
-
-// ---- long runs: the energy error over time ---------------------------------------------------
-
-template <class V, class Method>
-void drift_run(const Method& m, const driver_settings& s, double t_end, int samples,
-               const std::string& label, std::ostream& out) {
-    using system = variant_system<V, double>;
-    const system sys{V::template parameters<double>()};
-    auto y = initial_state<V, double>();
-    const auto y0l = V::initial();
-    long double e0 = 0;
-    if (!V::energy(y0l.data(), &e0)) return;
-    // sample times: for fixed steps on the grid t0 + k h (k log-spaced, so the samples are the
-    // method's own states), otherwise log-spaced in time (dense output)
-    std::vector<double> times;
-    double h = 0;
-    if constexpr (!Method::adaptive) h = double(m.step);
-    if (h > 0) {
-        const long n = std::lround((t_end - s.t0) / h);
-        long last = 0;
-        for (int j = 0; j < samples; ++j) {
-            const long k = std::lround(std::pow(double(n), double(j + 1) / double(samples)));
-            if (k > last && k <= n) times.push_back(s.t0 + double(k) * h), last = k;
-        }
-    } else {
-        const double span = t_end - s.t0;
-        for (int j = 0; j < samples; ++j)
-            times.push_back(s.t0 + span * std::pow(1e-4, 1.0 - double(j + 1) / double(samples)));
-    }
-    std::vector<std::pair<double, long double>> series;
-    const auto r = integrate(sys, m, s.t0, y, times, [&](double t, const auto& yt) {
-        std::array<long double, V::state_size> yl;
-        for (std::size_t i = 0; i < V::state_size; ++i)
-            yl[i] = yt[static_cast<Eigen::Index>(i)];
-        long double e = 0;
-        V::energy(yl.data(), &e);
-        series.push_back({t, std::abs(e - e0) / std::max(std::abs(e0), 1e-300L)});
-    });
-    for (const auto& [t, e] : series)
-        out << "drift " << label << " " << r.stats.steps << " " << r.stats.rhs_evals << " "
-            << number(t) << " " << number(e) << "\n";
-    if (!r.ok()) out << "drift_failed " << label << " " << status_name(r.code) << "\n";
-}
-
-template <class V>
-void drift_one(const std::string& method, double tol, double step, const driver_settings& s,
-               double t_end, int samples, const std::string& label, std::ostream& out) {
-    constexpr unsigned mask = V::drift_methods;
-    const std::size_t budget = 100000000;
-    (void)tol, (void)step, (void)budget;
-    if constexpr ((mask & rk4_bit) != 0)
-        if (method == "rk4") {
-            rk4<double> m;
-            m.step = step;
-            m.max_steps = budget;
-            return drift_run<V>(m, s, t_end, samples, label, out);
-        }
-    if constexpr ((mask & midpoint_bit) != 0)
-        if (method == "implicit_midpoint") {
-            implicit_midpoint<double> m;
-            m.step = step;
-            m.max_steps = budget;
-            return drift_run<V>(m, s, t_end, samples, label, out);
-        }
-    if constexpr ((mask & dopri5_bit) != 0)
-        if (method == "dopri5") {
-            dopri5<double> m(tol, tol);
-            m.max_steps = budget;
-            return drift_run<V>(m, s, t_end, samples, label, out);
-        }
-    if constexpr ((mask & dop853_bit) != 0)
-        if (method == "dop853") {
-            dop853<double> m(tol, tol);
-            m.max_steps = budget;
-            return drift_run<V>(m, s, t_end, samples, label, out);
-        }
-    out << "drift_failed " << label << " not_compiled\n";
 }
 
 // ---- the driver ---------------------------------------------------------------------------------
@@ -383,6 +154,8 @@ inline bool read_plan_line(const std::string& line, driver_plan& p) {
         long double phi = 0, theta = 0, psi = 0;
         in >> I[0] >> I[1] >> I[2] >> w[0] >> w[1] >> w[2] >> phi >> theta >> psi;
         p.exact.emplace(I, w, euler_matrix(phi, theta, psi));
+    } else if (what == "moments") {
+        in >> p.s.moments[0] >> p.s.moments[1] >> p.s.moments[2];
     } else if (what == "reference") {
         in >> p.ref_variant >> p.ref_rtol >> p.ref_check;
     } else if (what == "run") {

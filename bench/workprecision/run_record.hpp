@@ -4,7 +4,9 @@
 
 #include "timing.hpp"
 
+#include <cmath>
 #include <cstddef>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -14,8 +16,8 @@ namespace rotgen::bench {
 struct run_spec {
     int variant = 0;
     std::string peer = "rotgen"; // rotgen | odeint | cvode
-    std::string method;          // rk4 dopri5 dop853 implicit_midpoint rodas4 | dopri5 rkf78 rk4
-                                 // | adams bdf
+    std::string method;          // rk4 dopri5 dop853 implicit_midpoint rodas4 split2 split4
+                                 // split6 taylor | dopri5 rkf78 rk4 | adams bdf
     std::string scalar = "double";
     double tol = 0;  // adaptive methods (rtol = atol = tol), else 0
     double step = 0; // fixed-step methods, else 0
@@ -29,5 +31,13 @@ struct run_record {
     timed_job job; // what is timed: the same integration again, from the initial state
     timing time;   // filled by the driver from job's samples
 };
+
+// A number as the driver writes it: 21 significant digits, "nan" for NaN.
+inline std::string number(long double x) {
+    if (std::isnan(x)) return "nan";
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.21Lg", x);
+    return buf;
+}
 
 } // namespace rotgen::bench

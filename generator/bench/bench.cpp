@@ -64,8 +64,7 @@ class bench_run {
         choose_variants(); // derive; the forms and code-generation variants
         // after every check of the input (the scene's form too): a refused run leaves nothing
         make_output_directory(m_ctx.dir);
-        m_ctx.plan = make_plan(m_ctx.scene, m_ctx.spec, m_ctx.parameter_values, m_ctx.k0, m_ctx.opt,
-                               m_ctx.conservative, m_ctx.variants);
+        plan();
         write_file(m_ctx.dir / "plan.txt", m_ctx.plan.text); // the configurations -> plan.txt
         m_ctx.source = t.time("emit", "every variant (lowered and printed)", [&] {
             return driver_source(m_ctx.variants.variants, m_ctx.scene, m_ctx.spec, m_ctx.d,
@@ -89,8 +88,20 @@ class bench_run {
         return 0;
     }
 
+    // The plan alone (plan.txt's text): nothing written, nothing compiled.
+    std::string plan_only(const bench_options& options) {
+        prepare(options);
+        choose_variants();
+        plan();
+        return m_ctx.plan.text;
+    }
+
   private:
     void prepare(const bench_options& options);
+    void plan() {
+        m_ctx.plan = make_plan(m_ctx.scene, m_ctx.spec, m_ctx.parameter_values, m_ctx.k0, m_ctx.opt,
+                               m_ctx.conservative, m_ctx.variants, m_ctx.extra);
+    }
     void choose_variants();
     void finish(std::string& markdown);
     void print_summary(double wall_seconds) const;
@@ -127,10 +138,13 @@ void bench_run::choose_variants() {
     check_double_range(c.scene, c.k0);
     c.conservative = !c.spec.has_damping && !c.spec.has_torque;
     c.scene_name = fs::path(c.opt.scene).stem().string();
+    check_split(c.scene, c.parameter_values, c.extra); // the checks simulate makes
     c.variants = c.timings.time("forms", "every variant", [&] {
         return bench::choose_variants(c.scene, c.spec, c.d, c.euler_ok && c.k0.have_rates,
-                                      needs_orientation(c.scene, false), c.opt.quick);
+                                      needs_orientation(c.scene, false), c.opt.quick,
+                                      !c.extra.split_refusal);
     });
+    check_taylor(c.spec, c.variants.variants[0], c.extra);
 }
 
 void bench_run::finish(std::string& markdown) {
@@ -162,6 +176,8 @@ void bench_run::print_summary(double wall_seconds) const {
               << short_number(wall_seconds) << " s in all\n"
               << "  harness   " << c.src.harness.string() << ", runtime " << c.src.runtime.string()
               << "\n";
+    for (const auto& why : c.plan.left_out)
+        std::cout << "  left out  " << why << "\n";
     std::cout << "  fastest to reach an error (median times; " << matched_accuracy_rule << "):\n";
     for (std::size_t l = 0; l < c.summary.levels.size(); ++l) {
         const reach& a = c.summary.reached[l].first;
@@ -187,6 +203,10 @@ void bench_run::print_summary(double wall_seconds) const {
 
 int run_bench(const bench_options& options) {
     return bench::bench_run().run(options);
+}
+
+std::string bench_plan_text(const bench_options& options) {
+    return bench::bench_run().plan_only(options);
 }
 
 } // namespace rotgen

@@ -17,4 +17,7 @@ struct bench_options {
 // Runs the bench; returns the exit status. Throws user_error for bad input.
 int run_bench(const bench_options& options);
 
+// The plan such a run follows (plan.txt), without writing or compiling anything.
+std::string bench_plan_text(const bench_options& options);
+
 } // namespace rotgen

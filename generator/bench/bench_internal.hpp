@@ -7,6 +7,7 @@
 #include "bench/initial_state.hpp"
 #include "bench/plan.hpp"
 #include "bench/sources.hpp"
+#include "bench/split_taylor.hpp"
 #include "bench/summary.hpp"
 #include "bench/variants.hpp"
 #include "support/timings.hpp"
@@ -30,6 +31,7 @@ struct bench_context {
     GiNaC::exmap parameter_values;
     kinematics k0;
     variant_set variants;
+    split_taylor_methods extra; // whether split2/4/6 and taylor run
     bench_plan plan;
     std::string source; // the driver's
     double generate_seconds = 0;

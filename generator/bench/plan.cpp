@@ -14,13 +14,18 @@ namespace rotgen::bench {
 
 namespace {
 
-// The method bits of bench/workprecision/harness.hpp (method_bit, odeint_method, cvode_bit).
+// The method bits of bench/workprecision/runners.hpp (method_bit, cvode_bit) and peers.hpp
+// (odeint_method).
 unsigned method_bit(const std::string& method) {
     if (method == "rk4") return 1;
     if (method == "dopri5") return 2;
     if (method == "dop853") return 4;
     if (method == "implicit_midpoint") return 8;
     if (method == "rodas4") return 16;
+    if (method == "split2") return 32;
+    if (method == "split4") return 64;
+    if (method == "split6") return 128;
+    if (method == "taylor") return 256;
     throw std::logic_error("bench: unknown method " + method);
 }
 unsigned peer_bit(const std::string& peer, const std::string& method) {
@@ -51,6 +56,7 @@ struct plan_builder {
 // The tolerances and steps of the sweep.
 struct sweep_grid {
     std::vector<double> tols_all, tols_odd, tols_rodas, tols_bdf, tols_float, tols_long;
+    std::vector<double> tols_split2, tols_taylor;
     std::vector<double> rk4_steps, rk4_alt, mid_steps, mid_alt, high_steps;
     double target = 0.02; // seconds per timed loop
 };
@@ -87,6 +93,10 @@ sweep_grid make_grid(double span, double nu, bool quick) {
     g.tols_float = {1e-3, 1e-4, 1e-5};
     g.tols_long = {1e-3,  1e-4,  1e-5,  1e-6,  1e-7,  1e-8, 1e-9,
                    1e-10, 1e-11, 1e-12, 1e-13, 1e-14, 1e-15};
+    // split2's step goes as rtol^(1/2): 1e-9 already takes ~1e5 steps of the heavy top
+    g.tols_split2 = {1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9};
+    g.tols_taylor = {1e-3,  1e-4,  1e-5,  1e-6,  1e-7,  1e-8, 1e-9,
+                     1e-10, 1e-11, 1e-12, 1e-13, 1e-14, 1e-15};
     g.rk4_steps = steps_for({0.3, 0.1, 0.03, 0.01, 0.003, 0.001, 0.0003});
     g.rk4_alt = steps_for({0.1, 0.01, 0.001});
     g.mid_steps = steps_for({0.3, 0.1, 0.03, 0.01, 0.003});
@@ -100,6 +110,7 @@ sweep_grid make_grid(double span, double nu, bool quick) {
         g.tols_bdf = {1e-6};
         g.tols_float = {1e-4};
         g.tols_long = {1e-12};
+        g.tols_split2 = g.tols_taylor = g.tols_all;
         g.rk4_steps = g.mid_steps = steps_for({0.03});
         g.high_steps = steps_for({0.5});
         g.rk4_alt.clear();
@@ -209,6 +220,34 @@ void plan_variant(plan_builder& plan, std::size_t i, const sweep_grid& g, bool q
     if (is_main) plan_main(plan, i, g, quick);
 }
 
+// split2/4/6 on the body form with the quaternion (their step from the tolerance by
+// runtime/split_step_rule.hpp, as simulate chooses it from rtol), taylor on the main variant; or
+// why each is left out (the refusal simulate gives), as a comment line and in p.left_out.
+void plan_split_taylor(plan_builder& plan, bench_plan& p, const sweep_grid& g,
+                       const split_taylor_methods& m) {
+    const auto sv = split_variant(*plan.variants);
+    if (m.split_refusal || !sv) {
+        p.left_out.push_back("split2, split4, split6: " +
+                             m.split_refusal.value_or("the model has no body form with the "
+                                                      "quaternion, which they run"));
+    } else {
+        plan.text << "moments " << plain(m.moments[0]) << " " << plain(m.moments[1]) << " "
+                  << plain(m.moments[2]) << "\n";
+        for (double tol : g.tols_split2)
+            plan.run(*sv, "rotgen", "split2", "double", tol, 0);
+        for (const char* method : {"split4", "split6"})
+            for (double tol : g.tols_all)
+                plan.run(*sv, "rotgen", method, "double", tol, 0);
+    }
+    if (m.taylor_refusal)
+        p.left_out.push_back("taylor: " + *m.taylor_refusal);
+    else
+        for (double tol : g.tols_taylor)
+            plan.run(0, "rotgen", "taylor", "double", tol, 0);
+    for (const auto& why : p.left_out)
+        plan.text << "# left out: " << why << "\n";
+}
+
 // The long runs: long_steps steps of h = 0.3 / nu (large enough that the explicit methods' drift
 // shows within the run), on the Hamiltonian variant and the main one.
 void plan_long_runs(plan_builder& plan, bench_plan& p, const bench_options& opt,
@@ -242,7 +281,8 @@ void plan_long_runs(plan_builder& plan, bench_plan& p, const bench_options& opt,
 
 bench_plan make_plan(const scene_spec& scene, const model_spec& spec,
                      const GiNaC::exmap& parameter_values, const kinematics& k0,
-                     const bench_options& opt, bool conservative, variant_set& set) {
+                     const bench_options& opt, bool conservative, variant_set& set,
+                     const split_taylor_methods& extra) {
     bench_plan p;
     p.t0 = scene.t_start;
     p.t1 = scene.t_end;
@@ -257,6 +297,7 @@ bench_plan make_plan(const scene_spec& scene, const model_spec& spec,
     p.ref_variant = plan_reference(plan, spec, parameter_values, k0, conservative);
     for (std::size_t i = 0; i < set.variants.size(); ++i)
         plan_variant(plan, i, g, opt.quick);
+    plan_split_taylor(plan, p, g, extra);
     if (opt.long_steps > 0 && set.variants[0].has_energy && conservative)
         plan_long_runs(plan, p, opt, set);
     p.text = plan.text.str();

@@ -5,6 +5,7 @@
 
 #include "bench/bench.hpp"
 #include "bench/initial_state.hpp"
+#include "bench/split_taylor.hpp"
 #include "bench/variants.hpp"
 
 #include <cstddef>
@@ -22,12 +23,14 @@ struct bench_plan {
     std::size_t lines = 0; // configurations
     std::size_t ref_variant = 0;
     std::vector<std::string> drift_labels; // the long runs, in order
+    std::vector<std::string> left_out;     // "split2, split4, split6: <why>", "taylor: <why>"
 };
 
 // The plan for the scene's variants; sets each variant's method bits (what the driver compiles
-// for it). `conservative`: no damping and no torque.
+// for it). `conservative`: no damping and no torque; `extra`: whether split2/4/6 and taylor run.
 bench_plan make_plan(const scene_spec& scene, const model_spec& spec,
                      const GiNaC::exmap& parameter_values, const kinematics& k0,
-                     const bench_options& opt, bool conservative, variant_set& set);
+                     const bench_options& opt, bool conservative, variant_set& set,
+                     const split_taylor_methods& extra);
 
 } // namespace rotgen::bench

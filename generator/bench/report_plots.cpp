@@ -31,7 +31,8 @@ const char* const palette =
     "'#2ca02c'\nset linetype 4 lc rgb '#d62728'\nset linetype 5 lc rgb '#9467bd'\nset linetype "
     "6 lc rgb '#8c564b'\nset linetype 7 lc rgb '#e377c2'\nset linetype 8 lc rgb '#7f7f7f'\nset "
     "linetype 9 lc rgb '#bcbd22'\nset linetype 10 lc rgb '#17becf'\nset linetype 11 lc rgb "
-    "'#000000'\n";
+    "'#000000'\nset linetype 13 lc rgb '#98df8a'\nset linetype 14 lc rgb '#2f8f2f'\nset "
+    "linetype 15 lc rgb '#005f00'\nset linetype 16 lc rgb '#a00000'\n";
 
 // `terminal`, then the output (a temporary PNG renamed to `png` once gnuplot succeeded), then
 // `body`, written to `script_path` and run by gnuplot; throws user_error if it fails.
@@ -49,17 +50,19 @@ int color_of(const std::string& peer, const std::string& method) {
         {"rotgen rodas4", 5},        {"odeint dopri5", 6},
         {"odeint rkf78", 7},         {"odeint rk4", 8},
         {"cvode adams", 9},          {"cvode bdf", 10},
-        {"rotgen dop853 fixed", 11}, {"odeint rkf78 fixed", 12}};
+        {"rotgen dop853 fixed", 11}, {"odeint rkf78 fixed", 12},
+        {"rotgen split2", 13},       {"rotgen split4", 14},
+        {"rotgen split6", 15},       {"rotgen taylor", 16}};
     const auto it = colors.find(peer + " " + method);
-    return it == colors.end() ? 13 : it->second;
+    return it == colors.end() ? 17 : it->second;
 }
 
-// The panels a row is drawn in: (a) the integrators and peers on the main form in double,
-// (b) the forms and code generation, (c) the scalar types.
+// The panels a row is drawn in: (a) the integrators and peers on the main form in double (and
+// the split methods on theirs), (b) the forms and code generation, (c) the scalar types.
 std::vector<std::string> panels_of(const result_row& r) {
     std::vector<std::string> panels;
     const std::string m = method_key(r);
-    if (r.variant == 0 && r.scalar == "double") panels.push_back("a");
+    if ((r.variant == 0 || m.rfind("split", 0) == 0) && r.scalar == "double") panels.push_back("a");
     if (r.peer == "rotgen" && r.scalar == "double" &&
         (m == "dop853" || m == "rk4" || m == "implicit_midpoint"))
         panels.push_back("b");

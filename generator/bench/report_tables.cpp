@@ -73,6 +73,14 @@ void md_introduction(std::ostream& md, const bench_context& ctx) {
        << "- **tolerance**: rtol = atol = tol for every adaptive method and peer; fixed-step "
           "methods list their step. `dop853 fixed` and `odeint rkf78 fixed` are DOP853 and "
           "Fehlberg 7(8) with a fixed step and no error control (what the control costs).\n"
+       << "- **split2, split4, split6** run the body form with the quaternion (the exact free "
+          "body and kicks of the potential's torque), **taylor** the scene's form; both through "
+          "the runtime code `rotgen simulate` uses. A split method's step comes from the "
+          "tolerance as in simulate (the potential's slow frequency, not the spin), and its RHS "
+          "count is the number of kicks (torque evaluations); a Taylor step counts one.";
+    for (const auto& why : ctx.plan.left_out)
+        md << " Left out: " << why << ".";
+    md << "\n"
        << "- **forms**: every variant is specialised (parameters folded) and lowered (CSE) unless "
           "labelled `+runtime` or `+unlowered`.\n"
        << "- **energy_drift**: |E(t_end) - E(t0)| / |E(t0)|; momentum drift (results.md only): the "

@@ -3,6 +3,7 @@
 #include "bench/variants.hpp"
 #include "expr/symbols.hpp"
 
+#include <algorithm>
 #include <map>
 #include <set>
 #include <sstream>
@@ -45,6 +46,11 @@ void write_functions(std::ostream& s, const variant& v, const std::string& ns,
       << "    template <class T> static void jacobian(T t, const T* y, T* J, const params<T>& p) "
          "{\n"
       << "        " << ns << "::jacobian(t, y, J, p);\n    }\n";
+    if (std::find(v.outputs.begin(), v.outputs.end(), "taylor") != v.outputs.end())
+        s << "    static constexpr std::size_t taylor_series = " << ns << "::taylor_series;\n"
+          << "    template <class T> static void taylor(T t, T* c, int order, const params<T>& p) "
+             "{\n"
+          << "        " << ns << "::taylor(t, c, order, p);\n    }\n";
     s << "    static bool energy(const long double* y, long double* e) {\n";
     if (v.has_energy)
         s << "        *e = " << ns

@@ -66,8 +66,8 @@ void add_main(variant_builder& b, form_kind form, bool orientation, const scene_
     b.add(main_form, strategy, main_quat, role::unlowered, true, false);
 }
 
-// The other forms (the first only with --quick).
-void add_alternatives(variant_builder& b, bool quick) {
+// The other forms (the first only with --quick, and body:quaternion for the split methods).
+void add_alternatives(variant_builder& b, bool quick, bool split_form) {
     struct alt {
         form_kind form;
         lagrangian_strategy strategy;
@@ -79,7 +79,11 @@ void add_alternatives(variant_builder& b, bool quick) {
                              {form_kind::reduced, lagrangian_strategy::explicit_inverse, false},
                              {form_kind::body, lagrangian_strategy::explicit_inverse, true},
                              {form_kind::body, lagrangian_strategy::explicit_inverse, false}};
-    if (quick) alts.resize(1);
+    if (quick) {
+        const alt body_quaternion = alts[4];
+        alts.resize(1);
+        if (split_form) alts.push_back(body_quaternion);
+    }
     for (const auto& a : alts)
         if (b.add(a.form, a.strategy, a.quaternion, role::alternative, true, true))
             b.variants.back().implicit_runs = true;
@@ -127,15 +131,23 @@ std::string form_label(form_kind form, lagrangian_strategy strategy, bool quater
 }
 
 variant_set choose_variants(const scene_spec& scene, const model_spec& spec, const derivation& d,
-                            bool euler_usable, bool orientation, bool quick) {
+                            bool euler_usable, bool orientation, bool quick, bool split_form) {
     variant_builder b{spec, d, euler_usable, {}, {}};
     add_main(b, scene.form, orientation, scene);
-    add_alternatives(b, quick);
+    add_alternatives(b, quick, split_form);
     print_unlowered(b.variants);
     variant_set set;
     set.variants = std::move(b.variants);
     set.hamiltonian = hamiltonian_variant(set.variants);
     return set;
+}
+
+std::optional<std::size_t> split_variant(const std::vector<variant>& variants) {
+    for (std::size_t i = 0; i < variants.size(); ++i) {
+        const variant& v = variants[i];
+        if (v.form == form_kind::body && v.quaternion && v.specialised && v.lowered) return i;
+    }
+    return std::nullopt;
 }
 
 std::string naive_rhs(const variant& v, const GiNaC::exmap& folded) {

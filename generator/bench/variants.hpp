@@ -54,10 +54,14 @@ std::string form_label(form_kind form, lagrangian_strategy strategy, bool quater
 
 // The variants of the scene (only the main form's three and one other form with `quick`).
 // `euler_usable`: the Euler-angle forms can start (sin theta != 0 and the initial rates known);
-// `orientation`: needs_orientation(scene, false) (run/engine.hpp, the rule simulate uses). Throws
-// user_error if the scene's own form fails.
+// `orientation`: needs_orientation(scene, false) (run/engine.hpp, the rule simulate uses);
+// `split_form`: the split methods run, so body:quaternion (their form) is among the variants with
+// `quick` too. Throws user_error if the scene's own form fails.
 variant_set choose_variants(const scene_spec& scene, const model_spec& spec, const derivation& d,
-                            bool euler_usable, bool orientation, bool quick);
+                            bool euler_usable, bool orientation, bool quick, bool split_form);
+
+// The body form with the quaternion, specialised and lowered (the split methods' variant), if any.
+std::optional<std::size_t> split_variant(const std::vector<variant>& variants);
 
 // The unlowered rhs: every rate printed on its own by the C printer (no CSE, no hoisting), in
 // namespace rotgen::models::<unit>_naive; `folded`: the specialised parameters' values.

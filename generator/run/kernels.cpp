@@ -172,6 +172,11 @@ std::optional<GiNaC::ex> form_value(const form_expressions& f, const std::string
     return record_expression(f, name);
 }
 
+std::string taylor_refusal(const model_spec& spec, const taylor_unsupported& e) {
+    return "integrator taylor cannot run model '" + spec.name + "': " + e.what() +
+           "; use dop853, dopri5, rk4, implicit_midpoint or rosenbrock";
+}
+
 compiled_form compile_form(const scene_spec& scene, form_expressions f, bool orientation,
                            const std::vector<invariant>& invariants, const std::string& command,
                            stage_timings& timings) {
@@ -190,9 +195,7 @@ compiled_form compile_form(const scene_spec& scene, form_expressions f, bool ori
         try {
             return emit_header(spec, lowered, {command, ""});
         } catch (const taylor_unsupported& e) {
-            throw user_error(scene.integrator_where,
-                             "integrator taylor cannot run model '" + spec.name + "': " + e.what() +
-                                 "; use dop853, dopri5, rk4, implicit_midpoint or rosenbrock");
+            throw user_error(scene.integrator_where, taylor_refusal(spec, e));
         }
     });
     // The compiled kernels and the state built here must agree on the layout.

@@ -7,6 +7,7 @@
 #pragma once
 
 #include "derive/derive.hpp"
+#include "emit/taylor.hpp"
 #include "forms/forms.hpp"
 #include "run/compile_cache.hpp"
 #include "scene/scene.hpp"
@@ -77,6 +78,10 @@ struct compiled_form {
         return s;
     }
 };
+
+// Why the Taylor method cannot run the model (a run's refusal, and `rotgen bench`'s plan): `e`
+// from emitting its Taylor coefficients (emit/taylor.hpp).
+std::string taylor_refusal(const model_spec& spec, const taylor_unsupported& e);
 
 // Emits, lowers and compiles (or loads from the cache) the built form `f` of the scene's model,
 // with the record program for the scene's `record` list and `invariants`, and one function per
