@@ -132,16 +132,24 @@ template <class T> class free_body_momentum {
         m_amp = jacobi_amplitude<T>(k2, mc);
         m_s1 = v[0] >= T(0) ? T(1) : T(-1);
         m_sigma = m_s1 * (j[2] > j[0] ? T(1) : T(-1));
-        // W's constants: A = j1 A1, c = (j3 A3)², c + d = (j2 A2)², n = −d/c, d = A² k²
-        const T big_a = j[0] * m_a1;
+        const T big_a = j[0] * m_a1; // A
+        m_use_series = k2 <= small_parameter_limit<T>;
+        if (m_use_series)
+            m_series = phase_series<T>(k2, sqrt(m_g2), big_a);
+        else
+            carlson_constants(big_a, k2);
+        start_phase(atan2(v[1] / (m_sigma * m_a2), v[2] / m_a3));
+    }
+
+    // W's constants: A = j1 A1, c = (j3 A3)², c + d = (j2 A2)², n = −d/c, d = A² k².
+    void carlson_constants(T big_a, T k2) {
+        using std::sqrt;
+        const std::array<T, 3>& j = m_j;
         m_c = j[2] * m_a3 * j[2] * m_a3;
         m_cd = j[1] * m_a2 * j[1] * m_a2;
         m_n = -(big_a * big_a * k2) / m_c;
         m_coef_pi = m_g2 / m_c;
         m_coef_atan = sqrt(m_g2) * big_a / sqrt(m_c * m_cd);
-        m_use_series = k2 <= small_parameter_limit<T>;
-        if (m_use_series) m_series = phase_series<T>(k2, sqrt(m_g2), big_a);
-        start_phase(atan2(v[1] / (m_sigma * m_a2), v[2] / m_a3));
     }
 
     // u0 = F(φ0) and W(u0) from the amplitude φ0 ∈ (−π, π] (one R_F serves both).
