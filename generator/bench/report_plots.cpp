@@ -31,8 +31,8 @@ const char* const palette =
     "'#2ca02c'\nset linetype 4 lc rgb '#d62728'\nset linetype 5 lc rgb '#9467bd'\nset linetype "
     "6 lc rgb '#8c564b'\nset linetype 7 lc rgb '#e377c2'\nset linetype 8 lc rgb '#7f7f7f'\nset "
     "linetype 9 lc rgb '#bcbd22'\nset linetype 10 lc rgb '#17becf'\nset linetype 11 lc rgb "
-    "'#000000'\nset linetype 13 lc rgb '#98df8a'\nset linetype 14 lc rgb '#2f8f2f'\nset "
-    "linetype 15 lc rgb '#005f00'\nset linetype 16 lc rgb '#a00000'\n";
+    "'#000000'\nset linetype 13 lc rgb '#b8e186'\nset linetype 14 lc rgb '#01665e'\nset "
+    "linetype 15 lc rgb '#003300'\nset linetype 16 lc rgb '#a00000'\n";
 
 // `terminal`, then the output (a temporary PNG renamed to `png` once gnuplot succeeded), then
 // `body`, written to `script_path` and run by gnuplot; throws user_error if it fails.
@@ -155,6 +155,8 @@ void plot_panel(std::ostream& gp, const std::vector<curve>& curves, const std::s
 void work_precision_plot(const bench_context& ctx, const std::vector<curve>& curves,
                          const std::string& file, int column, const std::string& xlabel) {
     const std::string& main_label = ctx.variants.variants[0].label;
+    const auto sv = split_variant(ctx.variants.variants);
+    const bool split_apart = sv && *sv != 0 && !ctx.extra.split_refusal;
     std::ostringstream gp;
     gp << palette << "set logscale xy\nset grid\nset format y '1e%T'\nset format x '1e%T'\n"
        << "set key outside right top Left reverse samplen 3\n"
@@ -164,7 +166,8 @@ void work_precision_plot(const bench_context& ctx, const std::vector<curve>& cur
        << ": work-precision (" << gnuplot_escape(ctx.output.compared)
        << "); solid rotgen, dashed Odeint, dotted CVODE'\n";
     const std::vector<std::pair<std::string, std::string>> panel_titles{
-        {"a", "integrators and peers on " + main_label + " (double)"},
+        {"a", "integrators and peers on " + main_label + " (double" +
+                  (split_apart ? "; split methods on body:quaternion" : "") + ")"},
         {"b", "formulations and code generation (rotgen, double): solid dop853, dashed rk4, "
               "dotted midpoint"},
         {"c", "scalar types on " + main_label + ": solid dop853, dashed dopri5, dotted rk4"}};
