@@ -36,7 +36,7 @@ YAML
 scene rk4 "{method: rk4, step: 0.01}"
 scene dop853 "{method: dop853, rtol: 1e-8, atol: 1e-10}"
 sed 's/end: 10,/end: 0.01,/' "$work/rk4.yaml" >"$work/short.yaml"
-lanes=4
+lanes=8
 
 # "WALL CPU" of one run of "$@": WALL the sweep's own "running the members" seconds, CPU the
 # user + system seconds of the whole command (every rank, preparation included) from /usr/bin/time
