@@ -5,15 +5,18 @@
 #
 # The heavy top (models/heavy_top.yaml), 1024 members over initial theta 0.1 .. 1.5, t = 0 .. 10,
 # 101 samples: members per second on one core for RK4 (step 0.01) and DOP853 (rtol 1e-8, atol
-# 1e-10); DOP853 on 2 threads against 1; `mpirun -n 2` (one thread per rank) against one process,
-# and the overhead per member that the ranks add. Each figure is the best of 3 runs of the members
-# (the summary's "running the members" time: the kernels are compiled once, before, and cached).
+# 1e-10), one member at a time and in SIMD lanes (`--lanes 4`, the runs interleaved); the cost of a
+# member outside its integration (the same sweep to t = 0.01); DOP853 on 2 threads against 1;
+# `mpirun -n 2` (one thread per rank) against one process, and the overhead per member that the
+# ranks add. Each figure is the best of 3 runs of the members (the summary's "running the members"
+# time: the kernels are compiled once, before, and cached).
 # Timing claims live here, never in ctest.
 set -euo pipefail
 rotgen=$(realpath "${1:?usage: sweep.sh ROTGEN}")
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
+export ROTGEN_CACHE_DIR=$work/cache # its own kernel cache: the libraries timed below are these
 members=1024
 root_flag=()
 [[ $(id -u) == 0 ]] && root_flag=(--allow-run-as-root)
@@ -32,40 +35,69 @@ YAML
 }
 scene rk4 "{method: rk4, step: 0.01}"
 scene dop853 "{method: dop853, rtol: 1e-8, atol: 1e-10}"
+sed 's/end: 10,/end: 0.01,/' "$work/rk4.yaml" >"$work/short.yaml"
+lanes=8
 
-# "WALL CPU" of the best of 3 runs of "$@" (by wall time): WALL the sweep's own "running the
-# members" seconds, CPU the user + system seconds of the whole command (every rank, preparation
-# included) from /usr/bin/time
+# "WALL CPU" of one run of "$@": WALL the sweep's own "running the members" seconds, CPU the
+# user + system seconds of the whole command (every rank, preparation included) from /usr/bin/time
+one_run() {
+  rm -rf "$work/out"
+  local t cpu
+  t=$(/usr/bin/time -f "cpu %U %S" -o "$work/cpu" "$@" -o "$work/out" 2>&1 |
+      sed -n 's/^  time    \([0-9.e+-]*\) s running the members.*/\1/p')
+  [[ -n $t ]] || { echo "sweep.sh: no time from: $*" >&2; exit 1; }
+  cpu=$(awk '/^cpu/ { print $2 + $3 }' "$work/cpu")
+  echo "$t $cpu"
+}
+# "WALL CPU" of the best of 3 runs of "$@" (by wall time)
 best_of_3() {
-  local best="" best_cpu=""
+  local best="" best_cpu="" t cpu
   for _ in 1 2 3; do
-    rm -rf "$work/out"
-    local t cpu
-    t=$(/usr/bin/time -f "cpu %U %S" -o "$work/cpu" "$@" -o "$work/out" 2>&1 |
-        sed -n 's/^  time    \([0-9.e+-]*\) s running the members.*/\1/p')
-    [[ -n $t ]] || { echo "sweep.sh: no time from: $*" >&2; exit 1; }
-    cpu=$(awk '/^cpu/ { print $2 + $3 }' "$work/cpu")
+    read -r t cpu < <(one_run "$@")
     if [[ -z $best ]] || awk -v a="$t" -v b="$best" 'BEGIN { exit !(a < b) }'; then
       best=$t best_cpu=$cpu
     fi
   done
   echo "$best $best_cpu"
 }
+# "WALL CPU WALL CPU": the best of 3 of the scene $1 on one thread without and with --lanes, the
+# runs interleaved (scalar, lanes, scalar, ...) so that both see the same load
+best_of_3_lanes() {
+  local a="" ac="" b="" bc="" t cpu
+  for _ in 1 2 3; do
+    read -r t cpu < <(one_run "$rotgen" sweep "$1" -j 1)
+    if [[ -z $a ]] || awk -v x="$t" -v y="$a" 'BEGIN { exit !(x < y) }'; then a=$t ac=$cpu; fi
+    read -r t cpu < <(one_run "$rotgen" sweep "$1" -j 1 --lanes $lanes)
+    if [[ -z $b ]] || awk -v x="$t" -v y="$b" 'BEGIN { exit !(x < y) }'; then b=$t bc=$cpu; fi
+  done
+  echo "$a $ac $b $bc"
+}
 rate() { awk -v n=$members -v t="$1" 'BEGIN { printf "%.0f", n / t }'; }
 ratio() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", a / b }'; }
 us() { awk -v t="$1" -v n=$members 'BEGIN { printf "%.0f", t / n * 1e6 }'; }
+sub_us() { awk -v a="$1" -v b="$2" -v n=$members 'BEGIN { printf "%.0f", (a - b) / n * 1e6 }'; }
+ratio_sub() { awk -v a="$1" -v b="$2" -v c="$3" -v d="$4" 'BEGIN { printf "%.2f", (a - b) / (c - d) }'; }
 
 "$rotgen" sweep "$work/rk4.yaml" -o "$work/warm" -q -j 1 # compile the kernels into the cache
 "$rotgen" sweep "$work/dop853.yaml" -o "$work/warm" -q -j 1
-echo "rk4, 1 thread" >&2
-read -r rk4_1 rk4_1c < <(best_of_3 "$rotgen" sweep "$work/rk4.yaml" -j 1)
-echo "dop853, 1 thread" >&2
-read -r dop_1 dop_1c < <(best_of_3 "$rotgen" sweep "$work/dop853.yaml" -j 1)
+"$rotgen" sweep "$work/rk4.yaml" -o "$work/warm" -q -j 1 --lanes $lanes # the batch kernel
+echo "rk4, 1 thread, without and with --lanes $lanes" >&2
+read -r rk4_1 rk4_1c rk4_l rk4_lc < <(best_of_3_lanes "$work/rk4.yaml")
+echo "dop853, 1 thread, without and with --lanes $lanes" >&2
+read -r dop_1 dop_1c dop_l dop_lc < <(best_of_3_lanes "$work/dop853.yaml")
+echo "rk4 to t = 0.01, 1 thread, without and with --lanes $lanes" >&2
+read -r short_1 short_1c short_l short_lc < <(best_of_3_lanes "$work/short.yaml")
+arch=$("$rotgen" sweep "$work/rk4.yaml" -o "$work/out" -j 1 --lanes $lanes 2>&1 |
+       sed -n 's/.*lanes of [0-9]* (\(.*\))$/\1/p')
 echo "dop853, 2 threads" >&2
 read -r dop_2 dop_2c < <(best_of_3 "$rotgen" sweep "$work/dop853.yaml" -j 2)
 echo "dop853, mpirun -n 2" >&2
 read -r mpi_2 mpi_2c < <(best_of_3 mpirun -n 2 --oversubscribe "${root_flag[@]}" "$rotgen" sweep -j 1 \
   "$work/dop853.yaml")
+# one member's right-hand side: the scalar kernel against the batch kernel (bench/lanes/rhs_time.cpp)
+"${CXX:-g++}" -O2 "$root/bench/lanes/rhs_time.cpp" -o "$work/rhs_time" -ldl
+read -r rhs_1 rhs_4 rhs_8 < <("$work/rhs_time" "$(ls "$ROTGEN_CACHE_DIR"/heavy_top-*.so | head -1)" \
+  "$(ls "$ROTGEN_CACHE_DIR"/heavy_top_lanes-*.so | head -1)" 6 5)
 # overhead per member: the core time two ranks spend beyond one process's, per member
 overhead=$(awk -v n=$members -v one="$dop_1c" -v two="$mpi_2c" \
   'BEGIN { printf "%.0f", (two - one) / n * 1e6 }')
@@ -82,10 +114,23 @@ energy; the time is the sweep's own "running the members" (the kernels compiled 
 
 | run | wall s | members/s (wall) | wall speed-up | CPU µs per member |
 |---|---:|---:|---:|---:|
-| RK4, step 0.01, 1 thread | $rk4_1 | $(rate "$rk4_1") | | $(us "$rk4_1c") |
+| RK4, step 0.01, 1 thread | $rk4_1 | $(rate "$rk4_1") | 1 | $(us "$rk4_1c") |
+| RK4, step 0.01, 1 thread, \`--lanes $lanes\` | $rk4_l | $(rate "$rk4_l") | $(ratio "$rk4_1" "$rk4_l") (goal 2.5) | $(us "$rk4_lc") |
+| RK4 to t = 0.01 (a member's cost outside its integration), 1 thread | $short_1 | $(rate "$short_1") | | $(us "$short_1c") |
+| the same, \`--lanes $lanes\` | $short_l | $(rate "$short_l") | $(ratio "$short_1" "$short_l") | $(us "$short_lc") |
 | DOP853, rtol 1e-8, 1 thread | $dop_1 | $(rate "$dop_1") | 1 | $(us "$dop_1c") |
+| DOP853, rtol 1e-8, 1 thread, \`--lanes $lanes\` | $dop_l | $(rate "$dop_l") | $(ratio "$dop_1" "$dop_l") (goal 1.5) | $(us "$dop_lc") |
 | DOP853, 2 threads (\`-j 2\`) | $dop_2 | $(rate "$dop_2") | $(ratio "$dop_1" "$dop_2") (goal 1.8) | $(us "$dop_2c") |
 | DOP853, \`mpirun -n 2\` | $mpi_2 | $(rate "$mpi_2") | $(ratio "$dop_1" "$mpi_2") (goal 1.7) | $(us "$mpi_2c") |
+
+Lanes: \`--lanes $lanes\` runs $lanes neighbouring members together, the right-hand side compiled for
+$arch; the scalar and lane runs were interleaved. Integration alone (the run minus the run to
+t = 0.01, in wall µs per member): RK4 $(sub_us "$rk4_1" "$short_1") scalar, $(sub_us "$rk4_l" "$short_l") in lanes ($(ratio_sub "$rk4_1" "$short_1" "$rk4_l" "$short_l")×); DOP853
+$(sub_us "$dop_1" "$short_1") scalar, $(sub_us "$dop_l" "$short_l") in lanes ($(ratio_sub "$dop_1" "$short_1" "$dop_l" "$short_l")×).
+
+One member's right-hand side (\`bench/lanes/rhs_time.cpp\`, calls interleaved, best of 5): $rhs_1 ns
+scalar, $rhs_4 ns in a batch of 4 lanes ($(ratio "$rhs_1" "$rhs_4")×), $rhs_8 ns in a batch of 8
+($(ratio "$rhs_1" "$rhs_8")×: two vectors per call keep more arithmetic in flight).
 
 CPU µs per member: the command's user + system time (all ranks, preparation included) over the
 $members members. MPI overhead per member (the 2-rank CPU time minus the 1-process CPU time, over

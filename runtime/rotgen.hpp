@@ -35,6 +35,7 @@
 #include "integrate/integrate.hpp"
 #include "integrate/monitor.hpp"
 #include "integrate/observer.hpp"
+#include "lanes.hpp"
 #include "method.hpp"
 #include "result.hpp"
 #include "rotation.hpp"

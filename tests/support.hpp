@@ -65,6 +65,16 @@ inline std::string read_file(const std::string& path) {
     return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
+// The lines of a text (without their line ends).
+inline std::vector<std::string> text_lines(const std::string& text) {
+    std::vector<std::string> out;
+    std::istringstream in(text);
+    std::string line;
+    while (std::getline(in, line))
+        out.push_back(line);
+    return out;
+}
+
 // Runs `rotgen ARGS` (ARGS already shell-quoted) in `dir` (if not empty).
 inline run_result run_rotgen(const std::string& args, const std::string& dir = "") {
     static int counter = 0;

@@ -72,9 +72,11 @@ void* loaded_library::symbol(const std::string& name) const {
     return p;
 }
 
-loaded_library compile_and_load(const std::string& source, const std::string& name) {
+loaded_library compile_and_load(const std::string& source, const std::string& name,
+                                const std::string& extra_flags) {
+    const std::string all_flags = extra_flags.empty() ? flags : flags + (" " + extra_flags);
     const std::string key =
-        hex(fnv1a(source + '\0' + compiler_identity() + '\0' + flags + '\0' + ROTGEN_VERSION));
+        hex(fnv1a(source + '\0' + compiler_identity() + '\0' + all_flags + '\0' + ROTGEN_VERSION));
     const std::string dir = cache_directory();
     make_directories(dir);
     const std::string base = dir + "/" + name + "-" + key;
@@ -96,7 +98,7 @@ loaded_library compile_and_load(const std::string& source, const std::string& na
         register_temporary(tmp_so);
         int status = 0;
         const std::string log = run_capture(
-            "'" + compiler() + "' " + flags + " '" + src + "' -o '" + tmp_so + "'", &status);
+            "'" + compiler() + "' " + all_flags + " '" + src + "' -o '" + tmp_so + "'", &status);
         if (status != 0) {
             std::remove(tmp_so.c_str());
             forget_temporary(tmp_so);

@@ -25,7 +25,8 @@ class loaded_library {
     bool was_cached() const { return m_cached; }
 
   private:
-    friend loaded_library compile_and_load(const std::string&, const std::string&);
+    friend loaded_library compile_and_load(const std::string&, const std::string&,
+                                           const std::string&);
     void* m_handle = nullptr;
     std::string m_path;
     bool m_cached = false;
@@ -38,7 +39,9 @@ std::string cache_directory();
 const std::string& compiler_identity();
 
 // Compiles `source` (a complete translation unit) unless the cache has it, then loads it.
-// `name` labels the files in the cache. Throws std::runtime_error with the compiler's output.
-loaded_library compile_and_load(const std::string& source, const std::string& name);
+// `name` labels the files in the cache; `extra_flags` are added to the compiler's (and the key).
+// Throws std::runtime_error with the compiler's output.
+loaded_library compile_and_load(const std::string& source, const std::string& name,
+                                const std::string& extra_flags = "");
 
 } // namespace rotgen

@@ -26,16 +26,6 @@ struct sample {
     std::size_t form; // index into scene_run::m_compiled
 };
 
-// The sample times: samples points from t_start to t_end, the last exactly t_end.
-std::vector<double> sample_times(const scene_spec& scene) {
-    std::vector<double> times(static_cast<std::size_t>(scene.samples));
-    for (std::size_t i = 0; i < times.size(); ++i)
-        times[i] = i + 1 == times.size() ? scene.t_end
-                                         : scene.t_start + (scene.t_end - scene.t_start) *
-                                                               double(i) / double(times.size() - 1);
-    return times;
-}
-
 // The initial kinematics of a continuation in the body form from an Euler-angle state (q, q_dot
 // from f): omega = J q_dot (5.30).
 initial_kinematics continuation(const Eigen::VectorXd& y, const Eigen::VectorXd& dydt) {
@@ -65,8 +55,16 @@ class scene_run {
         : m_prepared(prepared), m_scene(prepared.scene()), m_values(values), m_timings(timings),
           m_on_sample(on_sample) {}
     run_result run();
+    // The run in parts (member_parts): the start, the chart test of a sample, the records.
+    Eigen::VectorXd start();
+    bool keeps_chart(std::size_t sample, double t, const Eigen::VectorXd& y) const;
+    run_result finish_from(std::vector<std::pair<double, Eigen::VectorXd>> samples,
+                           const step_stats& stats);
+    bool starts_in_body() const { return m_start_in_body; }
+    const std::vector<double>& parameters() const { return m_parameters[m_current]; }
 
   private:
+    run_result finish();
     initial_kinematics exact_start();
     void decide_chart();
     const compiled_form& compile(form_kind form);
@@ -418,7 +416,9 @@ void scene_run::start_method() {
         r->autonomous = !m_scene.model.has_torque;
 }
 
-run_result scene_run::run() {
+// The start of the run: the member's exact start, its form's kernels, the method, the state in
+// that form (checked finite); returns the state.
+Eigen::VectorXd scene_run::start() {
     const initial_kinematics k0 = exact_start();
     m_result.record = m_scene.record;
     const compiled_form& first = compile(m_start_in_body ? form_kind::body : m_scene.form);
@@ -442,11 +442,42 @@ run_result scene_run::run() {
                               short_number(m_split->step()) +
                               (ig.step > 0 ? "" : " (from rtol " + short_number(ig.rtol) + ")");
     }
+    return y;
+}
+
+run_result scene_run::run() {
+    Eigen::VectorXd y = start();
     double t_from = m_scene.t_start;
     for (next to = next::body; to != next::done;) {
         to = integrate_segment(y, t_from);
         if (to != next::done) switch_chart(to, y, t_from);
     }
+    return finish();
+}
+
+// Whether the first segment's observer goes on past its sample number `sample` at (t, y), as in
+// integrate_segment (false: the run changes chart there).
+bool scene_run::keeps_chart(std::size_t sample, double t, const Eigen::VectorXd& y) const {
+    if (!m_prepared.can_switch() || sample == 0 || t >= m_scene.t_end) return true;
+    const form_kind form = m_compiled[m_current]->form;
+    const bool euler_chart = form == form_kind::lagrangian || form == form_kind::hamiltonian;
+    const double st = sin_theta_of(form, y);
+    return !(euler_chart ? st < switch_below : st > switch_back_above);
+}
+
+// The run's records from the samples of a whole run in the first form, integrated elsewhere.
+run_result scene_run::finish_from(std::vector<std::pair<double, Eigen::VectorXd>> samples,
+                                  const step_stats& stats) {
+    for (auto& [t, y] : samples)
+        m_samples.push_back({t, std::move(y), m_current});
+    m_last = {};
+    m_last.code = status::ok;
+    m_last.stats = stats;
+    add_stats(m_result.stats, stats);
+    return finish();
+}
+
+run_result scene_run::finish() {
     if (m_switches > 1)
         m_result.chart_note += "; " + std::to_string(m_switches) +
                                " changes of chart in all (to the body form below " +
@@ -459,7 +490,46 @@ run_result scene_run::run() {
     return m_result;
 }
 
+// A member's run in parts: scene_run's start, chart test and records.
+class run_in_parts : public member_parts {
+  public:
+    run_in_parts(const prepared_scene& prepared, const member_values& values,
+                 stage_timings& timings)
+        : m_values(values), m_run(prepared, m_values, timings, m_no_callback) {}
+    bool start(Eigen::VectorXd& y0, std::vector<double>& parameters) override {
+        y0 = m_run.start();
+        parameters = m_run.parameters();
+        return !m_run.starts_in_body();
+    }
+    bool keeps_chart(std::size_t sample, double t, const Eigen::VectorXd& y) const override {
+        return m_run.keeps_chart(sample, t, y);
+    }
+    run_result finish(std::vector<std::pair<double, Eigen::VectorXd>> samples,
+                      const step_stats& stats) override {
+        return m_run.finish_from(std::move(samples), stats);
+    }
+
+  private:
+    member_values m_values;
+    sample_callback m_no_callback;
+    scene_run m_run;
+};
+
 } // namespace
+
+std::unique_ptr<member_parts> run_parts(const prepared_scene& prepared, const member_values& values,
+                                        stage_timings& timings) {
+    return std::make_unique<run_in_parts>(prepared, values, timings);
+}
+
+std::vector<double> sample_times(const scene_spec& scene) {
+    std::vector<double> times(static_cast<std::size_t>(scene.samples));
+    for (std::size_t i = 0; i < times.size(); ++i)
+        times[i] = i + 1 == times.size() ? scene.t_end
+                                         : scene.t_start + (scene.t_end - scene.t_start) *
+                                                               double(i) / double(times.size() - 1);
+    return times;
+}
 
 member_values values_of(const scene_spec& scene) {
     return {scene.angles, scene.initial_rates, scene.parameters};

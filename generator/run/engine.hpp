@@ -17,6 +17,7 @@
 
 #include <array>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -73,6 +74,26 @@ member_values values_of(const scene_spec& scene);
 // scene (each with its own `timings`). Throws user_error as run_scene does, for this member.
 run_result run_member(const prepared_scene& prepared, const member_values& values,
                       stage_timings& timings, const sample_callback& on_sample = {});
+
+// The sample times: `samples` points from t_start to t_end, the last exactly t_end.
+std::vector<double> sample_times(const scene_spec& scene);
+
+// A member's run in parts, for lanes (run/lanes.hpp) that integrate several members together:
+// start() as run_member starts (the same user errors), giving the state and the parameter values
+// of the scene's form, or false when the member starts in the body form (then only run_member can
+// run it); keeps_chart(k, t, y): false when run_member would leave the chart at its k-th sample
+// (t, y) of the first form; finish() gives run_member's result from the samples of the whole run,
+// t_start .. t_end in the first form, integrated elsewhere with the work counters `stats`.
+class member_parts {
+  public:
+    virtual ~member_parts() = default;
+    virtual bool start(Eigen::VectorXd& y0, std::vector<double>& parameters) = 0;
+    virtual bool keeps_chart(std::size_t sample, double t, const Eigen::VectorXd& y) const = 0;
+    virtual run_result finish(std::vector<std::pair<double, Eigen::VectorXd>> samples,
+                              const step_stats& stats) = 0;
+};
+std::unique_ptr<member_parts> run_parts(const prepared_scene& prepared, const member_values& values,
+                                        stage_timings& timings);
 
 // Whether the body form must keep the orientation (the quaternion) for this scene: a chart switch,
 // or a recorded angle, body axis, Euler-angle rate or momentum, quaternion or space-axes L needs

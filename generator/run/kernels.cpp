@@ -208,6 +208,7 @@ compiled_form compile_form(const scene_spec& scene, form_expressions f, bool ori
         header.text + entry_points(c.f, header.unit, program, events, taylor);
     c.lib =
         timings.time("compile", header.unit, [&] { return compile_and_load(source, header.unit); });
+    c.header = header.text, c.unit = header.unit;
     c.sys.n = c.f.state.size();
     c.sys.f = reinterpret_cast<loaded_system::kernel>(c.lib.symbol("rotgen_rhs"));
     c.sys.jac = reinterpret_cast<loaded_system::kernel>(c.lib.symbol("rotgen_jacobian"));

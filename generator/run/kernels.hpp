@@ -70,6 +70,7 @@ struct compiled_form {
     std::vector<value_source> columns;         // one per quantity column (body_x expands to 3)
     std::vector<value_source> invariants;      // as the invariants are listed
     std::size_t outputs = 0;                   // of the record program
+    std::string header, unit; // the emitted header and its unit (lanes compile it for a batch)
 
     // The system with these parameter values (they must outlive it).
     loaded_system system(const std::vector<double>& values) const {

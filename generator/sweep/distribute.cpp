@@ -2,6 +2,7 @@
 
 #include "sweep/parallel.hpp"
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cstdlib>
@@ -47,31 +48,55 @@ std::vector<double> get_doubles(const std::string& in, std::size_t& at) {
     return v;
 }
 
-// The members this process takes from the shared index `next` (up to count), on its threads, each
-// outcome into its slot; `done` counts them.
-void run_here(std::atomic<std::size_t>& next, std::size_t count, unsigned jobs,
-              const member_work& work, std::vector<member_outcome>& outcomes,
+// The groups of `group` members (the last may be shorter) of members 0 .. count-1.
+struct groups {
+    std::size_t count, group;
+    std::size_t size() const { return (count + group - 1) / group; }
+    std::size_t first(std::size_t g) const { return g * group; }
+    std::size_t members(std::size_t g) const { return std::min(group, count - g * group); }
+};
+
+// Runs group g, each outcome into its member's slot of `out` (at the member's index - offset).
+template <class Slot>
+void run_group(const groups& gs, std::size_t g, const batch_work& work, const Slot& slot) {
+    std::vector<member_outcome> o = work(gs.first(g), gs.members(g));
+    for (std::size_t k = 0; k < o.size(); ++k)
+        slot(gs.first(g) + k, std::move(o[k]));
+}
+
+// The groups this process takes from the shared group index `next`, on its threads, each
+// outcome into its slot; `done` counts the members.
+void run_here(std::atomic<std::size_t>& next, const groups& gs, unsigned jobs,
+              const batch_work& work, std::vector<member_outcome>& outcomes,
               std::atomic<std::size_t>& done, const std::function<void()>& tick) {
     run_pool(
         jobs,
         [&] {
-            const std::size_t m = next++;
-            return m < count ? m : none;
+            const std::size_t g = next++;
+            return g < gs.size() ? g : none;
         },
-        [&](std::size_t m) {
-            outcomes[m] = work(m);
-            ++done;
+        [&](std::size_t g) {
+            run_group(gs, g, work, [&](std::size_t m, member_outcome o) {
+                outcomes[m] = std::move(o);
+                ++done;
+            });
         },
         tick);
 }
 
 // One process: every member on this process's threads.
-std::vector<member_outcome> run_here(std::size_t count, unsigned jobs, const member_work& work,
+std::vector<member_outcome> run_here(const groups& gs, unsigned jobs, const batch_work& work,
                                      const std::function<void(std::size_t)>& progress) {
-    std::vector<member_outcome> outcomes(count);
+    std::vector<member_outcome> outcomes(gs.count);
     std::atomic<std::size_t> next{0}, done{0};
-    run_here(next, count, jobs, work, outcomes, done, [&] { progress(done); });
+    run_here(next, gs, jobs, work, outcomes, done, [&] { progress(done); });
     return outcomes;
+}
+
+batch_work one_at_a_time(const member_work& work) {
+    return [&work](std::size_t first, std::size_t) {
+        return std::vector<member_outcome>{work(first)};
+    };
 }
 
 } // namespace
@@ -112,6 +137,12 @@ std::vector<std::pair<std::size_t, member_outcome>> unpack(const std::string& in
     return outcomes;
 }
 
+std::vector<member_outcome> run_distributed(const mpi_session& session, std::size_t count,
+                                            unsigned jobs, const member_work& work,
+                                            const std::function<void(std::size_t)>& progress) {
+    return run_distributed(session, count, 1, jobs, one_at_a_time(work), progress);
+}
+
 #ifndef ROTGEN_HAVE_MPI
 
 mpi_session::mpi_session() = default;
@@ -120,10 +151,11 @@ bool mpi_session::all(bool ok) const {
     return ok;
 }
 
-std::vector<member_outcome> run_distributed(const mpi_session&, std::size_t count, unsigned jobs,
-                                            const member_work& work,
+std::vector<member_outcome> run_distributed(const mpi_session&, std::size_t count,
+                                            std::size_t group, unsigned jobs,
+                                            const batch_work& work,
                                             const std::function<void(std::size_t)>& progress) {
-    return run_here(count, jobs, work, progress);
+    return run_here(groups{count, group}, jobs, work, progress);
 }
 
 #else
@@ -138,32 +170,32 @@ bool started_by_mpirun() {
     return false;
 }
 
-// A rank other than 0: ask for a chunk, run it on the threads, send the outcomes, until told that
-// the queue is empty (an empty chunk). The next chunk is asked for before the current one runs, so
-// that rank 0's answer arrives while this rank computes and the rank never waits for work.
-void serve_as_worker(unsigned jobs, const member_work& work) {
-    const auto ask = [] {
-        MPI_Send(nullptr, 0, MPI_BYTE, 0, request, MPI_COMM_WORLD);
-        std::array<std::uint64_t, 2> chunk{};
-        MPI_Recv(chunk.data(), 2, MPI_UINT64_T, 0, assignment, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-        return chunk;
-    };
-    std::array<std::uint64_t, 2> chunk = ask();
+// A rank other than 0: ask for a chunk of groups, run it on the threads, send the outcomes, until
+// told that the queue is empty (an empty chunk). The next chunk is asked for before the current one
+// runs, so that rank 0's answer arrives while this rank computes and the rank never waits for work.
+void serve_as_worker(const groups& gs, unsigned jobs, const batch_work& work) {
+    std::array<std::uint64_t, 2> chunk{};
+    MPI_Send(nullptr, 0, MPI_BYTE, 0, request, MPI_COMM_WORLD);
+    MPI_Recv(chunk.data(), 2, MPI_UINT64_T, 0, assignment, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
     while (chunk[0] != chunk[1]) {
         MPI_Send(nullptr, 0, MPI_BYTE, 0, request, MPI_COMM_WORLD); // the next one, ahead
         std::array<std::uint64_t, 2> next_chunk{};
         MPI_Request pending;
         MPI_Irecv(next_chunk.data(), 2, MPI_UINT64_T, 0, assignment, MPI_COMM_WORLD, &pending);
-        std::vector<std::pair<std::size_t, member_outcome>> out(chunk[1] - chunk[0]);
+        const std::size_t first = gs.first(chunk[0]);
+        std::vector<std::pair<std::size_t, member_outcome>> out(
+            std::min(gs.count, gs.first(chunk[1])) - first);
         std::atomic<std::size_t> next{chunk[0]};
         run_pool(
             jobs,
             [&] {
-                const std::size_t m = next++;
-                return m < chunk[1] ? m : none;
+                const std::size_t g = next++;
+                return g < chunk[1] ? g : none;
             },
-            [&](std::size_t m) {
-                out[m - chunk[0]] = {m, work(m)};
+            [&](std::size_t g) {
+                run_group(gs, g, work, [&](std::size_t m, member_outcome o) {
+                    out[m - first] = {m, std::move(o)};
+                });
             },
             {});
         const std::string bytes = pack(out);
@@ -174,7 +206,8 @@ void serve_as_worker(unsigned jobs, const member_work& work) {
 }
 
 // Rank 0's main thread: answers every pending message (requests: the next chunk of the shared
-// queue; results: into their members' slots). Returns the number of outcomes received.
+// queue of `count` groups; results: into their members' slots). Returns the number of outcomes
+// received.
 std::size_t answer(const mpi_session& s, std::atomic<std::size_t>& next, std::size_t count,
                    std::vector<member_outcome>& outcomes, int& finished) {
     std::size_t received = 0;
@@ -224,12 +257,14 @@ bool mpi_session::all(bool ok) const {
     return every == 1;
 }
 
-std::vector<member_outcome> run_distributed(const mpi_session& s, std::size_t count, unsigned jobs,
-                                            const member_work& work,
+std::vector<member_outcome> run_distributed(const mpi_session& s, std::size_t count,
+                                            std::size_t group, unsigned jobs,
+                                            const batch_work& work,
                                             const std::function<void(std::size_t)>& progress) {
-    if (s.size() == 1) return run_here(count, jobs, work, progress);
+    const groups gs{count, group};
+    if (s.size() == 1) return run_here(gs, jobs, work, progress);
     if (s.rank() != 0) {
-        serve_as_worker(jobs, work);
+        serve_as_worker(gs, jobs, work);
         return {};
     }
     std::vector<member_outcome> outcomes(count);
@@ -240,7 +275,7 @@ std::vector<member_outcome> run_distributed(const mpi_session& s, std::size_t co
     std::atomic<bool> stopped{false};
     std::thread local([&] {
         try {
-            run_here(next, count, jobs, work, outcomes, done, {});
+            run_here(next, gs, jobs, work, outcomes, done, {});
         } catch (...) {
             failure = std::current_exception();
         }
@@ -248,7 +283,7 @@ std::vector<member_outcome> run_distributed(const mpi_session& s, std::size_t co
     });
     auto last = std::chrono::steady_clock::now();
     while (!(stopped && failure) && (finished < s.size() - 1 || done + received < count)) {
-        received += answer(s, next, count, outcomes, finished);
+        received += answer(s, next, gs.size(), outcomes, finished);
         if (std::chrono::steady_clock::now() - last > std::chrono::milliseconds(100)) {
             progress(done + received);
             last = std::chrono::steady_clock::now();

@@ -40,6 +40,14 @@ std::vector<member_outcome> run_distributed(const mpi_session& session, std::siz
                                             unsigned jobs, const member_work& work,
                                             const std::function<void(std::size_t)>& progress);
 
+// The same for members run in groups of `group` neighbours (the last group may be shorter):
+// work(first, n) gives the outcomes of members first .. first+n-1. Ranks take chunks of groups.
+using batch_work = std::function<std::vector<member_outcome>(std::size_t first, std::size_t count)>;
+std::vector<member_outcome> run_distributed(const mpi_session& session, std::size_t count,
+                                            std::size_t group, unsigned jobs,
+                                            const batch_work& work,
+                                            const std::function<void(std::size_t)>& progress);
+
 // The bytes of outcomes (with their member indices) for a message, and back.
 std::string pack(const std::vector<std::pair<std::size_t, member_outcome>>& outcomes);
 std::vector<std::pair<std::size_t, member_outcome>> unpack(const std::string& bytes);

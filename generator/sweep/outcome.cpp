@@ -34,18 +34,25 @@ summary_layout layout_of(const prepared_scene& prepared) {
 
 member_outcome run_one(const prepared_scene& prepared, const summary_layout& layout,
                        const member_values& values, bool keep_trajectory) {
-    member_outcome o;
-    const std::size_t width = 1 + layout.columns.size();
-    if (keep_trajectory)
-        o.trajectory.assign(layout.samples * width, std::numeric_limits<double>::quiet_NaN());
     run_result r;
     try {
         stage_timings timings; // a member's own (the sweep reports preparation only)
         r = run_member(prepared, values, timings);
     } catch (const user_error& e) {
+        member_outcome o = outcome_of(prepared, layout, {}, keep_trajectory);
+        o.event_times.clear();
         o.status = e.message(); // no final values, no drifts: empty fields
         return o;
     }
+    return outcome_of(prepared, layout, r, keep_trajectory);
+}
+
+member_outcome outcome_of(const prepared_scene& prepared, const summary_layout& layout,
+                          const run_result& r, bool keep_trajectory) {
+    member_outcome o;
+    const std::size_t width = 1 + layout.columns.size();
+    if (keep_trajectory)
+        o.trajectory.assign(layout.samples * width, std::numeric_limits<double>::quiet_NaN());
     if (!r.rows.empty()) o.final_row = r.rows.back();
     for (const auto& d : r.invariants)
         o.drifts.push_back(d.drift);

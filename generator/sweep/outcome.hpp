@@ -39,6 +39,10 @@ summary_layout layout_of(const prepared_scene& prepared);
 member_outcome run_one(const prepared_scene& prepared, const summary_layout& layout,
                        const member_values& values, bool keep_trajectory);
 
+// The outcome of a member's run.
+member_outcome outcome_of(const prepared_scene& prepared, const summary_layout& layout,
+                          const run_result& r, bool keep_trajectory);
+
 // summary.csv: member, the keys as written, final.t, final.<column>..., event.<name>... (the time
 // of the event's first occurrence, empty if none), drift.<invariant>..., steps, rhs_evals, status.
 // Numbers with 17 significant digits; a status with a comma or a quote is quoted (RFC 4180).

@@ -1,5 +1,6 @@
 #include "sweep/sweep.hpp"
 
+#include "run/lanes.hpp"
 #include "run/prepared.hpp"
 #include "scene/scene.hpp"
 #include "support/atomic_file.hpp"
@@ -22,6 +23,7 @@
 #include <iostream>
 #include <iterator>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 namespace rotgen {
@@ -108,15 +110,53 @@ struct ensemble {
     std::vector<std::vector<double>> rows;
     std::unique_ptr<prepared_scene> prepared;
     summary_layout layout;
+    std::unique_ptr<lane_kernels> lanes; // with --lanes W > 1
 
     ensemble(const sweep_request& q, stage_timings& timings)
         : scene(load_scene(q.scene)), plan(read_sweep_plan(scene, q.vary)),
           rows(member_rows(plan)) {
+        if (q.lanes > 1) lane_check(scene);
         prepared = std::make_unique<prepared_scene>(scene, timings);
         prepared->compile_all(timings);
         layout = layout_of(*prepared);
+        if (q.lanes > 1) lanes = std::make_unique<lane_kernels>(compile_lanes(*prepared, timings));
     }
 };
+
+// Members first .. first+count-1 in lanes (run/lanes.hpp); those a batch cannot carry alone.
+std::vector<member_outcome> run_batch(const ensemble& e, const member_values& base,
+                                      std::size_t first, std::size_t count, bool trajectories) {
+    std::vector<member_values> values;
+    for (std::size_t m = first; m < first + count; ++m)
+        values.push_back(member_of(e.plan, base, e.rows[m]));
+    const std::vector<std::optional<run_result>> results = run_lanes(*e.prepared, *e.lanes, values);
+    std::vector<member_outcome> out;
+    for (std::size_t k = 0; k < count; ++k)
+        out.push_back(results[k] ? outcome_of(*e.prepared, e.layout, *results[k], trajectories)
+                                 : run_one(*e.prepared, e.layout, values[k], trajectories));
+    return out;
+}
+
+// Every member's outcome, in member order: one at a time, or in batches of lanes.
+std::vector<member_outcome> run_members(const mpi_session& session, const sweep_request& q,
+                                        const ensemble& e, unsigned jobs,
+                                        const std::function<void(std::size_t)>& progress) {
+    const member_values base = values_of(e.prepared->scene());
+    if (e.lanes)
+        return run_distributed(
+            session, e.rows.size(), q.lanes, jobs,
+            [&](std::size_t first, std::size_t count) {
+                return run_batch(e, base, first, count, q.trajectories);
+            },
+            progress);
+    return run_distributed(
+        session, e.rows.size(), jobs,
+        [&](std::size_t m) {
+            return run_one(*e.prepared, e.layout, member_of(e.plan, base, e.rows[m]),
+                           q.trajectories);
+        },
+        progress);
+}
 
 // The files and the report (rank 0 only). Returns the exit status.
 int finish(const sweep_request& q, const ensemble& e, const std::string& workers,
@@ -191,17 +231,11 @@ int sweep(const sweep_request& q) {
     progress_line progress(0, double(e->rows.size()), root && !q.quiet, "members");
     // under mpirun a rank per core, each with one thread, unless -j says otherwise
     const unsigned jobs = q.jobs != 0 ? q.jobs : session.size() > 1 ? 1 : all_cores();
-    const member_values base = values_of(e->prepared->scene());
     const auto start = std::chrono::steady_clock::now();
     const std::vector<member_outcome> outcomes =
         timings.time("members", std::to_string(e->rows.size()), [&] {
-            return run_distributed(
-                session, e->rows.size(), jobs,
-                [&](std::size_t m) {
-                    return run_one(*e->prepared, e->layout, member_of(e->plan, base, e->rows[m]),
-                                   q.trajectories);
-                },
-                [&](std::size_t done) { progress.update(double(done)); });
+            return run_members(session, q, *e, jobs,
+                               [&](std::size_t done) { progress.update(double(done)); });
         });
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -209,7 +243,8 @@ int sweep(const sweep_request& q) {
     if (!root) return 0;
     const std::string workers =
         std::to_string(jobs) + (jobs == 1 ? " thread" : " threads") +
-        (session.size() > 1 ? " on each of " + std::to_string(session.size()) + " MPI ranks" : "");
+        (session.size() > 1 ? " on each of " + std::to_string(session.size()) + " MPI ranks" : "") +
+        (e->lanes ? ", lanes of " + std::to_string(q.lanes) + " (" + e->lanes->arch + ")" : "");
     return finish(q, *e, workers, outcomes, seconds, *summary_out, timings);
 }
 

@@ -23,6 +23,7 @@ struct sweep_request {
     std::string directory;         // where the files go (created if missing)
     std::vector<std::string> vary; // --vary KEY=FROM:TO:COUNT entries
     unsigned jobs = 0;             // threads; 0: every core
+    unsigned lanes = 1;            // > 1: members in SIMD batches of this many (run/lanes.hpp)
     bool trajectories = false;     // also DIR/trajectories.h5 (sweep/trajectories.hpp)
     bool timings = false;          // one line per pipeline stage to stderr
     bool quiet = false;            // no summary and no progress line

@@ -26,6 +26,7 @@
 
 #include "../combine.hpp"
 #include "../derivatives.hpp"
+#include "../lanes.hpp"
 #include "../step_control.hpp"
 #include "../stepper.hpp"
 
@@ -328,12 +329,14 @@ template <class T, class S> class dop853_stepper {
               a(tab::a126, 6), a(tab::a127, 7), a(tab::a128, 8), a(tab::a129, 9),
               a(tab::a1210, 10));
         f(12, 1.0L);
-        return solution_and_error(y0, h, k);
+        return solution_and_error(sys, y0, h, k);
     }
 
     // y1 = y0 + h Σ b_i k_i (8th order) and the error estimate:
     //   e3 = Σ b k − (bhh1 k1 + bhh2 k9 + bhh3 k12),  e5 = Σ er_j k_j
-    ROTGEN_ALWAYS_INLINE outcome solution_and_error(const work& y0, T h, const stages& k) {
+    // (for a lane system: the largest of the lanes' norms, lanes.hpp)
+    ROTGEN_ALWAYS_INLINE outcome solution_and_error(const S& sys, const work& y0, T h,
+                                                    const stages& k) {
         using std::abs;
         using std::max;
         using std::sqrt;
@@ -350,7 +353,7 @@ template <class T, class S> class dop853_stepper {
             return {detail::all_finite(m_y1) ? status::ok : status::non_finite, T(0)};
         }
         const T tiny = std::numeric_limits<T>::min();
-        T err5 = T(0), err3 = T(0);
+        detail::lane_error_sums<T, S, 2> sums(sys); // E3, E5
         for (std::size_t i = 0; i < n; ++i) {
             const T bk = b_k(i);
             const T e3 =
@@ -361,12 +364,15 @@ template <class T, class S> class dop853_stepper {
             const T y1 = y0[i] + h * bk;
             m_y1[i] = y1;
             const T inv_sk = T(1) / max(m_atol + m_rtol * max(abs(y0[i]), abs(y1)), tiny);
-            err3 += (e3 * inv_sk) * (e3 * inv_sk);
-            err5 += (e5 * inv_sk) * (e5 * inv_sk);
+            sums.add(i, 0, e3 * inv_sk);
+            sums.add(i, 1, e5 * inv_sk);
         }
-        T deno = err5 + T(0.01) * err3;
-        if (deno <= T(0)) deno = T(1);
-        const T err = abs(h) * err5 * sqrt(T(1) / (T(n) * deno));
+        const auto norm = [&](const std::array<T, 2>& e, std::size_t components) {
+            T deno = e[1] + T(0.01) * e[0];
+            if (deno <= T(0)) deno = T(1);
+            return abs(h) * e[1] * sqrt(T(1) / (T(components) * deno));
+        };
+        const T err = sums.largest(norm, n);
         using std::isfinite;
         if (!isfinite(err) || !detail::all_finite(m_y1)) return {status::non_finite, err};
         return {status::ok, err};

@@ -47,15 +47,6 @@ std::vector<std::string> fields(const std::string& line) {
     return out;
 }
 
-std::vector<std::string> lines(const std::string& text) {
-    std::vector<std::string> out;
-    std::istringstream in(text);
-    std::string line;
-    while (std::getline(in, line))
-        out.push_back(line);
-    return out;
-}
-
 } // namespace
 
 TEST_CASE("sweep: a grid counts like nested loops, the last key fastest", "[sweep]") {
@@ -115,7 +106,7 @@ TEST_CASE("sweep: a member's row is what simulate gives with the member's values
     const test::run_result r = run_rotgen("sweep '" + scene.path + "' -o '" + dir + "' -q");
     INFO(r.err);
     REQUIRE(r.status == 0);
-    const auto summary = lines(read_file(dir + "/summary.csv"));
+    const auto summary = text_lines(read_file(dir + "/summary.csv"));
     REQUIRE(summary.size() == 5);
     CHECK(summary[0] ==
           "member,initial.theta,parameters.h,final.t,final.theta,final.phi,"
@@ -129,7 +120,7 @@ TEST_CASE("sweep: a member's row is what simulate gives with the member's values
     const test::run_result s =
         run_rotgen("simulate '" + single.path + "' -o '" + scratch("sweep_member.csv") + "'");
     REQUIRE(s.status == 0);
-    const auto sim = lines(read_file(scratch("sweep_member.csv")));
+    const auto sim = text_lines(read_file(scratch("sweep_member.csv")));
     const std::vector<std::string> row = fields(summary[4]);
     CHECK(std::vector<std::string>(row.begin(), row.begin() + 3) ==
           std::vector<std::string>{"3", "0.7", "0.25"});
@@ -158,7 +149,7 @@ TEST_CASE("sweep: a failing member is reported with its reason while the others 
     const test::run_result r = run_rotgen("sweep '" + scene.path + "' -o '" + dir + "' -q");
     INFO(r.err);
     CHECK(r.status == 3);
-    const auto summary = lines(read_file(dir + "/summary.csv"));
+    const auto summary = text_lines(read_file(dir + "/summary.csv"));
     REQUIRE(summary.size() == 5);
     CHECK(fields(summary[1]).back() == "ok");
     CHECK(fields(summary[3]).back() == "ok");
@@ -191,7 +182,7 @@ TEST_CASE("sweep: -j 1 and -j 2 write the same files, byte for byte", "[sweep]")
     }
     CHECK(h5[0].size() > 36 * 201 * 5 * 8); // members x samples x columns x 8 bytes
     CHECK(h5[0] == h5[1]);
-    CHECK(lines(files[0]).size() == 37);
+    CHECK(text_lines(files[0]).size() == 37);
     CHECK(files[0] == files[1]);
 }
 
@@ -219,7 +210,7 @@ TEST_CASE("sweep: event.<name> is the time of the event's first occurrence, empt
         summaries[j - 1] = read_file(dir + "/summary.csv");
     }
     CHECK(summaries[0] == summaries[1]);
-    const auto summary = lines(summaries[0]);
+    const auto summary = text_lines(summaries[0]);
     REQUIRE(summary.size() == 3);
     CHECK(summary[0] == "member,initial.theta,final.t,final.theta,final.phi,final.energy,"
                         "final.p_phi,event.turn,event.deep,drift.energy,drift.p_phi,drift.p_psi,"
@@ -234,7 +225,7 @@ TEST_CASE("sweep: event.<name> is the time of the event's first occurrence, empt
         std::string first_turn, first_deep;
         std::size_t turns = 0;
         for (const auto& line :
-             lines(read_file(scratch("sweep_events_" + theta + ".events.csv")))) {
+             text_lines(read_file(scratch("sweep_events_" + theta + ".events.csv")))) {
             const auto f = fields(line);
             if (f[0] == "turn" && turns++ == 0) first_turn = f[1];
             if (f[0] == "deep" && first_deep.empty()) first_deep = f[1];

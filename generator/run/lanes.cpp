@@ -1,0 +1,208 @@
+#include "run/lanes.hpp"
+
+#include "support/error.hpp"
+
+#include <memory>
+#include <sstream>
+
+namespace rotgen {
+
+namespace {
+
+// The translation unit of the batch kernel: the form's header and rotgen_rhs_lanes, which runs
+// rhs<xsimd::batch<double>> over the lanes a batch at a time, and rotgen_lane_width.
+std::string lane_source(const compiled_form& cf) {
+    const form_expressions& f = cf.f;
+    std::ostringstream s;
+    s << cf.header << "\n// ---- rotgen sweep --lanes: the batch kernel ----\n"
+      << "#include <xsimd/xsimd.hpp>\n\n"
+      << "namespace {\nnamespace rg_model = rotgen::models::" << cf.unit << ";\n"
+      << "using rg_batch = xsimd::batch<double>;\n}\n\n"
+      << "extern \"C\" {\n"
+      << "unsigned long rotgen_lane_width() { return rg_batch::size; }\n"
+      << "void rotgen_rhs_lanes(const double* v, double t, const double* y, double* dydt,\n"
+      << "                      unsigned long lanes) {\n"
+      << "    (void)v;\n"
+      << "    for (unsigned long l = 0; l < lanes; l += rg_batch::size) {\n"
+      << "        rg_model::params<rg_batch> p;\n";
+    for (std::size_t i = 0; i < f.parameters.size(); ++i)
+        s << "        p." << f.parameters[i].name << " = rg_batch::load_unaligned(v + " << i
+          << " * lanes + l);\n";
+    const std::size_t n = f.state.size();
+    s << "        rg_batch yb[" << n << "], db[" << n << "];\n"
+      << "        for (unsigned long c = 0; c < " << n << "; ++c)\n"
+      << "            yb[c] = rg_batch::load_unaligned(y + c * lanes + l);\n"
+      << "        rg_model::rhs(rg_batch(t), yb, db, p);\n"
+      << "        for (unsigned long c = 0; c < " << n << "; ++c)\n"
+      << "            db[c].store_unaligned(dydt + c * lanes + l);\n"
+      << "    }\n}\n}\n";
+    return s.str();
+}
+
+// The compiler flags of the batch kernel and the name of its target.
+std::pair<std::string, std::string> lane_target() {
+    std::string flags = "-ffp-contract=off";
+#ifdef ROTGEN_XSIMD_INCLUDE
+    const std::string dir = ROTGEN_XSIMD_INCLUDE; // not the system's: -I there breaks <cstdlib>
+    if (dir != "/usr/include" && dir != "/usr/local/include") flags += " -I'" + dir + "'";
+#endif
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+    if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"))
+        return {flags + " -mavx2 -mfma", "avx2+fma"};
+#endif
+    return {flags, "sse2"};
+}
+
+// The members' states and parameters laid out by lane (component c of lane l at c*lanes + l);
+// lanes past the members repeat the first member (stopped: they only fill the last batch).
+struct lane_batch {
+    std::vector<std::unique_ptr<member_parts>> parts; // per member
+    std::vector<std::size_t> lane_of;                 // member -> lane, or `alone`
+    std::vector<std::size_t> member_of;               // lane -> member (members only)
+    std::vector<Eigen::VectorXd> y0;
+    std::vector<std::vector<double>> parameters;
+    static constexpr std::size_t alone = static_cast<std::size_t>(-1);
+};
+
+// Starts every member (as run_member starts it); a member that cannot start in the scene's form,
+// or whose start is a user error, runs alone.
+lane_batch start_members(const prepared_scene& prepared,
+                         const std::vector<member_values>& members) {
+    lane_batch b;
+    stage_timings timings; // a member's own (the sweep reports preparation only)
+    for (const member_values& values : members) {
+        b.parts.push_back(run_parts(prepared, values, timings));
+        b.lane_of.push_back(lane_batch::alone);
+        Eigen::VectorXd y;
+        std::vector<double> p;
+        try {
+            if (!b.parts.back()->start(y, p)) continue;
+        } catch (const user_error&) {
+            continue; // run_member reports it
+        }
+        b.lane_of.back() = b.member_of.size();
+        b.member_of.push_back(b.parts.size() - 1);
+        b.y0.push_back(std::move(y));
+        b.parameters.push_back(std::move(p));
+    }
+    return b;
+}
+
+// Component c of every lane: values[lane][c] at c*lanes + lane (lanes >= values.size(); the
+// lanes past them repeat lane 0).
+template <class V> std::vector<double> by_lane(const std::vector<V>& values, std::size_t lanes) {
+    const std::size_t n = static_cast<std::size_t>(values[0].size());
+    std::vector<double> out(n * lanes);
+    for (std::size_t l = 0; l < lanes; ++l)
+        for (std::size_t c = 0; c < n; ++c)
+            out[c * lanes + l] = values[l < values.size() ? l : 0][static_cast<Eigen::Index>(c)];
+    return out;
+}
+
+using samples = std::vector<std::pair<double, Eigen::VectorXd>>;
+
+// Integrates the started members' lanes over the scene's sample times with the scene's method;
+// a lane's samples are left empty when it must run alone.
+template <class Method>
+std::vector<samples> integrate_lanes(const prepared_scene& prepared, const lane_kernels& k,
+                                     lane_batch& b, const Method& method, step_stats& stats) {
+    const scene_spec& scene = prepared.scene();
+    const std::size_t members = b.member_of.size(), n = static_cast<std::size_t>(b.y0[0].size());
+    const std::size_t lanes = (members + k.width - 1) / k.width * k.width;
+    const std::vector<double> p = by_lane(b.parameters, lanes);
+    const auto kernel = [&k, &p, lanes](double t, const double* y, double* dydt) {
+        k.rhs(p.data(), t, y, dydt, lanes);
+    };
+    lane_system<double, decltype(kernel)> sys(kernel, n, lanes);
+    for (std::size_t l = members; l < lanes; ++l)
+        sys.stop(l);
+    std::vector<samples> out(members);
+    std::size_t sample = 0;
+    const auto observe = [&](double t, const Eigen::VectorXd& y) {
+        Eigen::VectorXd yl(static_cast<Eigen::Index>(n));
+        std::size_t live = 0;
+        for (std::size_t l = 0; l < members; ++l) {
+            if (!sys.is_live(l)) continue;
+            for (std::size_t c = 0; c < n; ++c)
+                yl[static_cast<Eigen::Index>(c)] = y[static_cast<Eigen::Index>(c * lanes + l)];
+            if (!b.parts[b.member_of[l]]->keeps_chart(sample, t, yl)) {
+                sys.stop(l); // it changes chart here: it runs alone
+                continue;
+            }
+            out[l].emplace_back(t, yl);
+            ++live;
+        }
+        ++sample;
+        return live > 0;
+    };
+    const std::vector<double> times = sample_times(scene);
+    Eigen::VectorXd y = Eigen::Map<const Eigen::VectorXd>(by_lane(b.y0, lanes).data(),
+                                                          static_cast<Eigen::Index>(n * lanes));
+    const integration_result<double> res = integrate(sys, method, scene.t_start, y, times, observe);
+    stats = res.stats;
+    for (std::size_t l = 0; l < members; ++l)
+        if (!res.ok() || !sys.is_live(l)) out[l].clear();
+    return out;
+}
+
+} // namespace
+
+void lane_check(const scene_spec& scene) {
+    const std::string& m = scene.integrator.method;
+    if (m != "rk4" && m != "dop853")
+        throw user_error(scene.integrator_where, "--lanes needs the method rk4 or dop853, not " +
+                                                     m + " (or run the sweep without --lanes)");
+    if (!scene.events.empty())
+        throw user_error(scene.events[0].where,
+                         "--lanes cannot run a scene with events (run the sweep without --lanes)");
+}
+
+lane_kernels compile_lanes(const prepared_scene& prepared, stage_timings& timings) {
+#ifndef ROTGEN_HAVE_XSIMD
+    (void)prepared, (void)timings;
+    throw user_error({"rotgen sweep"}, "--lanes: this rotgen was built without xsimd "
+                                       "(libxsimd-dev); run the sweep without --lanes");
+#else
+    const compiled_form& cf = prepared.compiled(prepared.scene().form, timings, nullptr);
+    const auto [flags, arch] = lane_target();
+    lane_kernels k;
+    k.arch = arch;
+    const std::string source = lane_source(cf);
+    k.lib = timings.time("compile", cf.unit + " lanes",
+                         [&] { return compile_and_load(source, cf.unit + "_lanes", flags); });
+    k.rhs = reinterpret_cast<lane_kernels::kernel>(k.lib.symbol("rotgen_rhs_lanes"));
+    using width_fn = unsigned long (*)();
+    k.width = reinterpret_cast<width_fn>(k.lib.symbol("rotgen_lane_width"))();
+    return k;
+#endif
+}
+
+std::vector<std::optional<run_result>> run_lanes(const prepared_scene& prepared,
+                                                 const lane_kernels& kernels,
+                                                 const std::vector<member_values>& members) {
+    std::vector<std::optional<run_result>> results(members.size());
+    lane_batch b = start_members(prepared, members);
+    if (b.member_of.empty()) return results;
+    const integrator_spec& ig = prepared.scene().integrator;
+    step_stats stats;
+    std::vector<samples> lane_samples;
+    if (ig.method == "rk4") {
+        rk4<double> m;
+        m.step = ig.step;
+        m.max_steps = static_cast<std::size_t>(ig.max_steps);
+        lane_samples = integrate_lanes(prepared, kernels, b, m, stats);
+    } else {
+        dop853<double> m(ig.rtol, ig.atol);
+        m.fixed_step = ig.fixed_step() ? ig.step : 0.0;
+        m.max_steps = static_cast<std::size_t>(ig.max_steps);
+        lane_samples = integrate_lanes(prepared, kernels, b, m, stats);
+    }
+    for (std::size_t m = 0; m < members.size(); ++m) {
+        const std::size_t l = b.lane_of[m];
+        if (l != lane_batch::alone && !lane_samples[l].empty())
+            results[m] = b.parts[m]->finish(std::move(lane_samples[l]), stats);
+    }
+    return results;
+}
+
+} // namespace rotgen

@@ -1,0 +1,52 @@
+// rotgen — members in lanes: W members of an ensemble integrated together, their right-hand sides
+// computed by one SIMD batch kernel (the generated header instantiated on xsimd::batch<double>),
+// their steps by the runtime's steppers on a lane system (runtime/lanes.hpp).
+//
+// The batch kernel is compiled once per sweep into its own cached library, for AVX2 with FMA
+// (4 doubles a batch) when the CPU has both (checked at run time), else for the compiler's default
+// x86-64 target (SSE2, 2 doubles); with -ffp-contract=off, so that the generated arithmetic rounds
+// as the scalar kernel's does and a lane differs from the scalar run only by xsimd's vector sin,
+// cos, ... Lanes need rk4 or dop853 and a scene without events (lane_check).
+//
+// What a batch cannot carry runs alone on the scalar path (run_member), from the start, so its
+// result is the scalar run's: a member whose start is a user error or that starts in the body
+// form (gimbal lock), a lane that would change chart at a sample (|sin theta| < 0.1) or whose f
+// stops being finite, and every lane of a batch whose shared integration fails (max_steps, a step
+// size underflow).
+#pragma once
+
+#include "run/compile_cache.hpp"
+#include "run/engine.hpp"
+#include "run/prepared.hpp"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace rotgen {
+
+struct lane_kernels {
+    // rhs(p, t, y, dydt, lanes): parameter, state or rate component c of lane l at [c*lanes + l];
+    // lanes a multiple of width
+    using kernel = void (*)(const double* p, double t, const double* y, double* dydt,
+                            unsigned long lanes);
+    loaded_library lib;
+    kernel rhs = nullptr;
+    std::size_t width = 1; // doubles per batch
+    std::string arch;      // "avx2+fma" or "sse2"
+};
+
+// Throws user_error (at the scene's integrator or first event) when lanes cannot run the scene:
+// a method other than rk4 and dop853, or events.
+void lane_check(const scene_spec& scene);
+
+// The batch kernel of the scene's form (compiled, or loaded from the cache).
+lane_kernels compile_lanes(const prepared_scene& prepared, stage_timings& timings);
+
+// Runs the members together; a member's entry is empty when it must run alone (above).
+// Thread-safe as run_member is.
+std::vector<std::optional<run_result>> run_lanes(const prepared_scene& prepared,
+                                                 const lane_kernels& kernels,
+                                                 const std::vector<member_values>& members);
+
+} // namespace rotgen

@@ -1,0 +1,219 @@
+// rotgen sweep --lanes W: members in SIMD batches against the scalar runs of the same members.
+// - the batch kernel against the scalar kernel at random states (the only difference: xsimd's
+//   vector sin and cos against libm's);
+// - RK4 lanes take the scalar runs' steps and end within rounding of them, DOP853 lanes within the
+//   tolerance; summary.csv has the same columns and rows;
+// - a member the batch cannot carry (a start in the body form, a chart switch during the run, a
+//   batch that fails at max_steps, a start that is a user error) gives the scalar run's row;
+// - scenes lanes cannot run and bad --lanes values: one line, exit 2, nothing written.
+#include "support.hpp"
+
+#include "run/lanes.hpp"
+#include "scene/scene.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <sys/stat.h>
+
+#include <cmath>
+#include <random>
+#include <sstream>
+#include <tuple>
+
+using namespace rotgen;
+using namespace rotgen::test;
+
+namespace {
+
+std::string scratch(const std::string& name) {
+    return std::string(ROTGEN_BINARY_DIR) + "/" + name;
+}
+
+std::string heavy_top(const std::string& integrator, const std::string& rest) {
+    return "model: " + model_path("heavy_top") +
+           "\ninitial: {phi: 0, theta: 0.5, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 30}\n"
+           "time: {end: 2, samples: 41}\nintegrator: " +
+           integrator + "\nrecord: [theta, phi, energy, p_phi]\n" + rest;
+}
+
+std::string field(const std::string& line, std::size_t i) {
+    std::istringstream in(line);
+    std::string cell;
+    for (std::size_t k = 0; k <= i; ++k)
+        std::getline(in, cell, ',');
+    return cell;
+}
+
+// summary.csv of the scene without and with --lanes W (exit status 0 or `status`).
+std::pair<std::string, std::string> summaries(const scratch_file& scene, const std::string& name,
+                                              int lanes, int status = 0) {
+    std::string out[2];
+    for (int k = 0; k < 2; ++k) {
+        const std::string dir = scratch(name + (k == 0 ? "_scalar" : "_lanes"));
+        const test::run_result r =
+            run_rotgen("sweep '" + scene.path + "' -o '" + dir + "' -q -j 2" +
+                       (k == 0 ? std::string() : " --lanes " + std::to_string(lanes)));
+        INFO(r.err);
+        REQUIRE(r.status == status);
+        out[k] = read_file(dir + "/summary.csv");
+    }
+    return {out[0], out[1]};
+}
+
+// The largest relative difference of the final.* values of the two summaries written by
+// summaries(scene, name, ...), with the member, varied value and status columns equal.
+double largest_difference(const std::string& name, const std::string& a, const std::string& b) {
+    const csv_table s = read_csv(scratch(name + "_scalar/summary.csv"));
+    const csv_table l = read_csv(scratch(name + "_lanes/summary.csv"));
+    REQUIRE(s.header == l.header);
+    REQUIRE(s.rows.size() == l.rows.size());
+    double worst = 0;
+    for (std::size_t m = 0; m < s.rows.size(); ++m)
+        for (std::size_t c = 0; c < s.header.size(); ++c) {
+            if (s.header[c].rfind("final.", 0) != 0) continue;
+            const double x = s.rows[m][c], y = l.rows[m][c];
+            worst = std::max(worst, std::abs(x - y) / std::max(std::abs(x), 1e-300));
+        }
+    const auto a_lines = text_lines(a), b_lines = text_lines(b);
+    for (std::size_t m = 1; m < a_lines.size(); ++m) {
+        CHECK(field(a_lines[m], 0) == field(b_lines[m], 0)); // member
+        CHECK(field(a_lines[m], 1) == field(b_lines[m], 1)); // the varied value
+        CHECK(a_lines[m].substr(a_lines[m].rfind(',')) ==
+              b_lines[m].substr(b_lines[m].rfind(','))); // status
+    }
+    return worst;
+}
+
+} // namespace
+
+TEST_CASE("sweep --lanes: the batch kernel is the scalar kernel up to vector sin and cos",
+          "[sweep][lanes]") {
+    const scratch_file scene("lanes_kernel.yaml", heavy_top("{method: rk4, step: 0.01}", ""));
+    stage_timings timings;
+    const prepared_scene prepared(load_scene(scene.path), timings);
+    const lane_kernels k = compile_lanes(prepared, timings);
+    const compiled_form& cf = prepared.compiled(form_kind::lagrangian, timings, nullptr);
+    REQUIRE((k.width == 2 || k.width == 4));
+    const std::size_t lanes = 8, n = cf.sys.n, np = cf.f.parameters.size();
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> angle(0.05, 3.1), rate(-40, 40), positive(0.2, 3);
+    double worst_ulps = 0;
+    for (int round = 0; round < 200; ++round) {
+        std::vector<double> y(n * lanes), p(np * lanes), d(n * lanes);
+        for (std::size_t l = 0; l < lanes; ++l) {
+            for (std::size_t c = 0; c < n; ++c)
+                y[c * lanes + l] = c < 3 ? angle(rng) : rate(rng);
+            for (std::size_t j = 0; j < np; ++j)
+                p[j * lanes + l] = positive(rng);
+        }
+        k.rhs(p.data(), 0.3, y.data(), d.data(), lanes);
+        for (std::size_t l = 0; l < lanes; ++l) {
+            std::vector<double> yl(n), pl(np), dl(n);
+            for (std::size_t c = 0; c < n; ++c)
+                yl[c] = y[c * lanes + l];
+            for (std::size_t j = 0; j < np; ++j)
+                pl[j] = p[j * lanes + l];
+            cf.sys.f(pl.data(), 0.3, yl.data(), dl.data());
+            // in units of the last place of the largest rate of the lane: the rates are sums of
+            // terms, so a 1-ulp change of sin theta moves a small sum by ulps of its terms
+            double scale = 0;
+            for (std::size_t c = 0; c < n; ++c)
+                scale = std::max(scale, std::abs(dl[c]));
+            const double ulp = std::nextafter(scale, 2 * scale) - scale;
+            for (std::size_t c = 0; c < n; ++c)
+                worst_ulps = std::max(worst_ulps, std::abs(d[c * lanes + l] - dl[c]) / ulp);
+        }
+    }
+    // observed 15 ulps of the largest rate: xsimd's sin and cos (Cephes' polynomials; xsimd
+    // documents no bound) differ from libm's by an ulp or so, and the rates are sums of terms
+    // several times larger than the largest rate, carrying those ulps
+    CHECK(worst_ulps <= 100);
+}
+
+TEST_CASE("sweep --lanes: rk4 lanes end within rounding of the scalar runs, dop853 lanes within "
+          "the tolerance",
+          "[sweep][lanes]") {
+    const std::string vary = "sweep:\n  vary:\n    initial.theta: {from: 0.2, to: 1.4, count: 10}\n"
+                             "    parameters.h: {values: [0.1, 0.3]}\n";
+    {
+        const scratch_file scene("lanes_rk4.yaml", heavy_top("{method: rk4, step: 0.01}", vary));
+        const auto [scalar, lanes] = summaries(scene, "lanes_rk4", 4);
+        const auto a = text_lines(scalar), b = text_lines(lanes);
+        REQUIRE(a.size() == 21);
+        for (std::size_t m = 1; m < a.size(); ++m) { // the scalar runs' steps and evaluations
+            CHECK(field(a[m], 11) == field(b[m], 11));
+            CHECK(field(a[m], 12) == field(b[m], 12));
+        }
+        // observed 5.6e-16 after 200 steps (the ulps of sin and cos, carried along)
+        CHECK(largest_difference("lanes_rk4", scalar, lanes) < 5e-15);
+    }
+    {
+        const scratch_file scene("lanes_dop853.yaml",
+                                 heavy_top("{method: dop853, rtol: 1e-8, atol: 1e-10}", vary));
+        const auto [scalar, lanes] = summaries(scene, "lanes_dop853", 4);
+        // observed 4.6e-10: rtol's scale (each run is within the tolerance of the true solution)
+        CHECK(largest_difference("lanes_dop853", scalar, lanes) < 4e-9);
+    }
+}
+
+TEST_CASE("sweep --lanes: members a batch cannot carry give the scalar runs' rows",
+          "[sweep][lanes]") {
+    // member 1, without spin, swings through the pole (theta_dot -3: a chart switch at t = 0.1,
+    // |sin theta| < 0.1), member 2 starts there (in the body form); both run alone, digit for
+    // digit as without lanes
+    const scratch_file chart(
+        "lanes_chart.yaml",
+        heavy_top("{method: rk4, step: 0.01}",
+                  "sweep:\n  mode: zip\n  vary:\n    initial.theta: {values: [0.5, 0.3, 0.05, "
+                  "0.6, 0.7]}\n    initial.theta_dot: {values: [0, -3, 0, 0, 0]}\n"
+                  "    initial.psi_dot: {values: [30, 0, 30, 30, 30]}\n"));
+    const auto [scalar, lanes] = summaries(chart, "lanes_chart", 4);
+    const auto a = text_lines(scalar), b = text_lines(lanes);
+    REQUIRE(a.size() == 6);
+    CHECK(a[2] == b[2]);
+    CHECK(a[3] == b[3]);
+    CHECK(largest_difference("lanes_chart", scalar, lanes) < 5e-15); // observed 0 here
+    // a fast member exhausts max_steps for its whole batch (one batch of 4): every lane reruns
+    // alone; theta = 0 cannot start without the chart switch (a user error of that member)
+    const scratch_file failing(
+        "lanes_failing.yaml",
+        heavy_top("{method: dop853, rtol: 1e-10, atol: 1e-12, max_steps: 400}",
+                  "switch_chart: false\nsweep:\n  mode: zip\n  vary:\n    initial.theta: "
+                  "{values: [0.5, 0, 0.6, 0.5]}\n    initial.psi_dot: {values: [30, 30, 30, "
+                  "3000]}\n"));
+    const auto [s2, l2] = summaries(failing, "lanes_failing", 4, 3);
+    CHECK(s2 == l2);
+    CHECK(text_lines(s2)[4].find("max_steps = 400 reached") != std::string::npos);
+}
+
+TEST_CASE("sweep --lanes: what lanes cannot run is refused with one line, exit 2, no output",
+          "[sweep][lanes][errors]") {
+    using row = std::tuple<std::string, std::string, std::string>; // integrator+rest, option, msg
+    const auto [scene_tail, option,
+                message] = GENERATE(table<std::string, std::string, std::string>({
+        row{"{method: dopri5}", "--lanes 4",
+            "lanes_bad.yaml:4:13: --lanes needs the method rk4 or dop853, not dopri5 (or run the "
+            "sweep without --lanes)"},
+        row{"{method: rk4, step: 0.01}\nevents: [{name: up, when: theta - 1}]", "--lanes 4",
+            "lanes_bad.yaml:5:27: --lanes cannot run a scene with events (run the sweep without "
+            "--lanes)"},
+        row{"{method: rk4, step: 0.01}", "--lanes 0",
+            "rotgen sweep: --lanes needs a whole number of lanes from 1 to 64, got '0'"},
+        row{"{method: rk4, step: 0.01}", "--lanes four",
+            "rotgen sweep: --lanes needs a whole number of lanes from 1 to 64, got 'four'"},
+        row{"{method: rk4, step: 0.01}", "--lanes 65",
+            "rotgen sweep: --lanes needs a whole number of lanes from 1 to 64, got '65'"},
+    }));
+    const scratch_file scene("lanes_bad.yaml",
+                             heavy_top(scene_tail, "sweep:\n  vary:\n    initial.theta: {values: "
+                                                   "[0.3, 0.4]}\n"));
+    const std::string dir = scratch("lanes_bad_out");
+    const test::run_result r = run_rotgen("sweep '" + scene.path + "' -o '" + dir + "' " + option);
+    INFO(r.err);
+    CHECK(r.status == 2);
+    const std::string located = "rotgen: error: " + scratch(message) + "\n";
+    const std::string unlocated = "rotgen: error: " + message + "\n";
+    CHECK((r.err == located || r.err == unlocated));
+    struct stat st {};
+    CHECK(::stat(dir.c_str(), &st) != 0);
+}
