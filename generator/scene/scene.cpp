@@ -131,8 +131,14 @@ class scene_reader {
         try {
             (void)parse_model(model, m_model_file, m_model_source);
         } catch (const user_error& e) {
+            // the model's checks speak of its defaults; here the values are the scene's
+            std::string problem = e.problem();
+            const std::string defaults = "the parameters' defaults";
+            for (auto pos = problem.find(defaults); pos != std::string::npos;
+                 pos = problem.find(defaults, pos))
+                problem.replace(pos, defaults.size(), "these values");
             throw user_error(at(overrides), "with these parameter values the model (" +
-                                                m_model_file + ") is not valid: " + e.problem());
+                                                m_model_file + ") is not valid: " + problem);
         }
     }
 

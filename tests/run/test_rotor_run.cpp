@@ -200,3 +200,39 @@ TEST_CASE("rotor: what a rotor does not have is refused in one line, exit 2, not
                      scene.path + ":" + line);
     CHECK(!std::filesystem::exists(csv));
 }
+
+TEST_CASE("scene parameters that make the body unphysical are refused at the parameters key",
+          "[run][rotor][errors]") {
+    // the model's physical checks run again at the scene's values (scene.cpp), for a rotor from
+    // parts as for a top given by its moments
+    const std::string pendulum_model =
+        "model:\n  name: p\n  parameters: {m1: 1, m2: 2}\n  body:\n    pivot: [0, 0, 0]\n"
+        "    parts:\n      - point: {mass: m1, at: [0, 0, 0]}\n"
+        "      - point: {mass: m2, at: [0, 0, -1]}\n  gravity: {g: 9.81}\n";
+    const std::string rotor_start = "initial: {phi: 0, theta: 1, phi_dot: 0, theta_dot: 0}\n"
+                                    "time: {end: 1}\n";
+    const std::string top_start =
+        "initial: {phi: 0, theta: 1, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 0}\n"
+        "time: {end: 1}\n";
+    const std::string top = "model: {name: t, parameters: {a: 1}, inertia: [a, 1, 1]}\n";
+    using row = std::tuple<std::string, std::string, std::string>;
+    const auto [name, text, line] = GENERATE_COPY(table<std::string, std::string, std::string>({
+        row{"a negative mass of a part", pendulum_model + "parameters: {m2: -2}\n" + rotor_start,
+            "10:13: with these parameter values the model (@) is not valid: point mass must be "
+            "positive (with these values), got -2"},
+        row{"a negative moment", top + "parameters: {a: -1}\n" + top_start,
+            "2:13: with these parameter values the model (@) is not valid: inertia is not "
+            "physical: a principal moment is negative (-1, 1, 1)"},
+        row{"the triangle inequality", top + "parameters: {a: 3}\n" + top_start,
+            "2:13: with these parameter values the model (@) is not valid: inertia is not "
+            "physical: principal moments (1, 1, 3) break the triangle inequality (each at most "
+            "the sum of the other two): 1 + 1 < 3"},
+    }));
+    INFO(name);
+    const scratch_file scene("unphysical_scene.yaml", text);
+    std::string expected = scene.path + ":" + line;
+    expected.replace(expected.find('@'), 1, scene.path);
+    const std::string csv = std::string(ROTGEN_BINARY_DIR) + "/unphysical_scene.csv";
+    check_error_line(run_rotgen("simulate '" + scene.path + "' -o '" + csv + "'"), expected);
+    CHECK(!std::filesystem::exists(csv));
+}
