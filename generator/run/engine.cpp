@@ -356,7 +356,9 @@ void scene_run::switch_chart(next to, Eigen::VectorXd& y, double& t_from) {
         k = from_body(last.y, m_inertia);
     }
     const double st = sin_theta_of(from.form, last.y);
-    const std::string why = !m_left_chart ? "; the run in the first chart failed: " + m_last.message
+    const std::string failed = is_rotor_form(target) ? "; the run in the first chart failed: "
+                                                     : "; the Euler-angle run failed: ";
+    const std::string why = !m_left_chart      ? failed + m_last.message
                             : to == next::body ? " < " + short_number(switch_below)
                                                : " > " + short_number(switch_back_above);
     if (m_switches++ == 0)
