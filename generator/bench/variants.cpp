@@ -126,6 +126,9 @@ std::string form_label(form_kind form, lagrangian_strategy strategy, bool quater
         return "reduced";
     case form_kind::body:
         return quaternion ? "body:quaternion" : "body:omega";
+    case form_kind::rotor:
+    case form_kind::rotor_x:
+        return to_string(form);
     }
     return "";
 }

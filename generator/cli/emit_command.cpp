@@ -1,4 +1,4 @@
-// rotgen emit MODEL.yaml -o DIR [--form lagrangian|hamiltonian|reduced|body]
+// rotgen emit MODEL.yaml -o DIR [--form lagrangian|hamiltonian|reduced|body|rotor]
 //             [--outputs rhs,jacobian,energy,momenta,mass_matrix,omega,rotation,ignored_rates,
 //                        taylor]
 //             [--specialise | --specialise=NAME,NAME...] [--strategy explicit|solve] [--name UNIT]
@@ -42,8 +42,8 @@ const command_spec emit_command{
     "rhs,energy",
     {{"-o", "DIR", "the output directory (created if missing)", {"--output"}},
      {"--form",
-      "lagrangian|hamiltonian|reduced|body",
-      "the form of the equations (default lagrangian)",
+      "lagrangian|hamiltonian|reduced|body|rotor",
+      "the form of the equations (default lagrangian; rotor, the only one, for a linear rotor)",
       {}},
      {"--strategy",
       "explicit|solve",
@@ -109,9 +109,23 @@ form_kind form_of(const std::string& f) {
     if (f == "hamiltonian") return form_kind::hamiltonian;
     if (f == "reduced") return form_kind::reduced;
     if (f == "body") return form_kind::body;
-    const std::string best = closest_name(f, {"lagrangian", "hamiltonian", "reduced", "body"});
-    fail("unknown form '" + f + "' (expected lagrangian, hamiltonian, reduced or body)" +
+    if (f == "rotor") return form_kind::rotor;
+    const std::string best =
+        closest_name(f, {"lagrangian", "hamiltonian", "reduced", "body", "rotor"});
+    fail("unknown form '" + f + "' (expected lagrangian, hamiltonian, reduced, body or rotor)" +
          (best.empty() ? "" : "; did you mean '" + best + "'?"));
+}
+
+// A linear rotor's form is `rotor` (the default for it); other bodies have no rotor form.
+form_kind rotor_form_of(const model_spec& spec, form_kind form, bool given) {
+    if (spec.rotor && given && form != form_kind::rotor)
+        throw user_error(spec.rotor_where, "model '" + spec.name +
+                                               "' is a linear rotor (Example 5.4): its form is "
+                                               "'rotor' (two angles), not --form " +
+                                               to_string(form));
+    if (!spec.rotor && form == form_kind::rotor)
+        fail("--form rotor is the form of a linear rotor; model '" + spec.name + "' is not one");
+    return spec.rotor ? form_kind::rotor : form;
 }
 
 lagrangian_strategy strategy_of(const std::string& s) {
@@ -161,7 +175,7 @@ int cmd_emit(const std::vector<std::string>& args) {
     }
     const std::string dir = o.value("-o");
     if (dir.empty()) fail("emit needs an output directory: -o DIR");
-    const form_kind form = form_of(o.value("--form"));
+    form_kind form = form_of(o.value("--form"));
     const lagrangian_strategy strategy = strategy_of(o.value("--strategy"));
     if (o.has("--strategy") && form != form_kind::lagrangian)
         fail("--strategy applies to the Lagrangian form only (got --form " +
@@ -174,11 +188,14 @@ int cmd_emit(const std::vector<std::string>& args) {
     request.specialise_all = o.has("--specialise") && o.value("--specialise").empty();
     if (!o.value("--specialise").empty())
         request.specialise = split_list(o.value("--specialise"), "--specialise");
-    const header_options header{regenerate_command(o, form, strategy), o.value("--name")};
 
     stage_timings timings;
     const model_spec spec = load_model(o.operand);
-    const derivation d = timings.time("derive", spec.name, [&] { return derive(spec); });
+    // A linear rotor has its own form (derive/rotor.hpp), derived where it is built.
+    form = rotor_form_of(spec, form, o.has("--form"));
+    const header_options header{regenerate_command(o, form, strategy), o.value("--name")};
+    const derivation d =
+        timings.time("derive", spec.name, [&] { return spec.rotor ? derivation{} : derive(spec); });
     const form_expressions f = timings.time("forms", to_string(form), [&] {
         return build_requested_form(spec, d, form, strategy, request);
     });

@@ -80,8 +80,9 @@ void refuse_rotor(const model_spec& spec) {
         throw user_error(spec.rotor_where,
                          "model '" + spec.name +
                              "' is a linear rotor (I1 = 0, I2 = I3: a body on a line, Example "
-                             "5.4); its motion has two angles (phi, theta) and rotgen derives "
-                             "three-angle tops only; 'rotgen inspect " +
+                             "5.4); its motion has two angles (phi, theta): emit and simulate "
+                             "run it in the rotor form, and this command takes three-angle "
+                             "tops only; 'rotgen inspect " +
                              spec.file + " --inertia' reports it");
 }
 

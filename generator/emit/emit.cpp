@@ -191,6 +191,9 @@ std::string form_title(const lowered_form& f) {
         return f.state_names.size() == 7
                    ? "body form, Euler's equations with a quaternion, y = (q, omega)"
                    : "body form, Euler's equations, y = omega";
+    case form_kind::rotor:
+    case form_kind::rotor_x:
+        return "linear rotor form, y = (q, q_dot), two angles, q_ddot = M^{-1} f (M diagonal)";
     }
     return "";
 }
@@ -236,7 +239,8 @@ std::map<std::string, std::string> common_values(const lowered_form& lf, const f
 
 std::string energy_text(const lowered_form& lf, const function_body& b) {
     auto v = common_values(lf, b);
-    v["doc"] = lf.form == form_kind::body || lf.form == form_kind::lagrangian
+    v["doc"] = lf.form == form_kind::body || lf.form == form_kind::lagrangian ||
+                       lf.form == form_kind::rotor
                    ? "The energy T + V (conserved without damping and driving torques)."
                    : "The energy, the Hamiltonian H = T + V (conserved without damping and "
                      "driving torques).";
@@ -262,6 +266,9 @@ std::string output_text(const lowered_form& lf, const lowered_function& fn,
     std::string arg = info.at(name).first, doc = info.at(name).second;
     if (lf.form == form_kind::body && name == "momenta")
         doc = "The body angular momentum l = I omega (body axes).";
+    if ((lf.form == form_kind::rotor || lf.form == form_kind::rotor_x) && name == "mass_matrix")
+        doc = "The mass matrix M(q) = diag(I sin^2 theta, I) of the rotor's angle rates, "
+              "row-major (p = M q_dot).";
     if (lf.form == form_kind::body && name == "mass_matrix")
         doc = "The inertia tensor I in body axes, row-major (l = I omega).";
     if (lf.form == form_kind::body && name == "rotation")
@@ -273,7 +280,9 @@ std::string output_text(const lowered_form& lf, const lowered_function& fn,
     v["arg"] = arg;
     v["arg_doc"] = arg + std::string(arg.size() < 5 ? 5 - arg.size() : 0, ' ');
     v["function"] = name;
-    v["dim"] = size == 9 ? "3 x 3 (row-major)" : std::to_string(size);
+    v["dim"] = size == 9   ? "3 x 3 (row-major)"
+               : size == 4 ? "2 x 2 (row-major)"
+                           : std::to_string(size);
     v["names"] = join(fn.entry_names, ", ");
     return fill_template("output.hpp.in", v);
 }
@@ -329,12 +338,22 @@ std::string description(const lowered_form& lf, const std::vector<function_stats
     desc += "//\n";
     desc += comment_block("State y (dim " + std::to_string(n) + "): " + join(lf.state_names, ", ") +
                           ".");
-    if (lf.form != form_kind::body || n == 7)
+    const bool rotor = lf.form == form_kind::rotor || lf.form == form_kind::rotor_x;
+    if (rotor)
+        desc += comment_block(
+            "Angles: phi, theta of z-x-z Euler angles (5.3) whose body axis 3 is the rotor's line "
+            "(psi, the turn about the line, moves no mass); in radians, theta in [0, pi]. "
+            "Singular at theta = 0 and theta = pi (M_11 = I sin^2 theta): rates and Jacobian grow "
+            "like 1/sin(theta) there; rotgen simulate continues in a chart with its pole "
+            "elsewhere.");
+    else if (lf.form != form_kind::body || n == 7)
         desc += comment_block(
             "Angles: z-x-z Euler angles (5.3), phi about z, theta about the new x, psi about the "
             "new z; phi, psi in [0, 2 pi), theta in [0, pi], in radians. A = Az(psi) Ax(theta) "
             "Az(phi) is passive, body <- space (5.25); omega is in body axes (5.30).");
-    if (lf.form == form_kind::body)
+    if (rotor)
+        ;
+    else if (lf.form == form_kind::body)
         desc += comment_block(
             "Singularities: none from the coordinates (unless a warning above says otherwise).");
     else

@@ -48,5 +48,7 @@ void build_lagrangian(const model_spec& spec, const derivation& d, form_expressi
 void build_hamiltonian(const derivation& d, form_expressions& f);
 void build_reduced(const model_spec& spec, const derivation& d, form_expressions& f);
 void build_body(const model_spec& spec, const derivation& d, form_expressions& f, bool orientation);
+// The linear rotor in chart 1 (form rotor) or 2 (rotor_x): forms/rotor.cpp.
+void build_rotor(const model_spec& spec, form_expressions& f, int chart);
 
 } // namespace rotgen::form_detail

@@ -12,6 +12,10 @@ const char* to_string(form_kind f) {
         return "reduced";
     case form_kind::body:
         return "body";
+    case form_kind::rotor:
+        return "rotor";
+    case form_kind::rotor_x:
+        return "rotor_x";
     }
     return "?";
 }

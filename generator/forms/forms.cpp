@@ -130,6 +130,10 @@ form_expressions build_form(const model_spec& spec, const derivation& d, form_ki
     case form_kind::body:
         build_body(spec, d, f, orientation);
         break;
+    case form_kind::rotor:
+    case form_kind::rotor_x:
+        build_rotor(spec, f, form == form_kind::rotor ? 1 : 2);
+        break;
     }
     if (form == form_kind::lagrangian || form == form_kind::hamiltonian) {
         add_output(f, "mass_matrix", flat(d.mass_matrix), matrix_names("M"));

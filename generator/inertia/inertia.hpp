@@ -136,6 +136,10 @@ int exact_zero_moments(const matrix3& tensor);
 // For a tensor with exactly one zero moment (with the triangle inequality: a linear rotor,
 // Example 5.4) the two equal moments across the line, I2 = I3 = tr I / 2, exactly; else nullopt.
 std::optional<GiNaC::ex> exact_rotor_moment(const matrix3& tensor);
+// For a rotor's tensor and a point c (body axes, relative to the point the tensor is taken
+// about): its distance d = |c| along the line, exactly, when c lies on the line (I c = 0
+// identically); nullopt when it does not.
+std::optional<GiNaC::ex> rotor_arm(const matrix3& tensor, const vector3& c);
 
 // Spherical I1 = I2 = I3; rotor: one moment 0, the other two equal; symmetric: two equal;
 // asymmetric: all different. Equal means within `rel_tol` of the largest moment.

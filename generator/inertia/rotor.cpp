@@ -57,4 +57,14 @@ std::optional<GiNaC::ex> exact_rotor_moment(const matrix3& tensor) {
     return simplified(tensor_invariants(tensor).c1 / 2);
 }
 
+// On the line: I c = 0 (the line is the kernel of a rotor's tensor, its zero moment's axis);
+// then d = sqrt(c . c).
+std::optional<GiNaC::ex> rotor_arm(const matrix3& tensor, const vector3& c) {
+    for (int i = 0; i < 3; ++i)
+        if (!simplified(tensor[i][0] * c[0] + tensor[i][1] * c[1] + tensor[i][2] * c[2]).is_zero())
+            return std::nullopt;
+    const ex d2 = simplified(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+    return d2.is_zero() ? ex(0) : GiNaC::sqrt(d2);
+}
+
 } // namespace rotgen

@@ -159,7 +159,7 @@ std::string inertia_text(const model_spec& spec, const inertia_report& r, bool s
         os << "a linear rotor (Example 5.4): rotation about its line (axis 1) moves no mass, so "
               "its attitude\nhas two angles (phi, theta), with T = 1/2 I (theta_dot^2 + "
               "sin(theta)^2 "
-              "phi_dot^2), I = I2 = I3;\nemit and simulate model three-angle tops only\n";
+              "phi_dot^2), I = I2 = I3;\nemit and simulate run it in the form rotor\n";
     os << "\nsteady rotation about each principal axis, force-free (5.87-5.89), per unit spin\n"
        << "(rates scale with the spin omega; numbers at the parameters' defaults"
        << (!symbolic && std::any_of(r.stability.begin(), r.stability.end(), symbolic_rate)

@@ -4,6 +4,7 @@
 #include "expr/symbols.hpp"
 #include "run/kinematics.hpp"
 #include "run/prepared.hpp"
+#include "run/rotor_chart.hpp"
 #include "run/split_run.hpp"
 #include "support/error.hpp"
 #include "support/format.hpp"
@@ -161,6 +162,8 @@ void scene_run::decide_chart() {
     const form_kind form = m_scene.form;
     const bool euler_form = form != form_kind::body;
     const double sin_theta0 = std::abs(std::sin(m_values.angles[1]));
+    if (euler_form && sin_theta0 < 1e-10 && !m_prepared.can_switch() && is_rotor_form(form))
+        throw user_error(m_scene.initial_where, rotor_pole_message(m_values.angles[1]));
     if (euler_form && sin_theta0 < 1e-10 && !m_prepared.can_switch())
         throw user_error(
             m_scene.initial_where,
@@ -172,9 +175,9 @@ void scene_run::decide_chart() {
                      : " (this model's body form goes through the Euler-angle chart too)"));
     m_start_in_body = euler_form && m_prepared.can_switch() && sin_theta0 < switch_below;
     if (m_start_in_body)
-        m_result.chart_note =
-            "started in the body form (initial |sin theta| = " + short_number(sin_theta0) + " < " +
-            short_number(switch_below) + ")";
+        m_result.chart_note = "started in the " + std::string(to_string(other_chart(form))) +
+                              " form (initial |sin theta| = " + short_number(sin_theta0) + " < " +
+                              short_number(switch_below) + ")";
 }
 
 // The prepared kernels of `form` (compiled on first use), made current.
@@ -192,6 +195,7 @@ const compiled_form& scene_run::compile(form_kind form) {
 
 // The state vector of a form from the initial kinematics (rounded to double).
 Eigen::VectorXd scene_run::state_of(const form_expressions& f, const initial_kinematics& k) const {
+    if (is_rotor_form(f.form)) return rotor_state(f.form, k);
     Eigen::VectorXd y(static_cast<Eigen::Index>(f.state.size()));
     for (std::size_t s = 0; s < f.state.size(); ++s) {
         const std::string& name = f.state[s].name;
@@ -290,6 +294,7 @@ initial_kinematics from_body(const Eigen::VectorXd& y, const Eigen::Matrix3d& in
 
 // |sin theta| of a state of the given form (Euler-angle forms: theta is y[1]).
 double sin_theta_of(form_kind form, const Eigen::VectorXd& y) {
+    if (is_rotor_form(form)) return rotor_sin_theta(form, y);
     if (form != form_kind::body) return std::abs(std::sin(y[1]));
     return std::abs(
         std::sin(euler_from_quaternion(Eigen::Quaterniond(y[0], y[1], y[2], y[3])).theta));
@@ -304,7 +309,8 @@ scene_run::next scene_run::integrate_segment(Eigen::VectorXd& y, double t_from) 
     const compiled_form& cf = *m_compiled[m_current];
     const loaded_system sys = cf.system(m_parameters[m_current]);
     const bool can_switch = m_prepared.can_switch();
-    const bool euler_chart = cf.form == form_kind::lagrangian || cf.form == form_kind::hamiltonian;
+    const bool euler_chart = cf.form == form_kind::lagrangian ||
+                             cf.form == form_kind::hamiltonian || cf.form == form_kind::rotor;
     const std::vector<double> times(m_times.begin() + static_cast<std::ptrdiff_t>(m_next_sample),
                                     m_times.end());
     const std::size_t first_sample = m_samples.size();
@@ -339,26 +345,28 @@ scene_run::next scene_run::integrate_segment(Eigen::VectorXd& y, double t_from) 
 void scene_run::switch_chart(next to, Eigen::VectorXd& y, double& t_from) {
     const sample& last = m_samples.back();
     const compiled_form& from = *m_compiled[m_current];
-    initial_kinematics k;
-    if (to == next::body) {
+    initial_kinematics k; // a rotor changes chart directly (rotor_other_chart)
+    const form_kind target = to == next::body ? other_chart(m_scene.form) : m_scene.form;
+    if (!is_rotor_form(target) && to == next::body) {
         Eigen::VectorXd dydt(last.y.size());
         from.system(m_parameters[m_current]).rhs(last.t, last.y.data(), dydt.data());
         k = continuation(last.y, dydt);
-    } else {
+    } else if (!is_rotor_form(target)) {
         k = from_body(last.y, m_inertia);
     }
     const double st = sin_theta_of(from.form, last.y);
-    const std::string why = !m_left_chart      ? "; the Euler-angle run failed: " + m_last.message
+    const std::string failed = is_rotor_form(target) ? "; the run in the first chart failed: "
+                                                     : "; the Euler-angle run failed: ";
+    const std::string why = !m_left_chart      ? failed + m_last.message
                             : to == next::body ? " < " + short_number(switch_below)
                                                : " > " + short_number(switch_back_above);
     if (m_switches++ == 0)
         m_result.chart_note += std::string(m_result.chart_note.empty() ? "" : "; ") +
-                               "switched to the " +
-                               (to == next::body ? "body" : to_string(m_scene.form)) +
+                               "switched to the " + to_string(target) +
                                " form at t = " + short_number(last.t) +
                                " (|sin theta| = " + short_number(st) + why + ")";
-    const compiled_form& next_form = compile(to == next::body ? form_kind::body : m_scene.form);
-    y = state_of(next_form.f, k);
+    const compiled_form& next_form = compile(target);
+    y = is_rotor_form(target) ? rotor_other_chart(from.form, last.y) : state_of(next_form.f, k);
     m_parameters[m_current] = parameters_of(next_form.f, k);
     t_from = last.t;
     m_next_sample = m_samples.size();
@@ -421,7 +429,8 @@ void scene_run::start_method() {
 Eigen::VectorXd scene_run::start() {
     const initial_kinematics k0 = exact_start();
     m_result.record = m_scene.record;
-    const compiled_form& first = compile(m_start_in_body ? form_kind::body : m_scene.form);
+    const compiled_form& first =
+        compile(m_start_in_body ? other_chart(m_scene.form) : m_scene.form);
     for (const auto& name : m_scene.record)
         for (const auto& c : record_columns(name))
             m_result.columns.push_back(c);
@@ -479,10 +488,10 @@ run_result scene_run::finish_from(std::vector<std::pair<double, Eigen::VectorXd>
 
 run_result scene_run::finish() {
     if (m_switches > 1)
-        m_result.chart_note += "; " + std::to_string(m_switches) +
-                               " changes of chart in all (to the body form below " +
-                               short_number(switch_below) + ", back above " +
-                               short_number(switch_back_above) + ")";
+        m_result.chart_note +=
+            "; " + std::to_string(m_switches) + " changes of chart in all (to the " +
+            to_string(other_chart(m_scene.form)) + " form below " + short_number(switch_below) +
+            ", back above " + short_number(switch_back_above) + ")";
     m_result.ok = m_last.ok() || m_last.code == status::stopped_by_event;
     m_result.message = m_last.message;
     m_result.integrate_seconds = m_timings.total("integrate");

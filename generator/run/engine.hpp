@@ -7,7 +7,8 @@
 // the body form (quaternion and omega, no singularity) from the first sample where |sin theta| <
 // 0.1, or from the last sample when the Euler-angle integration fails, provided the model's body
 // form does not itself go through the Euler-angle chart; a scene that starts there starts in the
-// body form.
+// body form. A linear rotor's form (rotor) does the same with its second chart, rotor_x
+// (run/rotor_chart.hpp), when its potential depends on the angles through cos(theta) alone.
 #pragma once
 
 #include "derive/derive.hpp"

@@ -1,8 +1,10 @@
 #include "run/prepared.hpp"
 
+#include "derive/rotor.hpp"
 #include "expr/numbers.hpp"
 #include "expr/symbols.hpp"
 #include "run/engine.hpp"
+#include "run/rotor_chart.hpp"
 #include "run/split_run.hpp"
 
 namespace rotgen {
@@ -15,7 +17,12 @@ std::mutex& symbolic_mutex() {
 prepared_scene::prepared_scene(const scene_spec& scene, stage_timings& timings)
     : m_scene(scene), m_scratch(scene) {
     const model_spec& spec = m_scene.model;
-    m_d = timings.time("derive", spec.name, [&] { return derive(spec); });
+    m_d = timings.time("derive", spec.name, [&] {
+        if (!spec.rotor) return derive(spec);
+        derivation d; // a rotor's own (derive/rotor.hpp) is derived with its form
+        d.cyclic = derive_rotor(spec).cyclic;
+        return d;
+    });
     const bool split = is_split_method(m_scene.integrator.method);
     if (split) { // the split methods run the body form: no chart to leave
         m_scene.form = form_kind::body;
@@ -24,9 +31,11 @@ prepared_scene::prepared_scene(const scene_spec& scene, stage_timings& timings)
     // The chart switch: possible for the Euler-angle forms when the model's body form does not go
     // through the chart itself.
     const form_kind form = m_scene.form;
-    m_can_switch = m_scene.switch_chart &&
-                   (form == form_kind::lagrangian || form == form_kind::hamiltonian) &&
-                   !built(form_kind::body, true, timings).uses_euler_chart;
+    m_can_switch = spec.rotor
+                       ? rotor_can_switch(m_scene)
+                       : m_scene.switch_chart &&
+                             (form == form_kind::lagrangian || form == form_kind::hamiltonian) &&
+                             !built(form_kind::body, true, timings).uses_euler_chart;
     default_record_follows_form(timings);
     list_invariants();
     m_orientation = m_orientation || split; // the split system's torque needs the attitude
@@ -120,13 +129,14 @@ member_start prepared_scene::exact_start(const member_values& values) const {
     }
     start.inertia = it->second.first;
     start.model_parameters = it->second.second;
-    start.k0 = initial_kinematics_of(m_scratch, m_d);
+    start.k0 =
+        spec.rotor ? rotor_initial_kinematics(m_scratch) : initial_kinematics_of(m_scratch, m_d);
     return start;
 }
 
 void prepared_scene::compile_all(stage_timings& timings) const {
     (void)compiled(m_scene.form, timings, nullptr);
-    if (m_can_switch) (void)compiled(form_kind::body, timings, nullptr);
+    if (m_can_switch) (void)compiled(other_chart(m_scene.form), timings, nullptr);
 }
 
 } // namespace rotgen

@@ -1,6 +1,7 @@
 #include "scene/scene.hpp"
 
 #include "expr/numbers.hpp"
+#include "scene/rotor_scene.hpp"
 #include "scene/values.hpp"
 
 #include <cerrno>
@@ -56,6 +57,7 @@ class scene_reader {
         read_initial(root);
         read_time(root["time"]);
         if (root["integrator"]) read_integrator(root["integrator"]);
+        if (m_scene.model.rotor) scene_detail::check_rotor_integrator(m_scene);
         read_record(root["record"]);
         m_scene.events = read_events(root["events"], m_scene.model, m_file);
         if (const YAML::Node sw = root["switch_chart"]) {
@@ -129,12 +131,19 @@ class scene_reader {
         try {
             (void)parse_model(model, m_model_file, m_model_source);
         } catch (const user_error& e) {
+            // the model's checks speak of its defaults; here the values are the scene's
+            std::string problem = e.problem();
+            const std::string defaults = "the parameters' defaults";
+            for (auto pos = problem.find(defaults); pos != std::string::npos;
+                 pos = problem.find(defaults, pos))
+                problem.replace(pos, defaults.size(), "these values");
             throw user_error(at(overrides), "with these parameter values the model (" +
-                                                m_model_file + ") is not valid: " + e.problem());
+                                                m_model_file + ") is not valid: " + problem);
         }
     }
 
     void read_form(const YAML::Node& n) {
+        if (m_scene.model.rotor) m_scene.form = form_kind::rotor; // its one form, the default
         if (!n) return;
         const std::string f = n.IsScalar() ? n.Scalar() : "";
         if (f == "lagrangian")
@@ -145,9 +154,13 @@ class scene_reader {
             m_scene.form = form_kind::reduced;
         else if (f == "body")
             m_scene.form = form_kind::body;
+        else if (f == "rotor")
+            m_scene.form = form_kind::rotor;
         else
             throw user_error(at(n), "unknown form '" + f +
-                                        "' (expected lagrangian, hamiltonian, reduced or body)");
+                                        "' (expected lagrangian, hamiltonian, reduced, body or "
+                                        "rotor)");
+        scene_detail::check_rotor_form(m_scene, n, m_file);
     }
 
     // A complete state in one of the accepted ways: the angles with their rates, with the
@@ -156,6 +169,9 @@ class scene_reader {
         const YAML::Node n = root["initial"];
         if (!n.IsMap()) throw user_error(at(n), "'initial' must be a mapping of angles and rates");
         m_scene.initial_where = at(n);
+        if (m_scene.model.rotor)
+            return scene_detail::read_rotor_initial(m_scene, n, initial_key(root), *m_values,
+                                                    m_file);
         const std::vector<std::string> allowed{"phi",       "theta",   "psi",    "phi_dot",
                                                "theta_dot", "psi_dot", "p_phi",  "p_theta",
                                                "p_psi",     "omega1",  "omega2", "omega3"};
@@ -210,10 +226,16 @@ class scene_reader {
                   : std::string(list.empty() ? "" : " and ") +
                         "the rates (phi_dot, theta_dot, psi_dot, or p_phi, p_theta, p_psi, or "
                         "omega1, omega2, omega3; nothing defaults to 0)";
-        source_location key = at(n);
+        throw user_error(initial_key(root),
+                         "the initial state is incomplete: missing " + list + why);
+    }
+
+    // Where the `initial` key is written (the mapping's location if not found).
+    source_location initial_key(const YAML::Node& root) const {
+        source_location key = at(root["initial"]);
         for (const auto& kv : root)
             if (kv.first.IsScalar() && kv.first.Scalar() == "initial") key = at(kv.first);
-        throw user_error(key, "the initial state is incomplete: missing " + list + why);
+        return key;
     }
 
     void read_time(const YAML::Node& n) {
@@ -293,7 +315,9 @@ class scene_reader {
 
     void read_record(const YAML::Node& n) {
         if (!n) {
-            m_scene.record = {"phi", "theta", "psi", "energy"};
+            m_scene.record = m_scene.model.rotor
+                                 ? std::vector<std::string>{"phi", "theta", "energy"}
+                                 : std::vector<std::string>{"phi", "theta", "psi", "energy"};
             m_scene.record_default = true;
             m_scene.record_where.assign(m_scene.record.size(), m_scene.where);
             return;
@@ -309,6 +333,10 @@ class scene_reader {
                                  "cannot record '" + name + "'" +
                                      (best.empty() ? "" : "; did you mean '" + best + "'?"));
             }
+            if (const std::string why = scene_detail::rotor_unrecordable(name);
+                m_scene.model.rotor && !why.empty())
+                throw user_error(at(item),
+                                 "cannot record '" + name + "' for a linear rotor: " + why);
             if (std::find(m_scene.record.begin(), m_scene.record.end(), name) !=
                 m_scene.record.end())
                 throw user_error(at(item), "'" + name + "' is recorded twice");

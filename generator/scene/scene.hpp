@@ -2,7 +2,7 @@
 //
 //   model: heavy_top.yaml        # path relative to the scene file, or an inline model mapping
 //   parameters: {M: 2.0}         # overrides of the model's defaults
-//   form: lagrangian             # lagrangian | hamiltonian | reduced | body
+//   form: lagrangian             # lagrangian | hamiltonian | reduced | body | rotor (a rotor)
 //   initial: {phi: 0, theta: 0.5, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 10}
 //                                # angles with rates, or with p_phi.., or with omega1..3
 //   time: {start: 0, end: 100, samples: 1001}

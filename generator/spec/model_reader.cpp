@@ -38,6 +38,7 @@ model_spec model_reader::read(const YAML::Node& root) {
                          "missing field 'inertia' (or 'body', the inertia from parts)");
     read_potential(root);
     read_forces(root);
+    if (m_spec.rotor) read_rotor(root);
     return std::move(m_spec);
 }
 

@@ -65,6 +65,13 @@ struct model_spec {
     // `inspect --inertia` reports it; the three-angle derivation refuses it, at `rotor_where`.
     bool rotor = false;
     source_location rotor_where;
+    // Its own terms (spec/rotor_input.cpp): the moment I = I2 = I3 about the fixed point, exact,
+    // and the potential in phi and theta alone, the rotor's line taken as the body axis 3 of the
+    // z-x-z angles, so that its direction in space is the third row of A (5.25),
+    //   n = (sin theta sin phi, -sin theta cos phi, cos theta);
+    // the gravity shorthand gives V = M g d cos(theta), d the distance of the centre of mass
+    // along the line (n points from the fixed point towards it).
+    GiNaC::ex rotor_moment, rotor_potential;
 
     // parameter name -> symbol, for parsing further expressions (scenes) in this model's terms.
     name_table parameter_names() const;

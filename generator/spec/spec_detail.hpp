@@ -42,6 +42,9 @@ class model_reader {
     gravity_spec read_gravity(const YAML::Node& g) const;
     void read_forces(const YAML::Node& root);
 
+    // rotor_input.cpp: a linear rotor's moment and potential, and what a rotor cannot take
+    void read_rotor(const YAML::Node& root);
+
     // inertia_input.cpp: the tensor given directly, and the checks every tensor passes
     void read_inertia(const YAML::Node& n);
     void set_diagonal_flag();

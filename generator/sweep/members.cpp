@@ -37,6 +37,10 @@ void resolve(const scene_spec& scene, sweep_key& k) {
         names = initial_names(scene);
         for (std::size_t i = 0; i < names.size(); ++i)
             if (names[i] == name) {
+                if (scene.model.rotor && i % 3 == 2) // psi, psi_dot: no coordinate of a rotor
+                    throw user_error(k.where, "sweep key '" + k.key +
+                                                  "': a linear rotor's state is phi, theta, "
+                                                  "phi_dot, theta_dot");
                 k.target = i < 3 ? sweep_key::angle : sweep_key::rate;
                 k.index = i % 3;
                 return;

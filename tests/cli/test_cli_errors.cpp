@@ -55,7 +55,7 @@ TEST_CASE("cli: bad command lines of emit give one line, exit 2 and write nothin
         row{o + " -o other", "rotgen emit: -o given twice"},
         row{o + " --form body --form body", "rotgen emit: --form given twice"},
         row{o + " --form",
-            "rotgen emit: --form needs a value (lagrangian|hamiltonian|reduced|body)"},
+            "rotgen emit: --form needs a value (lagrangian|hamiltonian|reduced|body|rotor)"},
         row{o + " --strategy solve --strategy solve", "rotgen emit: --strategy given twice"},
         row{o + " --outputs rhs --outputs rhs", "rotgen emit: --outputs given twice"},
         row{o + " --outputs rhs,,jacobian",

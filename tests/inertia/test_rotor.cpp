@@ -1,6 +1,7 @@
 // Linear rotors (issue 14; the chapter's Example 5.4 and section 5.5): the zero principal moment
 // of a body on a line is found exactly (the eigensolver gives 1e-17), the body is classified as a
-// rotor and `inspect --inertia` reports it; the three-angle commands refuse it at its key.
+// rotor and `inspect --inertia` reports it; the three-angle commands refuse it at its key, and
+// emit writes its rotor form (derive/rotor.hpp).
 #include "error_sites.hpp"
 #include "inertia/inertia.hpp"
 
@@ -94,22 +95,32 @@ TEST_CASE("rotor: inspect --inertia reports the dumbbell", "[inertia][rotor][ins
     CHECK(contains(r.out, "axis 1: none: the line of a rotor"));
 }
 
-TEST_CASE("rotor: the three-angle commands refuse a rotor at its key, writing nothing",
+TEST_CASE("rotor: the three-angle commands refuse a rotor at its key, emit writes its rotor form",
           "[inertia][rotor][errors]") {
     const std::string body = "name: rod\nbody:\n  parts:\n    - point: {mass: 1, at: [1, 1, 1]}\n"
                              "    - point: {mass: 1, at: [-1, -1, -1]}\n";
     const scratch_file file("rotor_site.yaml", body);
     const std::string line = "rotor_site.yaml:3:3: model 'rod' is a linear rotor (I1 = 0, I2 = "
                              "I3: a body on a line, Example 5.4); its motion has two angles (phi, "
-                             "theta) and rotgen derives three-angle tops only; 'rotgen inspect "
-                             "rotor_site.yaml --inertia' reports it";
-    const scratch_dir out("rotor_site_out");
-    check_error_line(
-        run_rotgen("emit rotor_site.yaml -o '" + out.path.string() + "'", ROTGEN_BINARY_DIR), line);
-    CHECK(!fs::exists(out.path));
+                             "theta): emit and simulate run it in the rotor form, and this command "
+                             "takes three-angle tops only; 'rotgen inspect rotor_site.yaml "
+                             "--inertia' reports it";
     check_error_line(run_rotgen("inspect rotor_site.yaml", ROTGEN_BINARY_DIR), line);
     check_error_line(
         run_rotgen("inspect rotor_site.yaml --inertia --format json", ROTGEN_BINARY_DIR), line);
+    // emit writes the rotor form (tests/run/test_rotor_run.cpp checks its equations); another
+    // form is refused at the rotor's key
+    const scratch_dir out("rotor_site_out");
+    const run_result e =
+        run_rotgen("emit rotor_site.yaml -o '" + out.path.string() + "'", ROTGEN_BINARY_DIR);
+    CHECK(e.status == 0);
+    CHECK(fs::exists(out.path / "rod_rotor.hpp"));
+    const scratch_dir out2("rotor_site_out2");
+    check_error_line(run_rotgen("emit rotor_site.yaml --form body -o '" + out2.path.string() + "'",
+                                ROTGEN_BINARY_DIR),
+                     "rotor_site.yaml:3:3: model 'rod' is a linear rotor (Example 5.4): its form "
+                     "is 'rotor' (two angles), not --form body");
+    CHECK(!fs::exists(out2.path));
     // the text report works
     const run_result r = run_rotgen("inspect rotor_site.yaml --inertia", ROTGEN_BINARY_DIR);
     CHECK(r.status == 0);

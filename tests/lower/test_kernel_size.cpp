@@ -25,7 +25,7 @@ std::vector<std::string> shipped_models() {
     std::vector<std::string> names;
     for (const auto& entry :
          std::filesystem::directory_iterator(std::string(ROTGEN_SOURCE_DIR) + "/models"))
-        // a linear rotor (models/dumbbell.yaml) has no three-angle kernels
+        // a linear rotor (models/dumbbell.yaml) has no three-angle kernels (rotor_sympy.py)
         if (entry.path().extension() == ".yaml" && !load_model(entry.path().string()).rotor)
             names.push_back(entry.path().stem().string());
     std::sort(names.begin(), names.end());
