@@ -37,7 +37,7 @@ std::array<ex, 3> rates_from_momenta(const scene_spec& scene, const derivation& 
     for (int i = 0; i < 3; ++i) {
         p[i] = to_long_double(exact_scene_value(scene.initial_rates[i], scene.rates_written[i]));
         for (int j = 0; j < 3; ++j)
-            M(i, j) = to_long_double(d.mass_matrix[i][j].subs(at));
+            M(i, j) = to_long_double(d.mass_matrix[i][j].subs(at, GiNaC::subs_options::no_pattern));
     }
     const Eigen::Matrix<long double, 3, 1> v = M.fullPivLu().solve(p);
     std::array<ex, 3> qd;
@@ -58,7 +58,7 @@ std::array<ex, 3> rates_from_omega(const scene_spec& scene, const derivation& d,
         for (int j = 0; j < 3; ++j)
             r += d.inverse_omega_jacobian[i][j] *
                  exact_scene_value(scene.initial_rates[j], scene.rates_written[j]);
-        qd[i] = r.subs(at);
+        qd[i] = r.subs(at, GiNaC::subs_options::no_pattern);
     }
     return qd;
 }
@@ -91,8 +91,8 @@ initial_kinematics initial_kinematics_of(const scene_spec& scene, const derivati
             at[s.qd[i]] = qd[i];
         for (int i = 0; i < 3; ++i) {
             k.qd[i] = to_long_double(qd[i]);
-            k.p[i] = to_long_double(d.momenta[i].subs(at));
-            k.omega[i] = to_long_double(d.omega[i].subs(at));
+            k.p[i] = to_long_double(d.momenta[i].subs(at, GiNaC::subs_options::no_pattern));
+            k.omega[i] = to_long_double(d.omega[i].subs(at, GiNaC::subs_options::no_pattern));
         }
     }
     if (scene.initial == initial_kind::omega)
