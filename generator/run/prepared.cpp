@@ -116,7 +116,8 @@ member_start prepared_scene::exact_start(const member_values& values) const {
         Eigen::Matrix3d inertia;
         for (int i = 0; i < 3; ++i)
             for (int j = 0; j < 3; ++j) {
-                const GiNaC::ex v = GiNaC::evalf(spec.inertia[i][j].subs(at, GiNaC::subs_options::no_pattern));
+                const GiNaC::ex v =
+                    GiNaC::evalf(spec.inertia[i][j].subs(at, GiNaC::subs_options::no_pattern));
                 if (!GiNaC::is_a<GiNaC::numeric>(v) || !GiNaC::ex_to<GiNaC::numeric>(v).is_real())
                     throw std::logic_error("run: expression did not evaluate to a real number");
                 inertia(i, j) = GiNaC::ex_to<GiNaC::numeric>(v).to_double();
