@@ -242,12 +242,7 @@ sweep_plan read_sweep_plan(const scene_spec& scene, const std::vector<std::strin
                                      "--vary KEY=FROM:TO:COUNT");
     for (auto& k : plan.keys) {
         resolve(scene, k);
-        check_values(k);
-        for (const auto& other : plan.keys)
-            if (&other != &k && other.target == k.target && other.index == k.index &&
-                other.key != k.key)
-                throw user_error(k.where,
-                                 "'" + k.key + "' and '" + other.key + "' set the same value");
+        check_values(k); // distinct keys set distinct values: each value has one name
     }
     if (plan.mode == sweep_mode::zip)
         for (const auto& k : plan.keys)

@@ -73,6 +73,15 @@ TEST_CASE("sweep: zip pairs the i-th values, and --vary adds a key or replaces o
                      {0.3, 1}, {0.3, 2}, {0.4, 1}, {0.4, 2}, {0.5, 1}, {0.5, 2}});
 }
 
+TEST_CASE("sweep: initial.phi varies beside other keys", "[sweep]") {
+    // Each key was once checked against keys not yet resolved, whose slot defaulted to phi's: a
+    // plan whose first key was initial.phi was refused as "setting the same value" as the next.
+    const auto rows =
+        rows_of("sweep:\n  mode: zip\n  vary:\n    initial.phi: {values: [0.1, 0.2]}\n"
+                "    initial.psi_dot: {values: [10, 20]}\n");
+    CHECK(rows == std::vector<std::vector<double>>{{0.1, 10}, {0.2, 20}});
+}
+
 TEST_CASE("sweep: random members come from mt19937_64(seed), 53 bits each", "[sweep]") {
     // The C++ standard fixes mt19937_64: the 10000th output of a default-seeded (5489) engine is
     // 9981545732273789042 ([rand.predef]). With one key over [0, 1) member 9999 is that output's
