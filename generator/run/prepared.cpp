@@ -39,6 +39,7 @@ prepared_scene::prepared_scene(const scene_spec& scene, stage_timings& timings)
     default_record_follows_form(timings);
     list_invariants();
     m_orientation = m_orientation || split; // the split system's torque needs the attitude
+    if (!spec.rotor && quad_start::available()) m_quad = std::make_unique<quad_start>(m_scene, m_d);
 }
 
 const form_expressions& prepared_scene::built(form_kind form, bool orientation,
@@ -101,7 +102,7 @@ const compiled_form& prepared_scene::compiled(form_kind form, stage_timings& tim
 }
 
 member_start prepared_scene::exact_start(const member_values& values) const {
-    const std::lock_guard<std::mutex> lock(symbolic_mutex());
+    std::unique_lock<std::mutex> lock(symbolic_mutex());
     m_scratch.angles = values.angles;
     m_scratch.initial_rates = values.initial_rates;
     m_scratch.parameters = values.parameters;
@@ -130,6 +131,13 @@ member_start prepared_scene::exact_start(const member_values& values) const {
     }
     start.inertia = it->second.first;
     start.model_parameters = it->second.second;
+    const start_values v{values.angles, values.initial_rates, values.parameters};
+    const quad_start::programs* quad = m_quad ? m_quad->programs_for(v) : nullptr;
+    if (quad) { // no GiNaC from here on: members start concurrently
+        lock.unlock();
+        start.k0 = m_quad->kinematics(*quad, v);
+        return start;
+    }
     start.k0 =
         spec.rotor ? rotor_initial_kinematics(m_scratch) : initial_kinematics_of(m_scratch, m_d);
     return start;

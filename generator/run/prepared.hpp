@@ -10,6 +10,7 @@
 #include "derive/derive.hpp"
 #include "run/kernels.hpp"
 #include "run/kinematics.hpp"
+#include "run/quad_start.hpp"
 #include "scene/scene.hpp"
 #include "support/timings.hpp"
 
@@ -54,8 +55,10 @@ class prepared_scene {
     const compiled_form& compiled(form_kind form, stage_timings& timings, bool* cached) const;
     // Compiles now every form a member may use: the scene's, and the body form when it can switch.
     void compile_all(stage_timings& timings) const;
-    // A member's exact start (thread-safe: under symbolic_mutex(), on a scratch copy of the scene
-    // kept for it; the tensor and parameter values are kept per parameter vector).
+    // A member's exact start, thread-safe: the tensor and parameter values are kept per parameter
+    // vector; the kinematics are evaluated in quad precision outside the lock (run/quad_start.hpp),
+    // or, for a rotor or without quad precision, by GiNaC under symbolic_mutex() on a scratch
+    // copy of the scene kept for it.
     member_start exact_start(const member_values& values) const;
 
   private:
@@ -72,6 +75,7 @@ class prepared_scene {
     mutable scene_spec m_scratch; // the scene with a member's values (under the lock)
     mutable std::map<std::vector<double>, std::pair<Eigen::Matrix3d, std::vector<long double>>>
         m_by_parameters;
+    std::unique_ptr<quad_start> m_quad; // the members' starts without GiNaC, where it can
 };
 
 } // namespace rotgen
