@@ -80,7 +80,7 @@ class scene_run {
     void collect_events(std::size_t from);
     void switch_chart(next to, Eigen::VectorXd& y, double& t_from);
     void record();
-    std::pair<std::vector<double>, std::vector<double>> record_row(const sample& s) const;
+    std::vector<double> record_row(const sample& s, std::vector<double>& out) const;
     void start_method();
 
     const prepared_scene& m_prepared;
@@ -372,16 +372,18 @@ void scene_run::switch_chart(next to, Eigen::VectorXd& y, double& t_from) {
     m_next_sample = m_samples.size();
 }
 
-// The row (t, the recorded columns) at a sample, and the record program's outputs there.
-std::pair<std::vector<double>, std::vector<double>> scene_run::record_row(const sample& s) const {
+// The row (t, the recorded columns) at a sample; `out` gets the record program's outputs there.
+std::vector<double> scene_run::record_row(const sample& s, std::vector<double>& out) const {
     const compiled_form& cf = *m_compiled[s.form];
-    std::vector<double> out(cf.outputs);
+    out.resize(cf.outputs);
     cf.record(m_parameters[s.form].data(), s.t, s.y.data(), out.data());
     std::optional<euler_angles<double>> e;
-    std::vector<double> row{s.t};
+    std::vector<double> row;
+    row.reserve(cf.columns.size() + 1);
+    row.push_back(s.t);
     for (const auto& src : cf.columns)
         row.push_back(source_value(src, s.y, out, m_inertia, e));
-    return {std::move(row), std::move(out)};
+    return row;
 }
 
 // Records and invariants at every sample (and event), each by the form that integrated it.
@@ -390,14 +392,15 @@ void scene_run::record() {
     m_result.invariants.clear();
     for (const auto& inv : invariants)
         m_result.invariants.push_back({inv, 0, 0});
+    std::vector<double> out; // the record program's outputs at a sample
     for (const sample& s : m_event_samples)
-        m_result.event_rows.push_back(record_row(s).first);
+        m_result.event_rows.push_back(record_row(s, out));
+    m_result.rows.reserve(m_samples.size());
     for (std::size_t k = 0; k < m_samples.size(); ++k) {
         const compiled_form& cf = *m_compiled[m_samples[k].form];
         const Eigen::VectorXd& ys = m_samples[k].y;
-        auto [row, out] = record_row(m_samples[k]);
+        m_result.rows.push_back(record_row(m_samples[k], out));
         std::optional<euler_angles<double>> e;
-        m_result.rows.push_back(std::move(row));
         for (std::size_t i = 0; i < invariants.size(); ++i) {
             invariant_drift& d = m_result.invariants[i];
             const double v = source_value(cf.invariants[i], ys, out, m_inertia, e);
