@@ -235,7 +235,7 @@ template <class T, class S> class dop853_stepper {
     dop853_stepper(const dop853<T>& m, std::size_t n)
         : m_atol(m.atol), m_rtol(m.rtol), m_fixed(m.fixed_step > T(0)) {
         const auto zero = detail::make_work_vector<work>(n);
-        m_y0 = m_y1 = m_k1 = zero;
+        m_y0 = m_y1 = m_k1 = m_y0_scratch = m_arg_scratch = zero;
         m_k.fill(zero);
         m_r.fill(zero);
     }
@@ -291,8 +291,18 @@ template <class T, class S> class dop853_stepper {
     // Stages 2..12, y1 and the error estimate, with the stages in k (k[0] receives k1).
     ROTGEN_ALWAYS_INLINE outcome steps(const S& sys, T t, const vector& y, T h, step_stats& stats,
                                        stages& k) {
+        if constexpr (static_state_size<S>() > 0) {
+            work y0 = m_k1, arg = m_k1; // locals: kept in registers
+            return stages_from(sys, t, y, h, stats, k, y0, arg);
+        } else { // the stepper's own: no allocation per step
+            return stages_from(sys, t, y, h, stats, k, m_y0_scratch, m_arg_scratch);
+        }
+    }
+
+    // The same, with y0 and the stage argument in `y0` and `arg`.
+    ROTGEN_ALWAYS_INLINE outcome stages_from(const S& sys, T t, const vector& y, T h,
+                                             step_stats& stats, stages& k, work& y0, work& arg) {
         using detail::stage;
-        work y0 = m_k1, arg = m_k1;
         detail::assign(y0, y);
         k[0] = m_k1;
         auto f = [&](int i, long double c) {
@@ -445,9 +455,10 @@ template <class T, class S> class dop853_stepper {
     T m_atol, m_rtol;
     bool m_fixed; // fixed steps: no error estimate
     T m_t = T(0), m_h = T(0);
-    work m_y0, m_y1, m_k1;   // start and end of the step, f at the start
-    stages m_k;              // the stages of the last step (with a static size: steps with samples)
-    std::array<work, 7> m_r; // r2..r8
+    work m_y0, m_y1, m_k1; // start and end of the step, f at the start
+    stages m_k;            // the stages of the last step (with a static size: steps with samples)
+    work m_y0_scratch, m_arg_scratch; // a run-time size's y0 and stage argument in a step
+    std::array<work, 7> m_r;          // r2..r8
 };
 
 static_assert(check_method<dop853<double>>());

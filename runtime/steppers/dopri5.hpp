@@ -85,7 +85,7 @@ template <class T, class S> class dopri5_stepper {
 
     dopri5_stepper(const dopri5<T>& m, std::size_t n) : m_atol(m.atol), m_rtol(m.rtol) {
         const auto zero = detail::make_work_vector<work>(n);
-        m_y0 = m_y1 = m_r2 = m_r3 = m_r4 = m_r5 = zero;
+        m_y0 = m_y1 = m_r2 = m_r3 = m_r4 = m_r5 = m_y0_scratch = m_arg_scratch = zero;
         m_k.fill(zero);
     }
 
@@ -141,8 +141,18 @@ template <class T, class S> class dopri5_stepper {
     // Stages 2..7, y1 and the error estimate, with the stages in k (k[0] holds k1).
     ROTGEN_ALWAYS_INLINE outcome steps(const S& sys, T t, const vector& y, T h, step_stats& stats,
                                        stages& k) {
+        if constexpr (static_state_size<S>() > 0) {
+            work y0 = k[0], arg = k[0]; // locals: kept in registers
+            return stages_from(sys, t, y, h, stats, k, y0, arg);
+        } else { // the stepper's own: no allocation per step
+            return stages_from(sys, t, y, h, stats, k, m_y0_scratch, m_arg_scratch);
+        }
+    }
+
+    // The same, with y0 and the stage argument in `y0` and `arg`.
+    ROTGEN_ALWAYS_INLINE outcome stages_from(const S& sys, T t, const vector& y, T h,
+                                             step_stats& stats, stages& k, work& y0, work& arg) {
         using detail::stage;
-        work y0 = k[0], arg = k[0];
         detail::assign(y0, y);
         auto f = [&](int i, long double c, const work& at) {
             detail::eval_rhs(sys, t + T(c) * h, at, k[static_cast<std::size_t>(i - 1)], stats);
@@ -194,6 +204,7 @@ template <class T, class S> class dopri5_stepper {
     T m_h = T(0);
     work m_y0, m_y1, m_r2, m_r3, m_r4, m_r5;
     stages m_k; // the last step's stages (static size: k1 and k7, all in steps with samples)
+    work m_y0_scratch, m_arg_scratch; // a run-time size's y0 and stage argument in a step
 };
 
 static_assert(check_method<dopri5<double>>());

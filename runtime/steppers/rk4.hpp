@@ -57,7 +57,8 @@ template <class T, class S> class rk4_stepper {
     static constexpr bool uses_jacobian = false;
 
     rk4_stepper(const rk4<T>&, std::size_t n)
-        : m_y0(detail::make_work_vector<work>(n)), m_y1(m_y0), m_k1(m_y0), m_f1(m_y0) {}
+        : m_y0(detail::make_work_vector<work>(n)), m_y1(m_y0), m_k1(m_y0),
+          m_f1(m_y0), m_stages{m_y0, m_y0, m_y0, m_y0, m_y0, m_y0} {}
 
     const work& f_start() const { return m_f1; }
     const work& y_new() const { return m_y1; }
@@ -71,34 +72,16 @@ template <class T, class S> class rk4_stepper {
     }
 
     // One step; y0 and k1 are kept for the Hermite interpolant only when the step holds samples.
+    // The stages are locals for a static size (registers), the stepper's own for a run-time size
+    // (no allocation per step; see combine.hpp).
     ROTGEN_ALWAYS_INLINE outcome attempt(const S& sys, T t, const vector& y, T h, step_stats& stats,
                                          bool need_dense) {
-        using detail::make_term;
-        using detail::stage;
-        work y0 = m_y0, k1 = m_y0, k2 = m_y0, k3 = m_y0, k4 = m_y0, arg = m_y0;
-        detail::assign(y0, y);
-        m_h = h;
-        const T h2 = h / T(2);
-        if (m_f1_valid)
-            k1 = m_f1; // f at the end of the previous step = f(t, y)
-        else
-            detail::eval_rhs(sys, t, y0, k1, stats);
-        m_f1_valid = false;
-        stage(arg, y0, h, make_term<T>(0.5L, k1));
-        detail::eval_rhs(sys, t + h2, arg, k2, stats);
-        stage(arg, y0, h, make_term<T>(0.5L, k2));
-        detail::eval_rhs(sys, t + h2, arg, k3, stats);
-        stage(arg, y0, h, make_term<T>(1.0L, k3));
-        detail::eval_rhs(sys, t + h, arg, k4, stats);
-        const T h6 = h / T(6);
-        for (std::size_t i = 0; i < detail::size_of(y0); ++i)
-            m_y1[i] = y0[i] + h6 * (k1[i] + T(2) * k2[i] + T(2) * k3[i] + k4[i]);
-        if (need_dense) {
-            m_y0 = y0;
-            m_k1 = k1;
+        if constexpr (static_state_size<S>() > 0) {
+            stages local;
+            return steps(sys, t, y, h, stats, need_dense, local);
+        } else {
+            return steps(sys, t, y, h, stats, need_dense, m_stages);
         }
-        m_t1 = t + h;
-        return {detail::all_finite(m_y1) ? status::ok : status::non_finite, T(0)};
     }
 
     ROTGEN_ALWAYS_INLINE bool accept(const S& sys, step_stats& stats, bool need_dense) {
@@ -114,9 +97,43 @@ template <class T, class S> class rk4_stepper {
     step_ends<T, work> hermite_ends() const { return {m_h, m_y0, m_k1, m_y1, m_f1}; }
 
   private:
+    struct stages {
+        work y0, k1, k2, k3, k4, arg;
+    };
+
+    ROTGEN_ALWAYS_INLINE outcome steps(const S& sys, T t, const vector& y, T h, step_stats& stats,
+                                       bool need_dense, stages& s) {
+        using detail::make_term;
+        using detail::stage;
+        detail::assign(s.y0, y);
+        m_h = h;
+        const T h2 = h / T(2);
+        if (m_f1_valid)
+            s.k1 = m_f1; // f at the end of the previous step = f(t, y)
+        else
+            detail::eval_rhs(sys, t, s.y0, s.k1, stats);
+        m_f1_valid = false;
+        stage(s.arg, s.y0, h, make_term<T>(0.5L, s.k1));
+        detail::eval_rhs(sys, t + h2, s.arg, s.k2, stats);
+        stage(s.arg, s.y0, h, make_term<T>(0.5L, s.k2));
+        detail::eval_rhs(sys, t + h2, s.arg, s.k3, stats);
+        stage(s.arg, s.y0, h, make_term<T>(1.0L, s.k3));
+        detail::eval_rhs(sys, t + h, s.arg, s.k4, stats);
+        const T h6 = h / T(6);
+        for (std::size_t i = 0; i < detail::size_of(s.y0); ++i)
+            m_y1[i] = s.y0[i] + h6 * (s.k1[i] + T(2) * s.k2[i] + T(2) * s.k3[i] + s.k4[i]);
+        if (need_dense) {
+            m_y0 = s.y0;
+            m_k1 = s.k1;
+        }
+        m_t1 = t + h;
+        return {detail::all_finite(m_y1) ? status::ok : status::non_finite, T(0)};
+    }
+
     T m_h = T(0), m_t1 = T(0);
     bool m_f1_valid = false;
     work m_y0, m_y1, m_k1, m_f1;
+    stages m_stages; // a run-time size's stages (unused for a static size)
 };
 
 static_assert(check_method<rk4<double>>());
