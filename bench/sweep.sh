@@ -7,9 +7,10 @@
 # 101 samples: members per second on one core for RK4 (step 0.01) and DOP853 (rtol 1e-8, atol
 # 1e-10), one member at a time and in SIMD lanes (`--lanes 8`, the runs interleaved); the cost of a
 # member outside its integration (the same sweep to t = 0.01); DOP853 on 2 threads against 1;
-# `mpirun -n 2` (one thread per rank) against one process, and the overhead per member that the
-# ranks add. Each figure is the best of 5 runs of the members (the summary's "running the members"
-# time: the kernels are compiled once, before, and cached).
+# `mpirun -n 2` (one thread per rank) against one process, and what the ranks cost in CPU, once
+# and per member (from this sweep and one of 4 times the members). Each figure is the best of 9
+# runs of the members (the summary's "running the members" time: the kernels are compiled once,
+# before, and cached), the ways of running a scene interleaved (one of each in turn).
 # Timing claims live here, never in ctest.
 set -euo pipefail
 rotgen=$(realpath "${1:?usage: sweep.sh ROTGEN}")
@@ -36,6 +37,8 @@ YAML
 scene rk4 "{method: rk4, step: 0.01}"
 scene dop853 "{method: dop853, rtol: 1e-8, atol: 1e-10}"
 sed 's/end: 10,/end: 0.01,/' "$work/rk4.yaml" >"$work/short.yaml"
+# four times the members: what MPI costs per member, apart from what it costs once
+sed "s/count: $members}/count: $((4 * members))}/" "$work/dop853.yaml" >"$work/dop853_4x.yaml"
 lanes=8
 
 # "WALL CPU" of one run of "$@": WALL the sweep's own "running the members" seconds, CPU the
@@ -49,28 +52,34 @@ one_run() {
   cpu=$(awk '/^cpu/ { print $2 + $3 }' "$work/cpu")
   echo "$t $cpu"
 }
-# "WALL CPU" of the best of 5 runs of "$@" (by wall time)
-best_of_5() {
-  local best="" best_cpu="" t cpu
-  for _ in 1 2 3 4 5; do
-    read -r t cpu < <(one_run "$@")
-    if [[ -z $best ]] || awk -v a="$t" -v b="$best" 'BEGIN { exit !(a < b) }'; then
-      best=$t best_cpu=$cpu
-    fi
-  done
-  echo "$best $best_cpu"
+# One run of the scene $1 as $2 says: one (1 thread), lanes (1 thread, --lanes), two (2 threads) or
+# mpi (2 ranks of 1 thread); "WALL CPU" as one_run gives them
+run_as() {
+  case $2 in
+    one) one_run "$rotgen" sweep "$1" -j 1 ;;
+    lanes) one_run "$rotgen" sweep "$1" -j 1 --lanes $lanes ;;
+    two) one_run "$rotgen" sweep "$1" -j 2 ;;
+    mpi) one_run mpirun -n 2 --oversubscribe "${root_flag[@]}" "$rotgen" sweep -j 1 "$1" ;;
+  esac
 }
-# "WALL CPU WALL CPU": the best of 5 of the scene $1 on one thread without and with --lanes, the
-# runs interleaved (scalar, lanes, scalar, ...) so that both see the same load
-best_of_5_lanes() {
-  local a="" ac="" b="" bc="" t cpu
-  for _ in 1 2 3 4 5; do
-    read -r t cpu < <(one_run "$rotgen" sweep "$1" -j 1)
-    if [[ -z $a ]] || awk -v x="$t" -v y="$a" 'BEGIN { exit !(x < y) }'; then a=$t ac=$cpu; fi
-    read -r t cpu < <(one_run "$rotgen" sweep "$1" -j 1 --lanes $lanes)
-    if [[ -z $b ]] || awk -v x="$t" -v y="$b" 'BEGIN { exit !(x < y) }'; then b=$t bc=$cpu; fi
+# "WALL CPU" for each way $2 $3 ... of running the scene $1, the best of 9 of each (by wall time),
+# the runs interleaved (one of each in turn) so that all see the same load
+best_of_9_each() {
+  local scene=$1 k t cpu
+  shift
+  local -a best=() best_cpu=()
+  for _ in 1 2 3 4 5 6 7 8 9; do
+    k=0
+    for way in "$@"; do
+      read -r t cpu < <(run_as "$scene" "$way")
+      if [[ -z ${best[k]:-} ]] || awk -v a="$t" -v b="${best[k]}" 'BEGIN { exit !(a < b) }'; then
+        best[k]=$t best_cpu[k]=$cpu
+      fi
+      k=$((k + 1))
+    done
   done
-  echo "$a $ac $b $bc"
+  for ((k = 0; k < $#; k++)); do printf '%s %s ' "${best[k]}" "${best_cpu[k]}"; done
+  echo
 }
 rate() { awk -v n=$members -v t="$1" 'BEGIN { printf "%.0f", n / t }'; }
 ratio() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", a / b }'; }
@@ -82,32 +91,33 @@ ratio_sub() { awk -v a="$1" -v b="$2" -v c="$3" -v d="$4" 'BEGIN { printf "%.2f"
 "$rotgen" sweep "$work/dop853.yaml" -o "$work/warm" -q -j 1
 "$rotgen" sweep "$work/rk4.yaml" -o "$work/warm" -q -j 1 --lanes $lanes # the batch kernel
 echo "rk4, 1 thread, without and with --lanes $lanes" >&2
-read -r rk4_1 rk4_1c rk4_l rk4_lc < <(best_of_5_lanes "$work/rk4.yaml")
-echo "dop853, 1 thread, without and with --lanes $lanes" >&2
-read -r dop_1 dop_1c dop_l dop_lc < <(best_of_5_lanes "$work/dop853.yaml")
+read -r rk4_1 rk4_1c rk4_l rk4_lc < <(best_of_9_each "$work/rk4.yaml" one lanes)
 echo "rk4 to t = 0.01, 1 thread, without and with --lanes $lanes" >&2
-read -r short_1 short_1c short_l short_lc < <(best_of_5_lanes "$work/short.yaml")
+read -r short_1 short_1c short_l short_lc < <(best_of_9_each "$work/short.yaml" one lanes)
 arch=$("$rotgen" sweep "$work/rk4.yaml" -o "$work/out" -j 1 --lanes $lanes 2>&1 |
        sed -n 's/.*lanes of [0-9]* (\(.*\))$/\1/p')
-echo "dop853, 2 threads" >&2
-read -r dop_2 dop_2c < <(best_of_5 "$rotgen" sweep "$work/dop853.yaml" -j 2)
-echo "dop853, mpirun -n 2" >&2
-read -r mpi_2 mpi_2c < <(best_of_5 mpirun -n 2 --oversubscribe "${root_flag[@]}" "$rotgen" sweep -j 1 \
-  "$work/dop853.yaml")
+echo "dop853: 1 thread, --lanes $lanes, 2 threads, mpirun -n 2" >&2
+read -r dop_1 dop_1c dop_l dop_lc dop_2 dop_2c mpi_2 mpi_2c < <(best_of_9_each "$work/dop853.yaml" \
+  one lanes two mpi)
 # one member's right-hand side: the scalar kernel against the batch kernel (bench/lanes/rhs_time.cpp)
 "${CXX:-g++}" -O2 "$root/bench/lanes/rhs_time.cpp" -o "$work/rhs_time" -ldl
 read -r rhs_1 rhs_4 rhs_8 < <("$work/rhs_time" "$(ls "$ROTGEN_CACHE_DIR"/heavy_top-*.so | head -1)" \
   "$(ls "$ROTGEN_CACHE_DIR"/heavy_top_lanes-*.so | head -1)" 6 5)
-# overhead per member: the core time two ranks spend beyond one process's, per member
-overhead=$(awk -v n=$members -v one="$dop_1c" -v two="$mpi_2c" \
-  'BEGIN { printf "%.0f", (two - one) / n * 1e6 }')
+echo "dop853 with $((4 * members)) members: 1 thread, mpirun -n 2" >&2
+read -r _ big_1c _ big_2c < <(best_of_9_each "$work/dop853_4x.yaml" one mpi)
+# MPI's CPU cost, the 2-rank CPU time minus the 1-process CPU time, is a + b·members: b from the
+# two sizes, per member; a, once per sweep
+mpi_per_member=$(awk -v n=$members -v a="$dop_1c" -v b="$mpi_2c" -v c="$big_1c" -v d="$big_2c" \
+  'BEGIN { printf "%.0f", ((d - c) - (b - a)) / (3 * n) * 1e6 }')
+mpi_once=$(awk -v n=$members -v a="$dop_1c" -v b="$mpi_2c" -v c="$big_1c" -v d="$big_2c" \
+  'BEGIN { printf "%.2f", (b - a) - ((d - c) - (b - a)) / 3 }')
 
 cat <<EOF2
 # rotgen sweep: ensemble throughput
 
 \`bash bench/sweep.sh build/rotgen > bench/results/sweep.md\`; $(nproc) cores ($(grep -m1 'model name' /proc/cpuinfo | sed 's/.*: //')),
 load average $(cut -d' ' -f1-3 /proc/loadavg) when it finished (the machine is shared: the
-figures are the best of 5 runs and still move with the load).
+figures are the best of 9 runs, interleaved, and still move with the load).
 
 The heavy top, $members members (initial theta 0.1 .. 1.5), t = 0 .. 10, 101 samples, records theta and
 energy; the time is the sweep's own "running the members" (the kernels compiled once, before).
@@ -133,6 +143,8 @@ scalar, $rhs_4 ns in a batch of 4 lanes ($(ratio "$rhs_1" "$rhs_4")×), $rhs_8 n
 ($(ratio "$rhs_1" "$rhs_8")×: two vectors per call keep more arithmetic in flight).
 
 CPU µs per member: the command's user + system time (all ranks, preparation included) over the
-$members members. MPI overhead per member (the 2-rank CPU time minus the 1-process CPU time, over
-the members): $overhead µs (rank 0's queue, the messages, the second rank's preparation).
+$members members. What two ranks cost in CPU beyond one process, from this sweep and the same
+with $((4 * members)) members (DOP853, best of 9 each, interleaved): $mpi_once s once per sweep
+(\`mpirun\`'s and MPI's start-up, the second rank's preparation) and $mpi_per_member µs per member
+(the queue's messages; within the noise of the timings when near 0).
 EOF2

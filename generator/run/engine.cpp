@@ -60,7 +60,8 @@ class scene_run {
     Eigen::VectorXd start();
     bool keeps_chart(std::size_t sample, double t, const Eigen::VectorXd& y) const;
     run_result finish_from(std::vector<std::pair<double, Eigen::VectorXd>> samples,
-                           const step_stats& stats);
+                           const step_stats& stats, std::vector<member_event> events,
+                           int stopped_by);
     bool starts_in_body() const { return m_start_in_body; }
     const std::vector<double>& parameters() const { return m_parameters[m_current]; }
 
@@ -78,6 +79,7 @@ class scene_run {
     void set_up_events();
     void use_event_functions(const compiled_form& cf);
     void collect_events(std::size_t from);
+    void end_at_event(std::size_t which);
     void switch_chart(next to, Eigen::VectorXd& y, double& t_from);
     void record();
     std::vector<double> record_row(const sample& s, std::vector<double>& out) const;
@@ -123,11 +125,7 @@ initial_kinematics scene_run::exact_start() {
 
 void scene_run::set_up_events() {
     for (const event_spec& e : m_scene.events) {
-        m_events.add({},
-                     e.direction > 0   ? event_direction::rising
-                     : e.direction < 0 ? event_direction::falling
-                                       : event_direction::both,
-                     e.stop, e.name);
+        m_events.add({}, direction_of(e), e.stop, e.name);
         m_result.event_names.push_back(e.name);
     }
 }
@@ -151,9 +149,13 @@ void scene_run::collect_events(std::size_t from) {
         m_event_samples.push_back({hits[h].t, hits[h].y, m_current});
         m_result.event_index.push_back(hits[h].index);
     }
-    if (m_last.code != status::stopped_by_event) return;
-    m_result.stopped_by = static_cast<int>(m_events.stopped_by());
-    if (m_samples.empty() || m_samples.back().t != m_last.t) // the event's state ends the rows
+    if (m_last.code == status::stopped_by_event) end_at_event(m_events.stopped_by());
+}
+
+// The run ended at the terminal event `which`, the last one noted: its state ends the rows.
+void scene_run::end_at_event(std::size_t which) {
+    m_result.stopped_by = static_cast<int>(which);
+    if (m_samples.empty() || m_samples.back().t != m_event_samples.back().t)
         m_samples.push_back(m_event_samples.back());
 }
 
@@ -479,11 +481,17 @@ bool scene_run::keeps_chart(std::size_t sample, double t, const Eigen::VectorXd&
 
 // The run's records from the samples of a whole run in the first form, integrated elsewhere.
 run_result scene_run::finish_from(std::vector<std::pair<double, Eigen::VectorXd>> samples,
-                                  const step_stats& stats) {
+                                  const step_stats& stats, std::vector<member_event> events,
+                                  int stopped_by) {
     for (auto& [t, y] : samples)
         m_samples.push_back({t, std::move(y), m_current});
+    for (member_event& e : events) {
+        m_event_samples.push_back({e.t, std::move(e.y), m_current});
+        m_result.event_index.push_back(e.index);
+    }
     m_last = {};
-    m_last.code = status::ok;
+    m_last.code = stopped_by >= 0 ? status::stopped_by_event : status::ok;
+    if (stopped_by >= 0) end_at_event(static_cast<std::size_t>(stopped_by));
     m_last.stats = stats;
     add_stats(m_result.stats, stats);
     return finish();
@@ -517,8 +525,9 @@ class run_in_parts : public member_parts {
         return m_run.keeps_chart(sample, t, y);
     }
     run_result finish(std::vector<std::pair<double, Eigen::VectorXd>> samples,
-                      const step_stats& stats) override {
-        return m_run.finish_from(std::move(samples), stats);
+                      const step_stats& stats, std::vector<member_event> events,
+                      int stopped_by) override {
+        return m_run.finish_from(std::move(samples), stats, std::move(events), stopped_by);
     }
 
   private:

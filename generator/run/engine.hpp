@@ -79,19 +79,29 @@ run_result run_member(const prepared_scene& prepared, const member_values& value
 // The sample times: `samples` points from t_start to t_end, the last exactly t_end.
 std::vector<double> sample_times(const scene_spec& scene);
 
+// An event a member met in a run integrated elsewhere: which of the scene's events, when, and the
+// state there.
+struct member_event {
+    std::size_t index;
+    double t;
+    Eigen::VectorXd y;
+};
+
 // A member's run in parts, for lanes (run/lanes.hpp) that integrate several members together:
 // start() as run_member starts (the same user errors), giving the state and the parameter values
 // of the scene's form, or false when the member starts in the body form (then only run_member can
 // run it); keeps_chart(k, t, y): false when run_member would leave the chart at its k-th sample
-// (t, y) of the first form; finish() gives run_member's result from the samples of the whole run,
-// t_start .. t_end in the first form, integrated elsewhere with the work counters `stats`.
+// (t, y) of the first form; finish() gives run_member's result from the samples of the whole run
+// in the first form, integrated elsewhere with the work counters `stats`: t_start .. t_end, or
+// to the time of the terminal event `stopped_by` (-1: none) among `events` (in time order).
 class member_parts {
   public:
     virtual ~member_parts() = default;
     virtual bool start(Eigen::VectorXd& y0, std::vector<double>& parameters) = 0;
     virtual bool keeps_chart(std::size_t sample, double t, const Eigen::VectorXd& y) const = 0;
     virtual run_result finish(std::vector<std::pair<double, Eigen::VectorXd>> samples,
-                              const step_stats& stats) = 0;
+                              const step_stats& stats, std::vector<member_event> events,
+                              int stopped_by) = 0;
 };
 std::unique_ptr<member_parts> run_parts(const prepared_scene& prepared, const member_values& values,
                                         stage_timings& timings);

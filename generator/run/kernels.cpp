@@ -172,6 +172,12 @@ std::optional<GiNaC::ex> form_value(const form_expressions& f, const std::string
     return record_expression(f, name);
 }
 
+event_direction direction_of(const event_spec& e) {
+    return e.direction > 0   ? event_direction::rising
+           : e.direction < 0 ? event_direction::falling
+                             : event_direction::both;
+}
+
 std::string taylor_refusal(const model_spec& spec, const taylor_unsupported& e) {
     return "integrator taylor cannot run model '" + spec.name + "': " + e.what() +
            "; use dop853, dopri5, rk4, implicit_midpoint or rosenbrock";

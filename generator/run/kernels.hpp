@@ -84,6 +84,9 @@ struct compiled_form {
 // from emitting its Taylor coefficients (emit/taylor.hpp).
 std::string taylor_refusal(const model_spec& spec, const taylor_unsupported& e);
 
+// The runtime's direction (runtime/integrate/events.hpp) of a scene event.
+event_direction direction_of(const event_spec& e);
+
 // Emits, lowers and compiles (or loads from the cache) the built form `f` of the scene's model,
 // with the record program for the scene's `record` list and `invariants`, and one function per
 // scene event. `command` stamps the

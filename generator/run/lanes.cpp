@@ -101,11 +101,75 @@ template <class V> std::vector<double> by_lane(const std::vector<V>& values, std
 
 using samples = std::vector<std::pair<double, Eigen::VectorXd>>;
 
-// Integrates the started members' lanes over the scene's sample times with the scene's method;
-// a lane's samples are left empty when it must run alone.
+// A lane's run: its samples (none when the member must run alone), the events it met in time order
+// and the terminal one that ended it (-1: none).
+struct lane_run {
+    samples s;
+    std::vector<member_event> events;
+    int stopped_by = -1;
+};
+
+// Component c of lane l of a lane state.
+Eigen::VectorXd lane_of(const Eigen::VectorXd& y, std::size_t l, std::size_t n, std::size_t lanes) {
+    Eigen::VectorXd yl(static_cast<Eigen::Index>(n));
+    for (std::size_t c = 0; c < n; ++c)
+        yl[static_cast<Eigen::Index>(c)] = y[static_cast<Eigen::Index>(c * lanes + l)];
+    return yl;
+}
+
+// The scene's events in every member's lane: event i of lane l is number l·E + i, its g the
+// form's kernel on the lane's state and parameters. None is terminal here: a lane's terminal event
+// ends that lane's run only (end_lanes), while the batch goes on.
+event_set<double, Eigen::VectorXd> lane_events(const prepared_scene& prepared, const lane_batch& b,
+                                               std::size_t lanes, std::vector<double>& scratch) {
+    const scene_spec& scene = prepared.scene();
+    stage_timings timings;
+    const compiled_form& cf = prepared.compiled(scene.form, timings, nullptr);
+    const std::size_t n = scratch.size();
+    event_set<double, Eigen::VectorXd> events;
+    for (std::size_t l = 0; l < b.member_of.size(); ++l)
+        for (std::size_t i = 0; i < scene.events.size(); ++i)
+            events.add(
+                [g = cf.events[i], p = b.parameters[l].data(), l, n, lanes,
+                 &scratch](double t, const Eigen::VectorXd& y) {
+                    for (std::size_t c = 0; c < n; ++c)
+                        scratch[c] = y[static_cast<Eigen::Index>(c * lanes + l)];
+                    double out = 0;
+                    g(p, t, scratch.data(), &out);
+                    return out;
+                },
+                direction_of(scene.events[i]), false, scene.events[i].name);
+    return events;
+}
+
+// Each lane's events from the batch's hits; a lane's first terminal event ends its run there: the
+// events at that time (within the events' refinement tolerance) are its last, and its samples after
+// that time are dropped (finish() ends its rows with the event's state).
+void end_lanes(const scene_spec& scene, const event_set<double, Eigen::VectorXd>& events,
+               std::size_t n, std::size_t lanes, std::vector<lane_run>& out) {
+    const std::size_t per_lane = scene.events.size();
+    for (const auto& hit : events.hits()) {
+        lane_run& r = out[hit.index / per_lane];
+        const std::size_t i = hit.index % per_lane;
+        if (r.stopped_by >= 0) {
+            const double t_end = r.events.back().t;
+            if (std::abs(hit.t - t_end) > std::max(1e-14 * std::abs(t_end), 1e-15)) continue;
+        }
+        r.events.push_back({i, hit.t, lane_of(hit.y, hit.index / per_lane, n, lanes)});
+        if (scene.events[i].stop && r.stopped_by < 0) r.stopped_by = static_cast<int>(i);
+    }
+    for (lane_run& r : out) {
+        if (r.stopped_by < 0) continue;
+        const double t_stop = r.events.back().t;
+        while (!r.s.empty() && r.s.back().first > t_stop)
+            r.s.pop_back();
+    }
+}
+
+// Integrates the started members' lanes over the scene's sample times with the scene's method.
 template <class Method>
-std::vector<samples> integrate_lanes(const prepared_scene& prepared, const lane_kernels& k,
-                                     lane_batch& b, const Method& method, step_stats& stats) {
+std::vector<lane_run> integrate_lanes(const prepared_scene& prepared, const lane_kernels& k,
+                                      lane_batch& b, const Method& method, step_stats& stats) {
     const scene_spec& scene = prepared.scene();
     const std::size_t members = b.member_of.size(), n = static_cast<std::size_t>(b.y0[0].size());
     const std::size_t lanes = (members + k.width - 1) / k.width * k.width;
@@ -116,20 +180,28 @@ std::vector<samples> integrate_lanes(const prepared_scene& prepared, const lane_
     lane_system<double, decltype(kernel)> sys(kernel, n, lanes);
     for (std::size_t l = members; l < lanes; ++l)
         sys.stop(l);
-    std::vector<samples> out(members);
-    std::size_t sample = 0;
+    std::vector<lane_run> out(members);
+    std::vector<double> scratch(n); // a lane's state, for its event functions
+    event_set<double, Eigen::VectorXd> events = lane_events(prepared, b, lanes, scratch);
+    std::vector<char> ended(members, 0); // by a terminal event (reported before later samples)
+    std::size_t sample = 0, hits_seen = 0;
     const auto observe = [&](double t, const Eigen::VectorXd& y) {
-        Eigen::VectorXd yl(static_cast<Eigen::Index>(n));
+        for (; hits_seen < events.hits().size(); ++hits_seen) {
+            const std::size_t e = events.hits()[hits_seen].index, l = e / scene.events.size();
+            if (scene.events[e % scene.events.size()].stop && !ended[l]) {
+                ended[l] = 1;
+                sys.stop(l); // its run is over: it stays where it is
+            }
+        }
         std::size_t live = 0;
         for (std::size_t l = 0; l < members; ++l) {
             if (!sys.is_live(l)) continue;
-            for (std::size_t c = 0; c < n; ++c)
-                yl[static_cast<Eigen::Index>(c)] = y[static_cast<Eigen::Index>(c * lanes + l)];
+            Eigen::VectorXd yl = lane_of(y, l, n, lanes);
             if (!b.parts[b.member_of[l]]->keeps_chart(sample, t, yl)) {
                 sys.stop(l); // it changes chart here: it runs alone
                 continue;
             }
-            out[l].emplace_back(t, yl);
+            out[l].s.emplace_back(t, std::move(yl));
             ++live;
         }
         ++sample;
@@ -138,10 +210,15 @@ std::vector<samples> integrate_lanes(const prepared_scene& prepared, const lane_
     const std::vector<double> times = sample_times(scene);
     Eigen::VectorXd y = Eigen::Map<const Eigen::VectorXd>(by_lane(b.y0, lanes).data(),
                                                           static_cast<Eigen::Index>(n * lanes));
-    const integration_result<double> res = integrate(sys, method, scene.t_start, y, times, observe);
+    const integration_result<double> res =
+        events.size() > 0 ? integrate(sys, method, scene.t_start, y, times, observe, events)
+                          : integrate(sys, method, scene.t_start, y, times, observe);
     stats = res.stats;
+    end_lanes(scene, events, n, lanes, out);
+    // the observer stops the run when no lane is left (ended or to run alone)
+    const bool ran = res.ok() || res.code == status::stopped_by_observer;
     for (std::size_t l = 0; l < members; ++l)
-        if (!res.ok() || !sys.is_live(l)) out[l].clear();
+        if (!ran || (!sys.is_live(l) && !ended[l])) out[l] = {};
     return out;
 }
 
@@ -152,9 +229,6 @@ void lane_check(const scene_spec& scene) {
     if (m != "rk4" && m != "dop853")
         throw user_error(scene.integrator_where, "--lanes needs the method rk4 or dop853, not " +
                                                      m + " (or run the sweep without --lanes)");
-    if (!scene.events.empty())
-        throw user_error(scene.events[0].where,
-                         "--lanes cannot run a scene with events (run the sweep without --lanes)");
 }
 
 lane_kernels compile_lanes(const prepared_scene& prepared, stage_timings& timings) {
@@ -185,22 +259,23 @@ std::vector<std::optional<run_result>> run_lanes(const prepared_scene& prepared,
     if (b.member_of.empty()) return results;
     const integrator_spec& ig = prepared.scene().integrator;
     step_stats stats;
-    std::vector<samples> lane_samples;
+    std::vector<lane_run> lanes;
     if (ig.method == "rk4") {
         rk4<double> m;
         m.step = ig.step;
         m.max_steps = static_cast<std::size_t>(ig.max_steps);
-        lane_samples = integrate_lanes(prepared, kernels, b, m, stats);
+        lanes = integrate_lanes(prepared, kernels, b, m, stats);
     } else {
         dop853<double> m(ig.rtol, ig.atol);
         m.fixed_step = ig.fixed_step() ? ig.step : 0.0;
         m.max_steps = static_cast<std::size_t>(ig.max_steps);
-        lane_samples = integrate_lanes(prepared, kernels, b, m, stats);
+        lanes = integrate_lanes(prepared, kernels, b, m, stats);
     }
     for (std::size_t m = 0; m < members.size(); ++m) {
         const std::size_t l = b.lane_of[m];
-        if (l != lane_batch::alone && !lane_samples[l].empty())
-            results[m] = b.parts[m]->finish(std::move(lane_samples[l]), stats);
+        if (l != lane_batch::alone && !lanes[l].s.empty())
+            results[m] = b.parts[m]->finish(std::move(lanes[l].s), stats,
+                                            std::move(lanes[l].events), lanes[l].stopped_by);
     }
     return results;
 }

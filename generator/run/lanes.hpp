@@ -6,7 +6,12 @@
 // (4 doubles a batch) when the CPU has both (checked at run time), else for the compiler's default
 // x86-64 target (SSE2, 2 doubles); with -ffp-contract=off, so that the generated arithmetic rounds
 // as the scalar kernel's does and a lane differs from the scalar run only by xsimd's vector sin,
-// cos, ... Lanes need rk4 or dop853 and a scene without events (lane_check).
+// cos, ... Lanes need rk4 or dop853 (lane_check).
+//
+// Events: each lane watches the scene's events on its own state (the batch's event set holds
+// every lane's, located on the batch's interpolant, so a lane's event times are its scalar run's
+// up to the lane's own differences); a terminal event ends its lane's run there (the lane stops,
+// its later samples are dropped) while the other lanes go on.
 //
 // What a batch cannot carry runs alone on the scalar path (run_member), from the start, so its
 // result is the scalar run's: a member whose start is a user error or that starts in the body
