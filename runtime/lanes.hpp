@@ -47,6 +47,17 @@ template <class T, class Kernel> class lane_system {
 
     void rhs(T t, const T* y, T* dydt) const {
         m_kernel(t, y, dydt);
+        if (m_all_live) {
+            // x - x is 0 for a finite x and NaN otherwise: one branch-free pass that vectorises
+            T sum[4] = {T(0), T(0), T(0), T(0)};
+            const std::size_t size = m_n * m_w, whole = size / 4 * 4;
+            for (std::size_t i = 0; i < whole; i += 4)
+                for (std::size_t k = 0; k < 4; ++k)
+                    sum[k] += dydt[i + k] - dydt[i + k];
+            for (std::size_t i = whole; i < size; ++i)
+                sum[0] += dydt[i] - dydt[i];
+            if (sum[0] + sum[1] + sum[2] + sum[3] == T(0)) return;
+        }
         for (std::size_t l = 0; l < m_w; ++l) {
             bool finite = m_state[l] == live;
             for (std::size_t c = 0; c < m_n && finite; ++c) {
@@ -55,6 +66,7 @@ template <class T, class Kernel> class lane_system {
             }
             if (finite) continue;
             if (m_state[l] == live) m_state[l] = failed;
+            m_all_live = false;
             for (std::size_t c = 0; c < m_n; ++c)
                 dydt[c * m_w + l] = T(0);
         }
@@ -62,6 +74,7 @@ template <class T, class Kernel> class lane_system {
 
     void stop(std::size_t lane) {
         if (m_state[lane] == live) m_state[lane] = stopped;
+        m_all_live = false;
     }
     bool is_live(std::size_t lane) const { return m_state[lane] == live; }
     bool failed_lane(std::size_t lane) const { return m_state[lane] == failed; }
@@ -71,6 +84,7 @@ template <class T, class Kernel> class lane_system {
     Kernel m_kernel;
     std::size_t m_n, m_w;
     mutable std::vector<unsigned char> m_state; // rhs marks failed lanes
+    mutable bool m_all_live = true;             // no lane stopped or failed
 };
 
 namespace detail {

@@ -12,6 +12,7 @@
 #include "steppers/rk4.hpp"
 
 #include <cmath>
+#include <limits>
 #include <vector>
 
 using namespace rotgen;
@@ -156,4 +157,32 @@ TEST_CASE("a lane whose f is not finite stops alone, the others run on") {
     CHECK(z[1] == 1.0);
     CHECK(!again.failed_lane(1));
     CHECK(std::abs(z[0] - std::exp(-2.0)) < 1e-10); // RK4 at h = 0.01: observed 2.3e-11
+}
+
+TEST_CASE("the finiteness tests see an infinity or a NaN at every position") {
+    // all_finite and lane_system::rhs sum x - x in four partial sums plus a remainder: every
+    // position of every length must count
+    for (std::size_t n = 1; n <= 13; ++n)
+        for (std::size_t at = 0; at < n; ++at)
+            for (double bad : {std::numeric_limits<double>::infinity(), -HUGE_VAL, std::nan("")}) {
+                Eigen::VectorXd v = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(n), 1e308);
+                CHECK(detail::all_finite(v));
+                v[static_cast<Eigen::Index>(at)] = bad;
+                CHECK(!detail::all_finite(v));
+            }
+    // 3 components of 4 lanes: f not finite at one position fails that lane alone
+    for (std::size_t at = 0; at < 12; ++at) {
+        const auto kernel = [at](double, const double*, double* d) {
+            for (std::size_t i = 0; i < 12; ++i)
+                d[i] = i == at ? std::numeric_limits<double>::infinity() : -1e300;
+        };
+        const lane_system<double, decltype(kernel)> sys(kernel, 3, 4);
+        std::vector<double> y(12, 0.0), d(12);
+        sys.rhs(0, y.data(), d.data());
+        for (std::size_t l = 0; l < 4; ++l) {
+            CHECK(sys.failed_lane(l) == (l == at % 4));
+            for (std::size_t c = 0; c < 3; ++c) // a failed lane's derivatives are 0
+                CHECK(d[c * 4 + l] == (l == at % 4 ? 0.0 : -1e300));
+        }
+    }
 }
