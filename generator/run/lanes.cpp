@@ -109,7 +109,7 @@ struct lane_run {
     int stopped_by = -1;
 };
 
-// Component c of lane l of a lane state.
+// Lane l of a lane state: its n components.
 Eigen::VectorXd lane_of(const Eigen::VectorXd& y, std::size_t l, std::size_t n, std::size_t lanes) {
     Eigen::VectorXd yl(static_cast<Eigen::Index>(n));
     for (std::size_t c = 0; c < n; ++c)
