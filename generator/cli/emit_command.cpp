@@ -52,7 +52,7 @@ const command_spec emit_command{
      {"--outputs",
       "LIST",
       "comma-separated: rhs,jacobian,energy,momenta,mass_matrix,omega,rotation,\n"
-      "                        ignored_rates,taylor (default: all the form gives but taylor)",
+      "ignored_rates,taylor (default: all the form gives but taylor)",
       {}},
      {"--specialise",
       "NAMES",

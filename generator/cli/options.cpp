@@ -2,6 +2,7 @@
 
 #include "support/error.hpp"
 
+#include <algorithm>
 #include <sstream>
 
 namespace rotgen {
@@ -100,9 +101,16 @@ std::string help_text(const command_spec& c) {
         width = std::max(width, l.size());
         left.push_back(l);
     }
-    for (std::size_t i = 0; i < c.options.size(); ++i)
-        os << "  " << left[i] << std::string(width + 2 - left[i].size(), ' ') << c.options[i].help
-           << "\n";
+    // a help of several lines: each continuation line starts under the first line's text
+    const std::string indent(width + 4, ' ');
+    for (std::size_t i = 0; i < c.options.size(); ++i) {
+        os << "  " << left[i] << std::string(width + 2 - left[i].size(), ' ');
+        std::istringstream lines(c.options[i].help);
+        std::string line;
+        for (bool first = true; std::getline(lines, line); first = false)
+            os << (first ? "" : indent)
+               << line.substr(std::min(line.find_first_not_of(' '), line.size())) << "\n";
+    }
     os << "  -h, --help" << std::string(width > 8 ? width - 8 : 2, ' ') << "this text\n";
     return os.str();
 }

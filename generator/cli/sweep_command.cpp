@@ -28,17 +28,17 @@ const command_spec sweep_command{
      {"--vary",
       "KEY=FROM:TO:COUNT",
       "vary initial.<name> or parameters.<name> over COUNT values from FROM to TO\n"
-      "                       (or KEY=V1,V2,...; random mode: KEY=FROM:TO); repeatable, and\n"
-      "                       replaces the scene's entry for the same key",
+      "(or KEY=V1,V2,...; random mode: KEY=FROM:TO); repeatable, and\n"
+      "replaces the scene's entry for the same key",
       {},
       false,
       true},
      {"-j", "N", "run N members at a time, on N threads (default: every core)", {"--jobs"}},
      {"--lanes",
       "W",
-      "advance W neighbouring members together in SIMD lanes (rk4 or dop853; default\n"
-      "                       1: one at a time); a member a batch cannot carry (a chart\n"
-      "                       switch, a failure) runs alone as without --lanes",
+      "advance W neighbouring members together in SIMD lanes (rk4 or dop853;\n"
+      "default 1: one at a time); a member a batch cannot carry (a chart switch, a\n"
+      "failure) runs alone as without --lanes",
       {}},
      {"--trajectories",
       "",
