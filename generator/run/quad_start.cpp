@@ -60,7 +60,10 @@ struct slot_source {
     int slot; // a member slot, or computed_rate - i for q_dot_i
 };
 
-long double long_double_of(double x) { // the shortest decimal that reads back as x
+// The shortest decimal that reads back as x (the exact value of a plain number, as
+// exact_scene_value gives it), in long double and in quad; and a quad result in long double.
+// Zero is +0 in all three: GiNaC has no -0.
+long double long_double_of(double x) {
     return x == 0 ? 0.0L : std::strtold(format_double(x).c_str(), nullptr);
 }
 quad quad_of(double x) {
@@ -68,7 +71,7 @@ quad quad_of(double x) {
 }
 long double rounded(quad x) {
     return x == 0 ? 0.0L : static_cast<long double>(x);
-} // no -0
+}
 
 } // namespace
 
