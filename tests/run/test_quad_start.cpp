@@ -88,11 +88,17 @@ TEST_CASE("the quad start gives GiNaC's long doubles whether rates or momenta or
         row{"cube_on_corner", "phi: 0.3, theta: 1.2, psi: 1.1, omega1: 0.5, omega2: -0.2, "
                               "omega3: 4"},
         row{"damped_driven_top", "phi: 1, theta: 2, psi: -1, omega1: 0.5, omega2: 7, omega3: 0"},
+        row{"free_asymmetric_top", "phi: 0.2, theta: 1, psi: 2, phi_dot: 1, theta_dot: -1, "
+                                   "psi_dot: 5"},
+        row{"heavy_top", "phi: 0, theta: 0.5, psi: 0, p_phi: 0.3, p_theta: 0, p_psi: 15"},
+        row{"full_tensor_top", "phi: 0.3, theta: 0.7, psi: 1.1, omega1: 1, omega2: 2, omega3: 3"},
+        row{"cube_on_corner", "phi: 0, theta: 0.9, psi: 0.785, phi_dot: 0, theta_dot: 0.1, "
+                              "psi_dot: 2"},
     }));
     INFO(model << ": " << initial);
-    // 401 members x 12 values per model: observed no relative difference at all (the two agree
-    // unless a value lies within ~1e-30 of a long-double rounding boundary: one would be 1 ulp,
-    // 1.1e-19), and a residue of 3.7e-40 against an exact 0 in some runs.
+    // 401 members x 12 values per model and start: observed no relative difference at all (the two
+    // agree unless a value lies within ~1e-30 of a long-double rounding boundary: one would be 1
+    // ulp, 1.1e-19), and a residue of 3.7e-40 against an exact 0 in some runs.
     const difference d = compare(scene_of(model, initial), 400);
     CHECK(d.differing <= 1);
     CHECK(d.largest <= 1.1e-19L);
