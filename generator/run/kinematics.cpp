@@ -39,13 +39,10 @@ std::array<ex, 3> rates_from_momenta(const scene_spec& scene, const derivation& 
         for (int j = 0; j < 3; ++j)
             M(i, j) = to_long_double(d.mass_matrix[i][j].subs(at, GiNaC::subs_options::no_pattern));
     }
-    const Eigen::Matrix<long double, 3, 1> v = M.fullPivLu().solve(p);
+    const std::array<std::string, 3> text = rates_text(M, p);
     std::array<ex, 3> qd;
-    for (int i = 0; i < 3; ++i) {
-        char buf[64];
-        std::snprintf(buf, sizeof buf, "%.21Le", v[i]);
-        qd[i] = GiNaC::numeric(buf);
-    }
+    for (std::size_t i = 0; i < 3; ++i)
+        qd[i] = GiNaC::numeric(text[i].c_str());
     return qd;
 }
 
@@ -64,6 +61,18 @@ std::array<ex, 3> rates_from_omega(const scene_spec& scene, const derivation& d,
 }
 
 } // namespace
+
+std::array<std::string, 3> rates_text(const Eigen::Matrix<long double, 3, 3>& M,
+                                      const Eigen::Matrix<long double, 3, 1>& p) {
+    const Eigen::Matrix<long double, 3, 1> v = M.fullPivLu().solve(p);
+    std::array<std::string, 3> text;
+    for (int i = 0; i < 3; ++i) {
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "%.21Le", v[i]);
+        text[static_cast<std::size_t>(i)] = buf;
+    }
+    return text;
+}
 
 initial_kinematics initial_kinematics_of(const scene_spec& scene, const derivation& d) {
     const auto& s = symbols();

@@ -13,9 +13,11 @@
 #include "derive/derive.hpp"
 #include "scene/scene.hpp"
 
+#include <Eigen/Dense>
 #include <Eigen/Geometry>
 
 #include <array>
+#include <string>
 
 namespace rotgen {
 
@@ -31,6 +33,11 @@ struct initial_kinematics {
 GiNaC::ex exact_scene_value(double current, const written_value& written);
 
 initial_kinematics initial_kinematics_of(const scene_spec& scene, const derivation& d);
+
+// q_dot = M^{-1} p solved in long double, each rate as the 22-digit decimal text the start
+// continues from (both initial_kinematics_of and run/quad_start.cpp read it back exactly).
+std::array<std::string, 3> rates_text(const Eigen::Matrix<long double, 3, 3>& M,
+                                      const Eigen::Matrix<long double, 3, 1>& p);
 
 // Refuses (user_error at the scene's `initial`) initial values whose rates, momenta, omega or
 // kinetic energy (1/2 p . q_dot) overflow double: the runs are in double.

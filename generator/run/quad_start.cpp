@@ -236,12 +236,10 @@ initial_kinematics quad_start::kinematics(const programs& p, const start_values&
             for (int j = 0; j < 3; ++j)
                 M(i, j) = rounded(m[static_cast<std::size_t>(3 * i + j)]);
         }
-        const Eigen::Matrix<long double, 3, 1> solved = M.fullPivLu().solve(momenta);
+        const std::array<std::string, 3> text = rates_text(M, momenta);
         for (std::size_t i = 0; i < 3; ++i) {
-            char buf[64];
-            std::snprintf(buf, sizeof buf, "%.21Le", solved[static_cast<int>(i)]);
-            qd[i] = strtoflt128(buf, nullptr);
-            k.qd[i] = std::strtold(buf, nullptr);
+            qd[i] = strtoflt128(text[i].c_str(), nullptr);
+            k.qd[i] = std::strtold(text[i].c_str(), nullptr);
         }
     } else if (k.have_rates) {
         const std::vector<quad> r = run(p.rates, v);
