@@ -23,6 +23,8 @@ const char* const usage =
     "  bench SCENE.yaml     the work-precision report of a scene (rotgen against peers)\n"
     "  sweep SCENE.yaml -o DIR\n"
     "                       an ensemble of the scene (varied initial values and parameters)\n"
+    "  view RUN.csv --scene SCENE.yaml\n"
+    "                       a self-contained HTML page that plays the run in 3D in a browser\n"
     "\n"
     "  help [COMMAND]       this text, or a command's options (also rotgen COMMAND --help)\n"
     "  --version            the version\n"
@@ -72,10 +74,11 @@ int run_cli(int argc, char** argv) {
         if (command == "simulate") return cmd_simulate(args);
         if (command == "bench") return cmd_bench(args);
         if (command == "sweep") return cmd_sweep(args);
+        if (command == "view") return cmd_view(args);
         throw user_error(
             {"rotgen"},
             "unknown command '" + command +
-                "' (expected inspect, emit, simulate, bench or sweep; see rotgen --help)");
+                "' (expected inspect, emit, simulate, bench, sweep or view; see rotgen --help)");
     } catch (const user_error& e) {
         std::cerr << "rotgen: error: " << one_line(e.message()) << "\n";
         return 2;

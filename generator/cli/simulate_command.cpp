@@ -12,7 +12,8 @@ namespace {
 const command_spec simulate_command{
     "simulate",
     "scene file",
-    "SCENE.yaml [-o out.csv] [--events FILE] [--plot out.png] [--timings] [--quiet]",
+    "SCENE.yaml [-o out.csv] [--events FILE] [--plot out.png] [--view run.html] [--timings] "
+    "[--quiet]",
     "Integrates the scene: derives the model's equations, emits and compiles the scene's form\n"
     "(cached), integrates it and records the scene's quantities at its sample times. Prints a\n"
     "summary (steps, evaluations, invariant drifts) on standard output. A run that cannot finish\n"
@@ -30,6 +31,7 @@ const command_spec simulate_command{
       "                     default <output stem>.events.csv when the scene has events",
       {}},
      {"--plot", "FILE", "the recorded quantities against t (gnuplot): .png, .svg or .pdf", {}},
+     {"--view", "FILE", "a self-contained HTML page that plays the run in 3D in a browser", {}},
      {"--timings", "", "print the wall time of each pipeline stage to standard error", {}},
      {"--quiet", "", "no summary and no progress line (errors are still reported)", {"-q"}}}};
 
@@ -41,8 +43,15 @@ int cmd_simulate(const std::vector<std::string>& args) {
         std::cout << help_text(simulate_command);
         return 0;
     }
-    return simulate({o.operand, o.value("-o"), o.value("--plot"), o.value("--events"),
-                     o.has("--timings"), o.has("--quiet")});
+    simulate_request request;
+    request.scene = o.operand;
+    request.csv = o.value("-o");
+    request.plot = o.value("--plot");
+    request.events = o.value("--events");
+    request.view = o.value("--view");
+    request.timings = o.has("--timings");
+    request.quiet = o.has("--quiet");
+    return simulate(request);
 }
 
 } // namespace rotgen

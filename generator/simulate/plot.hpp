@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -13,8 +14,16 @@ namespace rotgen {
 std::string plot_terminal(const std::string& file, std::size_t panels);
 
 // `csv`: the samples (t first, then the columns of `record` in order; may be a temporary file).
-// `energy0`: the energy at the start; its panel shows energy - energy(0), the drift.
+// `drifts`: the quantities drawn as their change from the start, with their value at the start:
+// the energy and the conserved momenta (their raw values would fill the axis with ticks that all
+// read the same). Every panel has the same margins, so that their time axes line up.
 void plot_run(const std::string& png, const std::string& csv,
-              const std::vector<std::string>& record, const std::string& title, double energy0);
+              const std::vector<std::string>& record, const std::string& title,
+              const std::map<std::string, double>& drifts);
+
+// The gnuplot script plot_run runs, writing `output`.
+std::string plot_script(const std::string& output, const std::string& terminal_for,
+                        const std::string& csv, const std::vector<std::string>& record,
+                        const std::string& title, const std::map<std::string, double>& drifts);
 
 } // namespace rotgen

@@ -8,9 +8,11 @@
 #include "support/format.hpp"
 #include "support/progress.hpp"
 #include "support/timings.hpp"
+#include "view/view.hpp"
 
 #include <cmath>
 #include <iostream>
+#include <map>
 #include <optional>
 #include <sstream>
 
@@ -127,22 +129,29 @@ void draw_plot(const simulate_request& q, std::string csv, const scene_spec& sce
         scratch->stream().flush();
         csv = scratch->temporary();
     }
-    double energy0 = 0;
-    for (std::size_t i = 0; i < r.columns.size(); ++i)
-        if (r.columns[i] == "energy" && !r.rows.empty()) energy0 = r.rows[0][i + 1];
+    // The energy and the conserved momenta are drawn as their drift from the first sample.
+    std::map<std::string, double> drifts;
+    for (const auto& inv : r.invariants)
+        for (std::size_t i = 0; i < r.columns.size(); ++i)
+            if (r.columns[i] == inv.what.name && !r.rows.empty() &&
+                (inv.what.conserved || inv.what.name == "energy"))
+                drifts[inv.what.name] = r.rows[0][i + 1];
     plot_run(q.plot, csv, r.record,
              scene.model.name + " (" + to_string(scene.form) + " form, " + scene.integrator.method +
                  ")",
-             energy0);
+             drifts);
 }
 
 // Where the samples go: the requested file, "-" for standard output, or by default
 // <scene name>.csv in the current folder.
-std::string csv_path(const simulate_request& q) {
-    if (!q.csv.empty()) return q.csv;
-    std::string stem = q.scene.substr(q.scene.find_last_of('/') + 1);
+std::string default_csv(const std::string& scene) {
+    std::string stem = scene.substr(scene.find_last_of('/') + 1);
     if (const auto dot = stem.rfind('.'); dot != std::string::npos && dot > 0) stem.erase(dot);
     return stem + ".csv";
+}
+
+std::string csv_path(const simulate_request& q) {
+    return q.csv.empty() ? default_csv(q.scene) : q.csv;
 }
 
 // Where the events go: --events, or <output stem>.events.csv beside the samples (the scene's
@@ -151,7 +160,7 @@ std::string events_path(const simulate_request& q, const std::string& csv,
                         const scene_spec& scene) {
     if (!q.events.empty()) return q.events;
     if (scene.events.empty()) return "";
-    std::string base = csv == "-" ? csv_path({q.scene, "", "", "", false, false}) : csv;
+    std::string base = csv == "-" ? default_csv(q.scene) : csv;
     if (base.size() > 4 && base.compare(base.size() - 4, 4, ".csv") == 0)
         base.erase(base.size() - 4);
     return base + ".events.csv";
@@ -161,7 +170,7 @@ std::string events_path(const simulate_request& q, const std::string& csv,
 // requested name); exit status 3.
 int report_partial(const simulate_request& q, const std::string& csv, const scene_spec& scene,
                    const run_result& r, std::ostream& summary) {
-    std::string base = csv == "-" ? csv_path({q.scene, "", "", "", false, false}) : csv;
+    std::string base = csv == "-" ? default_csv(q.scene) : csv;
     if (base.size() > 4 && base.compare(base.size() - 4, 4, ".csv") == 0)
         base.erase(base.size() - 4);
     const std::string partial = base + ".partial.csv";
@@ -189,12 +198,15 @@ int simulate(const simulate_request& q) {
     const std::string events = events_path(q, csv, scene);
     std::optional<atomic_file> events_out;
     if (!events.empty()) events_out.emplace(events, inputs);
+    if (!q.view.empty()) atomic_file probe(q.view, inputs);
+    const scene_spec viewed = q.view.empty() ? scene : scene_for_view(scene, "--view");
 
     stage_timings timings;
     std::ostringstream discarded;
     std::ostream& summary = q.quiet ? discarded : (csv_out.is_stdout() ? std::cerr : std::cout);
     progress_line progress(scene.t_start, scene.t_end, !q.quiet);
-    const run_result r = run_scene(scene, timings, [&](double t) { progress.update(t); });
+    const run_result run = run_scene(viewed, timings, [&](double t) { progress.update(t); });
+    const run_result r = q.view.empty() ? run : only_scene_records(run, scene);
     progress.finish();
     print_summary(summary, q, scene, r, timings);
     if (!r.ok) {
@@ -214,6 +226,13 @@ int simulate(const simulate_request& q) {
     if (!q.plot.empty()) {
         timings.time("plot", q.plot, [&] { draw_plot(q, csv, scene, r); });
         summary << "  wrote   " << q.plot << "\n";
+    }
+    if (!q.view.empty()) {
+        view_data page = view_of_run(viewed, run);
+        page.title = scene.model.name + " (" + q.scene + ")";
+        page.source = q.scene;
+        timings.time("write", q.view, [&] { write_view(q.view, page, inputs); });
+        summary << "  wrote   " << q.view << " (the run in 3D: open it in a browser)\n";
     }
     if (q.timings) timings.print(std::cerr);
     return 0;

@@ -14,6 +14,7 @@ struct simulate_request {
     std::string csv;      // where to write the samples; empty: not written
     std::string plot;     // a PNG of the recorded columns; empty: none
     std::string events;   // the scene's events as CSV; empty: <output stem>.events.csv
+    std::string view;     // a self-contained HTML page playing the run in 3D; empty: none
     bool timings = false; // one line per pipeline stage to stderr
     bool quiet = false;   // no summary and no progress line
 };

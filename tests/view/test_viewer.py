@@ -1,0 +1,151 @@
+#!/usr/bin/env python3
+"""The 3D viewer page in a real browser (headless Chromium, WebGL through SwiftShader).
+
+    test_viewer.py --rotgen BUILD/rotgen --source SOURCE_DIR --chromium /usr/bin/chromium
+
+Simulates a heavy top recording its attitude, writes the page with `rotgen view`, and checks:
+the page makes no request to another host (no src/href/url()/import/fetch of one); Chromium loads
+it without a console error; the attitude it reports at three times (two samples and a time between
+samples) equals the CSV's (slerp between samples) to 1e-12; a screenshot is not blank.
+Exit status 0 when every check holds; each failure is printed."""
+import argparse, json, math, os, re, struct, subprocess, sys, tempfile, zlib
+
+FLAGS = ["--headless", "--no-sandbox", "--use-angle=swiftshader", "--enable-unsafe-swiftshader",
+         "--disable-gpu-sandbox", "--no-first-run", "--disable-background-networking",
+         "--disable-component-update", "--disable-sync", "--disable-quic",
+         "--host-resolver-rules=MAP * ~NOTFOUND", "--enable-logging=stderr", "--v=0"]
+
+SCENE = """model: {model}
+form: lagrangian
+initial: {{phi: 0, theta: 0.5, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 30}}
+time: {{start: 0, end: 2, samples: 201}}
+integrator: {{method: dop853, rtol: 1e-10, atol: 1e-12}}
+record: [q0, q1, q2, q3, Lx, Ly, Lz, theta, energy]
+"""
+
+failures = []
+
+def check(ok, what):
+    print(("ok      " if ok else "FAILED  ") + what)
+    if not ok:
+        failures.append(what)
+
+def chromium(args, browser, page, query, workdir, extra=()):
+    profile = tempfile.mkdtemp(dir=workdir)
+    cmd = [browser, *FLAGS, f"--user-data-dir={profile}", *extra, *args, f"file://{page}{query}"]
+    r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=120, cwd=workdir)
+    return r.stdout.decode(errors="replace"), r.stderr.decode(errors="replace")
+
+def shown_state(dom):
+    m = re.search(r'data-rotgen-view="([^"]*)"', dom)
+    if not m:
+        return None
+    return json.loads(m.group(1).replace("&quot;", '"'))
+
+def slerp(a, b, f):
+    d = sum(x * y for x, y in zip(a, b))
+    s = -1.0 if d < 0 else 1.0
+    d = min(1.0, abs(d))
+    w = math.acos(d)
+    ka, kb = (1 - f, f) if w <= 1e-9 else (math.sin((1 - f) * w) / math.sin(w), math.sin(f * w) / math.sin(w))
+    q = [ka * x + s * kb * y for x, y in zip(a, b)]
+    n = math.sqrt(sum(v * v for v in q))
+    return [v / n for v in q]
+
+def expected_attitude(rows, t):
+    for i in range(len(rows) - 1):
+        t0, t1 = rows[i][0], rows[i + 1][0]
+        if t0 <= t <= t1:
+            f = (t - t0) / (t1 - t0)
+            return slerp(rows[i][1:5], rows[i + 1][1:5], f) if f > 0 else rows[i][1:5]
+    return rows[-1][1:5]
+
+def png_pixels(path):
+    """(width, height, RGBA rows) of an 8-bit RGB(A) non-interlaced PNG, as Chromium writes."""
+    data = open(path, "rb").read()
+    pos, chunks = 8, {}
+    width = height = 0
+    idat = b""
+    while pos < len(data):
+        n, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        body = data[pos + 8:pos + 8 + n]
+        if kind == b"IHDR":
+            width, height, depth, colour = struct.unpack(">IIBB", body[:10])
+            chunks["bpp"] = {6: 4, 2: 3}[colour]
+        elif kind == b"IDAT":
+            idat += body
+        pos += 12 + n
+    raw, bpp = zlib.decompress(idat), chunks["bpp"]
+    stride, rows, prev = width * bpp, [], bytearray(width * bpp)
+    for y in range(height):
+        f, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        for x in range(stride):
+            a = line[x - bpp] if x >= bpp else 0
+            b, c = prev[x], prev[x - bpp] if x >= bpp else 0
+            if f == 1: line[x] = (line[x] + a) & 255
+            elif f == 2: line[x] = (line[x] + b) & 255
+            elif f == 3: line[x] = (line[x] + (a + b) // 2) & 255
+            elif f == 4:
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                line[x] = (line[x] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        rows.append(bytes(line))
+        prev = line
+    return width, height, bpp, rows
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--rotgen", required=True)
+    ap.add_argument("--source", required=True)
+    ap.add_argument("--chromium", required=True)
+    a = ap.parse_args()
+    work = tempfile.mkdtemp(prefix="rotgen-view-")
+    scene = os.path.join(work, "scene.yaml")
+    open(scene, "w").write(SCENE.format(model=os.path.join(a.source, "models", "heavy_top.yaml")))
+    csv, page = os.path.join(work, "run.csv"), os.path.join(work, "run.html")
+    subprocess.run([a.rotgen, "simulate", scene, "-o", csv, "-q"], check=True)
+    subprocess.run([a.rotgen, "view", csv, "--scene", scene, "-o", page], check=True,
+                   stdout=subprocess.DEVNULL)
+    rows = [[float(v) for v in line.split(",")] for line in open(csv).read().splitlines()[1:]]
+    html = open(page).read()
+
+    external = re.findall(r"""(?:\b(?:src|href)\s*=\s*["']?|url\(\s*["']?|\bimport\s*\(?\s*["']|"""
+                          r"""\bfetch\(\s*["'])(?:https?:)?//[^"')\s]+""", html)
+    check(not external, f"no request to another host in the page (found {external[:3]})")
+    check(len(html) < 5e6, f"the page is {len(html)} bytes")
+
+    for t in (0.0, 0.5, 1.2345):  # a sample, a sample, between samples
+        dom, log = chromium(["--dump-dom"], a.chromium, page, f"?t={t}", work)
+        errors = [l for l in log.splitlines() if "Uncaught" in l or ("CONSOLE" in l and "ERROR" in l)
+                  or "net::ERR" in l]
+        check(not errors, f"t = {t}: no console error ({errors[:2]})")
+        state = shown_state(dom)
+        check(state is not None, f"t = {t}: the page reports what it shows")
+        if state is None:
+            continue
+        want = expected_attitude(rows, t)
+        err = max(abs(x - y) for x, y in zip(state["quaternion"], want))
+        check(err <= 1e-12, f"t = {t}: the attitude shown equals the CSV's (max error {err:.2e})")
+        tip = state["tip"]
+        w, x, y, z = want
+        want_tip = [2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)]
+        err = max(abs(p - q) for p, q in zip(tip, want_tip))
+        check(err <= 1e-12, f"t = {t}: the figure axis's tip is the third column of R(q) ({err:.2e})")
+
+    shot = os.path.join(work, "shot.png")
+    chromium([f"--screenshot={shot}", "--window-size=900,650"], a.chromium, page, "?t=1", work,
+             extra=["--run-all-compositor-stages-before-draw", "--virtual-time-budget=3000"])
+    if os.path.exists(shot):
+        width, height, bpp, pixels = png_pixels(shot)
+        # The middle of the picture, clear of the HTML panel and bar: WebGL's drawing alone.
+        background = bytes([0xf4, 0xf4, 0xf2])
+        middle = [row[i:i + 3] for row in pixels[height // 3:2 * height // 3]
+                  for i in range(width // 3 * bpp, 2 * width // 3 * bpp, bpp)]
+        share = sum(1 for p in middle if p != background) / len(middle)
+        check(share > 0.05, f"the screenshot is not blank ({share:.0%} of the middle third is drawn)")
+    else:
+        check(False, "Chromium wrote a screenshot")
+    return 1 if failures else 0
+
+if __name__ == "__main__":
+    sys.exit(main())
