@@ -94,7 +94,7 @@ MUTATIONS = [
     ("lanes: an event hit records no work (a lane ended by it reports none)",
      "if (events.report(found[z], static_cast<const V&>(ys), stats)) continue;",
      "if (events.report(found[z], static_cast<const V&>(ys))) continue;",
-     [GENERATOR + " '[lanes]'"]),
+     [RUNTIME + " 'an event hit records the work up to it*'", GENERATOR + " '[lanes]'"]),
     ("lanes: every member counted as run in lanes",
      "out.back().in_lanes = results[k].has_value();",
      "out.back().in_lanes = true;",
