@@ -95,7 +95,7 @@ read -r rk4_1 rk4_1c rk4_l rk4_lc < <(best_of_9_each "$work/rk4.yaml" one lanes)
 echo "rk4 to t = 0.01, 1 thread, without and with --lanes $lanes" >&2
 read -r short_1 short_1c short_l short_lc < <(best_of_9_each "$work/short.yaml" one lanes)
 arch=$("$rotgen" sweep "$work/rk4.yaml" -o "$work/out" -j 1 --lanes $lanes 2>&1 |
-       sed -n 's/.*lanes of [0-9]* (\(.*\))$/\1/p')
+       sed -n 's/^  lanes .* in batches of [0-9]* (\(.*\))$/\1/p')
 echo "dop853: 1 thread, --lanes $lanes, 2 threads, mpirun -n 2" >&2
 read -r dop_1 dop_1c dop_l dop_lc dop_2 dop_2c mpi_2 mpi_2c < <(best_of_9_each "$work/dop853.yaml" \
   one lanes two mpi)

@@ -13,7 +13,9 @@
 //                     that lane's n components, dop853.hpp) and the step is accepted or rejected
 //                     for all lanes together by the largest of them (lane_error_sums below), so
 //                     every lane meets the tolerance; the initial step guess (HINIT) is the RMS
-//                     over all lanes. Samples come from each lane's own dense output.
+//                     over all lanes. Samples come from each lane's own dense output;
+//   taylor            one order and one step for all lanes, the smallest of the lanes'
+//                     Jorba–Zou steps (lane_taylor_system below, steppers/taylor_lanes.hpp).
 // A lane can be stopped (stop(l)): its derivatives are 0 from then on, so it stays where it was
 // and adds nothing to the error. The system stops a lane itself when its f is not finite
 // (failed(l)), so that one lane's blow-up does not end the others' run; the caller reruns such a
@@ -47,17 +49,7 @@ template <class T, class Kernel> class lane_system {
 
     void rhs(T t, const T* y, T* dydt) const {
         m_kernel(t, y, dydt);
-        if (m_all_live) {
-            // x - x is 0 for a finite x and NaN otherwise: one branch-free pass that vectorises
-            T sum[4] = {T(0), T(0), T(0), T(0)};
-            const std::size_t size = m_n * m_w, whole = size / 4 * 4;
-            for (std::size_t i = 0; i < whole; i += 4)
-                for (std::size_t k = 0; k < 4; ++k)
-                    sum[k] += dydt[i + k] - dydt[i + k];
-            for (std::size_t i = whole; i < size; ++i)
-                sum[0] += dydt[i] - dydt[i];
-            if (sum[0] + sum[1] + sum[2] + sum[3] == T(0)) return;
-        }
+        if (m_all_live && all_finite(dydt, m_n * m_w)) return;
         for (std::size_t l = 0; l < m_w; ++l) {
             bool finite = m_state[l] == live;
             for (std::size_t c = 0; c < m_n && finite; ++c) {
@@ -72,19 +64,73 @@ template <class T, class Kernel> class lane_system {
         }
     }
 
-    void stop(std::size_t lane) {
-        if (m_state[lane] == live) m_state[lane] = stopped;
-        m_all_live = false;
-    }
+    void stop(std::size_t lane) { set(lane, stopped); }
+    // Its values are not finite (a Taylor expansion's, lane_taylor_system): as for f above.
+    void fail(std::size_t lane) const { set(lane, failed); }
     bool is_live(std::size_t lane) const { return m_state[lane] == live; }
+    bool all_live() const { return m_all_live; }
     bool failed_lane(std::size_t lane) const { return m_state[lane] == failed; }
+
+    // Whether v[0..size) are all finite: x - x is 0 for a finite x and NaN otherwise, one
+    // branch-free pass that vectorises.
+    static bool all_finite(const T* v, std::size_t size) {
+        T sum[4] = {T(0), T(0), T(0), T(0)};
+        const std::size_t whole = size / 4 * 4;
+        for (std::size_t i = 0; i < whole; i += 4)
+            for (std::size_t k = 0; k < 4; ++k)
+                sum[k] += v[i + k] - v[i + k];
+        for (std::size_t i = whole; i < size; ++i)
+            sum[0] += v[i] - v[i];
+        return sum[0] + sum[1] + sum[2] + sum[3] == T(0);
+    }
 
   private:
     enum state : unsigned char { live, stopped, failed };
+    void set(std::size_t lane, state s) const {
+        if (m_state[lane] == live) m_state[lane] = s;
+        m_all_live = false;
+    }
     Kernel m_kernel;
     std::size_t m_n, m_w;
     mutable std::vector<unsigned char> m_state; // rhs marks failed lanes
     mutable bool m_all_live = true;             // no lane stopped or failed
+};
+
+// A lane system that also gives its lanes' Taylor coefficients (steppers/taylor_lanes.hpp):
+// taylor(t, c, order) runs Taylor(t, c, order) over all lanes, coefficient k of component i of
+// lane l at c[(i (order + 1) + k) W + l] (component i's order-0 values set by the caller), then
+// holds the lanes that are not live (their coefficients beyond order 0 become 0) and stops a lane
+// whose coefficients are not finite (failed(), as for f).
+template <class T, class Kernel, class Taylor>
+class lane_taylor_system : public lane_system<T, Kernel> {
+  public:
+    lane_taylor_system(Kernel kernel, Taylor taylor, std::size_t components, std::size_t lanes)
+        : lane_system<T, Kernel>(std::move(kernel), components, lanes),
+          m_taylor(std::move(taylor)) {}
+
+    std::size_t taylor_series() const { return this->components(); }
+
+    void taylor(T t, T* c, int order) const {
+        m_taylor(t, c, order);
+        const std::size_t n = this->components(), w = this->lanes();
+        const std::size_t stride = static_cast<std::size_t>(order + 1) * w;
+        if (this->all_live() && this->all_finite(c, n * stride)) return;
+        for (std::size_t l = 0; l < w; ++l) {
+            bool finite = this->is_live(l);
+            for (std::size_t j = 0; j < n * stride && finite; j += w) {
+                using std::isfinite;
+                finite = isfinite(c[j + l]);
+            }
+            if (finite) continue;
+            this->fail(l);
+            for (std::size_t i = 0; i < n; ++i)
+                for (std::size_t k = 1; k <= static_cast<std::size_t>(order); ++k)
+                    c[i * stride + k * w + l] = T(0);
+        }
+    }
+
+  private:
+    Taylor m_taylor;
 };
 
 namespace detail {

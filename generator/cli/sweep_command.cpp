@@ -36,9 +36,9 @@ const command_spec sweep_command{
      {"-j", "N", "run N members at a time, on N threads (default: every core)", {"--jobs"}},
      {"--lanes",
       "W",
-      "advance W neighbouring members together in SIMD lanes (rk4 or dop853;\n"
-      "default 1: one at a time); a member a batch cannot carry (a chart switch, a\n"
-      "failure) runs alone as without --lanes",
+      "advance W neighbouring members together in SIMD lanes (rk4, dop853 or\n"
+      "taylor; default 1: one at a time); a member a batch cannot carry (a chart\n"
+      "switch, a failure) runs alone as without --lanes",
       {}},
      {"--trajectories",
       "",

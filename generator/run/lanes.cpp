@@ -4,38 +4,59 @@
 
 #include <memory>
 #include <sstream>
+#include <type_traits>
 
 namespace rotgen {
 
 namespace {
 
-// The translation unit of the batch kernel: the form's header and rotgen_rhs_lanes, which runs
-// rhs<xsimd::batch<double>> over the lanes a batch at a time, and rotgen_lane_width.
+// The translation unit of the batch kernels: the form's header; rotgen_rhs_lanes, which runs
+// rhs<xsimd::batch<double>> over the lanes a batch at a time, and with the Taylor method
+// rotgen_taylor_lanes, taylor<xsimd::batch<double>> the same way (the lanes' coefficients laid out
+// as lane_taylor_system says, runtime/lanes.hpp); rotgen_lane_width.
 std::string lane_source(const compiled_form& cf) {
     const form_expressions& f = cf.f;
+    const std::size_t n = f.state.size();
     std::ostringstream s;
-    s << cf.header << "\n// ---- rotgen sweep --lanes: the batch kernel ----\n"
-      << "#include <xsimd/xsimd.hpp>\n\n"
+    s << cf.header << "\n// ---- rotgen sweep --lanes: the batch kernels ----\n"
+      << "#include <xsimd/xsimd.hpp>\n#include <vector>\n\n"
       << "namespace {\nnamespace rg_model = rotgen::models::" << cf.unit << ";\n"
-      << "using rg_batch = xsimd::batch<double>;\n}\n\n"
+      << "using rg_batch = xsimd::batch<double>;\n"
+      << "rg_model::params<rg_batch> rg_params(const double* v, unsigned long lanes,\n"
+      << "                                     unsigned long l) {\n"
+      << "    (void)v, (void)lanes, (void)l;\n"
+      << "    rg_model::params<rg_batch> p;\n";
+    for (std::size_t i = 0; i < f.parameters.size(); ++i)
+        s << "    p." << f.parameters[i].name << " = rg_batch::load_unaligned(v + " << i
+          << " * lanes + l);\n";
+    s << "    return p;\n}\n}\n\n"
       << "extern \"C\" {\n"
       << "unsigned long rotgen_lane_width() { return rg_batch::size; }\n"
       << "void rotgen_rhs_lanes(const double* v, double t, const double* y, double* dydt,\n"
       << "                      unsigned long lanes) {\n"
-      << "    (void)v;\n"
       << "    for (unsigned long l = 0; l < lanes; l += rg_batch::size) {\n"
-      << "        rg_model::params<rg_batch> p;\n";
-    for (std::size_t i = 0; i < f.parameters.size(); ++i)
-        s << "        p." << f.parameters[i].name << " = rg_batch::load_unaligned(v + " << i
-          << " * lanes + l);\n";
-    const std::size_t n = f.state.size();
-    s << "        rg_batch yb[" << n << "], db[" << n << "];\n"
+      << "        rg_batch yb[" << n << "], db[" << n << "];\n"
       << "        for (unsigned long c = 0; c < " << n << "; ++c)\n"
       << "            yb[c] = rg_batch::load_unaligned(y + c * lanes + l);\n"
-      << "        rg_model::rhs(rg_batch(t), yb, db, p);\n"
+      << "        rg_model::rhs(rg_batch(t), yb, db, rg_params(v, lanes, l));\n"
       << "        for (unsigned long c = 0; c < " << n << "; ++c)\n"
       << "            db[c].store_unaligned(dydt + c * lanes + l);\n"
-      << "    }\n}\n}\n";
+      << "    }\n}\n";
+    if (cf.sys.tay)
+        s << "void rotgen_taylor_lanes(const double* v, double t, double* c, int order,\n"
+          << "                         unsigned long lanes) {\n"
+          << "    const unsigned long m = static_cast<unsigned long>(order) + 1;\n"
+          << "    thread_local std::vector<rg_batch> cb;\n"
+          << "    cb.resize(rg_model::taylor_series * m);\n"
+          << "    for (unsigned long l = 0; l < lanes; l += rg_batch::size) {\n"
+          << "        for (unsigned long i = 0; i < " << n << "; ++i)\n"
+          << "            cb[i * m] = rg_batch::load_unaligned(c + i * m * lanes + l);\n"
+          << "        rg_model::taylor(rg_batch(t), cb.data(), order, rg_params(v, lanes, l));\n"
+          << "        for (unsigned long i = 0; i < " << n << "; ++i)\n"
+          << "            for (unsigned long k = 1; k < m; ++k)\n"
+          << "                cb[i * m + k].store_unaligned(c + (i * m + k) * lanes + l);\n"
+          << "    }\n}\n";
+    s << "}\n";
     return s.str();
 }
 
@@ -101,12 +122,14 @@ template <class V> std::vector<double> by_lane(const std::vector<V>& values, std
 
 using samples = std::vector<std::pair<double, Eigen::VectorXd>>;
 
-// A lane's run: its samples (none when the member must run alone), the events it met in time order
-// and the terminal one that ended it (-1: none).
+// A lane's run: its samples (none when the member must run alone), the events it met in time order,
+// the terminal one that ended it (-1: none) and the work it took part in: the batch's steps and
+// evaluations up to its own end (the step of its terminal event, or the batch's end).
 struct lane_run {
     samples s;
     std::vector<member_event> events;
     int stopped_by = -1;
+    step_stats stats;
 };
 
 // Lane l of a lane state: its n components.
@@ -156,7 +179,10 @@ void end_lanes(const scene_spec& scene, const event_set<double, Eigen::VectorXd>
             if (std::abs(hit.t - t_end) > std::max(1e-14 * std::abs(t_end), 1e-15)) continue;
         }
         r.events.push_back({i, hit.t, lane_of(hit.y, hit.index / per_lane, n, lanes)});
-        if (scene.events[i].stop && r.stopped_by < 0) r.stopped_by = static_cast<int>(i);
+        if (scene.events[i].stop && r.stopped_by < 0) {
+            r.stopped_by = static_cast<int>(i);
+            r.stats = hit.work; // what its own run, stopped there, reports
+        }
     }
     for (lane_run& r : out) {
         if (r.stopped_by < 0) continue;
@@ -166,20 +192,13 @@ void end_lanes(const scene_spec& scene, const event_set<double, Eigen::VectorXd>
     }
 }
 
-// Integrates the started members' lanes over the scene's sample times with the scene's method.
-template <class Method>
-std::vector<lane_run> integrate_lanes(const prepared_scene& prepared, const lane_kernels& k,
-                                      lane_batch& b, const Method& method, step_stats& stats) {
+// Integrates the started members' lanes, `sys` (its lanes past the members stopped), over the
+// scene's sample times with the scene's method.
+template <class System, class Method>
+std::vector<lane_run> run_system(const prepared_scene& prepared, lane_batch& b, System& sys,
+                                 const Method& method) {
     const scene_spec& scene = prepared.scene();
-    const std::size_t members = b.member_of.size(), n = static_cast<std::size_t>(b.y0[0].size());
-    const std::size_t lanes = (members + k.width - 1) / k.width * k.width;
-    const std::vector<double> p = by_lane(b.parameters, lanes);
-    const auto kernel = [&k, &p, lanes](double t, const double* y, double* dydt) {
-        k.rhs(p.data(), t, y, dydt, lanes);
-    };
-    lane_system<double, decltype(kernel)> sys(kernel, n, lanes);
-    for (std::size_t l = members; l < lanes; ++l)
-        sys.stop(l);
+    const std::size_t members = b.member_of.size(), n = sys.components(), lanes = sys.lanes();
     std::vector<lane_run> out(members);
     std::vector<double> scratch(n); // a lane's state, for its event functions
     event_set<double, Eigen::VectorXd> events = lane_events(prepared, b, lanes, scratch);
@@ -213,7 +232,8 @@ std::vector<lane_run> integrate_lanes(const prepared_scene& prepared, const lane
     const integration_result<double> res =
         events.size() > 0 ? integrate(sys, method, scene.t_start, y, times, observe, events)
                           : integrate(sys, method, scene.t_start, y, times, observe);
-    stats = res.stats;
+    for (lane_run& r : out)
+        r.stats = res.stats;
     end_lanes(scene, events, n, lanes, out);
     // the observer stops the run when no lane is left (ended or to run alone)
     const bool ran = res.ok() || res.code == status::stopped_by_observer;
@@ -222,13 +242,43 @@ std::vector<lane_run> integrate_lanes(const prepared_scene& prepared, const lane
     return out;
 }
 
+// The lane system of the scene's form (with the Taylor method, its coefficients too) over the
+// started members, integrated by run_system.
+template <class Method>
+std::vector<lane_run> integrate_lanes(const prepared_scene& prepared, const lane_kernels& k,
+                                      lane_batch& b, const Method& method) {
+    const std::size_t members = b.member_of.size(), n = static_cast<std::size_t>(b.y0[0].size());
+    const std::size_t lanes = (members + k.width - 1) / k.width * k.width;
+    const std::vector<double> p = by_lane(b.parameters, lanes);
+    const auto kernel = [&k, &p, lanes](double t, const double* y, double* dydt) {
+        k.rhs(p.data(), t, y, dydt, lanes);
+    };
+    const auto run = [&](auto& sys) {
+        for (std::size_t l = members; l < lanes; ++l)
+            sys.stop(l);
+        return run_system(prepared, b, sys, method);
+    };
+    if constexpr (std::is_same_v<Method, taylor<double>>) {
+        const auto coefficients = [&k, &p, lanes](double t, double* c, int order) {
+            k.taylor(p.data(), t, c, order, lanes);
+        };
+        lane_taylor_system<double, decltype(kernel), decltype(coefficients)> sys(
+            kernel, coefficients, n, lanes);
+        return run(sys);
+    } else {
+        lane_system<double, decltype(kernel)> sys(kernel, n, lanes);
+        return run(sys);
+    }
+}
+
 } // namespace
 
 void lane_check(const scene_spec& scene) {
     const std::string& m = scene.integrator.method;
-    if (m != "rk4" && m != "dop853")
-        throw user_error(scene.integrator_where, "--lanes needs the method rk4 or dop853, not " +
-                                                     m + " (or run the sweep without --lanes)");
+    if (m != "rk4" && m != "dop853" && m != "taylor")
+        throw user_error(scene.integrator_where,
+                         "--lanes needs the method rk4, dop853 or taylor, not " + m +
+                             " (or run the sweep without --lanes)");
 }
 
 lane_kernels compile_lanes(const prepared_scene& prepared, stage_timings& timings) {
@@ -247,6 +297,9 @@ lane_kernels compile_lanes(const prepared_scene& prepared, stage_timings& timing
     k.rhs = reinterpret_cast<lane_kernels::kernel>(k.lib.symbol("rotgen_rhs_lanes"));
     using width_fn = unsigned long (*)();
     k.width = reinterpret_cast<width_fn>(k.lib.symbol("rotgen_lane_width"))();
+    if (cf.sys.tay)
+        k.taylor =
+            reinterpret_cast<lane_kernels::taylor_kernel>(k.lib.symbol("rotgen_taylor_lanes"));
     return k;
 #endif
 }
@@ -258,23 +311,29 @@ std::vector<std::optional<run_result>> run_lanes(const prepared_scene& prepared,
     lane_batch b = start_members(prepared, members);
     if (b.member_of.empty()) return results;
     const integrator_spec& ig = prepared.scene().integrator;
-    step_stats stats;
+    const long max_steps = ig.max_steps;
+    const double step = ig.fixed_step() ? ig.step : 0.0;
     std::vector<lane_run> lanes;
     if (ig.method == "rk4") {
         rk4<double> m;
         m.step = ig.step;
-        m.max_steps = static_cast<std::size_t>(ig.max_steps);
-        lanes = integrate_lanes(prepared, kernels, b, m, stats);
+        m.max_steps = static_cast<std::size_t>(max_steps);
+        lanes = integrate_lanes(prepared, kernels, b, m);
+    } else if (ig.method == "taylor") {
+        taylor<double> m;
+        m.rtol = ig.rtol, m.atol = ig.atol, m.step = step;
+        m.max_steps = static_cast<std::size_t>(max_steps);
+        lanes = integrate_lanes(prepared, kernels, b, m);
     } else {
         dop853<double> m(ig.rtol, ig.atol);
-        m.fixed_step = ig.fixed_step() ? ig.step : 0.0;
-        m.max_steps = static_cast<std::size_t>(ig.max_steps);
-        lanes = integrate_lanes(prepared, kernels, b, m, stats);
+        m.fixed_step = step;
+        m.max_steps = static_cast<std::size_t>(max_steps);
+        lanes = integrate_lanes(prepared, kernels, b, m);
     }
     for (std::size_t m = 0; m < members.size(); ++m) {
         const std::size_t l = b.lane_of[m];
         if (l != lane_batch::alone && !lanes[l].s.empty())
-            results[m] = b.parts[m]->finish(std::move(lanes[l].s), stats,
+            results[m] = b.parts[m]->finish(std::move(lanes[l].s), lanes[l].stats,
                                             std::move(lanes[l].events), lanes[l].stopped_by);
     }
     return results;

@@ -6,7 +6,9 @@
 // (4 doubles a batch) when the CPU has both (checked at run time), else for the compiler's default
 // x86-64 target (SSE2, 2 doubles); with -ffp-contract=off, so that the generated arithmetic rounds
 // as the scalar kernel's does and a lane differs from the scalar run only by xsimd's vector sin,
-// cos, ... Lanes need rk4 or dop853 (lane_check).
+// cos, ... Lanes need rk4, dop853 or taylor (lane_check); with taylor the batch kernel library
+// holds the coefficient function on batches too, and the lanes share one order and the smallest
+// of their Jorba-Zou steps (runtime/steppers/taylor_lanes.hpp).
 //
 // Events: each lane watches the scene's events on its own state (the batch's event set holds
 // every lane's, located on the batch's interpolant, so a lane's event times are its scalar run's
@@ -35,14 +37,18 @@ struct lane_kernels {
     // lanes a multiple of width
     using kernel = void (*)(const double* p, double t, const double* y, double* dydt,
                             unsigned long lanes);
+    // taylor(p, t, c, order, lanes): lane_taylor_system's layout (runtime/lanes.hpp)
+    using taylor_kernel = void (*)(const double* p, double t, double* c, int order,
+                                   unsigned long lanes);
     loaded_library lib;
     kernel rhs = nullptr;
-    std::size_t width = 1; // doubles per batch
-    std::string arch;      // "avx2+fma" or "sse2"
+    taylor_kernel taylor = nullptr; // with the Taylor method
+    std::size_t width = 1;          // doubles per batch
+    std::string arch;               // "avx2+fma" or "sse2"
 };
 
-// Throws user_error (at the scene's integrator or first event) when lanes cannot run the scene:
-// a method other than rk4 and dop853, or events.
+// Throws user_error (at the scene's integrator) when lanes cannot run the scene: a method other
+// than rk4, dop853 and taylor.
 void lane_check(const scene_spec& scene);
 
 // The batch kernel of the scene's form (compiled, or loaded from the cache).

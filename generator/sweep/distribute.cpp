@@ -113,6 +113,7 @@ std::string pack(const std::vector<std::pair<std::size_t, member_outcome>>& outc
         put<std::uint64_t>(out, o.rhs_evals);
         put<std::uint64_t>(out, o.status.size());
         out += o.status;
+        put<std::uint8_t>(out, o.in_lanes ? 1 : 0);
         put_doubles(out, o.trajectory);
     }
     return out;
@@ -132,6 +133,7 @@ std::vector<std::pair<std::size_t, member_outcome>> unpack(const std::string& in
         if (at + n > in.size()) throw std::runtime_error("sweep: a truncated MPI message");
         o.status = in.substr(at, n);
         at += n;
+        o.in_lanes = get<std::uint8_t>(in, at) != 0;
         o.trajectory = get_doubles(in, at);
     }
     return outcomes;

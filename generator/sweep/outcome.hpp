@@ -19,6 +19,7 @@ struct member_outcome {
     std::vector<double> event_times; // the first time of each scene event; NaN: it never occurred
     std::uint64_t steps = 0, rhs_evals = 0;
     std::string status = "ok"; // or why the member stopped (or could not start)
+    bool in_lanes = false;     // run in a batch of lanes (sweep --lanes), not alone
     // With trajectories: samples x (1 + columns), row-major; NaN past the last sample reached.
     std::vector<double> trajectory;
     bool ok() const { return status == "ok"; }

@@ -48,14 +48,16 @@ std::string mode_name(sweep_mode m) {
     return m == sweep_mode::grid ? "grid" : m == sweep_mode::zip ? "zip" : "random";
 }
 
+// `lanes` the batch kernel's target with --lanes W > 1, else empty.
 void print_summary(std::ostream& os, const sweep_request& q, const scene_spec& scene,
                    const sweep_plan& plan, const std::vector<member_outcome>& outcomes,
-                   const std::string& workers, double seconds) {
+                   const std::string& workers, const std::string& lanes, double seconds) {
     std::uint64_t steps = 0, evals = 0;
-    std::size_t failed = 0;
+    std::size_t failed = 0, in_lanes = 0;
     for (const auto& o : outcomes) {
         steps += o.steps, evals += o.rhs_evals;
         failed += o.ok() ? 0 : 1;
+        in_lanes += o.in_lanes ? 1 : 0;
     }
     std::string keys;
     for (const auto& k : plan.keys)
@@ -64,8 +66,11 @@ void print_summary(std::ostream& os, const sweep_request& q, const scene_spec& s
        << "  model   " << scene.model.name << " (" << scene.model.file << "), "
        << to_string(scene.form) << " form, method " << scene.integrator.method << "\n"
        << "  members " << outcomes.size() << " (" << mode_name(plan.mode) << " over " << keys
-       << "), " << outcomes.size() - failed << " ok, " << failed << " failed; " << workers << "\n"
-       << "  steps   " << steps << " accepted; " << evals << " RHS evaluations\n"
+       << "), " << outcomes.size() - failed << " ok, " << failed << " failed; " << workers << "\n";
+    if (!lanes.empty())
+        os << "  lanes   " << in_lanes << " of " << outcomes.size() << " members in batches of "
+           << q.lanes << " (" << lanes << ")\n";
+    os << "  steps   " << steps << " accepted; " << evals << " RHS evaluations\n"
        << "  time    " << short_number(seconds) << " s running the members ("
        << short_number(outcomes.empty() ? 0 : outcomes.size() / seconds) << " members/s)\n";
 }
@@ -131,9 +136,11 @@ std::vector<member_outcome> run_batch(const ensemble& e, const member_values& ba
         values.push_back(member_of(e.plan, base, e.rows[m]));
     const std::vector<std::optional<run_result>> results = run_lanes(*e.prepared, *e.lanes, values);
     std::vector<member_outcome> out;
-    for (std::size_t k = 0; k < count; ++k)
+    for (std::size_t k = 0; k < count; ++k) {
         out.push_back(results[k] ? outcome_of(*e.prepared, e.layout, *results[k], trajectories)
                                  : run_one(*e.prepared, e.layout, values[k], trajectories));
+        out.back().in_lanes = results[k].has_value();
+    }
     return out;
 }
 
@@ -172,7 +179,8 @@ int finish(const sweep_request& q, const ensemble& e, const std::string& workers
                      [&] { write_h5(h5, e.scene, e.plan, e.rows, e.layout, outcomes); });
     std::ostringstream discarded;
     std::ostream& summary = q.quiet ? discarded : std::cerr;
-    print_summary(summary, q, e.scene, e.plan, outcomes, workers, seconds);
+    print_summary(summary, q, e.scene, e.plan, outcomes, workers, e.lanes ? e.lanes->arch : "",
+                  seconds);
     summary << "  wrote   " << summary_out.path() << " (" << outcomes.size() << " members)\n";
     if (q.trajectories)
         summary << "  wrote   " << h5 << " (" << outcomes.size() << " x " << e.layout.samples
@@ -243,8 +251,7 @@ int sweep(const sweep_request& q) {
     if (!root) return 0;
     const std::string workers =
         std::to_string(jobs) + (jobs == 1 ? " thread" : " threads") +
-        (session.size() > 1 ? " on each of " + std::to_string(session.size()) + " MPI ranks" : "") +
-        (e->lanes ? ", lanes of " + std::to_string(q.lanes) + " (" + e->lanes->arch + ")" : "");
+        (session.size() > 1 ? " on each of " + std::to_string(session.size()) + " MPI ranks" : "");
     return finish(q, *e, workers, outcomes, seconds, *summary_out, timings);
 }
 

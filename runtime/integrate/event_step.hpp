@@ -59,13 +59,13 @@ ROTGEN_ALWAYS_INLINE bool step_events(const S& sys, St& st, step_stats& stats, S
             return false;
         }
         interpolate(st, (tz - t) / h, ys);
-        if (events.report(found[z], static_cast<const V&>(ys))) continue;
+        if (events.report(found[z], static_cast<const V&>(ys), stats)) continue;
         y_now = ys; // a terminal event: the others at the same time are reported too
         using std::abs;
         for (std::size_t w = z + 1;
              w < found.size() && abs(found[w].t - tz) <= events.tolerance(tz); ++w) {
             interpolate(st, (found[w].t - t) / h, ys);
-            events.report(found[w], static_cast<const V&>(ys));
+            events.report(found[w], static_cast<const V&>(ys), stats);
         }
         t = tz;
         res.code = status::stopped_by_event;

@@ -54,6 +54,8 @@
 #include <utility>
 #include <vector>
 
+#include "../result.hpp"
+
 namespace rotgen {
 
 enum class event_direction {
@@ -75,12 +77,14 @@ template <class T, class State> struct event {
     std::string name;
 };
 
-// One event that occurred: which, when, which way g crossed (+1 rising, −1 falling), the state.
+// One event that occurred: which, when, which way g crossed (+1 rising, −1 falling), the state,
+// and the run's work up to it (the step that holds it included): what a run stopped by it reports.
 template <class T, class State> struct event_hit {
     std::size_t index;
     T t;
     int sign;
     State y;
+    step_stats work{};
 };
 
 template <class T, class State> class event_set {
@@ -179,9 +183,10 @@ template <class T, class State> class event_set {
     };
     const std::vector<zero>& found() const { return m_found; }
 
-    // Reports a found zero with the state there; false when it is terminal.
-    bool report(const zero& z, const State& y) {
-        m_hits.push_back({z.index, z.t, z.sign, y});
+    // Reports a found zero with the state there and the run's work so far; false when it is
+    // terminal.
+    bool report(const zero& z, const State& y, const step_stats& work = {}) {
+        m_hits.push_back({z.index, z.t, z.sign, y, work});
         m_track[z.index].last_fire = z.t;
         m_track[z.index].fired = true;
         if (!m_events[z.index].terminal) return true;

@@ -38,11 +38,13 @@
 #include <utility>
 #include <vector>
 
+#include "../lanes.hpp"
 #include "../stepper.hpp"
 
 namespace rotgen {
 
 template <class T, class S> class taylor_stepper;
+template <class T, class S> class taylor_lane_stepper; // taylor_lanes.hpp
 
 namespace detail {
 template <class S, class T, class = void> struct has_taylor : std::false_type {};
@@ -62,7 +64,10 @@ template <class T> struct taylor {
     static constexpr bool adaptive = false; // no error estimate: the step is chosen, not checked
     static constexpr bool chooses_step = true;
     template <class S> static constexpr bool supports = has_taylor_v<S, T>;
-    template <class S> using stepper = taylor_stepper<T, S>;
+    // a lane system (lanes.hpp) expands its lanes together and takes their smallest step
+    template <class S>
+    using stepper = std::conditional_t<detail::is_lane_system_v<S>, taylor_lane_stepper<T, S>,
+                                       taylor_stepper<T, S>>;
 
     T rtol = T(1e-10); // relative tolerance (eps of the relative control)
     T atol = T(1e-10); // absolute tolerance (eps of the absolute control)
@@ -229,6 +234,10 @@ template <class T, class S> class taylor_stepper {
     vector m_y1, m_f0;
 };
 
-static_assert(check_method<taylor<double>>());
+} // namespace rotgen
 
+#include "taylor_lanes.hpp"
+
+namespace rotgen {
+static_assert(check_method<taylor<double>>());
 } // namespace rotgen

@@ -3,7 +3,8 @@
 //   scalar right-hand side applied to each lane, so there is no vector-math rounding to allow for);
 // - DOP853 with one shared step: every lane within the tolerance of the exact solution, with the
 //   step count of the most demanding lane (the largest lane error norm chooses the step);
-// - a lane whose f stops being finite is stopped alone; a stopped lane stays where it was.
+// - a lane whose f stops being finite is stopped alone; a stopped lane stays where it was;
+// - an event hit records the run's work up to it (what a lane ended by it reports).
 #include <catch2/catch.hpp>
 
 #include "integrate/integrate.hpp"
@@ -183,6 +184,38 @@ TEST_CASE("the finiteness tests see an infinity or a NaN at every position") {
             CHECK(sys.failed_lane(l) == (l == at % 4));
             for (std::size_t c = 0; c < 3; ++c) // a failed lane's derivatives are 0
                 CHECK(d[c * 4 + l] == (l == at % 4 ? 0.0 : -1e300));
+        }
+    }
+}
+
+TEST_CASE("an event hit records the work up to it: a run it stops reports the same") {
+    // x' = v, v' = -x from (1, 0): x falls through 0 at t = pi/2 (terminal) and a non-terminal
+    // watch on v rising through 0 at t = pi, past the terminal one in the second run only
+    const auto sys = make_system<double, 2>(
+        [](double, const double* y, double* d) { d[0] = y[1], d[1] = -y[0]; });
+    for (const bool stop : {true, false}) {
+        event_set<double, Eigen::Vector2d> events;
+        events.add([](double, const Eigen::Vector2d& y) { return y[0]; }, event_direction::falling,
+                   stop, "x");
+        Eigen::Vector2d y(1.0, 0.0);
+        const std::vector<double> t = times(10, 4.0);
+        rk4<double> method;
+        method.step = 0.01;
+        const auto res = integrate(
+            sys, method, 0.0, y, t, [](double, const Eigen::Vector2d&) {}, events);
+        REQUIRE(events.hits().size() == 1);
+        const step_stats& work = events.hits()[0].work;
+        // the step that holds pi/2: the 158th (observed 158 steps, 633 evaluations with the
+        // evaluation at its end for the event search)
+        CHECK(work.steps == 158);
+        CHECK(work.rhs_evals >= 4 * work.steps);
+        if (stop) {
+            CHECK(res.code == status::stopped_by_event);
+            CHECK(res.stats.steps == work.steps);
+            CHECK(res.stats.rhs_evals == work.rhs_evals);
+        } else {
+            CHECK(res.ok());
+            CHECK(res.stats.steps == 400);
         }
     }
 }

@@ -5,7 +5,11 @@
 //   tolerance; summary.csv has the same columns and rows;
 // - a member the batch cannot carry (a start in the body form, a chart switch during the run, a
 //   batch that fails at max_steps, a start that is a user error) gives the scalar run's row;
-// - events: the scalar runs' event times, a terminal event ending its own lane only;
+// - taylor lanes within the tolerance, the same bytes for -j 1 and -j 2;
+// - events: the scalar runs' event times, a terminal event ending its own lane only, and a lane's
+//   own steps and rhs_evals up to its end (RK4: its scalar run's; DOP853 and Taylor: the shared
+//   steps until then);
+// - the summary's lanes line: how many members ran in batches;
 // - scenes lanes cannot run and bad --lanes values: one line, exit 2, nothing written.
 #include "support.hpp"
 
@@ -16,6 +20,7 @@
 
 #include <sys/stat.h>
 
+#include <array>
 #include <cmath>
 #include <random>
 #include <sstream>
@@ -45,20 +50,46 @@ std::string field(const std::string& line, std::size_t i) {
     return cell;
 }
 
-// summary.csv of the scene without and with --lanes W (exit status 0 or `status`).
-std::pair<std::string, std::string> summaries(const scratch_file& scene, const std::string& name,
-                                              int lanes, int status = 0) {
-    std::string out[2];
+// summary.csv of the scene without and with --lanes W (exit status 0 or `status`), and the lanes
+// run's summary line on lanes ("lanes   N of M members in batches of W (ARCH)", without its
+// indent; empty if none).
+struct summary_pair {
+    std::string scalar, lanes, line;
+};
+summary_pair summaries(const scratch_file& scene, const std::string& name, int lanes,
+                       int status = 0, const std::string& jobs = "2") {
+    summary_pair out;
     for (int k = 0; k < 2; ++k) {
         const std::string dir = scratch(name + (k == 0 ? "_scalar" : "_lanes"));
         const test::run_result r =
-            run_rotgen("sweep '" + scene.path + "' -o '" + dir + "' -q -j 2" +
-                       (k == 0 ? std::string() : " --lanes " + std::to_string(lanes)));
+            run_rotgen("sweep '" + scene.path + "' -o '" + dir + "' -j " + jobs +
+                       (k == 0 ? std::string(" -q") : " --lanes " + std::to_string(lanes)));
         INFO(r.err);
         REQUIRE(r.status == status);
-        out[k] = read_file(dir + "/summary.csv");
+        (k == 0 ? out.scalar : out.lanes) = read_file(dir + "/summary.csv");
+        for (const std::string& line : text_lines(r.out + r.err))
+            if (k == 1 && line.rfind("  lanes   ", 0) == 0) out.line = line.substr(2);
     }
-    return {out[0], out[1]};
+    return out;
+}
+
+// The summary's lanes line for `in` of `of` members in batches of `w`, on either target.
+bool lanes_line_is(const std::string& line, std::size_t in, std::size_t of, int w) {
+    const std::string head = "lanes   " + std::to_string(in) + " of " + std::to_string(of) +
+                             " members in batches of " + std::to_string(w) + " (";
+    return line == head + "avx2+fma)" || line == head + "sse2)";
+}
+
+// The `steps` and `rhs_evals` columns of the summary written by summaries(scene, name, ...) and
+// its scalar twin: {scalar steps, lanes steps, scalar rhs_evals, lanes rhs_evals} per member.
+std::vector<std::array<double, 4>> work_columns(const std::string& name) {
+    const csv_table s = read_csv(scratch(name + "_scalar/summary.csv"));
+    const csv_table l = read_csv(scratch(name + "_lanes/summary.csv"));
+    std::vector<std::array<double, 4>> out;
+    for (std::size_t m = 0; m < s.rows.size(); ++m)
+        out.push_back({s.values("steps")[m], l.values("steps")[m], s.values("rhs_evals")[m],
+                       l.values("rhs_evals")[m]});
+    return out;
 }
 
 // The largest relative difference of the values of the columns `prefix`* (final.*: the last
@@ -86,6 +117,26 @@ double largest_difference(const std::string& name, const std::string& a, const s
               b_lines[m].substr(b_lines[m].rfind(','))); // status
     }
     return worst;
+}
+
+// The falling top's lanes (the events test below) share their steps: the members that reach the
+// floor (0, 1, 2) report the shared steps until then, fewer than the batch's total that the
+// others (3..7) report, and at least as many as their scalar runs (the batch's step is the
+// smallest its lanes need); rhs_evals likewise.
+void check_shared_work(const std::string& name) {
+    const auto w = work_columns(name);
+    REQUIRE(w.size() == 8);
+    for (std::size_t m = 3; m < 8; ++m) {
+        CHECK(w[m][1] == w[7][1]);
+        CHECK(w[m][3] == w[7][3]);
+    }
+    for (std::size_t m = 0; m < 3; ++m) {
+        INFO("member " << m);
+        CHECK(w[m][1] < w[7][1]);
+        CHECK(w[m][3] < w[7][3]);
+        CHECK(w[m][1] >= w[m][0]);
+        CHECK(w[m][3] >= w[m][2]);
+    }
 }
 
 } // namespace
@@ -141,12 +192,12 @@ TEST_CASE("sweep --lanes: rk4 lanes end within rounding of the scalar runs, dop8
                              "    parameters.h: {values: [0.1, 0.3]}\n";
     {
         const scratch_file scene("lanes_rk4.yaml", heavy_top("{method: rk4, step: 0.01}", vary));
-        const auto [scalar, lanes] = summaries(scene, "lanes_rk4", 4);
-        const auto a = text_lines(scalar), b = text_lines(lanes);
-        REQUIRE(a.size() == 21);
-        for (std::size_t m = 1; m < a.size(); ++m) { // the scalar runs' steps and evaluations
-            CHECK(field(a[m], 11) == field(b[m], 11));
-            CHECK(field(a[m], 12) == field(b[m], 12));
+        const auto [scalar, lanes, line] = summaries(scene, "lanes_rk4", 4);
+        CHECK(lanes_line_is(line, 20, 20, 4)); // every member ran in a batch
+        REQUIRE(text_lines(scalar).size() == 21);
+        for (const auto& w : work_columns("lanes_rk4")) { // the scalar runs' steps and evaluations
+            CHECK(w[0] == w[1]);
+            CHECK(w[2] == w[3]);
         }
         // observed 5.6e-16 after 200 steps (the ulps of sin and cos, carried along)
         CHECK(largest_difference("lanes_rk4", scalar, lanes) < 5e-15);
@@ -154,10 +205,30 @@ TEST_CASE("sweep --lanes: rk4 lanes end within rounding of the scalar runs, dop8
     {
         const scratch_file scene("lanes_dop853.yaml",
                                  heavy_top("{method: dop853, rtol: 1e-8, atol: 1e-10}", vary));
-        const auto [scalar, lanes] = summaries(scene, "lanes_dop853", 4);
+        const auto [scalar, lanes, line] = summaries(scene, "lanes_dop853", 4);
+        CHECK(lanes_line_is(line, 20, 20, 4));
         // observed 4.6e-10: rtol's scale (each run is within the tolerance of the true solution)
         CHECK(largest_difference("lanes_dop853", scalar, lanes) < 4e-9);
     }
+}
+
+TEST_CASE("sweep --lanes: taylor lanes agree with the scalar runs within the tolerance, the same "
+          "for any -j",
+          "[sweep][lanes][taylor]") {
+    const std::string vary = "sweep:\n  vary:\n    initial.theta: {from: 0.2, to: 1.4, count: 10}\n"
+                             "    parameters.h: {values: [0.1, 0.3]}\n";
+    const scratch_file scene("lanes_taylor.yaml",
+                             heavy_top("{method: taylor, rtol: 1e-10, atol: 1e-10}", vary));
+    const auto [scalar, lanes, line] = summaries(scene, "lanes_taylor", 8);
+    CHECK(lanes_line_is(line, 20, 20, 8));
+    // observed 1.6e-11: each run within rtol 1e-10 of the true solution
+    CHECK(largest_difference("lanes_taylor", scalar, lanes) < 1.6e-10);
+    // the batch takes the smallest of its lanes' steps: never fewer than a member alone
+    for (const auto& w : work_columns("lanes_taylor"))
+        CHECK(w[1] >= w[0]);
+    // threads take whole batches: one thread writes the same bytes
+    const auto one = summaries(scene, "lanes_taylor_j1", 8, 0, "1");
+    CHECK(one.lanes == lanes);
 }
 
 TEST_CASE("sweep --lanes: members a batch cannot carry give the scalar runs' rows",
@@ -171,7 +242,8 @@ TEST_CASE("sweep --lanes: members a batch cannot carry give the scalar runs' row
                   "sweep:\n  mode: zip\n  vary:\n    initial.theta: {values: [0.5, 0.3, 0.05, "
                   "0.6, 0.7]}\n    initial.theta_dot: {values: [0, -3, 0, 0, 0]}\n"
                   "    initial.psi_dot: {values: [30, 0, 30, 30, 30]}\n"));
-    const auto [scalar, lanes] = summaries(chart, "lanes_chart", 4);
+    const auto [scalar, lanes, line] = summaries(chart, "lanes_chart", 4);
+    CHECK(lanes_line_is(line, 3, 5, 4)); // members 1 and 2 ran alone
     const auto a = text_lines(scalar), b = text_lines(lanes);
     REQUIRE(a.size() == 6);
     CHECK(a[2] == b[2]);
@@ -185,7 +257,8 @@ TEST_CASE("sweep --lanes: members a batch cannot carry give the scalar runs' row
                   "switch_chart: false\nsweep:\n  mode: zip\n  vary:\n    initial.theta: "
                   "{values: [0.5, 0, 0.6, 0.5]}\n    initial.psi_dot: {values: [30, 30, 30, "
                   "3000]}\n"));
-    const auto [s2, l2] = summaries(failing, "lanes_failing", 4, 3);
+    const auto [s2, l2, line2] = summaries(failing, "lanes_failing", 4, 3);
+    CHECK(lanes_line_is(line2, 0, 4, 4));
     CHECK(s2 == l2);
     CHECK(text_lines(s2)[4].find("max_steps = 400 reached") != std::string::npos);
 }
@@ -207,7 +280,13 @@ TEST_CASE("sweep --lanes: lanes find the scalar runs' events and a terminal one 
     };
     {
         const scratch_file scene("lanes_events_rk4.yaml", scene_text("{method: rk4, step: 0.01}"));
-        const auto [scalar, lanes] = summaries(scene, "lanes_events_rk4", 8);
+        const auto [scalar, lanes, line] = summaries(scene, "lanes_events_rk4", 8);
+        CHECK(lanes_line_is(line, 8, 8, 8));
+        // a lane's own steps and evaluations, up to its terminal event: its scalar run's
+        for (const auto& w : work_columns("lanes_events_rk4")) {
+            CHECK(w[0] == w[1]);
+            CHECK(w[2] == w[3]);
+        }
         const csv_table t = read_csv(scratch("lanes_events_rk4_lanes/summary.csv"));
         const std::vector<double> end = t.values("final.t"), floor = t.values("event.floor");
         CHECK(end[0] == floor[0]); // stopped at the floor: its state is the last row
@@ -222,11 +301,23 @@ TEST_CASE("sweep --lanes: lanes find the scalar runs' events and a terminal one 
     {
         const scratch_file scene("lanes_events_dop853.yaml",
                                  scene_text("{method: dop853, rtol: 1e-12, atol: 1e-12}"));
-        const auto [scalar, lanes] = summaries(scene, "lanes_events_dop853", 8);
+        const auto [scalar, lanes, line] = summaries(scene, "lanes_events_dop853", 8);
+        CHECK(lanes_line_is(line, 8, 8, 8));
+        check_shared_work("lanes_events_dop853");
         // observed 7.8e-13 for the event times and 4.2e-10 for the final values (theta_dot at the
         // floor, where the runs' shared and own steps differ most)
         CHECK(largest_difference("lanes_events_dop853", scalar, lanes, "event.") < 8e-12);
         CHECK(largest_difference("lanes_events_dop853", scalar, lanes) < 4e-9);
+    }
+    {
+        const scratch_file scene("lanes_events_taylor.yaml",
+                                 scene_text("{method: taylor, rtol: 1e-12, atol: 1e-12}"));
+        const auto [scalar, lanes, line] = summaries(scene, "lanes_events_taylor", 8);
+        CHECK(lanes_line_is(line, 8, 8, 8));
+        check_shared_work("lanes_events_taylor");
+        // observed 4.9e-15 for the event times and 5.4e-12 for the final values
+        CHECK(largest_difference("lanes_events_taylor", scalar, lanes, "event.") < 5e-14);
+        CHECK(largest_difference("lanes_events_taylor", scalar, lanes) < 5e-11);
     }
 }
 
@@ -236,8 +327,8 @@ TEST_CASE("sweep --lanes: what lanes cannot run is refused with one line, exit 2
     const auto [scene_tail, option,
                 message] = GENERATE(table<std::string, std::string, std::string>({
         row{"{method: dopri5}", "--lanes 4",
-            "lanes_bad.yaml:4:13: --lanes needs the method rk4 or dop853, not dopri5 (or run the "
-            "sweep without --lanes)"},
+            "lanes_bad.yaml:4:13: --lanes needs the method rk4, dop853 or taylor, not dopri5 (or "
+            "run the sweep without --lanes)"},
         row{"{method: rk4, step: 0.01}", "--lanes 0",
             "rotgen sweep: --lanes needs a whole number of lanes from 1 to 64, got '0'"},
         row{"{method: rk4, step: 0.01}", "--lanes four",

@@ -1,0 +1,100 @@
+#!/usr/bin/env bash
+# rotgen sweep --lanes with the Taylor method (Markdown on stdout, progress on stderr):
+#
+#   bash bench/lanes/taylor_lanes.sh build/rotgen > bench/results/taylor_lanes.md
+#
+# The heavy top of bench/sweep.sh (models/heavy_top.yaml, 1024 members over initial theta
+# 0.1 .. 1.5, t = 0 .. 10, 101 samples), integrated by `taylor` at rtol = atol = 1e-12: on one
+# thread, one member at a time and with `--lanes 4` and `--lanes 8`; the same to t = 0.01 (a
+# member's cost outside its integration). Each figure is the best of 9 of the sweep's own "running
+# the members" time (kernels compiled once, before), the three ways interleaved (one of each in
+# turn) so that all see the same load. Timing claims live here, never in ctest.
+set -euo pipefail
+rotgen=$(realpath "${1:?usage: taylor_lanes.sh ROTGEN}")
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+export ROTGEN_CACHE_DIR=$work/cache # its own kernel cache: the libraries timed below are these
+members=1024 runs=${RUNS:-9}
+
+cat >"$work/taylor.yaml" <<YAML
+model: $root/models/heavy_top.yaml
+initial: {phi: 0, theta: 0.5, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 30}
+time: {start: 0, end: 10, samples: 101}
+integrator: {method: taylor, rtol: 1e-12, atol: 1e-12}
+record: [theta, energy]
+sweep:
+  vary:
+    initial.theta: {from: 0.1, to: 1.5, count: $members}
+YAML
+sed 's/end: 10,/end: 0.01,/' "$work/taylor.yaml" >"$work/short.yaml"
+
+# "WALL CPU" of one sweep of $1 with the options $2...: WALL the sweep's own "running the members"
+# seconds, CPU the command's user + system seconds (preparation included) from /usr/bin/time
+one_run() {
+  local scene=$1 t
+  shift
+  rm -rf "$work/out"
+  t=$(/usr/bin/time -f "cpu %U %S" -o "$work/cpu" "$rotgen" sweep "$scene" -o "$work/out" -j 1 "$@" 2>&1 |
+      sed -n 's/^  time    \([0-9.e+-]*\) s running the members.*/\1/p')
+  [[ -n $t ]] || { echo "taylor_lanes.sh: no time from: $scene $*" >&2; exit 1; }
+  echo "$t $(awk '/^cpu/ { print $2 + $3 }' "$work/cpu")"
+}
+# "WALL CPU" for each of: alone, --lanes 4, --lanes 8 on the scene $1, each the smallest of $runs
+# runs (wall and CPU apart), the ways interleaved.
+best_each() {
+  local -a best=(9e9 9e9 9e9) cpu=(9e9 9e9 9e9) opts=("" "--lanes 4" "--lanes 8")
+  local t c k
+  for ((r = 0; r < runs; r++)); do
+    for k in 0 1 2; do
+      # shellcheck disable=SC2086
+      read -r t c < <(one_run "$1" ${opts[k]})
+      best[k]=$(awk -v a="$t" -v b="${best[k]}" 'BEGIN { print (a < b ? a : b) }')
+      cpu[k]=$(awk -v a="$c" -v b="${cpu[k]}" 'BEGIN { print (a < b ? a : b) }')
+    done
+  done
+  echo "${best[0]} ${cpu[0]} ${best[1]} ${cpu[1]} ${best[2]} ${cpu[2]}"
+}
+for way in "" "--lanes 4" "--lanes 8"; do # compile the kernels into the cache
+  # shellcheck disable=SC2086
+  "$rotgen" sweep "$work/taylor.yaml" -o "$work/warm" -q -j 1 $way
+done
+summary=$("$rotgen" sweep "$work/taylor.yaml" -o "$work/out" -j 1 --lanes 8 2>&1)
+lanes_line=$(sed -n 's/^  lanes   //p' <<<"$summary")
+steps_lanes=$(sed -n 's/^  steps   //p' <<<"$summary")
+steps_alone=$("$rotgen" sweep "$work/taylor.yaml" -o "$work/out" -j 1 2>&1 | sed -n 's/^  steps   //p')
+echo "taylor to t = 10: alone, --lanes 4, --lanes 8" >&2
+read -r one one_c l4 l4_c l8 l8_c < <(best_each "$work/taylor.yaml")
+echo "taylor to t = 0.01: alone, --lanes 4, --lanes 8" >&2
+read -r s_one s_one_c s_l4 s_l4_c s_l8 s_l8_c < <(best_each "$work/short.yaml")
+
+ratio() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", a / b }'; }
+us() { awk -v t="$1" -v n=$members 'BEGIN { printf "%.0f", t / n * 1e6 }'; }
+sub_us() { awk -v a="$1" -v b="$2" -v n=$members 'BEGIN { printf "%.0f", (a - b) / n * 1e6 }'; }
+cat <<EOF
+# rotgen sweep --lanes with the Taylor method
+
+\`bash bench/lanes/taylor_lanes.sh build/rotgen > bench/results/taylor_lanes.md\`; $(nproc) cores
+($(grep -m1 'model name' /proc/cpuinfo | sed 's/.*: //')), load average $(cut -d' ' -f1-3 /proc/loadavg)
+when it finished (the machine is shared: the figures are the best of $runs runs, interleaved, and
+still move with the load).
+
+The heavy top of \`bench/sweep.sh\`: $members members (initial theta 0.1 .. 1.5), t = 0 .. 10, 101
+samples, \`taylor\` at rtol = atol = 1e-12, one thread; the time is the sweep's own "running the
+members" (the kernels compiled once, before).
+
+| run | wall s | wall µs per member | speed-up | integration alone, wall µs per member | its speed-up | CPU µs per member | integration alone, CPU µs per member | its speed-up |
+|---|---:|---:|---:|---:|---:|---:|---:|---:|
+| one member at a time | $one | $(us "$one") | 1 | $(sub_us "$one" "$s_one") | 1 | $(us "$one_c") | $(sub_us "$one_c" "$s_one_c") | 1 |
+| \`--lanes 4\` | $l4 | $(us "$l4") | $(ratio "$one" "$l4") | $(sub_us "$l4" "$s_l4") | $(ratio "$(sub_us "$one" "$s_one")" "$(sub_us "$l4" "$s_l4")") | $(us "$l4_c") | $(sub_us "$l4_c" "$s_l4_c") | $(ratio "$(sub_us "$one_c" "$s_one_c")" "$(sub_us "$l4_c" "$s_l4_c")") |
+| \`--lanes 8\` | $l8 | $(us "$l8") | $(ratio "$one" "$l8") (goal 2.5) | $(sub_us "$l8" "$s_l8") | $(ratio "$(sub_us "$one" "$s_one")" "$(sub_us "$l8" "$s_l8")") | $(us "$l8_c") | $(sub_us "$l8_c" "$s_l8_c") | $(ratio "$(sub_us "$one_c" "$s_one_c")" "$(sub_us "$l8_c" "$s_l8_c")") |
+| to t = 0.01 (a member's cost outside its integration) | $s_one | $(us "$s_one") | | | | $(us "$s_one_c") | | |
+| the same, \`--lanes 4\` | $s_l4 | $(us "$s_l4") | | | | $(us "$s_l4_c") | | |
+| the same, \`--lanes 8\` | $s_l8 | $(us "$s_l8") | | | | $(us "$s_l8_c") | | |
+
+"Integration alone" is the run to t = 10 minus the run to t = 0.01. CPU: the whole command's user +
+system time (its preparation, the same in every row, cancels in "integration alone"); on a loaded
+machine it moves less than the wall time, which counts the time the process waits for a core. The summary of the \`--lanes 8\`
+sweep: lanes $lanes_line; steps $steps_lanes (one member at a time: $steps_alone; a batch takes
+the smallest of its lanes' steps).
+EOF

@@ -1,0 +1,177 @@
+// rotgen runtime — the Taylor method in lanes (lanes.hpp): W members expanded together by one
+// batch call of their coefficient function, advanced by one shared step. Included by taylor.hpp,
+// whose method picks this stepper for a lane system with Taylor coefficients
+// (lane_taylor_system, lanes.hpp).
+//
+// Coefficient k of component i of lane l is c[(i (p + 1) + k) W + l]: the scalar layout of
+// taylor.hpp with every coefficient widened to the W lanes, so that each loop below runs over the
+// lanes innermost (contiguous, vectorised).
+//   control  per lane, as taylor.hpp: relative when rtol ||y_l||_inf > atol, else absolute
+//   order    one for all lanes: the largest of the live lanes' orders (equal when they share
+//            the control; JZ (3.12))
+//   step     the smallest of the live lanes' Jorba–Zou steps at that order (taylor.hpp's rule on
+//            each lane's own coefficients), so that every lane meets the tolerance: a lane's step
+//            is never longer than its scalar run's would be from the same state
+// Stopped and failed lanes (lanes.hpp) take no part: the system zeroes their coefficients beyond
+// order 0, so that they stay where they are, and they choose neither the order nor the step.
+// One expansion of all lanes counts as one rhs evaluation, as a scalar expansion does.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <vector>
+
+namespace rotgen {
+
+template <class T, class S> class taylor_lane_stepper {
+  public:
+    using scalar = T;
+    using system_type = S;
+    using vector = state_vector<T, S>;
+    using outcome = step_outcome<T>;
+
+    static constexpr int order = 20; // nominal, as taylor_stepper's
+    static constexpr bool error_estimate = false;
+    static constexpr dense_kind dense_output = dense_kind::continuous_extension;
+    static constexpr int dense_order = 20;
+    static constexpr bool uses_jacobian = false;
+    static constexpr bool chooses_step = true;
+
+    taylor_lane_stepper(const taylor<T>& m, std::size_t n)
+        : m_method(m), m_size(n), m_y1(vector::Zero(static_cast<Eigen::Index>(n))), m_f0(m_y1) {
+        const bool rel = m.rtol > T(0), abs_ = m.atol > T(0);
+        m_max_order = m.order > 0 ? m.order
+                                  : std::max(rel ? taylor<T>::order_for(m.rtol) : 2,
+                                             abs_ ? taylor<T>::order_for(m.atol) : 2);
+    }
+
+    bool start(const S& sys, T t0, const vector& y0, step_stats& stats) {
+        m_w = sys.lanes();
+        m_n = sys.components();
+        m_c.assign(m_size * static_cast<std::size_t>(m_max_order + 1), T(0));
+        m_norm0.assign(m_w, T(0));
+        m_relative.assign(m_w, 0);
+        m_acc.assign(m_w, T(0));
+        expand(sys, t0, y0, stats);
+        for (std::size_t i = 0; i < m_n; ++i)
+            for (std::size_t l = 0; l < m_w; ++l)
+                m_f0[static_cast<Eigen::Index>(i * m_w + l)] = at(i, 1)[l];
+        return m_f0.allFinite();
+    }
+    const vector& f_start() const { return m_f0; }
+
+    // The smallest of the live lanes' steps from (t, y) (+inf when every series ends or no lane
+    // is live); expands the lanes there.
+    T choose_step(const S& sys, T t, const vector& y, step_stats& stats) {
+        using std::exp;
+        using std::log;
+        if (!m_expanded) expand(sys, t, y, stats);
+        const int p = m_p;
+        const T inf = std::numeric_limits<T>::infinity();
+        T ln_rho = inf;
+        for (std::size_t l = 0; l < m_w; ++l) {
+            if (!sys.is_live(l)) continue;
+            const T s = m_relative[l] ? m_norm0[l] : T(1);
+            const T np1 = norm(l, p - 1), np = norm(l, p);
+            if (!(np1 == np1) || !(np == np)) return std::numeric_limits<T>::quiet_NaN();
+            const T ln_s = log(s);
+            const T ln_rho_p1 = np1 > T(0) ? (ln_s - log(np1)) / T(p - 1) : inf;
+            const T ln_rho_p = np > T(0) ? (ln_s - log(np)) / T(p) : inf;
+            ln_rho = std::min(ln_rho, std::min(ln_rho_p1, ln_rho_p));
+        }
+        if (ln_rho == inf) return inf;
+        return exp(ln_rho - T(2) - T(0.7) / T(p - 1));
+    }
+
+    outcome attempt(const S& sys, T t, const vector& y, T h, step_stats& stats, bool) {
+        if (!m_expanded) expand(sys, t, y, stats);
+        m_h = h;
+        evaluate(h, m_y1);
+        return {m_y1.allFinite() ? status::ok : status::non_finite, T(0)};
+    }
+
+    bool accept(const S&, step_stats&, bool) {
+        m_expanded = false;
+        return true;
+    }
+
+    const vector& y_new() const { return m_y1; }
+
+    void dense(T theta, vector& out) const { evaluate(theta * m_h, out); }
+
+    int last_order() const { return m_p; }
+
+  private:
+    // Coefficient k of component i, all lanes.
+    const T* at(std::size_t i, int k) const {
+        return m_c.data() +
+               (i * static_cast<std::size_t>(m_p + 1) + static_cast<std::size_t>(k)) * m_w;
+    }
+    T* at(std::size_t i, int k) { return const_cast<T*>(std::as_const(*this).at(i, k)); }
+
+    // max_i |y_i^[k]| of lane l
+    T norm(std::size_t l, int k) const {
+        using std::abs;
+        T r = T(0);
+        for (std::size_t i = 0; i < m_n; ++i) {
+            const T v = abs(at(i, k)[l]);
+            if (!(v == v)) return v;
+            r = std::max(r, v);
+        }
+        return r;
+    }
+
+    // Every lane's polynomial at h (Horner), into out.
+    template <class V> void evaluate(T h, V& out) const {
+        T* r = m_acc.data();
+        for (std::size_t i = 0; i < m_n; ++i) {
+            const T* top = at(i, m_p);
+            for (std::size_t l = 0; l < m_w; ++l)
+                r[l] = top[l];
+            for (int k = m_p - 1; k >= 0; --k) {
+                const T* c = at(i, k);
+                for (std::size_t l = 0; l < m_w; ++l)
+                    r[l] = r[l] * h + c[l];
+            }
+            for (std::size_t l = 0; l < m_w; ++l)
+                out[static_cast<Eigen::Index>(i * m_w + l)] = r[l];
+        }
+    }
+
+    // Each lane's control, the shared order, then the coefficients of every lane.
+    void expand(const S& sys, T t, const vector& y, step_stats& stats) {
+        using std::abs;
+        const taylor<T>& m = m_method;
+        std::fill(m_norm0.begin(), m_norm0.end(), T(0));
+        for (std::size_t i = 0; i < m_n; ++i)
+            for (std::size_t l = 0; l < m_w; ++l)
+                m_norm0[l] = std::max(m_norm0[l], abs(y[static_cast<Eigen::Index>(i * m_w + l)]));
+        int p = m.order > 0 ? m.order : 2;
+        for (std::size_t l = 0; l < m_w; ++l) {
+            m_relative[l] = m.rtol > T(0) && m.rtol * m_norm0[l] > m.atol;
+            if (m.order == 0 && sys.is_live(l))
+                p = std::max(p, taylor<T>::order_for(m_relative[l] ? m.rtol : m.atol));
+        }
+        m_p = p;
+        for (std::size_t i = 0; i < m_n; ++i)
+            for (std::size_t l = 0; l < m_w; ++l)
+                at(i, 0)[l] = y[static_cast<Eigen::Index>(i * m_w + l)];
+        sys.taylor(t, m_c.data(), m_p);
+        ++stats.rhs_evals;
+        m_expanded = true;
+    }
+
+    taylor<T> m_method;
+    std::size_t m_size, m_n = 0, m_w = 1;
+    int m_max_order = 2, m_p = 2;
+    bool m_expanded = false;
+    std::vector<T> m_c, m_norm0;
+    std::vector<char> m_relative;
+    mutable std::vector<T> m_acc; // Horner's running values, one per lane
+    T m_h = T(0);
+    vector m_y1, m_f0;
+};
+
+} // namespace rotgen
