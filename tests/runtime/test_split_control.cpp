@@ -126,3 +126,20 @@ TEST_CASE("samples inside controlled split steps meet rtol", "[splitting][contro
     for (std::size_t i = 0; i < times.size(); ++i)
         CHECK(q_error(got[i], reference(in, y0, times[i])) < 2e-8); // observed up to 2.4e-9
 }
+
+TEST_CASE("the continuous extension of a controlled split step ends at the step's result",
+          "[splitting][control]") {
+    // dense(θ) runs the two half steps of θh/2: at θ = 1 it is the propagated state exactly (one
+    // step of θh instead would differ by the estimate's (2^p − 1) × the local error)
+    const std::array<double, 3> in = {1, 1.2, 0.5};
+    auto sys = heavy_top<double>(in);
+    const state y0 = initial_state(0.5, 10);
+    const split_controlled<double, 4> method(1e-8, 1e-8);
+    split_doubling_stepper<double, decltype(sys), 4> st(method, 7);
+    step_stats stats;
+    REQUIRE(st.start(sys, 0.0, y0, stats));
+    REQUIRE(st.attempt(sys, 0.0, y0, 0.2, stats, true).code == status::ok);
+    state end = y0;
+    st.dense(1.0, end);
+    CHECK((end - st.y_new()).cwiseAbs().maxCoeff() == 0); // observed 0
+}
