@@ -107,7 +107,7 @@ template <class T, class S, int Order> class split_doubling_stepper {
         if (!detail::all_finite(m_y1) || !detail::all_finite(m_full))
             return {status::non_finite, T(0)};
         const T scale = T(1) / T((1 << Order) - 1);
-        for (std::size_t i = 0; i < m_full.size(); ++i)
+        for (std::size_t i = 0; i < detail::size_of(m_full); ++i)
             m_full[i] = (m_y1[i] - m_full[i]) * scale;
         return {status::ok, detail::error_norm(m_full, y, m_y1, m_atol, m_rtol)};
     }
