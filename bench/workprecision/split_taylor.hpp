@@ -3,9 +3,9 @@
 //   split2, split4, split6   steppers/splitting.hpp on the variant's body form (quaternion, omega)
 //                            seen as a split system (split_system.hpp, body_split_system: the
 //                            torque is I omega_dot at omega = 0), with the principal moments of
-//                            the plan's `moments` line; the step is the run's STEP, or from its
-//                            TOL by split_step_for_tolerance (split_step_rule.hpp), as
-//                            generator/run/split_run.cpp chooses it for a scene that gives rtol
+//                            the plan's `moments` line; fixed steps of the run's STEP, or steps
+//                            under error control at rtol = atol = TOL (split_doubling.hpp), as
+//                            generator/run/split_run.cpp runs a scene that gives step or rtol
 //   taylor                   steppers/taylor.hpp on the variant's kernels and its generated Taylor
 //                            coefficients (V::taylor, V::taylor_series), rtol = atol = TOL
 // Their final states go through the variant's common(), like every other row's.
@@ -14,8 +14,8 @@
 #include "run_record.hpp"
 #include "runners.hpp"
 
-#include <split_step_rule.hpp>
 #include <split_system.hpp>
+#include <steppers/split_doubling.hpp>
 #include <steppers/splitting.hpp>
 #include <steppers/taylor.hpp>
 
@@ -50,16 +50,20 @@ class variant_split_system : private variant_body<V>,
     variant_split_system& operator=(const variant_split_system&) = delete;
 };
 
-template <class V, class Method>
-run_record run_split(Method m, int order, const run_spec& spec, const driver_settings& s) {
+template <class V, int Order> run_record run_split(const run_spec& spec, const driver_settings& s) {
     static_assert(V::state_size == 7, "the split methods run the body form with the quaternion");
     const auto sys = std::make_shared<const variant_split_system<V>>(s.moments);
     const auto initial = V::initial();
     Eigen::VectorXd y0(7);
     for (Eigen::Index i = 0; i < 7; ++i)
         y0[i] = static_cast<double>(initial[static_cast<std::size_t>(i)]);
-    m.step = spec.step > 0 ? spec.step
-                           : split_step_for_tolerance(*sys, order, spec.tol, s.t0, y0, s.t1 - s.t0);
+    if (spec.step > 0) {
+        split_method<double, Order> m;
+        m.step = spec.step;
+        m.max_steps = 100000000;
+        return run_system<double>(sys, m, y0, spec, s);
+    }
+    split_controlled<double, Order> m(spec.tol, spec.tol);
     m.max_steps = 100000000;
     return run_system<double>(sys, m, y0, spec, s);
 }
@@ -80,11 +84,11 @@ std::optional<run_record> run_split_taylor(const run_spec& spec, const driver_se
         }
     if constexpr (std::is_same_v<T, double>) {
         if constexpr ((Mask & split2_bit) != 0)
-            if (spec.method == "split2") return run_split<V>(split2<double>(), 2, spec, s);
+            if (spec.method == "split2") return run_split<V, 2>(spec, s);
         if constexpr ((Mask & split4_bit) != 0)
-            if (spec.method == "split4") return run_split<V>(split4<double>(), 4, spec, s);
+            if (spec.method == "split4") return run_split<V, 4>(spec, s);
         if constexpr ((Mask & split6_bit) != 0)
-            if (spec.method == "split6") return run_split<V>(split6<double>(), 6, spec, s);
+            if (spec.method == "split6") return run_split<V, 6>(spec, s);
     }
     return std::nullopt;
 }

@@ -183,13 +183,13 @@ void bench_run::print_summary(double wall_seconds) const {
         const reach& a = c.summary.reached[l].first;
         const reach& b = c.summary.reached[l].second;
         if (!std::isfinite(a.time) && !std::isfinite(b.time)) continue;
-        std::cout << "  " << tol_text(c.summary.levels[l]) << "  rotgen "
-                  << (std::isfinite(a.time) ? short_number(a.time * 1e6) + " us (" + a.curve + ")"
-                                            : "-")
-                  << "  peer "
-                  << (std::isfinite(b.time) ? short_number(b.time * 1e6) + " us (" + b.curve + ")"
-                                            : "-")
-                  << "\n";
+        const double level = c.summary.levels[l];
+        const auto side = [&](const reach& r, bool peer) {
+            return std::isfinite(r.time) ? reach_text(r)
+                                         : "- (" + why_none(out.rows, peer, level) + ")";
+        };
+        std::cout << "  " << tol_text(level) << "  rotgen " << side(a, false) << "  peer "
+                  << side(b, true) << "\n";
     }
     std::cout << "  wrote     " << (c.dir / "results.csv").string()
               << ", results.md, final_states.csv, "

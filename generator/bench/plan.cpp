@@ -220,8 +220,8 @@ void plan_variant(plan_builder& plan, std::size_t i, const sweep_grid& g, bool q
     if (is_main) plan_main(plan, i, g, quick);
 }
 
-// split2/4/6 on the body form with the quaternion (their step from the tolerance by
-// runtime/split_step_rule.hpp, as simulate chooses it from rtol), taylor on the main variant; or
+// split2/4/6 on the body form with the quaternion (under error control at each tolerance, as
+// simulate runs them given rtol), taylor on the main variant; or
 // why each is left out (the refusal simulate gives), as a comment line and in p.left_out.
 void plan_split_taylor(plan_builder& plan, bench_plan& p, const sweep_grid& g,
                        const split_taylor_methods& m) {

@@ -113,7 +113,9 @@ void md_interpolated(std::ostream& md, const bench_summary& s) {
     md << "\n### Interpolated along each curve\n\n"
        << "Time (median) to reach the accuracy on each configuration's error-time curve, "
           "interpolated between its neighbouring points (or a measured run within 10x below "
-          "it); the fastest rotgen and the fastest peer configuration.\n\n"
+          "it; ≤: a curve with no run in that decade competes with its cheapest run more "
+          "accurate than it, an upper bound); the fastest rotgen and the fastest peer "
+          "configuration.\n\n"
        << "| error | rotgen configuration | time | RHS evals | peer configuration | time | RHS "
           "evals "
           "| peer / rotgen |\n|---|---|---:|---:|---|---:|---:|---:|\n";
@@ -121,10 +123,12 @@ void md_interpolated(std::ostream& md, const bench_summary& s) {
         const reach& a = s.reached[l].first;
         const reach& b = s.reached[l].second;
         const bool ha = std::isfinite(a.time), hb = std::isfinite(b.time);
+        const auto time = [](const reach& r) {
+            return (std::isfinite(r.beyond) ? "≤ " : "") + short_number(r.time * 1e6) + " µs";
+        };
         md << "| " << tol_text(s.levels[l]) << " | " << (ha ? a.curve : "—") << " | "
-           << (ha ? short_number(a.time * 1e6) + " µs" : "") << " | "
-           << (ha ? short_number(a.rhs, 4) : "") << " | " << (hb ? b.curve : "—") << " | "
-           << (hb ? short_number(b.time * 1e6) + " µs" : "") << " | "
+           << (ha ? time(a) : "") << " | " << (ha ? short_number(a.rhs, 4) : "") << " | "
+           << (hb ? b.curve : "—") << " | " << (hb ? time(b) : "") << " | "
            << (hb ? short_number(b.rhs, 4) : "") << " | "
            << (ha && hb ? short_number(b.time / a.time, 3) + "×" : "") << " |\n";
     }

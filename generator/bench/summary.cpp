@@ -28,11 +28,21 @@ std::vector<best_entry> best_measured(const std::vector<result_row>& rows,
     return best;
 }
 
+// The cheapest run of a curve more accurate than a tenth of `level` (none: NaN time), as an upper
+// bound of the curve's cost at the level (reach::beyond).
+reach beyond_level(reach r, const std::vector<const result_row*>& points, double level) {
+    for (const result_row* p : points)
+        if (p->error <= level / 10 && !(p->median >= r.time))
+            r.time = p->median, r.rhs = double(p->rhs), r.beyond = p->error;
+    return r;
+}
+
 // The time a curve (points sorted by tolerance or step, coarsest first) needs to reach `level`:
 // between two neighbouring points whose errors straddle the level, log(time) and log(RHS
 // evaluations) are interpolated linearly in log(error); a measured point counts as it is if it
-// is at matched accuracy (within the decade below the level). NaN time if the curve never gets
-// there, or only overshoots it by more than 10x (its cost at the level is then not measured).
+// is at matched accuracy (within the decade below the level). A curve that does neither but runs
+// more accurately than the level competes with an upper bound (beyond_level); NaN time if it
+// never gets there.
 reach reach_on_curve(const std::string& name, const std::vector<const result_row*>& points,
                      double level) {
     reach best_here;
@@ -44,7 +54,7 @@ reach reach_on_curve(const std::string& name, const std::vector<const result_row
             best_here.time = b.median, best_here.rhs = double(b.rhs);
         if (i == 0) continue;
         const result_row& a = *points[i - 1];
-        if (!(a.error > level && b.error <= level)) continue;
+        if (!(a.error > level && b.error <= level && b.error > 0)) continue;
         const double w =
             (std::log(level) - std::log(a.error)) / (std::log(b.error) - std::log(a.error));
         const double t =
@@ -53,7 +63,7 @@ reach reach_on_curve(const std::string& name, const std::vector<const result_row
                                   w * (std::log(double(b.rhs)) - std::log(double(a.rhs))));
         if (!(t >= best_here.time)) best_here.time = t, best_here.rhs = n;
     }
-    return best_here;
+    return std::isfinite(best_here.time) ? best_here : beyond_level(best_here, points, level);
 }
 
 // The fastest curve (interpolated) per level, per kind of peer.
@@ -61,7 +71,7 @@ std::vector<std::pair<reach, reach>> best_interpolated(const std::vector<result_
                                                        const std::vector<double>& levels) {
     std::map<std::string, std::vector<const result_row*>> curves_by_name;
     for (const auto& r : rows)
-        if (r.ok() && std::isfinite(r.median) && r.error > 0)
+        if (r.ok() && std::isfinite(r.median) && r.error >= 0)
             curves_by_name[(r.peer == "rotgen" ? "rotgen " : r.peer + " ") + method_key(r) + " " +
                            r.scalar + " " + r.form]
                 .push_back(&r);
@@ -81,6 +91,25 @@ std::vector<std::pair<reach, reach>> best_interpolated(const std::vector<result_
 }
 
 } // namespace
+
+std::string why_none(const std::vector<result_row>& rows, bool peer, double level) {
+    const result_row* best = nullptr;
+    for (const auto& r : rows)
+        if (is_peer(r) == peer && r.ok() && std::isfinite(r.median) && r.error >= 0 &&
+            (!best || r.error < best->error))
+            best = &r;
+    if (!best) return "no successful run";
+    return "best reached " + short_number(best->error) + " (" + config_name(best) + ")" +
+           (best->error <= level ? "" : ", above " + tol_text(level));
+}
+
+std::string reach_text(const reach& r) {
+    const std::string bound = std::isfinite(r.beyond)
+                                  ? "; an upper bound: its cheapest run reached " +
+                                        short_number(r.beyond) + ", past the level's decade"
+                                  : std::string();
+    return short_number(r.time * 1e6) + " us (" + r.curve + bound + ")";
+}
 
 bool matched_accuracy(double error, double level) {
     return error <= level && error > level / 10;

@@ -43,12 +43,24 @@ struct best_entry {
     const result_row* peer = nullptr;
 };
 
-// The time (and RHS evaluations) a configuration's curve needs to reach an error level.
+// The time (and RHS evaluations) a configuration's curve needs to reach an error level. A curve
+// that never lands in the decade below the level nor straddles it, but has runs more accurate
+// than a tenth of it (a split method that is exact up to rounding on a free body: every run at
+// 3e-15), still competes, with its cheapest such run: `beyond` is that run's error, and the time
+// is an upper bound of the curve's cost at the level.
 struct reach {
     std::string curve;
     double time = NAN, rhs = NAN;
     bool peer = false;
+    double beyond = NAN; // NaN: matched or interpolated at the level
 };
+
+// Why a side (rotgen or peer) has no entry at a level: the most accurate run of that side
+// ("best reached 2e-12 (rotgen dop853 double lagrangian)"), or that it has no successful run.
+std::string why_none(const std::vector<result_row>& rows, bool peer, double level);
+
+// "1.2 us (curve)", with ", an upper bound: it ran to 3e-15" when `beyond` is set.
+std::string reach_text(const reach& r);
 
 struct bench_summary {
     std::vector<double> levels;                   // 1e-3 .. 1e-13

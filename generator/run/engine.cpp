@@ -450,11 +450,11 @@ Eigen::VectorXd scene_run::start() {
     check_finite_start(k0, first, y);
     if (m_split) {
         const integrator_spec& ig = m_scene.integrator;
-        m_split->choose_step(first.system(m_parameters[m_current]), m_scene.t_start, y,
-                             m_scene.t_end - m_scene.t_start);
-        m_result.chart_note = "body form (quaternion, omega) for " + ig.method + ", step " +
-                              short_number(m_split->step()) +
-                              (ig.step > 0 ? "" : " (from rtol " + short_number(ig.rtol) + ")");
+        m_result.chart_note =
+            "body form (quaternion, omega) for " + ig.method +
+            (ig.step > 0 ? ", fixed step " + short_number(ig.step)
+                         : ", steps under error control (step doubling) at rtol " +
+                               short_number(ig.rtol) + ", atol " + short_number(ig.atol));
     }
     return y;
 }

@@ -4,7 +4,7 @@
 #include "inertia/inertia.hpp"
 #include "support/error.hpp"
 
-#include <split_step_rule.hpp>
+#include <steppers/split_doubling.hpp>
 #include <steppers/splitting.hpp>
 
 #include <algorithm>
@@ -72,7 +72,7 @@ split_frame_values split_frame(const Eigen::Matrix3d& inertia) {
 
 split_runner::split_runner(const scene_spec& scene, const Eigen::Matrix3d& inertia)
     : m_method(scene.integrator.method), m_order(m_method.back() - '0'),
-      m_rtol(scene.integrator.rtol), m_step(scene.integrator.step),
+      m_rtol(scene.integrator.rtol), m_atol(scene.integrator.atol), m_step(scene.integrator.step),
       m_max_steps(static_cast<std::size_t>(scene.integrator.max_steps)),
       m_frame(split_frame(inertia)) {}
 
@@ -81,26 +81,28 @@ body_split_system<loaded_system> split_runner::system(const loaded_system& body)
     return body_split_system<loaded_system>(body, m_frame.tensor, m_frame.moments, m_frame.axes);
 }
 
-void split_runner::choose_step(const loaded_system& body, double t0, const Eigen::VectorXd& y0,
-                               double span) {
-    if (m_step > 0) return;
-    m_step = split_step_for_tolerance(system(body), m_order, m_rtol, t0, y0, span);
-}
-
 integration_result<double>
 split_runner::integrate(const loaded_system& body, double t0, Eigen::VectorXd& y,
                         const std::vector<double>& times, const observer& observe,
                         event_set<double, Eigen::VectorXd>* events) const {
     const body_split_system<loaded_system> sys = system(body);
     const auto run = [&](auto method) {
-        method.step = m_step;
         method.max_steps = m_max_steps;
         return events ? rotgen::integrate(sys, method, t0, y, times, observe, *events)
                       : rotgen::integrate(sys, method, t0, y, times, observe);
     };
-    if (m_order == 2) return run(split2<double>());
-    if (m_order == 4) return run(split4<double>());
-    return run(split6<double>());
+    const auto fixed_or_controlled = [&](auto fixed, auto controlled) {
+        if (m_step > 0) {
+            fixed.step = m_step;
+            return run(fixed);
+        }
+        controlled.rtol = m_rtol;
+        controlled.atol = m_atol;
+        return run(controlled);
+    };
+    if (m_order == 2) return fixed_or_controlled(split2<double>(), split2_controlled<double>());
+    if (m_order == 4) return fixed_or_controlled(split4<double>(), split4_controlled<double>());
+    return fixed_or_controlled(split6<double>(), split6_controlled<double>());
 }
 
 } // namespace rotgen

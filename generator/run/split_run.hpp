@@ -39,14 +39,13 @@ struct split_frame_values {
 };
 split_frame_values split_frame(const Eigen::Matrix3d& inertia);
 
-// One split method with its step: the scene's `step`, or the rule of runtime/split_step_rule.hpp
-// from its rtol at the initial state y0.
+// One split method: fixed steps of the scene's `step` (symplectic, runtime/steppers/splitting.hpp),
+// or, given rtol and atol, steps under error control (step doubling and the PI controller,
+// runtime/steppers/split_doubling.hpp).
 class split_runner {
   public:
     split_runner(const scene_spec& scene, const Eigen::Matrix3d& inertia);
-    // Fixes the step (from the rule when the scene gives rtol) for the system at (t0, y0).
-    void choose_step(const loaded_system& body, double t0, const Eigen::VectorXd& y0, double span);
-    double step() const { return m_step; }
+    double step() const { return m_step; } // 0: error-controlled steps
 
     // Events (when not null) are located on the methods' continuous extension: the method run
     // from the step's start by θh, which moves the free body exactly however many turns the step
@@ -62,7 +61,7 @@ class split_runner {
 
     std::string m_method;
     int m_order;
-    double m_rtol, m_step;
+    double m_rtol, m_atol, m_step;
     std::size_t m_max_steps;
     split_frame_values m_frame;
 };

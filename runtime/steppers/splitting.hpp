@@ -22,8 +22,8 @@
 //
 // Fixed step h (`step`); the driver's grid (integrate/fixed.hpp) shortens the last step. Samples
 // inside a step are the method itself run from the step's start by θh (continuous extension of
-// order p; events are located on it). step_stats::rhs_evals counts torque evaluations (kicks). A
-// rule that picks h from a tolerance is split_step_for_tolerance (split_step_rule.hpp).
+// order p; events are located on it). step_stats::rhs_evals counts torque evaluations (kicks).
+// The same methods under error control (rtol, atol): steppers/split_doubling.hpp.
 // Stepper concept (stepper.hpp): order 2/4/6, no error estimate, continuous extension, no Jacobian.
 // Needs a split system (split_system.hpp) and Boost.Math (through free_body/flow.hpp).
 #pragma once

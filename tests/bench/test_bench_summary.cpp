@@ -67,7 +67,9 @@ TEST_CASE("bench summary: runs whose errors differ by orders of magnitude are no
     }
     SECTION("interpolated") {
         CHECK(s.reached[l3].first.curve == "rotgen dopri5 double lagrangian");
-        CHECK(!std::isfinite(s.reached[l3].second.time)); // the peer overshoots 1e-3
+        // the peer overshoots 1e-3 (1e-11): it competes there only with an upper bound, marked
+        CHECK(s.reached[l3].second.beyond == 1e-11);
+        CHECK(std::isnan(s.reached[l3].first.beyond)); // dopri5's 5e-4 is at matched accuracy
         CHECK(std::isfinite(s.reached[l11].second.time));
         // between dop853's 2e-7 (30 us) and 3e-10 (60 us), at 1e-8: log-log interpolation,
         // w = ln(1e-8/2e-7)/ln(3e-10/2e-7) = 0.46083, t = 30 us * 2^w = 41.28 us
@@ -76,11 +78,46 @@ TEST_CASE("bench summary: runs whose errors differ by orders of magnitude are no
         const double w = std::log(1e-8 / 2e-7) / std::log(3e-10 / 2e-7);
         CHECK(r8.time == Approx(30e-6 * std::pow(2.0, w)).epsilon(1e-12));
         CHECK(r8.rhs == Approx(300 * std::pow(2.0, w)).epsilon(1e-12));
-        // the dop853 curve's last run (3e-10) is not credited at 1e-3 .. 1e-8 as it is
-        CHECK(!std::isfinite(s.reached[level_index(s, 1e-5)].first.time));
+        // at 1e-5 the dop853 curve's runs (2e-7, 3e-10) are both past the decade: it competes with
+        // its cheapest, 30 us, as an upper bound, and dopri5 (5e-4) does not reach the level
+        const reach& r5 = s.reached[level_index(s, 1e-5)].first;
+        CHECK(r5.curve == "rotgen dop853 double lagrangian");
+        CHECK(r5.time == 30e-6);
+        CHECK(r5.beyond == 2e-7);
     }
     SECTION("fewest RHS evaluations") {
         CHECK(fewest(rows, "rotgen", "dop853", 1e-6) == &rows[2]);
         CHECK(fewest(rows, "rotgen", "dop853", 1e-3) == nullptr);
     }
+}
+
+TEST_CASE("bench summary: a method whose every run is past the levels' decades still competes",
+          "[bench]") {
+    // issue 25 §6: on the free top the split methods are exact up to rounding (3e-15 at every
+    // tolerance), so no run is within a decade of 1e-12 or 1e-13 and no two runs straddle them;
+    // the summary said "-" there although they were the fastest runs of all
+    std::vector<result_row> rows = {
+        run("rotgen", "dop853", 1e-10, 3e-11, 80e-6, 800),
+        run("rotgen", "dop853", 1e-12, 4e-13, 120e-6, 1200),
+        run("rotgen", "split4", 1e-6, 3e-15, 2e-6, 40),
+        run("rotgen", "split4", 1e-12, 2.5e-15, 5e-6, 90),
+        run("odeint", "rkf78", 1e-10, 2e-10, 90e-6, 900),
+    };
+    for (auto& r : rows)
+        if (r.method == "split4") r.form = "body:quaternion";
+    const bench_summary s = summarise(rows);
+    for (double level : {1e-12, 1e-13}) {
+        const reach& r = s.reached[level_index(s, level)].first;
+        INFO("level " << level);
+        CHECK(r.curve == "rotgen split4 double body:quaternion");
+        CHECK(r.time == 2e-6); // the cheapest split4 run: an upper bound of its cost
+        CHECK(r.beyond == 3e-15);
+        CHECK(reach_text(r).find("an upper bound: its cheapest run reached 3e-15") !=
+              std::string::npos);
+    }
+    // no peer run reaches 1e-12: the table says what the peers reached
+    CHECK(!std::isfinite(s.reached[level_index(s, 1e-12)].second.time));
+    CHECK(why_none(rows, true, 1e-12) ==
+          "best reached 2e-10 (odeint rkf78 double lagrangian tol 1e-10), above 1e-12");
+    CHECK(why_none({}, true, 1e-12) == "no successful run");
 }

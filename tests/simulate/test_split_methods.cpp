@@ -1,12 +1,13 @@
 // The splitting methods from scene files (issue 17): split2/4/6 run the heavy top and a
-// gravity-gradient-like potential as DOP853 does, to their order, with p_phi to rounding; a step
-// from rtol; products of inertia (run in the principal frame); events; models they cannot run
-// (damping) refused with the methods that can.
+// gravity-gradient-like potential as DOP853 does, to their order, with p_phi to rounding; rtol
+// met under error control; products of inertia (run in the principal frame); events; models they
+// cannot run (damping) refused with the methods that can.
 #include "support.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdio>
 
 using namespace rotgen::test;
 
@@ -74,19 +75,44 @@ TEST_CASE("split methods from a scene agree with DOP853 to their order", "[simul
     }
 }
 
-TEST_CASE("split methods take a step from rtol", "[simulate][split]") {
+// max |dq_i| of q0..q3 in the last row of two runs.
+double final_q_error(const csv_table& a, const csv_table& b) {
+    double m = 0;
+    for (const char* c : {"q0", "q1", "q2", "q3"})
+        m = std::max(m, std::abs(a.values(c).back() - b.values(c).back()));
+    return m;
+}
+
+TEST_CASE("split methods given rtol meet it under error control", "[simulate][split]") {
+    // issue 25: the heavy top, theta0 = 0.5, psi_dot = 1000, t = 0..10, where the old fixed step
+    // from rtol gave 5.5e-5 (split4, rtol 1e-6) and 2.0e-4 (split6, rtol 1e-9); and a slow spin
+    // (psi_dot = 10, theta0 = 1.2) where the error is nearest its rtol
     const std::string model = "model: " + model_path("heavy_top") + "\n";
-    const auto ref = simulate(model,
-                              top_run + "integrator: {method: dop853, rtol: 1e-13, "
-                                        "atol: 1e-15}\n",
-                              "split_rtol_ref");
-    for (const char* method : {"split2", "split4", "split6"}) {
-        const auto got = simulate(
-            model, top_run + "integrator: {method: " + method + ", rtol: 1e-7}\n", "split_rtol");
-        const double err = std::abs(got.values("theta").back() - ref.values("theta").back());
-        INFO(method << " error " << err);
-        CHECK(err < 3e-7); // observed 4.1e-9, 2.5e-8, 2.4e-8 at rtol 1e-7
-    }
+    const auto run = [](double theta, double spin) {
+        return "initial: {phi: 0, theta: " + std::to_string(theta) +
+               ", psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: " + std::to_string(spin) +
+               "}\ntime: {end: 10, samples: 3}\nrecord: [q0, q1, q2, q3]\n";
+    };
+    const auto error = [&](double theta, double spin, const std::string& method, double rtol) {
+        const auto ref = simulate(model,
+                                  run(theta, spin) + "integrator: {method: dop853, rtol: 1e-13, "
+                                                     "atol: 1e-13}\n",
+                                  "split_rtol_ref");
+        char tol[32];
+        std::snprintf(tol, sizeof tol, "%g", rtol);
+        const auto got = simulate(model,
+                                  run(theta, spin) + "integrator: {method: " + method +
+                                      ", rtol: " + tol + ", atol: " + tol + "}\n",
+                                  "split_rtol");
+        return final_q_error(got, ref);
+    };
+    const double fast4 = error(0.5, 1000, "split4", 1e-6), fast6 = error(0.5, 1000, "split6", 1e-9);
+    const double slow2 = error(1.2, 10, "split2", 1e-8), slow6 = error(1.2, 10, "split6", 1e-10);
+    INFO("errors " << fast4 << " " << fast6 << " " << slow2 << " " << slow6);
+    CHECK(fast4 < 1.5e-9); // observed 1.6e-10 (the old fixed step: 5.5e-5)
+    CHECK(fast6 < 8e-11);  // observed 8.6e-12 (the old fixed step: 2.0e-4)
+    CHECK(slow2 < 1e-7);   // observed 3.4e-8 (10 rtol; 2.5e-7 with the estimate held to rtol)
+    CHECK(slow6 < 1e-9);   // observed 4.2e-10 (10 rtol; 5.6e-9 held to rtol)
 }
 
 // The angle of the rotation between the attitudes of two rows (columns q0..q3), 4 asin(|a ∓ b|/2)
@@ -132,14 +158,15 @@ TEST_CASE("split methods run a body with products of inertia in its principal fr
     }
 }
 
-// Event times of split4 at two steps against DOP853 at rtol 1e-12 (the same scene otherwise);
-// returns the largest difference at each step.
+// Event times of split4 at two steps against DOP853 at rtol 1e-12 (the same scene otherwise),
+// which finds `crossings` events; returns the largest difference at each step.
 std::vector<double> split_event_errors(const std::string& run, const std::vector<double>& steps,
-                                       const std::string& name) {
+                                       std::size_t crossings, const std::string& name) {
     const std::string model = "model: " + model_path("heavy_top") + "\n";
     simulate(model, run + "integrator: {method: dop853, rtol: 1e-12, atol: 1e-14}\n",
              name + "_ref");
     const csv_table ref = read_csv(scratch(name + "_ref.events.csv"));
+    REQUIRE(ref.rows.size() == crossings); // the loops below compare that many
     std::vector<double> errors;
     for (const double step : steps) {
         simulate(model, run + "integrator: {method: split4, step: " + std::to_string(step) + "}\n",
@@ -159,7 +186,7 @@ TEST_CASE("split methods locate events on their continuous extension", "[simulat
     const auto slow =
         split_event_errors(top_run + "events:\n  - {name: nut, when: theta - 0.502}\n"
                                      "  - {name: turn, when: phi - 0.3, action: stop}\n",
-                           {0.01, 0.005}, "split_events");
+                           {0.01, 0.005}, 22, "split_events");
     INFO("event time errors " << slow[0] << " " << slow[1]);
     CHECK(slow[0] < 1e-7); // observed 1.4e-8 (step 0.01)
     CHECK(slow[1] < 1e-8); // observed 8.8e-10 (step 0.005): 4th order in the event times
@@ -169,7 +196,7 @@ TEST_CASE("split methods locate events on their continuous extension", "[simulat
         "initial: {phi: 0, theta: 0.5, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 300}\n"
         "time: {end: 1, samples: 11}\nrecord: [theta, phi]\n"
         "events: [{name: nut, when: theta - 0.50002}]\n",
-        {0.02}, "split_events_fast");
+        {0.02}, 48, "split_events_fast");
     INFO("fast spin event time error " << fast[0]);
     CHECK(fast[0] < 2e-3); // observed 2.9e-4
 }
