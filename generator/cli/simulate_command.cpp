@@ -1,4 +1,5 @@
-// rotgen simulate SCENE.yaml [-o out.csv] [--events FILE] [--plot out.png] [--timings]
+// rotgen simulate SCENE.yaml [-o out.csv] [--events FILE] [--plot out.png] [--from RUN.csv]
+// [--timings]
 #include "cli/commands.hpp"
 #include "cli/options.hpp"
 #include "simulate/simulate.hpp"
@@ -12,7 +13,8 @@ namespace {
 const command_spec simulate_command{
     "simulate",
     "scene file",
-    "SCENE.yaml [-o out.csv] [--events FILE] [--plot out.png] [--timings] [--quiet]",
+    "SCENE.yaml [-o out.csv] [--events FILE] [--plot out.png] [--from RUN.csv] [--timings] "
+    "[--quiet]",
     "Integrates the scene: derives the model's equations, emits and compiles the scene's form\n"
     "(cached), integrates it and records the scene's quantities at its sample times. Prints a\n"
     "summary (steps, evaluations, invariant drifts) on standard output. A run that cannot finish\n"
@@ -30,6 +32,11 @@ const command_spec simulate_command{
       "                     default <output stem>.events.csv when the scene has events",
       {}},
      {"--plot", "FILE", "the recorded quantities against t (gnuplot): .png, .svg or .pdf", {}},
+     {"--from",
+      "FILE",
+      "start from the last row of an earlier run of the same model: its t and\n"
+      "                     state (the scene's form's, recorded); the scene gives the rest",
+      {}},
      {"--timings", "", "print the wall time of each pipeline stage to standard error", {}},
      {"--quiet", "", "no summary and no progress line (errors are still reported)", {"-q"}}}};
 
@@ -42,7 +49,7 @@ int cmd_simulate(const std::vector<std::string>& args) {
         return 0;
     }
     return simulate({o.operand, o.value("-o"), o.value("--plot"), o.value("--events"),
-                     o.has("--timings"), o.has("--quiet")});
+                     o.has("--timings"), o.has("--quiet"), o.value("--from")});
 }
 
 } // namespace rotgen
