@@ -196,7 +196,7 @@ TEST_CASE("a backward run's summary reports its span and drifts as a forward run
     CHECK(out.find("drift   energy") != std::string::npos);
 }
 
-TEST_CASE("a zero time span is refused, an end before the start is not",
+TEST_CASE("a zero time span is refused, and a backward scene by bench",
           "[simulate][backward][errors]") {
     const scratch_file scene(
         "zero_span.yaml",
@@ -209,4 +209,16 @@ TEST_CASE("a zero time span is refused, an end before the start is not",
                        ":3:23: time end must differ from time start (an end before the start "
                        "runs backward in time)\n");
     CHECK_FALSE(std::ifstream(scratch("zero_span.csv")).good());
+    // bench measures forward runs only: refused before any work
+    const scratch_file back(
+        "bench_backward.yaml",
+        heavy_top + "initial: {phi: 0, theta: 0.5, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 30}\n"
+                    "time: {start: 1, end: 0}\n");
+    const run_result b =
+        run_rotgen("bench '" + back.path + "' -o '" + scratch("bench_backward") + "'");
+    CHECK(b.status == 2);
+    CHECK(b.err == "rotgen: error: " + back.path +
+                       ":3:23: bench measures forward runs: time end must be after time start "
+                       "(simulate runs backward)\n");
+    CHECK_FALSE(std::ifstream(scratch("bench_backward/results.csv")).good());
 }

@@ -162,11 +162,13 @@ TEST_CASE("--from refuses what cannot be continued: the reduced form's angle, a 
                                  "t,theta,p_phi,p_theta,p_psi\n0,1,0.5,0.1,0.2\n1,1.1\n");
     const scratch_file header("from_header.csv", "theta,t\n1,0\n");
     const scratch_file empty("from_empty.csv", "t,theta,p_phi,p_theta,p_psi\n");
+    const scratch_file tilted("from_theta.csv", "t,theta,psi,p_phi,p_theta,p_psi\n1,4,0,1,0,1\n");
     const scratch_file at_end("from_at_end.csv", "t,theta,psi,p_phi,p_theta,p_psi\n2,1,0,1,0,1\n");
     // paths, not the files: GENERATE_COPY copies what it uses, and a copied scratch_file removes
     // its file when the copy goes
     const std::string no_psi_csv = no_psi.path, bad_csv = bad.path, short_csv = short_row.path,
-                      header_csv = header.path, empty_csv = empty.path, at_end_csv = at_end.path;
+                      header_csv = header.path, empty_csv = empty.path, at_end_csv = at_end.path,
+                      theta_csv = tilted.path, none_csv = scratch("from_none.csv");
     using row = std::tuple<std::string, std::string>;
     const auto [file, expected] = GENERATE_COPY(table<std::string, std::string>({
         row{no_psi_csv, no_psi_csv + ":1:1: the last row (line 3) is not a complete state of the "
@@ -178,6 +180,9 @@ TEST_CASE("--from refuses what cannot be continued: the reduced form's angle, a 
         row{header_csv, header_csv + ":1:1: not a CSV written by rotgen simulate (its header "
                                      "does not start with t): nothing to continue from"},
         row{empty_csv, empty_csv + ":1:1: the run has no rows to continue from"},
+        row{theta_csv, theta_csv + ":2:1: theta = 4 is outside [0, pi] (z-x-z Euler angles)"},
+        row{none_csv, none_csv + ": cannot read the run to continue from: No such file or "
+                                 "directory"},
         row{at_end_csv, "SCENE:4:13: the run in " + at_end_csv +
                             " ends at t = 2.0, this scene's end time: nothing to continue "
                             "(change time end)"},
