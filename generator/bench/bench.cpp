@@ -114,6 +114,9 @@ void bench_run::prepare(const bench_options& options) {
     bench_context& c = m_ctx;
     c.opt = options;
     c.scene = load_scene(c.opt.scene);
+    if (c.scene.t_end < c.scene.t_start) // its references and plans are for forward runs
+        throw user_error(c.scene.time_where, "bench measures forward runs: time end must be "
+                                             "after time start (simulate runs backward)");
     c.spec = c.scene.model; // with the scene's parameter values
     for (std::size_t i = 0; i < c.spec.parameters.size(); ++i)
         c.spec.parameters[i].value = c.scene.parameters[i];

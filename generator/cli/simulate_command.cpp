@@ -1,4 +1,5 @@
-// rotgen simulate SCENE.yaml [-o out.csv] [--events FILE] [--plot out.png] [--timings]
+// rotgen simulate SCENE.yaml [-o out.csv] [--events FILE] [--plot out.png] [--from RUN.csv]
+// [--timings]
 #include "cli/commands.hpp"
 #include "cli/options.hpp"
 #include "simulate/simulate.hpp"
@@ -12,7 +13,8 @@ namespace {
 const command_spec simulate_command{
     "simulate",
     "scene file",
-    "SCENE.yaml [-o out.csv] [--events FILE] [--plot out.png] [--view run.html] [--timings] "
+    "SCENE.yaml [-o out.csv] [--events FILE] [--plot out.png] [--view run.html] [--from RUN.csv] "
+    "[--timings] "
     "[--quiet]",
     "Integrates the scene: derives the model's equations, emits and compiles the scene's form\n"
     "(cached), integrates it and records the scene's quantities at its sample times. Prints a\n"
@@ -32,6 +34,11 @@ const command_spec simulate_command{
       {}},
      {"--plot", "FILE", "the recorded quantities against t (gnuplot): .png, .svg or .pdf", {}},
      {"--view", "FILE", "a self-contained HTML page that plays the run in 3D in a browser", {}},
+     {"--from",
+      "FILE",
+      "start from the last row of an earlier run of the same model: its t and\n"
+      "                     state (the scene's form's, recorded); the scene gives the rest",
+      {}},
      {"--timings", "", "print the wall time of each pipeline stage to standard error", {}},
      {"--quiet", "", "no summary and no progress line (errors are still reported)", {"-q"}}}};
 
@@ -49,6 +56,7 @@ int cmd_simulate(const std::vector<std::string>& args) {
     request.plot = o.value("--plot");
     request.events = o.value("--events");
     request.view = o.value("--view");
+    request.from = o.value("--from");
     request.timings = o.has("--timings");
     request.quiet = o.has("--quiet");
     return simulate(request);

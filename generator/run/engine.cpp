@@ -2,6 +2,7 @@
 
 #include "expr/numbers.hpp"
 #include "expr/symbols.hpp"
+#include "run/continue_from.hpp"
 #include "run/kinematics.hpp"
 #include "run/prepared.hpp"
 #include "run/rotor_chart.hpp"
@@ -39,6 +40,11 @@ initial_kinematics continuation(const Eigen::VectorXd& y, const Eigen::VectorXd&
     const Eigen::Quaterniond q = quaternion_from_euler(double(y[0]), double(y[1]), double(y[2]));
     k.quat = Eigen::Quaternion<long double>(q.w(), q.x(), q.y(), q.z());
     return k;
+}
+
+// t is the end time or beyond it, in the direction of the run (backward when t_end < t_start).
+bool reached_end(const scene_spec& scene, double t) {
+    return scene.t_end >= scene.t_start ? t >= scene.t_end : t <= scene.t_end;
 }
 
 void add_stats(step_stats& s, const step_stats& more) {
@@ -320,7 +326,8 @@ scene_run::next scene_run::integrate_segment(Eigen::VectorXd& y, double t_from) 
     const auto observe = [&](double t, const Eigen::VectorXd& yt) {
         m_samples.push_back({t, yt, m_current});
         if (m_on_sample) m_on_sample(t);
-        if (!can_switch || m_samples.size() <= first_sample + 1 || t >= m_scene.t_end) return true;
+        if (!can_switch || m_samples.size() <= first_sample + 1 || reached_end(m_scene, t))
+            return true;
         const double st = sin_theta_of(cf.form, yt);
         return !(euler_chart ? st < switch_below : st > switch_back_above);
     };
@@ -337,7 +344,8 @@ scene_run::next scene_run::integrate_segment(Eigen::VectorXd& y, double t_from) 
     m_left_chart = m_last.code == status::stopped_by_observer;
     add_stats(m_result.stats, m_last.stats);
     if (m_last.code == status::stopped_by_event) return next::done;
-    if (!can_switch || m_samples.empty() || m_samples.back().t >= m_scene.t_end) return next::done;
+    if (!can_switch || m_samples.empty() || reached_end(m_scene, m_samples.back().t))
+        return next::done;
     if (m_left_chart) return euler_chart ? next::body : next::euler;
     return euler_chart && !m_last.ok() && sin_theta_of(cf.form, y) < switch_below ? next::body
                                                                                   : next::done;
@@ -432,10 +440,15 @@ void scene_run::start_method() {
 // The start of the run: the member's exact start, its form's kernels, the method, the state in
 // that form (checked finite); returns the state.
 Eigen::VectorXd scene_run::start() {
-    const initial_kinematics k0 = exact_start();
+    initial_kinematics k0 = exact_start();
     m_result.record = m_scene.record;
     const compiled_form& first =
         compile(m_start_in_body ? other_chart(m_scene.form) : m_scene.form);
+    if (m_scene.from && !m_start_in_body) check_start_row(*m_scene.from, first.f);
+    if (m_scene.from && m_scene.form == form_kind::body) // the attitude as written, not the angles'
+        k0.quat = Eigen::Quaternion<long double>(
+            row_value(*m_scene.from, "q0"), row_value(*m_scene.from, "q1"),
+            row_value(*m_scene.from, "q2"), row_value(*m_scene.from, "q3"));
     for (const auto& name : m_scene.record)
         for (const auto& c : record_columns(name))
             m_result.columns.push_back(c);
@@ -472,7 +485,7 @@ run_result scene_run::run() {
 // Whether the first segment's observer goes on past its sample number `sample` at (t, y), as in
 // integrate_segment (false: the run changes chart there).
 bool scene_run::keeps_chart(std::size_t sample, double t, const Eigen::VectorXd& y) const {
-    if (!m_prepared.can_switch() || sample == 0 || t >= m_scene.t_end) return true;
+    if (!m_prepared.can_switch() || sample == 0 || reached_end(m_scene, t)) return true;
     const form_kind form = m_compiled[m_current]->form;
     const bool euler_chart = form == form_kind::lagrangian || form == form_kind::hamiltonian;
     const double st = sin_theta_of(form, y);

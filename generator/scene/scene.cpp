@@ -244,8 +244,10 @@ class scene_reader {
         if (!n["end"]) throw user_error(at(n), "time needs 'end'");
         m_scene.t_start = n["start"] ? number(n["start"], "time start") : 0.0;
         m_scene.t_end = number(n["end"], "time end");
-        if (!(m_scene.t_end > m_scene.t_start))
-            throw user_error(at(n["end"]), "time end must be after time start");
+        m_scene.time_where = at(n["end"]);
+        if (m_scene.t_end == m_scene.t_start)
+            throw user_error(at(n["end"]), "time end must differ from time start (an end "
+                                           "before the start runs backward in time)");
         if (!std::isfinite(m_scene.t_end - m_scene.t_start))
             throw user_error(at(n["end"]), "the time span end - start is not a finite number");
         if (n["samples"]) {
@@ -309,7 +311,7 @@ class scene_reader {
         if (ig.rtol < 1e-15 && !ig.fixed_step())
             throw user_error(at(n["rtol"]),
                              "integrator rtol below 1e-15 cannot be met in double precision");
-        if (ig.step > 0 && ig.step > m_scene.t_end - m_scene.t_start)
+        if (ig.step > 0 && ig.step > std::abs(m_scene.t_end - m_scene.t_start))
             throw user_error(at(n["step"]), "integrator step is longer than the time span");
     }
 

@@ -21,6 +21,7 @@
 #include "spec/spec.hpp"
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,14 @@ struct integrator_spec {
     bool fixed_step() const { return method == "rk4" || method == "implicit_midpoint" || step > 0; }
 };
 
+// The last row of an earlier run's CSV that a run continues from (run/continue_from.hpp).
+struct start_row {
+    std::string file;               // the CSV
+    int line = 0;                   // the row's line in it
+    std::vector<std::string> names; // the CSV's header: t, then the recorded columns
+    std::vector<double> values;     // the row, one value per name
+};
+
 struct scene_spec {
     std::string file;
     model_spec model;
@@ -61,7 +70,7 @@ struct scene_spec {
     // (run/kinematics: exact_scene_value).
     std::vector<written_value> parameters_written;
     std::array<written_value, 3> angles_written, rates_written;
-    double t_start = 0, t_end = 1;
+    double t_start = 0, t_end = 1; // t_end < t_start: the run goes backward in time
     long samples = 101;
     integrator_spec integrator;
     std::vector<std::string> record; // quantities, in order (body_z expands to 3 columns)
@@ -70,11 +79,15 @@ struct scene_spec {
     // hamiltonian forms); `switch_chart: false` keeps the chart (to measure its failure).
     bool switch_chart = true;
     std::vector<event_spec> events; // zeros of expressions located along the run (events.hpp)
+    // `simulate --from`: the row the run starts from (its t is t_start; angles and rates were set
+    // from it); the body form's attitude is its q0..q3 as written, not the angles'.
+    std::optional<start_row> from;
 
     // Where things were written, for errors found later (an unrecordable quantity, a failed run).
     source_location where;            // the scene file itself
     source_location initial_where;    // the `initial` mapping
     source_location integrator_where; // the `integrator` mapping (or the file)
+    source_location time_where;       // the time's `end`
     std::vector<source_location> record_where;
 };
 

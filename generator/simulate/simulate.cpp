@@ -1,5 +1,6 @@
 #include "simulate/simulate.hpp"
 
+#include "run/continue_from.hpp"
 #include "run/engine.hpp"
 #include "scene/scene.hpp"
 #include "simulate/plot.hpp"
@@ -99,6 +100,9 @@ void print_summary(std::ostream& os, const simulate_request& q, const scene_spec
     os << "rotgen simulate " << q.scene << "\n"
        << "  model   " << scene.model.name << " (" << scene.model.file << "), "
        << to_string(scene.form) << " form, " << r.state_size << " states\n";
+    if (scene.from)
+        os << "  start   from the last row of " << scene.from->file << " (line " << scene.from->line
+           << "), t = " << format_double(scene.t_start) << "\n";
     if (!r.chart_note.empty()) os << "  chart   " << r.chart_note << "\n";
     os << "  method  " << ig.method;
     if (ig.fixed_step())
@@ -185,11 +189,19 @@ int report_partial(const simulate_request& q, const std::string& csv, const scen
     return 3;
 }
 
+// The scene, continued from the last row of q.from when given.
+scene_spec scene_of(const simulate_request& q) {
+    scene_spec scene = load_scene(q.scene);
+    if (!q.from.empty()) continue_from(scene, q.from);
+    return scene;
+}
+
 } // namespace
 
 int simulate(const simulate_request& q) {
-    const scene_spec scene = load_scene(q.scene);
-    const std::vector<std::string> inputs{q.scene, scene.model.file};
+    const scene_spec scene = scene_of(q);
+    std::vector<std::string> inputs{q.scene, scene.model.file};
+    if (!q.from.empty()) inputs.push_back(q.from);
     const std::string csv = csv_path(q);
     // Output paths are checked before any work (no partial output, early clear error).
     if (!q.plot.empty()) plot_terminal(q.plot, 1);

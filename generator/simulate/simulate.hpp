@@ -17,6 +17,7 @@ struct simulate_request {
     std::string view;     // a self-contained HTML page playing the run in 3D; empty: none
     bool timings = false; // one line per pipeline stage to stderr
     bool quiet = false;   // no summary and no progress line
+    std::string from;     // continue from the last row of this CSV (run/continue_from.hpp)
 };
 
 // Returns the exit status. Throws user_error for bad input (nothing is written then).

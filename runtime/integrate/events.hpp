@@ -20,8 +20,9 @@
 //              (Dowell & Jarratt, BIT 11 (1971) 168–174: superlinear, order 1.44, and the bracket
 //              shrinks from both sides) to a bracket of width <= max(1e-14 |t|, 1e-15).
 //   report     zeros in the direction of integration, with the state interpolated there (hits());
-//              `rising` keeps zeros where g goes from negative to positive as the integration
-//              proceeds, `falling` the opposite, `both` either.
+//              `rising` keeps zeros where g goes from negative to positive as t increases,
+//              whichever way the run goes (a backward run meets them going from positive to
+//              negative), `falling` the opposite, `both` either; a hit's sign is in t too.
 //
 // Rules:
 //   - a zero where g touches 0 without changing sign (an even-order zero) is not an event;
@@ -59,8 +60,8 @@
 namespace rotgen {
 
 enum class event_direction {
-    rising,  // g from negative to positive, in the direction of integration
-    falling, // g from positive to negative
+    rising,  // g from negative to positive as t increases (in a backward run too)
+    falling, // g from positive to negative as t increases
     both
 };
 
@@ -77,8 +78,9 @@ template <class T, class State> struct event {
     std::string name;
 };
 
-// One event that occurred: which, when, which way g crossed (+1 rising, −1 falling), the state,
-// and the run's work up to it (the step that holds it included): what a run stopped by it reports.
+// One event that occurred: which, when, which way g crossed as t increases (+1 rising, −1
+// falling), the state, and the run's work up to it (the step that holds it included): what a run
+// stopped by it reports.
 template <class T, class State> struct event_hit {
     std::size_t index;
     T t;
@@ -233,7 +235,7 @@ template <class T, class State> class event_set {
         if (isnan(k.g1) || isnan(k.g0)) return false;
         const int s1 = sign_of(k.g1);
         if (s1 != 0 && k.sign != 0 && s1 != k.sign &&
-            (d == event_direction::both || (d == event_direction::rising) == (s1 > 0)))
+            (d == event_direction::both || (d == event_direction::rising) == (s1 * m_dir > 0)))
             return true;
         if (!k.have_prev) return true;
         const T hm = k.t0 - k.tm;
@@ -259,7 +261,7 @@ template <class T, class State> class event_set {
             const T ga = node(j - 1, i);
             const T tz = ga == T(0) ? ta : refine(i, ta, ga, tb, node(j, i), t, h, f);
             before = s;
-            accept_zero(i, tz, s);
+            accept_zero(i, tz, m_dir > T(0) ? s : -s); // the sign as t increases
         }
     }
 

@@ -203,9 +203,9 @@ TEST_CASE("a zero where g touches 0 without changing sign is not an event", "[ev
     CHECK(events.steps_searched() > 0); // the steps near 2 pi were searched all the same
 }
 
-TEST_CASE("backward integration reports events in its own time order", "[events]") {
-    // From t0 = 0 back to -7: zeros of cos t at -pi/2 (positive to negative as t decreases:
-    // falling) and -3 pi/2 (rising).
+TEST_CASE("backward integration reports events in its own time order, signs in t", "[events]") {
+    // From t0 = 0 back to -7: zeros of cos t at -pi/2 (cos rises through 0 there as t increases,
+    // though the run meets it going from positive to negative) and -3 pi/2 (falling in t).
     const auto sys = oscillator();
     osc_state y(1.0, 0.0);
     event_set<double, osc_state> events;
@@ -217,8 +217,29 @@ TEST_CASE("backward integration reports events in its own time order", "[events]
     REQUIRE(events.hits().size() == 2);
     CHECK_THAT(events.hits()[0].t, WithinAbs(-pi / 2, 2e-12));     // observed 2.3e-13
     CHECK_THAT(events.hits()[1].t, WithinAbs(-3 * pi / 2, 2e-12)); // observed 3.9e-13
-    CHECK(events.hits()[0].sign == -1);
-    CHECK(events.hits()[1].sign == 1);
+    CHECK(events.hits()[0].sign == 1);
+    CHECK(events.hits()[1].sign == -1);
+}
+
+TEST_CASE("rising means g increasing with t in a backward run too", "[events]") {
+    // cos t from 0 back to -12: zeros at -pi/2, -5 pi/2 (rising in t) and -3 pi/2, -7 pi/2
+    // (falling in t). A filter taken in the direction of the run would keep the other pair.
+    const auto sys = oscillator();
+    for (const auto d : {event_direction::rising, event_direction::falling}) {
+        osc_state y(1.0, 0.0);
+        event_set<double, osc_state> events;
+        events.add([](double, const osc_state& s) { return s[0]; }, d);
+        const dop853<double> method(1e-12, 1e-12);
+        const auto r = integrate(
+            sys, method, 0.0, y, std::vector<double>{-12.0}, [](double, const auto&) {}, events);
+        REQUIRE(r.ok());
+        REQUIRE(events.hits().size() == 2);
+        const double first = d == event_direction::rising ? -pi / 2 : -3 * pi / 2;
+        CHECK_THAT(events.hits()[0].t, WithinAbs(first, 2e-12));          // observed < 4e-13
+        CHECK_THAT(events.hits()[1].t, WithinAbs(first - 2 * pi, 4e-12)); // observed < 1e-12
+        for (const auto& hit : events.hits())
+            CHECK(hit.sign == (d == event_direction::rising ? 1 : -1));
+    }
 }
 
 TEST_CASE("sign changes the direction filter drops are not searched", "[events]") {

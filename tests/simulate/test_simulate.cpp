@@ -205,10 +205,11 @@ TEST_CASE("bad scenes: exit 2, one line naming file and place, no output file",
             "initial: {theta: 4, phi: 0, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 0}\ntime: "
             "{end: 1}\n",
             "bad_scene.yaml:2:18: initial theta = 4"},
-        row{"end before start",
+        row{"end equal to the start",
             "initial: {theta: 1, phi: 0, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 0}\ntime: "
-            "{start: 2, end: 1}\n",
-            "bad_scene.yaml:3:23: time end must be after time start"},
+            "{start: 2, end: 2}\n",
+            "bad_scene.yaml:3:23: time end must differ from time start (an end before the start "
+            "runs backward in time)"},
         row{"non-positive rtol",
             "initial: {theta: 1, phi: 0, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 0}\ntime: "
             "{end: 1}\nintegrator: {method: dopri5, rtol: 0}\n",
