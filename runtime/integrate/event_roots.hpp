@@ -87,17 +87,31 @@ template <class T> class event_roots {
         return c;
     }
 
+    // T_k(x_j) = cos(pi k (n − j) / n), weighted by 1/2 at j = 0, n and by (2/n), halved again
+    // for k = 0, n: c = W f
+    static const std::array<std::array<T, n + 1>, n + 1>& weights() {
+        static const auto w = [] {
+            std::array<std::array<T, n + 1>, n + 1> m{};
+            const T pi = T(3.141592653589793238462643383279502884L);
+            for (int k = 0; k <= n; ++k)
+                for (int j = 0; j <= n; ++j)
+                    m[static_cast<std::size_t>(k)][static_cast<std::size_t>(j)] =
+                        std::cos(pi * T(k * (n - j)) / T(n)) * T(2) / T(n) *
+                        ((j == 0 || j == n) ? T(0.5) : T(1)) * ((k == 0 || k == n) ? T(0.5) : T(1));
+            return m;
+        }();
+        return w;
+    }
+
     // c_k = (2/n) sum_j'' f_j T_k(x_j), halved for k = 0 and n (x_j = −cos(pi j / n) ascending)
     static coefficients fit(const std::array<T, n + 1>& f) {
-        const T pi = T(3.141592653589793238462643383279502884L);
+        const auto& w = weights();
         coefficients c{};
-        for (int k = 0; k <= n; ++k) {
+        for (std::size_t k = 0; k <= n; ++k) {
             T s = T(0);
-            for (int j = 0; j <= n; ++j) {
-                const T w = (j == 0 || j == n) ? T(0.5) : T(1);
-                s += w * f[static_cast<std::size_t>(j)] * std::cos(pi * T(k * (n - j)) / T(n));
-            }
-            c[static_cast<std::size_t>(k)] = s * T(2) / T(n) * ((k == 0 || k == n) ? T(0.5) : T(1));
+            for (std::size_t j = 0; j <= n; ++j)
+                s += w[k][j] * f[j];
+            c[k] = s;
         }
         return c;
     }
