@@ -155,6 +155,9 @@ void scene_run::collect_events(std::size_t from) {
         m_event_samples.push_back({hits[h].t, hits[h].y, m_current});
         m_result.event_index.push_back(hits[h].index);
     }
+    const auto& hidden = m_events.may_hide();
+    for (std::size_t h = m_result.event_doubts.size(); h < hidden.size(); ++h)
+        m_result.event_doubts.push_back({hidden[h].index, hidden[h].from, hidden[h].to});
     if (m_last.code == status::stopped_by_event) end_at_event(m_events.stopped_by());
 }
 

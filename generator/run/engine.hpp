@@ -43,7 +43,14 @@ struct run_result {
     std::vector<std::string> event_names;
     std::vector<std::size_t> event_index;
     std::vector<std::vector<double>> event_rows;
-    int stopped_by = -1;    // the terminal event that ended the run (its state is the last row)
+    int stopped_by = -1; // the terminal event that ended the run (its state is the last row)
+    // Where a pair of zeros of an event may hide: the search could neither prove nor exclude a
+    // sign change there (runtime/integrate/event_roots.hpp).
+    struct event_doubt {
+        std::size_t index;
+        double from, to;
+    };
+    std::vector<event_doubt> event_doubts;
     std::string chart_note; // the chart switch, if one happened (empty otherwise)
     bool ok = true;         // the integration reached the end time
     std::string message;    // why not, when !ok

@@ -55,6 +55,20 @@ void write_events(atomic_file& out, const run_result& r) {
     out.commit();
 }
 
+// Where a pair of zeros of event i may hide (g neither changes sign nor stays away from 0 there).
+void print_event_doubts(std::ostream& os, const run_result& r, std::size_t i) {
+    std::size_t n = 0;
+    const run_result::event_doubt* first = nullptr;
+    for (const auto& d : r.event_doubts)
+        if (d.index == i && n++ == 0) first = &d;
+    if (n == 0) return;
+    os << "  warning event " << r.event_names[i]
+       << ": a pair of zeros may hide in t = " << format_double(first->from) << " .. "
+       << format_double(first->to)
+       << (n == 1 ? "" : " and " + std::to_string(n - 1) + " more intervals")
+       << " (g neither changes sign nor stays away from 0 there)\n";
+}
+
 // How many times each event occurred, and which one stopped the run.
 void print_events(std::ostream& os, const run_result& r) {
     for (std::size_t i = 0; i < r.event_names.size(); ++i) {
@@ -65,6 +79,7 @@ void print_events(std::ostream& os, const run_result& r) {
         if (r.stopped_by == static_cast<int>(i))
             os << "; stopped the run at t = " << format_double(r.rows.back()[0]);
         os << "\n";
+        print_event_doubts(os, r, i);
     }
 }
 

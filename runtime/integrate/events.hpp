@@ -7,15 +7,17 @@
 //   bracket    g is evaluated at the end of each accepted step. The step is searched on its
 //              interpolant (the stepper's continuous extension: DOP853 order 7, DOPRI5 order 4;
 //              cubic Hermite for the others, sampling.hpp) when g changed sign over the step in
-//              the direction the event watches, or
-//              when a pair of zeros could hide in it: g at both ends no larger than
-//              2 |g''| h² (|g''| estimated by the second divided difference of g at the last three
-//              step ends; always in a run's first step). A pair of zeros in a step needs
-//              min(|g(t)|, |g(t + h)|) <= |g''| h² / 2 (Taylor about the extremum between them),
-//              so the factor 4 over that bound leaves room for a changing |g''|.
-//   subdivide  the step is cut into `subdivisions` (default 8) equal parts on the interpolant and
-//              every part over which g changes sign brackets a zero: several zeros in one step are
-//              all found, as long as no part holds two (the parts are h/8 long).
+//              the direction the event watches, or when a pair of zeros could hide in it: g at both
+//              ends no larger than 2 |g''| h² (|g''| the larger of the second divided difference
+//              of g at the last three step ends and a quarter of the bound the last search found;
+//              always in a run's first step and after a step that g varied too fast to fit whole).
+//              A pair of zeros in a step needs min(|g(t)|, |g(t + h)|) <= |g''| h² / 2 (Taylor
+//              about the extremum between them), so the factor 4 leaves room for a changing |g''|.
+//   isolate    g on the interpolant is fitted by Chebyshev interpolants on pieces of the step,
+//              halved until each fit is resolved, and each fit's sign changes are proven or
+//              excluded by a bound on its second derivative (event_roots.hpp). What stays
+//              undecided down to pieces 64 tolerances wide (a zero where g only touches 0) is
+//              noted in may_hide(): the run's summary names the interval.
 //   refine     each bracket is refined on the interpolant by the Illinois variant of regula falsi
 //              (Dowell & Jarratt, BIT 11 (1971) 168–174: superlinear, order 1.44, and the bracket
 //              shrinks from both sides) to a bracket of width <= max(1e-14 |t|, 1e-15).
@@ -37,7 +39,8 @@
 //     reported too; samples before the event are delivered first;
 //   - a NaN value of g is skipped (no sign).
 // The event_set keeps each event's last sign and last time across integrate() calls (a run
-// continued in another chart keeps its history); clear() forgets them and the hits.
+// continued in another chart keeps its history); clear() forgets the signs, the hits and the
+// intervals noted, and keeps the last times (the guard).
 //
 //   event_set<double, Eigen::Vector2d> events;
 //   events.add([](double, const Eigen::Vector2d& y) { return y[0]; }, event_direction::falling,
@@ -47,6 +50,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <functional>
@@ -56,6 +60,7 @@
 #include <vector>
 
 #include "../result.hpp"
+#include "event_roots.hpp"
 
 namespace rotgen {
 
@@ -93,7 +98,7 @@ template <class T, class State> class event_set {
   public:
     using function = std::function<T(T, const State&)>;
 
-    int subdivisions = 8; // parts of a step searched on the interpolant
+    std::size_t max_pieces = 4096; // the most pieces one step's search fits, per event
 
     std::size_t add(event<T, State> e) {
         m_events.push_back(std::move(e));
@@ -117,11 +122,26 @@ template <class T, class State> class event_set {
     std::size_t stopped_by() const { return m_stopped_by; }
     std::size_t steps_searched() const { return m_searched; }
 
+    // Intervals of t where a pair of zeros of event `index` may hide: the search could neither
+    // find a sign change there nor exclude one (a zero where g only touches 0, or g not resolved).
+    struct hidden {
+        std::size_t index;
+        T from, to;
+    };
+    const std::vector<hidden>& may_hide() const { return m_hidden; }
+
+    // Forgets the hits and the signs; keeps each event's last time, so that a run continued from
+    // an event does not report it again whatever the sign of g's residue there (the guard).
     void clear() {
         m_hits.clear();
+        m_hidden.clear();
         m_stopped = false;
-        for (auto& k : m_track)
+        for (auto& k : m_track) {
+            const T last = k.last_fire;
+            const bool fired = k.fired;
             k = {};
+            k.last_fire = last, k.fired = fired;
+        }
     }
 
     // ---- used by the driver (integrate/step_end.hpp) ----
@@ -157,23 +177,23 @@ template <class T, class State> class event_set {
     }
 
     // Searches the step [t, t + h] on the interpolant `interp(theta, State& out)`, theta in
-    // [0, 1], and lists its zeros in time order (found()).
+    // [0, 1], and lists its zeros in time order (found()); where a pair of zeros may hide
+    // undecided, notes the interval (may_hide()).
     template <class Interp> void search(T t, T h, const Interp& interp) {
+        using roots = detail::event_roots<T>;
         ++m_searched;
         m_found.clear();
-        const int parts = std::max(subdivisions, 1);
-        m_nodes.resize(static_cast<std::size_t>(parts + 1) * size());
-        for (int j = 0; j <= parts; ++j)
-            for (std::size_t i = 0; i < size(); ++i)
-                node(j, i) = j == 0 ? m_track[i].g0 : j == parts ? m_track[i].g1 : T(0);
-        for (int j = 1; j < parts; ++j) {
-            const T theta = T(j) / T(parts);
+        m_nodes.resize(static_cast<std::size_t>(roots::n + 1) * size());
+        for (std::size_t i = 0; i < size(); ++i)
+            node(0, i) = m_track[i].g0, node(roots::n, i) = m_track[i].g1;
+        for (int j = 1; j < roots::n; ++j) {
+            const T theta = roots::node(T(0), T(1), j);
             interp(theta, m_y);
             for (std::size_t i = 0; i < size(); ++i)
                 node(j, i) = m_events[i].g(t + theta * h, m_y);
         }
         for (std::size_t i = 0; i < size(); ++i)
-            bracket_zeros(i, t, h, parts, interp);
+            search_event(i, t, h, interp);
         std::stable_sort(m_found.begin(), m_found.end(),
                          [&](const zero& a, const zero& b) { return m_dir * (a.t - b.t) < T(0); });
     }
@@ -220,6 +240,8 @@ template <class T, class State> class event_set {
         int sign = 0; // last nonzero sign of g seen
         T last_fire = T(0);
         bool fired = false;
+        T curvature = T(0);      // max |g''| on the last searched step, as its fits bound it
+        bool unresolved = false; // that step needed more than one fit: g varies faster than steps
     };
 
     static int sign_of(T v) { return v > T(0) ? 1 : v < T(0) ? -1 : 0; }
@@ -227,8 +249,9 @@ template <class T, class State> class event_set {
     T& node(int j, std::size_t i) { return m_nodes[static_cast<std::size_t>(j) * size() + i]; }
 
     // A sign change over the step in the direction watched, or |g| at both ends within
-    // 4 · |g''| h² / 2. (A change the direction filter drops needs no search unless more zeros,
-    // one of them watched, could hide beside it: the same curvature test.)
+    // 4 · |g''| h² / 2 (|g''| the larger of the divided difference's and the last search's bound),
+    // or the last search needed more than one fit. (A change the direction filter drops needs no
+    // search unless more zeros, one of them watched, could hide beside it: the same test.)
     bool may_hold_zero(const track& k, T h, event_direction d) const {
         using std::abs;
         using std::isnan;
@@ -237,32 +260,79 @@ template <class T, class State> class event_set {
         if (s1 != 0 && k.sign != 0 && s1 != k.sign &&
             (d == event_direction::both || (d == event_direction::rising) == (s1 * m_dir > 0)))
             return true;
-        if (!k.have_prev) return true;
+        if (!k.have_prev || k.unresolved) return true;
         const T hm = k.t0 - k.tm;
         const T g2 = T(2) * ((k.g1 - k.g0) / h - (k.g0 - k.gm) / hm) / (h + hm); // ≈ g''
-        return std::min(abs(k.g0), abs(k.g1)) <= T(2) * abs(g2) * h * h;
+        const T curvature = std::max(abs(g2), k.curvature / T(4));
+        return std::min(abs(k.g0), abs(k.g1)) <= T(2) * curvature * h * h;
     }
 
-    // The zeros of event i between the nodes; the sign before the step is the last nonzero one.
-    template <class Interp>
-    void bracket_zeros(std::size_t i, T t, T h, int parts, const Interp& f) {
-        const track& k = m_track[i];
+    // g of event i at t + theta h on the interpolant
+    template <class Interp> T g_at(std::size_t i, T t, T h, T theta, const Interp& interp) {
+        interp(theta, m_y);
+        return m_events[i].g(t + theta * h, m_y);
+    }
+
+    // The zeros of event i on the step: the sign changes between the points event_roots leaves
+    // (each confirmed on g itself and refined there); the sign before the step is the last
+    // nonzero one.
+    template <class Interp> void search_event(std::size_t i, T t, T h, const Interp& interp) {
+        using std::abs;
+        std::array<T, detail::event_roots<T>::n + 1> f{};
+        for (int j = 0; j <= detail::event_roots<T>::n; ++j)
+            f[static_cast<std::size_t>(j)] = node(j, i);
+        const T min_width = T(64) * tolerance(abs(t) + abs(h)) / abs(h);
+        m_roots.run(
+            f, [&](T theta) { return g_at(i, t, h, theta, interp); }, min_width, max_pieces);
+        track& k = m_track[i];
+        k.curvature = m_roots.curvature() / (h * h);
+        k.unresolved = m_roots.pieces() > 1;
+        for (const auto& u : m_roots.undecided())
+            note_hidden(i, t + u.from * h, t + u.to * h);
+        const auto& p = m_roots.points();
         int before = k.sign;
-        for (int j = 1; j <= parts; ++j) {
-            const int s = sign_of(node(j, i));
+        for (std::size_t j = 1; j < p.size(); ++j) {
+            const int s = sign_of(p[j].value);
             if (s == 0 || s == before) continue;
-            if (before == 0) { // the first nonzero value: no sign before it, no event
-                before = s;
-                continue;
-            }
-            // node j−1 has the sign before, or is 0: the zero is there
-            const T ta = t + T(j - 1) / T(parts) * h;
-            const T tb = j == parts ? t + h : t + T(j) / T(parts) * h;
-            const T ga = node(j - 1, i);
-            const T tz = ga == T(0) ? ta : refine(i, ta, ga, tb, node(j, i), t, h, f);
+            if (before != 0) bracket(i, t, h, j, interp);
             before = s;
-            accept_zero(i, tz, m_dir > T(0) ? s : -s); // the sign as t increases
         }
+    }
+
+    // p changes sign between points j − 1 and j: the zero of g there (or between the points
+    // beside them), refined on the interpolant.
+    template <class Interp>
+    void bracket(std::size_t i, T t, T h, std::size_t j, const Interp& interp) {
+        const auto& p = m_roots.points();
+        const int s = sign_of(p[j].value);
+        const auto g = [&](std::size_t q) {
+            return q == 0              ? m_track[i].g0
+                   : q + 1 == p.size() ? m_track[i].g1
+                                       : g_at(i, t, h, p[q].theta, interp);
+        };
+        std::size_t a = j - 1, b = j;
+        T ga = g(a), gb = g(b);
+        if (ga != T(0) && sign_of(ga) != -sign_of(gb)) { // p's error moved it: one point wider
+            a = a > 0 ? a - 1 : a, b = b + 1 < p.size() ? b + 1 : b;
+            ga = g(a), gb = g(b);
+        }
+        const T ta = t + p[a].theta * h, tb = t + p[b].theta * h;
+        if (ga != T(0) && sign_of(ga) != -sign_of(gb)) return note_hidden(i, ta, tb);
+        accept_zero(i, ga == T(0) ? ta : refine(i, ta, ga, tb, gb, t, h, interp),
+                    m_dir > T(0) ? s : -s); // the sign as t increases
+    }
+
+    void note_hidden(std::size_t i, T from, T to) {
+        if (from > to) std::swap(from, to);
+        // one with the last when the gap between them is no wider than they are together
+        if (!m_hidden.empty() && m_hidden.back().index == i &&
+            std::max(from - m_hidden.back().to, m_hidden.back().from - to) <=
+                (to - from) + (m_hidden.back().to - m_hidden.back().from)) {
+            m_hidden.back().from = std::min(m_hidden.back().from, from);
+            m_hidden.back().to = std::max(m_hidden.back().to, to);
+            return;
+        }
+        m_hidden.push_back({i, from, to});
     }
 
     // Keeps a zero unless the direction filter or the chattering guard drops it.
@@ -310,6 +380,8 @@ template <class T, class State> class event_set {
     std::vector<track> m_track;
     std::vector<T> m_nodes;
     std::vector<zero> m_found;
+    std::vector<hidden> m_hidden;
+    detail::event_roots<T> m_roots;
     std::vector<event_hit<T, State>> m_hits;
     State m_y;
     T m_dir = T(1), m_span = T(0);

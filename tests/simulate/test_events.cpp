@@ -44,6 +44,20 @@ double fall_time(double theta0, double theta) {
            w;
 }
 
+// `rotgen simulate` of the spinning heavy top over t in [0, 1] with `integrator` and the event
+// `event` (a YAML mapping); the events CSV is scratch(<name>_events.csv).
+run_result run_event_scene(const std::string& name, const std::string& integrator,
+                           const std::string& event) {
+    const scratch_file scene(
+        name + ".yaml",
+        "model: " + model_path("heavy_top") +
+            "\ninitial: {phi: 0, theta: 0.5, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 30}\n"
+            "time: {end: 1, samples: 3}\nintegrator: " +
+            integrator + "\nrecord: [theta]\nevents: [" + event + "]\n");
+    return run_rotgen("simulate '" + scene.path + "' -o '" + scratch(name + ".csv") +
+                      "' --events '" + scratch(name + "_events.csv") + "'");
+}
+
 } // namespace
 
 TEST_CASE("heavy top: theta_dot = 0 at the roots of the cubic in u = cos theta, every nutation "
@@ -192,5 +206,45 @@ TEST_CASE("inspect of a scene lists its event functions", "[inspect][events]") {
     REQUIRE(json.status == 0);
     CHECK(json.out.find(",\n  \"events\": [{\"name\": \"halfway\", \"when\": \"-pi/4 + theta\", "
                         "\"direction\": \"rising\", \"action\": \"record\"}, ") !=
+          std::string::npos);
+}
+
+TEST_CASE("a scene finds all 318 zeros of sin(1000 t) on (0, 1] with every method",
+          "[simulate][events]") {
+    // g depends on t alone: its zeros are k pi / 1000 exactly, several in each step the top takes
+    const std::string integrator =
+        GENERATE(as<std::string>{}, "{method: dop853, rtol: 1e-6, atol: 1e-6}",
+                 "{method: dop853, rtol: 1e-10, atol: 1e-10}",
+                 "{method: taylor, rtol: 1e-10, atol: 1e-10}", "{method: rk4, step: 0.01}");
+    INFO(integrator);
+    const run_result r = run_event_scene("fast", integrator, "{name: fast, when: sin(1000*t)}");
+    INFO(r.out << r.err);
+    REQUIRE(r.status == 0);
+    CHECK(r.out.find("event   fast: 318 times") != std::string::npos);
+    CHECK(r.out.find("warning") == std::string::npos);
+    const csv_table ev = read_csv(scratch("fast_events.csv"));
+    REQUIRE(ev.rows.size() == 318);
+    double worst = 0;
+    for (std::size_t k = 0; k < ev.rows.size(); ++k)
+        worst = std::max(worst, std::abs(ev.rows[k][1] - double(k + 1) * M_PI / 1000));
+    CHECK(worst < 1e-13); // observed 1e-14
+}
+
+TEST_CASE("the summary names where a pair of zeros may hide: g = (t - 0.5)^2 touches 0",
+          "[simulate][events]") {
+    const run_result r = run_event_scene("touch", "{method: dop853, rtol: 1e-10, atol: 1e-10}",
+                                         "{name: touch, when: (t - 0.5)*(t - 0.5)}");
+    INFO(r.out << r.err);
+    REQUIRE(r.status == 0);
+    CHECK(r.out.find("event   touch: 0 times") != std::string::npos);
+    const std::string warning = "  warning event touch: a pair of zeros may hide in t = ";
+    const auto at = r.out.find(warning);
+    REQUIRE(at != std::string::npos);
+    double from = 0, to = 0;
+    REQUIRE(std::sscanf(r.out.c_str() + at + warning.size(), "%lf .. %lf", &from, &to) == 2);
+    CHECK(from <= 0.5);
+    CHECK(to >= 0.5);
+    CHECK(to - from < 1e-6); // observed
+    CHECK(r.out.find("(g neither changes sign nor stays away from 0 there)\n", at) !=
           std::string::npos);
 }
