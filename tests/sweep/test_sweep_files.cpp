@@ -114,7 +114,7 @@ TEST_CASE("sweep: a grid of 1e16 members is refused at once, in little memory, b
                                     .c_str());
     CHECK(WEXITSTATUS(raw) == 2);
     CHECK(read_file(err) ==
-          "rotgen: error: " + scene.path + ":6:1: the grid has 1e+16 members; at most 1e8\n");
+          "rotgen: error: " + scene.path + ":7:3: the grid has 1e+16 members; at most 1e8\n");
     CHECK_FALSE(exists(dir));
     std::remove(err.c_str());
 }
@@ -129,7 +129,7 @@ TEST_CASE("sweep: an output larger than the free disk space is refused with its 
     const std::string err = scratch("sweep_disk.err");
     const int raw = std::system(("ulimit -t 30; '" + std::string(ROTGEN_EXE) + "' sweep '" +
                                  scene.path + "' -o '" + dir +
-                                 "' --timings --trajectories --vary "
+                                 "' --timings --trajectories --vary initial.psi_dot=30 --vary "
                                  "initial.theta=0.1:1.5:100000000 2>'" +
                                  err + "'")
                                     .c_str());
@@ -214,8 +214,12 @@ TEST_CASE("sweep: an interrupted sweep keeps the journal of its finished members
     r = sweep_with(args + "'" + dir + "' --resume", "4:INT");
     CHECK(r.status == 130);
     CHECK(r.err.find("(9 members)") != std::string::npos);
-    r = sweep_with(args + "'" + dir + "' --resume");
+    r = sweep_with(args.substr(0, args.find(" -q ")) + args.substr(args.find(" -q ") + 3) + "'" +
+                   dir + "' --resume"); // with the summary: the 12 members it ran, not 21
     CHECK(r.status == 3);
+    CHECK((r.out + r.err)
+              .find("  resumed after the journal's 9 members (the lines below: the 12 "
+                    "run now)\n") != std::string::npos);
     CHECK(files_in(dir) == std::vector<std::string>{"summary.csv", "trajectories.h5"});
     CHECK(read_file(dir + "/summary.csv") == read_file(whole + "/summary.csv"));
     CHECK(read_file(dir + "/trajectories.h5") == read_file(whole + "/trajectories.h5"));
