@@ -1,5 +1,5 @@
 // rotgen sweep SCENE.yaml -o DIR [--vary KEY=FROM:TO:COUNT]... [-j N] [--lanes W] [--trajectories]
-// [--timings] [--quiet]
+// [--resume] [--timings] [--quiet]
 #include "cli/commands.hpp"
 #include "cli/options.hpp"
 #include "sweep/sweep.hpp"
@@ -15,13 +15,16 @@ const command_spec sweep_command{
     "sweep",
     "scene file",
     "SCENE.yaml -o DIR [--vary KEY=FROM:TO:COUNT]... [-j N] [--lanes W] [--trajectories] "
-    "[--timings] [--quiet]",
+    "[--resume] [--timings] [--quiet]",
     "Runs an ensemble of the scene: the members vary its initial values and parameters as its\n"
     "sweep: block and the --vary options say (grid, zip or random). The model is derived and its\n"
     "kernels compiled once for all members. Writes DIR/summary.csv, one row per member in member\n"
     "order (the varied values, the final recorded values, the first time of each event,\n"
     "invariant drifts, steps, RHS evaluations, status), the same byte for byte on every run. A\n"
-    "member that fails does not stop the others; the exit status is then 3.\n\n"
+    "member that fails does not stop the others; the exit status is then 3. The files are\n"
+    "written as the members finish, under partial names (a journal) until the sweep completes;\n"
+    "an interrupted sweep keeps the journal of the members that finished, and the same\n"
+    "command with --resume finishes it.\n\n"
     "example: rotgen sweep models/scenes/heavy_top_nutation.yaml -o tilt --vary "
     "initial.theta=0.1:1.5:64",
     {{"-o", "DIR", "the output directory (created if missing)", {"--output"}},
@@ -43,6 +46,11 @@ const command_spec sweep_command{
      {"--trajectories",
       "",
       "also write DIR/trajectories.h5: every member's samples, [member, sample, column]",
+      {}},
+     {"--resume",
+      "",
+      "finish the interrupted sweep whose journal DIR holds (DIR/*.partial*),\n"
+      "without running its finished members again; with no journal, run them all",
       {}},
      {"--timings", "", "print the wall time of each pipeline stage to standard error", {}},
      {"--quiet", "", "no summary and no progress line (errors are still reported)", {"-q"}}}};
@@ -77,6 +85,7 @@ int cmd_sweep(const std::vector<std::string>& args) {
     q.trajectories = o.has("--trajectories");
     q.timings = o.has("--timings");
     q.quiet = o.has("--quiet");
+    q.resume = o.has("--resume");
     return sweep(q);
 }
 

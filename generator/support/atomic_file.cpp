@@ -23,8 +23,10 @@ namespace fs = std::filesystem;
 constexpr std::size_t max_temporaries = 64, max_path = 4096;
 std::array<std::array<char, max_path>, max_temporaries> g_temporaries{};
 std::array<volatile sig_atomic_t, max_temporaries> g_used{};
+void (*volatile g_hook)(int) = nullptr; // set_interrupt_hook
 
 extern "C" void on_signal(int sig) {
+    if (void (*hook)(int) = g_hook) hook(sig);
     for (std::size_t i = 0; i < max_temporaries; ++i)
         if (g_used[i]) ::unlink(g_temporaries[i].data());
     ::_exit(128 + sig);
@@ -68,6 +70,10 @@ void register_temporary(const std::string& path) {
 void forget_temporary(const std::string& path) {
     for (std::size_t i = 0; i < max_temporaries; ++i)
         if (g_used[i] && path == g_temporaries[i].data()) g_used[i] = 0;
+}
+
+void set_interrupt_hook(void (*hook)(int)) {
+    g_hook = hook;
 }
 
 void remove_temporaries_on_signal() {

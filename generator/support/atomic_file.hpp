@@ -54,5 +54,8 @@ void register_temporary(const std::string& path);
 void forget_temporary(const std::string& path);
 // Installs the SIGINT/SIGTERM handler: remove the registered temporaries, exit 128 + signal.
 void remove_temporaries_on_signal();
+// A function the handler calls first, with the signal (async-signal-safe; nullptr: none): a
+// command that keeps something of an interrupted run (the sweep's journal) sets it.
+void set_interrupt_hook(void (*hook)(int));
 
 } // namespace rotgen

@@ -56,7 +56,7 @@ struct groups {
     std::size_t members(std::size_t g) const { return std::min(group, count - g * group); }
 };
 
-// Runs group g, each outcome into its member's slot of `out` (at the member's index - offset).
+// Runs group g, each outcome to slot(member, outcome).
 template <class Slot>
 void run_group(const groups& gs, std::size_t g, const batch_work& work, const Slot& slot) {
     std::vector<member_outcome> o = work(gs.first(g), gs.members(g));
@@ -64,39 +64,39 @@ void run_group(const groups& gs, std::size_t g, const batch_work& work, const Sl
         slot(gs.first(g) + k, std::move(o[k]));
 }
 
-// The groups this process takes from the shared group index `next`, on its threads, each
-// outcome into its slot; `done` counts the members.
-void run_here(std::atomic<std::size_t>& next, const groups& gs, unsigned jobs,
-              const batch_work& work, std::vector<member_outcome>& outcomes,
-              std::atomic<std::size_t>& done, const std::function<void()>& tick) {
+// The groups this process takes (take() gives the next, or one past the last), on its threads,
+// each admitted by the window `out` before it starts and its outcomes delivered to it; `done`
+// counts the members.
+void run_here(const std::function<std::size_t()>& take, const groups& gs, unsigned jobs,
+              const batch_work& work, in_order& out, std::atomic<std::size_t>& done,
+              const std::function<void()>& tick) {
     run_pool(
         jobs,
         [&] {
-            const std::size_t g = next++;
-            return g < gs.size() ? g : none;
+            const std::size_t g = take();
+            if (g >= gs.size()) return none;
+            return out.admit(gs.first(g) + gs.members(g)) ? g : none;
         },
         [&](std::size_t g) {
-            run_group(gs, g, work, [&](std::size_t m, member_outcome o) {
-                outcomes[m] = std::move(o);
-                ++done;
-            });
+            try {
+                run_group(gs, g, work, [&](std::size_t m, member_outcome o) {
+                    out.deliver(m, std::move(o));
+                    ++done;
+                });
+            } catch (...) {
+                out.stop(); // the threads waiting for the window stop too
+                throw;
+            }
         },
         tick);
 }
 
 // One process: every member on this process's threads.
-std::vector<member_outcome> run_here(const groups& gs, unsigned jobs, const batch_work& work,
-                                     const std::function<void(std::size_t)>& progress) {
-    std::vector<member_outcome> outcomes(gs.count);
+std::vector<std::size_t> run_here(const groups& gs, unsigned jobs, const batch_work& work,
+                                  in_order& out, const std::function<void(std::size_t)>& progress) {
     std::atomic<std::size_t> next{0}, done{0};
-    run_here(next, gs, jobs, work, outcomes, done, [&] { progress(done); });
-    return outcomes;
-}
-
-batch_work one_at_a_time(const member_work& work) {
-    return [&work](std::size_t first, std::size_t) {
-        return std::vector<member_outcome>{work(first)};
-    };
+    run_here([&] { return next++; }, gs, jobs, work, out, done, [&] { progress(done); });
+    return {done};
 }
 
 } // namespace
@@ -139,12 +139,6 @@ std::vector<std::pair<std::size_t, member_outcome>> unpack(const std::string& in
     return outcomes;
 }
 
-std::vector<member_outcome> run_distributed(const mpi_session& session, std::size_t count,
-                                            unsigned jobs, const member_work& work,
-                                            const std::function<void(std::size_t)>& progress) {
-    return run_distributed(session, count, 1, jobs, one_at_a_time(work), progress);
-}
-
 #ifndef ROTGEN_HAVE_MPI
 
 mpi_session::mpi_session() = default;
@@ -152,12 +146,14 @@ mpi_session::~mpi_session() = default;
 bool mpi_session::all(bool ok) const {
     return ok;
 }
+std::size_t mpi_session::broadcast(std::size_t value) const {
+    return value;
+}
 
-std::vector<member_outcome> run_distributed(const mpi_session&, std::size_t count,
-                                            std::size_t group, unsigned jobs,
-                                            const batch_work& work,
-                                            const std::function<void(std::size_t)>& progress) {
-    return run_here(groups{count, group}, jobs, work, progress);
+std::vector<std::size_t> run_distributed(const mpi_session&, std::size_t count, std::size_t group,
+                                         unsigned jobs, const batch_work& work, in_order* out,
+                                         const std::function<void(std::size_t)>& progress) {
+    return run_here(groups{count, group}, jobs, work, *out, progress);
 }
 
 #else
@@ -209,7 +205,7 @@ constexpr int ahead = 2;
 // `ahead` requests). The outcomes go without waiting (MPI_Isend), completed after the next chunk:
 // a blocking send waited for rank 0's main thread (in Open MPI even a message of 350 bytes did:
 // 14 ms of a 1,024-member heavy-top sweep's 86).
-void serve_as_worker(const groups& gs, unsigned jobs, const batch_work& work) {
+void serve_as_worker(std::uint64_t rank, const groups& gs, unsigned jobs, const batch_work& work) {
     std::array<std::array<std::uint64_t, 2>, ahead> chunks{};
     std::array<MPI_Request, ahead> pending{};
     const auto ask = [&](std::size_t slot) {
@@ -221,6 +217,10 @@ void serve_as_worker(const groups& gs, unsigned jobs, const batch_work& work) {
         ask(slot);
     std::string bytes; // the outcomes being sent
     MPI_Request sent = MPI_REQUEST_NULL;
+    if (rank < gs.size()) { // its own first group, asked of no one
+        bytes = pack(run_chunk(gs, {rank, rank + 1}, jobs, work, sent));
+        MPI_Isend(bytes.data(), int(bytes.size()), MPI_BYTE, 0, results, MPI_COMM_WORLD, &sent);
+    }
     for (std::size_t slot = 0;; slot = (slot + 1) % ahead) {
         MPI_Wait(&pending[slot], MPI_STATUS_IGNORE); // answers come in the order asked
         const std::array<std::uint64_t, 2> chunk = chunks[slot];
@@ -233,35 +233,62 @@ void serve_as_worker(const groups& gs, unsigned jobs, const batch_work& work) {
     MPI_Wait(&sent, MPI_STATUS_IGNORE);
 }
 
-// Rank 0's main thread: answers every pending message (requests: the next chunk of the shared
-// queue of `count` groups; results: into their members' slots). Returns the number of outcomes
-// received.
-std::size_t answer(const mpi_session& s, std::atomic<std::size_t>& next, std::size_t count,
-                   std::vector<member_outcome>& outcomes, int& finished) {
-    std::size_t received = 0;
-    for (int flag = 1; flag;) {
-        MPI_Status st;
-        MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &st);
-        if (!flag) break;
-        int bytes = 0;
-        MPI_Get_count(&st, MPI_BYTE, &bytes);
-        std::string buffer(std::size_t(bytes), '\0');
-        MPI_Recv(buffer.data(), bytes, MPI_BYTE, st.MPI_SOURCE, st.MPI_TAG, MPI_COMM_WORLD,
-                 MPI_STATUS_IGNORE);
-        if (st.MPI_TAG == results) {
-            for (auto& [m, o] : unpack(buffer))
-                outcomes[m] = std::move(o), ++received;
-            continue;
-        }
+// Rank 0's side of the queue: the chunks of groups it hands out (in group order, each sent only
+// when its members fit the window, so that no rank runs ahead of the writer by more than the
+// window), and the members each rank ran.
+struct coordinator {
+    const mpi_session& s;
+    const groups& gs;
+    std::atomic<std::size_t>& next; // the next group, shared with rank 0's threads
+    in_order& out;
+    std::vector<std::size_t> ran;                                      // members per rank
+    std::vector<std::pair<int, std::array<std::uint64_t, 2>>> waiting; // chunks not yet sent
+    int finished = 0; // empty chunks sent: `ahead` to each worker rank at the end
+
+    // The next chunk: remaining / (4 ranks) groups, at most an eighth of the window per rank.
+    std::array<std::uint64_t, 2> take() {
+        const std::size_t count = gs.size(), ranks = std::size_t(s.size());
         const std::size_t remaining = count - std::min(count, next.load());
-        const std::size_t size = std::max<std::size_t>(1, remaining / (4 * std::size_t(s.size())));
+        const std::size_t most = std::max<std::size_t>(1, out.window() / gs.group / (8 * ranks));
+        const std::size_t size = std::clamp<std::size_t>(remaining / (4 * ranks), 1, most);
         const std::size_t begin = std::min(count, next.fetch_add(size));
-        const std::uint64_t chunk[2] = {begin, std::min(count, begin + size)};
-        if (chunk[0] == chunk[1]) ++finished;
-        MPI_Send(chunk, 2, MPI_UINT64_T, st.MPI_SOURCE, assignment, MPI_COMM_WORLD);
+        return {begin, std::min(count, begin + size)};
     }
-    return received;
-}
+    // Sends the waiting chunks that fit the window, in order.
+    void send_waiting() {
+        std::size_t sent = 0;
+        for (; sent < waiting.size(); ++sent) {
+            const auto& [rank, chunk] = waiting[sent];
+            const std::size_t end = std::min(gs.count, gs.first(chunk[1]));
+            if (chunk[0] != chunk[1] && !out.fits(end)) break;
+            if (chunk[0] == chunk[1]) ++finished;
+            MPI_Send(chunk.data(), 2, MPI_UINT64_T, rank, assignment, MPI_COMM_WORLD);
+        }
+        waiting.erase(waiting.begin(), waiting.begin() + std::ptrdiff_t(sent));
+    }
+    // Answers every pending message (requests: a chunk; results: into the window).
+    void answer() {
+        for (int flag = 1; flag;) {
+            MPI_Status st;
+            MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &st);
+            if (!flag) break;
+            int bytes = 0;
+            MPI_Get_count(&st, MPI_BYTE, &bytes);
+            std::string buffer(std::size_t(bytes), '\0');
+            MPI_Recv(buffer.data(), bytes, MPI_BYTE, st.MPI_SOURCE, st.MPI_TAG, MPI_COMM_WORLD,
+                     MPI_STATUS_IGNORE);
+            if (st.MPI_TAG == results) {
+                for (auto& [m, o] : unpack(buffer)) {
+                    out.deliver(m, std::move(o));
+                    ++ran[std::size_t(st.MPI_SOURCE)];
+                }
+                continue;
+            }
+            waiting.emplace_back(st.MPI_SOURCE, take());
+        }
+        send_waiting();
+    }
+};
 
 } // namespace
 
@@ -278,6 +305,13 @@ mpi_session::~mpi_session() {
     if (m_active) MPI_Finalize();
 }
 
+std::size_t mpi_session::broadcast(std::size_t value) const {
+    if (!m_active) return value;
+    std::uint64_t v = value;
+    MPI_Bcast(&v, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+    return std::size_t(v);
+}
+
 bool mpi_session::all(bool ok) const {
     if (!m_active) return ok;
     int mine = ok ? 1 : 0, every = 0;
@@ -285,43 +319,44 @@ bool mpi_session::all(bool ok) const {
     return every == 1;
 }
 
-std::vector<member_outcome> run_distributed(const mpi_session& s, std::size_t count,
-                                            std::size_t group, unsigned jobs,
-                                            const batch_work& work,
-                                            const std::function<void(std::size_t)>& progress) {
+std::vector<std::size_t> run_distributed(const mpi_session& s, std::size_t count, std::size_t group,
+                                         unsigned jobs, const batch_work& work, in_order* out,
+                                         const std::function<void(std::size_t)>& progress) {
     const groups gs{count, group};
-    if (s.size() == 1) return run_here(gs, jobs, work, progress);
+    if (s.size() == 1) return run_here(gs, jobs, work, *out, progress);
     if (s.rank() != 0) {
-        serve_as_worker(gs, jobs, work);
+        serve_as_worker(std::uint64_t(s.rank()), gs, jobs, work);
         return {};
     }
-    std::vector<member_outcome> outcomes(count);
-    std::atomic<std::size_t> next{0}, done{0};
-    std::size_t received = 0;
-    int finished = 0; // empty chunks sent: `ahead` to each worker rank at the end
+    // rank r's first group is group r (every rank starts at once and runs members); the others
+    // are shared, from group R on
+    std::atomic<std::size_t> next{std::min(gs.size(), std::size_t(s.size()))}, done{0};
+    std::atomic<bool> started{false};
+    coordinator c{s, gs, next, *out, std::vector<std::size_t>(std::size_t(s.size()), 0), {}};
     std::exception_ptr failure;
     std::atomic<bool> stopped{false};
     std::thread local([&] {
         try {
-            run_here(next, gs, jobs, work, outcomes, done, {});
+            run_here([&] { return started.exchange(true) ? next++ : std::size_t(0); }, gs, jobs,
+                     work, *out, done, {});
         } catch (...) {
             failure = std::current_exception();
         }
         stopped = true;
     });
     auto last = std::chrono::steady_clock::now();
-    while (!(stopped && failure) &&
-           (finished < ahead * (s.size() - 1) || done + received < count)) {
-        received += answer(s, next, gs.size(), outcomes, finished);
+    while (!(stopped && failure) && (c.finished < ahead * (s.size() - 1) || out->done() < count)) {
+        c.answer();
         if (std::chrono::steady_clock::now() - last > std::chrono::milliseconds(100)) {
-            progress(done + received);
+            progress(out->done());
             last = std::chrono::steady_clock::now();
         }
         std::this_thread::sleep_for(std::chrono::microseconds(1000));
     }
     local.join();
     if (failure) MPI_Abort(MPI_COMM_WORLD, 1); // an internal error: the other ranks would wait
-    return outcomes;
+    c.ran[0] = done;
+    return c.ran;
 }
 
 #endif

@@ -4,10 +4,11 @@
 // shrink as the queue empties: remaining / (4 ranks), at least 1, so that the last members do not
 // wait behind a long chunk). Rank 0 runs members on its own threads too, and its main thread
 // answers the other ranks (MPI called from that thread only: MPI_THREAD_FUNNELED). Every outcome
-// goes to its member's slot on rank 0, which alone writes the files: they are the same byte for
+// goes through rank 0's window, which alone writes the files: they are the same byte for
 // byte as a one-process run's. Started without mpirun (or built without MPI) it is one process.
 #pragma once
 
+#include "sweep/in_order.hpp"
 #include "sweep/outcome.hpp"
 
 #include <functional>
@@ -26,27 +27,26 @@ class mpi_session {
     int size() const { return m_size; }
     // Whether `ok` holds on every rank (all ranks call it; one process: ok).
     bool all(bool ok) const;
+    // Rank 0's value, on every rank.
+    std::size_t broadcast(std::size_t value) const;
 
   private:
     int m_rank = 0, m_size = 1;
     bool m_active = false;
 };
 
-using member_work = std::function<member_outcome(std::size_t member)>;
-
-// Runs members 0 .. count-1 on every rank's `jobs` threads. Rank 0 returns every outcome in member
-// order, having called progress(done) about ten times a second; other ranks return nothing.
-std::vector<member_outcome> run_distributed(const mpi_session& session, std::size_t count,
-                                            unsigned jobs, const member_work& work,
-                                            const std::function<void(std::size_t)>& progress);
-
-// The same for members run in groups of `group` neighbours (the last group may be shorter):
-// work(first, n) gives the outcomes of members first .. first+n-1. Ranks take chunks of groups.
+// Work on members first .. first+count-1 (a group of neighbours; count 1 without lanes).
 using batch_work = std::function<std::vector<member_outcome>(std::size_t first, std::size_t count)>;
-std::vector<member_outcome> run_distributed(const mpi_session& session, std::size_t count,
-                                            std::size_t group, unsigned jobs,
-                                            const batch_work& work,
-                                            const std::function<void(std::size_t)>& progress);
+
+// Runs members 0 .. count-1, in groups of `group` neighbours (the last may be shorter), on every
+// rank's `jobs` threads. On rank 0 every outcome goes through `out` (in member order, to its sink),
+// which bounds what waits in memory; progress(done) is called about ten times a second. Returns,
+// on rank 0, how many members each rank ran (rank order); other ranks return nothing and may pass
+// a null `out`.
+std::vector<std::size_t> run_distributed(const mpi_session& session, std::size_t count,
+                                         std::size_t group, unsigned jobs, const batch_work& work,
+                                         in_order* out,
+                                         const std::function<void(std::size_t)>& progress);
 
 // The bytes of outcomes (with their member indices) for a message, and back.
 std::string pack(const std::vector<std::pair<std::size_t, member_outcome>>& outcomes);

@@ -82,18 +82,19 @@ double yaml_number(const YAML::Node& n, const std::string& file, const std::stri
     return decimal(n.Scalar(), location_of(n, file), what);
 }
 
-// from + (to - from) i / (count - 1), the last exactly `to`.
-std::vector<double> range(double from, double to, double count, const source_location& where) {
+// A range {from, to, count} of `k`: checked here, its values computed when asked
+// (sweep_key::value), so that a range of 1e8 values takes no memory and a grid too large is refused
+// at once.
+void set_range(sweep_key& k, double from, double to, double count, const source_location& where) {
     if (!(count >= 1) || count != std::floor(count) || count > largest_member_count)
         throw user_error(where, "count must be a whole number from 1 to 1e8");
     if (count > 1 && from == to)
         throw user_error(where, "empty range: from = to = " + format_double(from) + " with count " +
                                     format_double(count) +
                                     " (give {values: [...]} for repeated values)");
-    std::vector<double> v(static_cast<std::size_t>(count), from);
-    for (std::size_t i = 1; i < v.size(); ++i)
-        v[i] = i + 1 == v.size() ? to : from + (to - from) * double(i) / double(v.size() - 1);
-    return v;
+    k.from = from;
+    k.to = to;
+    k.count = static_cast<std::size_t>(count);
 }
 
 // One `vary:` entry of the scene: {from, to, count}, {values: [...]}, or (random) {from, to}.
@@ -126,8 +127,8 @@ sweep_key read_entry(const YAML::Node& key, const YAML::Node& n, const std::stri
     k.from = yaml_number(n["from"], file, "from");
     k.to = yaml_number(n["to"], file, "to");
     if (!random)
-        k.values = range(k.from, k.to, yaml_number(n["count"], file, "count"),
-                         location_of(n["count"], file));
+        set_range(k, k.from, k.to, yaml_number(n["count"], file, "count"),
+                  location_of(n["count"], file));
     else if (k.from == k.to)
         throw user_error(location_of(n, file), "empty range: from = to");
     return k;
@@ -158,8 +159,8 @@ sweep_key read_cli(const std::string& arg, sweep_mode mode) {
         if (k.from == k.to) throw user_error(where, "empty range: from = to");
     } else if (sep == ':') {
         if (parts.size() != 3) throw user_error(where, "expected KEY=FROM:TO:COUNT");
-        k.values = range(decimal(parts[0], where, "from"), decimal(parts[1], where, "to"),
-                         decimal(parts[2], where, "count"), where);
+        set_range(k, decimal(parts[0], where, "from"), decimal(parts[1], where, "to"),
+                  decimal(parts[2], where, "count"), where);
     } else {
         for (const auto& p : parts)
             k.values.push_back(decimal(p, where, "a value"));
@@ -246,15 +247,15 @@ sweep_plan read_sweep_plan(const scene_spec& scene, const std::vector<std::strin
     }
     if (plan.mode == sweep_mode::zip)
         for (const auto& k : plan.keys)
-            if (k.values.size() != plan.keys.front().values.size())
+            if (k.size() != plan.keys.front().size())
                 throw user_error(k.where, "zip lengths differ: '" + k.key + "' has " +
-                                              std::to_string(k.values.size()) + " values, '" +
+                                              std::to_string(k.size()) + " values, '" +
                                               plan.keys.front().key + "' has " +
-                                              std::to_string(plan.keys.front().values.size()));
+                                              std::to_string(plan.keys.front().size()));
     if (plan.mode == sweep_mode::grid) {
         double n = 1;
         for (const auto& k : plan.keys)
-            n *= double(k.values.size());
+            n *= double(k.size());
         if (n > largest_member_count)
             throw user_error(plan.where,
                              "the grid has " + short_number(n) + " members; at most 1e8");
@@ -262,35 +263,55 @@ sweep_plan read_sweep_plan(const scene_spec& scene, const std::vector<std::strin
     return plan;
 }
 
-std::vector<std::vector<double>> member_rows(const sweep_plan& plan) {
-    std::vector<std::vector<double>> rows;
-    const std::size_t nk = plan.keys.size();
+double sweep_key::value(std::size_t i) const {
+    if (count == 0) return values[i];
+    return i + 1 == count ? to : i == 0 ? from : from + (to - from) * double(i) / double(count - 1);
+}
+
+member_table::member_table(const sweep_plan& plan) : m_plan(plan) {
     if (plan.mode == sweep_mode::random) {
+        m_size = static_cast<std::size_t>(plan.members);
         std::mt19937_64 gen(plan.seed);
-        rows.assign(static_cast<std::size_t>(plan.members), std::vector<double>(nk));
-        for (auto& row : rows)
-            for (std::size_t k = 0; k < nk; ++k) {
-                const double u = double(gen() >> 11) * 0x1.0p-53; // 53 random bits: [0, 1)
-                row[k] = plan.keys[k].from + (plan.keys[k].to - plan.keys[k].from) * u;
-            }
-        return rows;
-    }
-    if (plan.mode == sweep_mode::zip) {
-        rows.assign(plan.keys.front().values.size(), std::vector<double>(nk));
-        for (std::size_t m = 0; m < rows.size(); ++m)
-            for (std::size_t k = 0; k < nk; ++k)
-                rows[m][k] = plan.keys[k].values[m];
-        return rows;
-    }
-    std::size_t n = 1;
-    for (const auto& k : plan.keys)
-        n *= k.values.size();
-    rows.assign(n, std::vector<double>(nk));
-    for (std::size_t m = 0; m < n; ++m)
-        for (std::size_t k = nk, rest = m; k-- > 0;) { // the last key fastest
-            rows[m][k] = plan.keys[k].values[rest % plan.keys[k].values.size()];
-            rest /= plan.keys[k].values.size();
+        for (std::size_t m = 0; m < m_size; m += checkpoint_every) {
+            m_checkpoints.push_back(gen);
+            gen.discard(checkpoint_every * plan.keys.size());
         }
+    } else if (plan.mode == sweep_mode::zip) {
+        m_size = plan.keys.front().size();
+    } else {
+        m_size = 1;
+        for (const auto& k : plan.keys)
+            m_size *= k.size();
+    }
+}
+
+std::vector<double> member_table::row(std::size_t m) const {
+    const std::size_t nk = m_plan.keys.size();
+    std::vector<double> row(nk);
+    if (m_plan.mode == sweep_mode::random) {
+        std::mt19937_64 gen = m_checkpoints[m / checkpoint_every];
+        gen.discard((m % checkpoint_every) * nk);
+        for (std::size_t k = 0; k < nk; ++k) {
+            const double u = double(gen() >> 11) * 0x1.0p-53; // 53 random bits: [0, 1)
+            row[k] = m_plan.keys[k].from + (m_plan.keys[k].to - m_plan.keys[k].from) * u;
+        }
+    } else if (m_plan.mode == sweep_mode::zip) {
+        for (std::size_t k = 0; k < nk; ++k)
+            row[k] = m_plan.keys[k].value(m);
+    } else {
+        for (std::size_t k = nk, rest = m; k-- > 0;) { // the last key fastest
+            row[k] = m_plan.keys[k].value(rest % m_plan.keys[k].size());
+            rest /= m_plan.keys[k].size();
+        }
+    }
+    return row;
+}
+
+std::vector<std::vector<double>> member_rows(const sweep_plan& plan) {
+    const member_table table(plan);
+    std::vector<std::vector<double>> rows;
+    for (std::size_t m = 0; m < table.size(); ++m)
+        rows.push_back(table.row(m));
     return rows;
 }
 

@@ -27,6 +27,7 @@
 #include "support/error.hpp"
 
 #include <cstdint>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -39,8 +40,11 @@ struct sweep_key {
     source_location where; // the entry in the scene, or "rotgen sweep --vary ..."
     enum target_t { angle, rate, parameter } target = angle;
     std::size_t index = 0;      // angle 0..2, rate 0..2, or model parameter
-    std::vector<double> values; // grid and zip
-    double from = 0, to = 0;    // random
+    std::vector<double> values; // grid and zip: the values listed
+    double from = 0, to = 0;    // random, and a range {from, to, count}
+    std::size_t count = 0;      // a range's count (its values computed when asked); 0: a list
+    std::size_t size() const { return count != 0 ? count : values.size(); }
+    double value(std::size_t i) const; // the i-th value (grid and zip)
 };
 
 struct sweep_plan {
@@ -57,7 +61,23 @@ struct sweep_plan {
 // [0, pi]), no key at all.
 sweep_plan read_sweep_plan(const scene_spec& scene, const std::vector<std::string>& cli_vary);
 
-// One row per member, one value per key (in the plan's key order).
+// The members' rows, one value per key (in the plan's key order), computed when asked: a grid or
+// zip member's from its index, a random member's from the generator's state saved every 4,096
+// members (2.5 KB each), so that an ensemble of 1e8 members holds its rows in about 60 MB.
+class member_table {
+  public:
+    explicit member_table(const sweep_plan& plan); // keeps a reference to `plan`
+    std::size_t size() const { return m_size; }
+    std::vector<double> row(std::size_t member) const;
+
+  private:
+    static constexpr std::size_t checkpoint_every = 4096;
+    const sweep_plan& m_plan;
+    std::size_t m_size = 0;
+    std::vector<std::mt19937_64> m_checkpoints; // random mode
+};
+
+// Every member's row (for small plans: tests).
 std::vector<std::vector<double>> member_rows(const sweep_plan& plan);
 
 // The scene's values with one member's row substituted.

@@ -74,9 +74,7 @@ member_outcome outcome_of(const prepared_scene& prepared, const summary_layout& 
     return o;
 }
 
-void write_summary(std::ostream& os, const sweep_plan& plan,
-                   const std::vector<std::vector<double>>& rows, const summary_layout& layout,
-                   const std::vector<member_outcome>& outcomes) {
+void write_summary_header(std::ostream& os, const sweep_plan& plan, const summary_layout& layout) {
     os << "member";
     for (const auto& k : plan.keys)
         os << "," << k.key;
@@ -88,22 +86,23 @@ void write_summary(std::ostream& os, const sweep_plan& plan,
     for (const auto& inv : layout.invariants)
         os << ",drift." << inv;
     os << ",steps,rhs_evals,status\n";
-    for (std::size_t m = 0; m < outcomes.size(); ++m) {
-        const member_outcome& o = outcomes[m];
-        os << m;
-        for (double v : rows[m])
-            os << "," << format_double(v);
-        for (std::size_t c = 0; c <= layout.columns.size(); ++c)
-            os << "," << (c < o.final_row.size() ? format_number(o.final_row[c]) : "");
-        for (std::size_t i = 0; i < layout.events.size(); ++i)
-            os << ","
-               << (i < o.event_times.size() && !std::isnan(o.event_times[i])
-                       ? format_number(o.event_times[i])
-                       : "");
-        for (std::size_t i = 0; i < layout.invariants.size(); ++i)
-            os << "," << (i < o.drifts.size() ? format_number(o.drifts[i]) : "");
-        os << "," << o.steps << "," << o.rhs_evals << "," << csv_field(o.status) << "\n";
-    }
+}
+
+void write_summary_row(std::ostream& os, std::size_t m, const std::vector<double>& row,
+                       const summary_layout& layout, const member_outcome& o) {
+    os << m;
+    for (double v : row)
+        os << "," << format_double(v);
+    for (std::size_t c = 0; c <= layout.columns.size(); ++c)
+        os << "," << (c < o.final_row.size() ? format_number(o.final_row[c]) : "");
+    for (std::size_t i = 0; i < layout.events.size(); ++i)
+        os << ","
+           << (i < o.event_times.size() && !std::isnan(o.event_times[i])
+                   ? format_number(o.event_times[i])
+                   : "");
+    for (std::size_t i = 0; i < layout.invariants.size(); ++i)
+        os << "," << (i < o.drifts.size() ? format_number(o.drifts[i]) : "");
+    os << "," << o.steps << "," << o.rhs_evals << "," << csv_field(o.status) << "\n";
 }
 
 } // namespace rotgen

@@ -47,8 +47,9 @@ member_outcome outcome_of(const prepared_scene& prepared, const summary_layout& 
 // summary.csv: member, the keys as written, final.t, final.<column>..., event.<name>... (the time
 // of the event's first occurrence, empty if none), drift.<invariant>..., steps, rhs_evals, status.
 // Numbers with 17 significant digits; a status with a comma or a quote is quoted (RFC 4180).
-void write_summary(std::ostream& os, const sweep_plan& plan,
-                   const std::vector<std::vector<double>>& rows, const summary_layout& layout,
-                   const std::vector<member_outcome>& outcomes);
+void write_summary_header(std::ostream& os, const sweep_plan& plan, const summary_layout& layout);
+// Member m's row (`row`: its values of the varied keys).
+void write_summary_row(std::ostream& os, std::size_t m, const std::vector<double>& row,
+                       const summary_layout& layout, const member_outcome& outcome);
 
 } // namespace rotgen

@@ -9,13 +9,16 @@
 #include "support/progress.hpp"
 #include "support/timings.hpp"
 #include "sweep/distribute.hpp"
+#include "sweep/journal.hpp"
 #include "sweep/members.hpp"
 #include "sweep/outcome.hpp"
 #include "sweep/parallel.hpp"
 #include "sweep/trajectories.hpp"
+#include "sweep/writer.hpp"
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <exception>
@@ -31,95 +34,108 @@ namespace rotgen {
 namespace {
 
 // DIR, created if missing (not its parents); user_error if it cannot be, or is not a directory.
-void make_directory(const std::string& dir) {
+// Returns whether it was created.
+bool make_directory(const std::string& dir) {
     if (dir.empty() || dir == "-")
         throw user_error({"rotgen sweep"}, "-o needs a directory (the sweep writes several files)");
     struct stat st {};
     if (::stat(dir.c_str(), &st) == 0) {
         if (!S_ISDIR(st.st_mode)) throw user_error({dir}, "not a directory");
-        return;
+        return false;
     }
     if (::mkdir(dir.c_str(), 0755) != 0)
         throw user_error({dir},
                          std::string("cannot create the directory: ") + std::strerror(errno));
+    return true;
+}
+
+// Members a journal chunk: about a 64th of the sweep, 1 to 4,096, a whole number of lane batches
+// (a resumed run's batches are an uninterrupted one's).
+std::size_t chunk_of(std::size_t members, unsigned lanes) {
+    const std::size_t c = std::clamp<std::size_t>(members / 64, 1, 4096);
+    return (c + lanes - 1) / lanes * lanes;
+}
+
+// Where the files go, checked before any derivation: a journal in DIR is refused unless --resume
+// (then it must be this sweep's), and --resume goes on after its last whole chunk.
+writer_setup files_of(const sweep_request& q, const scene_spec& scene, std::size_t members) {
+    writer_setup w;
+    w.dir = q.directory;
+    w.trajectories = q.trajectories;
+    w.chunk = chunk_of(members, q.lanes);
+    w.hash = journal_hash(scene.file, scene.model.file, q.vary, q.trajectories, q.lanes);
+    const journal_names names = journal_in(q.directory);
+    const journal_found found = read_journal(names, w.chunk, members);
+    if (!found.exists) return w;
+    if (!q.resume)
+        throw user_error({names.summary},
+                         "the journal of an interrupted sweep (" + std::to_string(found.members) +
+                             " members finished): add --resume to finish it, or remove the "
+                             "folder's *.partial* files to start again");
+    if (found.hash != w.hash)
+        throw user_error({names.stamp}, "this journal is of another scene or other options "
+                                        "(--vary, --trajectories, --lanes); resume it with the "
+                                        "command that made it, or remove the folder's "
+                                        "*.partial* files");
+    if (found.members > 0) w.resume = found; // else it starts again, as if there were none
+    return w;
 }
 
 std::string mode_name(sweep_mode m) {
     return m == sweep_mode::grid ? "grid" : m == sweep_mode::zip ? "zip" : "random";
 }
 
-// `lanes` the batch kernel's target with --lanes W > 1, else empty.
+// `lanes`: the batch kernel's target with --lanes W > 1, else empty.
 void print_summary(std::ostream& os, const sweep_request& q, const scene_spec& scene,
-                   const sweep_plan& plan, const std::vector<member_outcome>& outcomes,
-                   const std::string& workers, const std::string& lanes, double seconds) {
-    std::uint64_t steps = 0, evals = 0;
-    std::size_t failed = 0, in_lanes = 0;
-    for (const auto& o : outcomes) {
-        steps += o.steps, evals += o.rhs_evals;
-        failed += o.ok() ? 0 : 1;
-        in_lanes += o.in_lanes ? 1 : 0;
-    }
+                   const sweep_plan& plan, const sweep_writer& w, const std::string& workers,
+                   const std::string& lanes, double seconds) {
     std::string keys;
     for (const auto& k : plan.keys)
         keys += (keys.empty() ? "" : ", ") + k.key;
+    const std::size_t all = w.first() + w.members();
     os << "rotgen sweep " << q.scene << "\n"
        << "  model   " << scene.model.name << " (" << scene.model.file << "), "
        << to_string(scene.form) << " form, method " << scene.integrator.method << "\n"
-       << "  members " << outcomes.size() << " (" << mode_name(plan.mode) << " over " << keys
-       << "), " << outcomes.size() - failed << " ok, " << failed << " failed; " << workers << "\n";
+       << "  members " << all << " (" << mode_name(plan.mode) << " over " << keys << "), "
+       << all - w.failed() << " ok, " << w.failed() << " failed; " << workers << "\n";
     if (!lanes.empty())
-        os << "  lanes   " << in_lanes << " of " << outcomes.size() << " members in batches of "
+        os << "  lanes   " << w.in_lanes() << " of " << w.members() << " members in batches of "
            << q.lanes << " (" << lanes << ")\n";
-    os << "  steps   " << steps << " accepted; " << evals << " RHS evaluations\n"
+    if (w.first() > 0)
+        os << "  resumed after the journal's " << w.first() << " members (the lines below: the "
+           << w.members() << " run now)\n";
+    os << "  steps   " << w.steps() << " accepted; " << w.rhs_evals() << " RHS evaluations\n"
        << "  time    " << short_number(seconds) << " s running the members ("
-       << short_number(outcomes.empty() ? 0 : outcomes.size() / seconds) << " members/s)\n";
-}
-
-// DIR/trajectories.h5 from the members' samples.
-void write_h5(const std::string& path, const scene_spec& scene, const sweep_plan& plan,
-              const std::vector<std::vector<double>>& rows, const summary_layout& layout,
-              const std::vector<member_outcome>& outcomes) {
-    trajectory_file f;
-    f.columns = {"t"};
-    f.columns.insert(f.columns.end(), layout.columns.begin(), layout.columns.end());
-    for (const auto& k : plan.keys)
-        f.keys.push_back(k.key);
-    std::ifstream in(scene.file, std::ios::binary);
-    f.scene_text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    f.scene_file = scene.file;
-    f.members = outcomes.size();
-    f.samples = layout.samples;
-    f.values = &rows;
-    for (const auto& o : outcomes)
-        f.data.push_back(&o.trajectory);
-    write_trajectories(path, f);
+       << short_number(w.members() == 0 ? 0 : double(w.members()) / seconds) << " members/s)\n";
 }
 
 // One line per failed member (the first ten), on stderr.
-void report_failures(const std::string& scene_file, const std::vector<member_outcome>& outcomes) {
-    constexpr std::size_t shown = 10;
-    std::size_t failed = 0;
-    for (std::size_t m = 0; m < outcomes.size(); ++m)
-        if (!outcomes[m].ok() && ++failed <= shown)
-            std::cerr << "rotgen: error: " << scene_file << ": member " << m << ": "
-                      << outcomes[m].status << "\n";
-    if (failed > shown)
-        std::cerr << "rotgen: error: " << failed - shown << " more members failed (status in "
-                  << "summary.csv)\n";
+void report_failures(const std::string& scene_file, const sweep_writer& w) {
+    for (const auto& [m, status] : w.failures())
+        std::cerr << "rotgen: error: " << scene_file << ": member " << m << ": " << status << "\n";
+    if (w.failed() > w.failures().size())
+        std::cerr << "rotgen: error: " << w.failed() - w.failures().size()
+                  << " more members failed (status in summary.csv)\n";
 }
 
 // The scene's ensemble, prepared: the plan, the members' values, the derivation and kernels.
 struct ensemble {
     scene_spec scene;
     sweep_plan plan;
-    std::vector<std::vector<double>> rows;
+    member_table table;
     std::unique_ptr<prepared_scene> prepared;
     summary_layout layout;
     std::unique_ptr<lane_kernels> lanes; // with --lanes W > 1
+    writer_setup files;                  // rank 0
 
-    ensemble(const sweep_request& q, stage_timings& timings)
-        : scene(load_scene(q.scene)), plan(read_sweep_plan(scene, q.vary)),
-          rows(member_rows(plan)) {
+    ensemble(const sweep_request& q, bool root, stage_timings& timings)
+        : scene(load_scene(q.scene)), plan(read_sweep_plan(scene, q.vary)), table(plan) {
+        // what cannot be done is refused before any derivation or compilation
+        if (root) {
+            check_room(q.directory, estimated_output(scene, plan, table.size(), q.trajectories),
+                       table.size());
+            files = files_of(q, scene, table.size());
+        }
         if (q.lanes > 1) lane_check(scene);
         prepared = std::make_unique<prepared_scene>(scene, timings);
         prepared->compile_all(timings);
@@ -133,7 +149,7 @@ std::vector<member_outcome> run_batch(const ensemble& e, const member_values& ba
                                       std::size_t first, std::size_t count, bool trajectories) {
     std::vector<member_values> values;
     for (std::size_t m = first; m < first + count; ++m)
-        values.push_back(member_of(e.plan, base, e.rows[m]));
+        values.push_back(member_of(e.plan, base, e.table.row(m)));
     const std::vector<std::optional<run_result>> results = run_lanes(*e.prepared, *e.lanes, values);
     std::vector<member_outcome> out;
     for (std::size_t k = 0; k < count; ++k) {
@@ -144,53 +160,57 @@ std::vector<member_outcome> run_batch(const ensemble& e, const member_values& ba
     return out;
 }
 
-// Every member's outcome, in member order: one at a time, or in batches of lanes.
-std::vector<member_outcome> run_members(const mpi_session& session, const sweep_request& q,
-                                        const ensemble& e, unsigned jobs,
-                                        const std::function<void(std::size_t)>& progress) {
-    const member_values base = values_of(e.prepared->scene());
-    if (e.lanes)
-        return run_distributed(
-            session, e.rows.size(), q.lanes, jobs,
-            [&](std::size_t first, std::size_t count) {
-                return run_batch(e, base, first, count, q.trajectories);
-            },
-            progress);
-    return run_distributed(
-        session, e.rows.size(), jobs,
-        [&](std::size_t m) {
-            return run_one(*e.prepared, e.layout, member_of(e.plan, base, e.rows[m]),
-                           q.trajectories);
-        },
-        progress);
+// Outcomes that may wait in memory: about 32 MB of them, and enough for every thread.
+std::size_t window_of(const sweep_request& q, const ensemble& e, unsigned jobs, int ranks) {
+    const std::size_t numbers =
+        1 + e.layout.columns.size() + e.layout.events.size() + e.layout.invariants.size() +
+        (q.trajectories ? e.layout.samples * (1 + e.layout.columns.size()) : 0);
+    const std::size_t budget = std::size_t(32) << 20, member = 256 + 8 * numbers;
+    const std::size_t least = 4 * std::size_t(q.lanes) * (std::size_t(jobs) + std::size_t(ranks));
+    return std::min(std::max(budget / member, least), std::max<std::size_t>(e.table.size(), 1));
 }
 
-// The files and the report (rank 0 only). Returns the exit status.
-int finish(const sweep_request& q, const ensemble& e, const std::string& workers,
-           const std::vector<member_outcome>& outcomes, double seconds, atomic_file& summary_out,
-           stage_timings& timings) {
-    timings.time("write", summary_out.path(), [&] {
-        write_summary(summary_out.stream(), e.plan, e.rows, e.layout, outcomes);
-        summary_out.commit();
-    });
-    const std::string h5 = q.directory + "/trajectories.h5";
-    if (q.trajectories)
-        timings.time("write", h5,
-                     [&] { write_h5(h5, e.scene, e.plan, e.rows, e.layout, outcomes); });
+// Runs members `from` .. the last (`out`, on rank 0, numbers them from 0), each outcome through
+// `out` in member order: one at a time, or in batches of lanes. Returns the members each rank ran
+// (rank 0).
+std::vector<std::size_t> run_members(const mpi_session& session, const sweep_request& q,
+                                     const ensemble& e, std::size_t from, unsigned jobs,
+                                     in_order* out,
+                                     const std::function<void(std::size_t)>& progress) {
+    const member_values base = values_of(e.prepared->scene());
+    const std::size_t count = e.table.size() - from;
+    if (e.lanes)
+        return run_distributed(
+            session, count, q.lanes, jobs,
+            [&](std::size_t first, std::size_t n) {
+                return run_batch(e, base, from + first, n, q.trajectories);
+            },
+            out, progress);
+    return run_distributed(
+        session, count, 1, jobs,
+        [&](std::size_t m, std::size_t) {
+            return std::vector<member_outcome>{
+                run_one(*e.prepared, e.layout, member_of(e.plan, base, e.table.row(from + m)),
+                        q.trajectories)};
+        },
+        out, progress);
+}
+
+// The files' completion and the report (rank 0 only). Returns the exit status.
+int finish(const sweep_request& q, const ensemble& e, const std::string& workers, sweep_writer& w,
+           double seconds, stage_timings& timings) {
+    timings.time("write", w.summary_path(), [&] { w.commit(); });
     std::ostringstream discarded;
     std::ostream& summary = q.quiet ? discarded : std::cerr;
-    print_summary(summary, q, e.scene, e.plan, outcomes, workers, e.lanes ? e.lanes->arch : "",
-                  seconds);
-    summary << "  wrote   " << summary_out.path() << " (" << outcomes.size() << " members)\n";
+    print_summary(summary, q, e.scene, e.plan, w, workers, e.lanes ? e.lanes->arch : "", seconds);
+    const std::size_t all = w.first() + w.members();
+    summary << "  wrote   " << w.summary_path() << " (" << all << " members)\n";
     if (q.trajectories)
-        summary << "  wrote   " << h5 << " (" << outcomes.size() << " x " << e.layout.samples
+        summary << "  wrote   " << w.trajectories_path() << " (" << all << " x " << e.layout.samples
                 << " x " << e.layout.columns.size() + 1 << ")\n";
     if (q.timings) timings.print(std::cerr);
-    bool failed = false;
-    for (const auto& o : outcomes)
-        failed = failed || !o.ok();
-    if (!failed) return 0;
-    report_failures(q.scene, outcomes);
+    if (w.failed() == 0) return 0;
+    report_failures(q.scene, w);
     return 3;
 }
 
@@ -198,17 +218,16 @@ int finish(const sweep_request& q, const ensemble& e, const std::string& workers
 // prepare. A failure on any rank stops every rank; rank 0 reports it.
 std::unique_ptr<ensemble> prepare_everywhere(const mpi_session& session, const sweep_request& q,
                                              stage_timings& timings,
-                                             std::unique_ptr<atomic_file>& summary_out) {
+                                             std::unique_ptr<sweep_writer>& writer) {
     std::unique_ptr<ensemble> e;
     std::exception_ptr failure;
     const auto attempt = [&] {
         try {
-            e = std::make_unique<ensemble>(q, timings);
+            e = std::make_unique<ensemble>(q, session.rank() == 0, timings);
             if (session.rank() != 0) return;
-            make_directory(q.directory);
-            summary_out = std::make_unique<atomic_file>(
-                q.directory + "/summary.csv",
-                std::vector<std::string>{q.scene, e->scene.model.file});
+            e->files.made_dir = make_directory(q.directory);
+            writer =
+                std::make_unique<sweep_writer>(e->files, e->scene, e->plan, e->table, e->layout);
         } catch (...) {
             failure = std::current_exception();
         }
@@ -227,32 +246,51 @@ std::unique_ptr<ensemble> prepare_everywhere(const mpi_session& session, const s
     return e;
 }
 
+// "1 thread on each of 2 MPI ranks, lanes of 4 (avx2)"; with MPI, the members each rank ran.
+std::string workers_of(const mpi_session& session, const sweep_request& q, const ensemble& e,
+                       unsigned jobs, const std::vector<std::size_t>& ran) {
+    std::string w =
+        std::to_string(jobs) + (jobs == 1 ? " thread" : " threads") +
+        (session.size() > 1 ? " on each of " + std::to_string(session.size()) + " MPI ranks" : "");
+    if (session.size() > 1) {
+        w += "\n  ranks   members run by rank 0, 1, ...:";
+        for (std::size_t r = 0; r < ran.size(); ++r)
+            w += (r == 0 ? " " : ", ") + std::to_string(ran[r]);
+    }
+    return w;
+}
+
 } // namespace
 
 int sweep(const sweep_request& q) {
     const mpi_session session;
+    if (session.rank() == 0) journal_not_yet();
     stage_timings timings;
-    std::unique_ptr<atomic_file> summary_out;
-    const std::unique_ptr<ensemble> e = prepare_everywhere(session, q, timings, summary_out);
+    std::unique_ptr<sweep_writer> writer;
+    const std::unique_ptr<ensemble> e = prepare_everywhere(session, q, timings, writer);
     if (!e) return 2; // a rank other than 0: rank 0 reported the error
     const bool root = session.rank() == 0;
-    progress_line progress(0, double(e->rows.size()), root && !q.quiet, "members");
+    // the members a journal holds are not run again (--resume)
+    const std::size_t from = session.broadcast(root ? writer->first() : 0);
+    progress_line progress(double(from), double(e->table.size()), root && !q.quiet, "members");
     // under mpirun a rank per core, each with one thread, unless -j says otherwise
     const unsigned jobs = q.jobs != 0 ? q.jobs : session.size() > 1 ? 1 : all_cores();
+    std::unique_ptr<in_order> out;
+    if (root)
+        out = std::make_unique<in_order>(
+            e->table.size() - from, window_of(q, *e, jobs, session.size()),
+            [&](std::size_t m, member_outcome&& o) { writer->add(from + m, std::move(o)); });
     const auto start = std::chrono::steady_clock::now();
-    const std::vector<member_outcome> outcomes =
-        timings.time("members", std::to_string(e->rows.size()), [&] {
-            return run_members(session, q, *e, jobs,
-                               [&](std::size_t done) { progress.update(double(done)); });
+    const std::vector<std::size_t> ran =
+        timings.time("members", std::to_string(e->table.size() - from), [&] {
+            return run_members(session, q, *e, from, jobs, out.get(),
+                               [&](std::size_t done) { progress.update(double(from + done)); });
         });
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     progress.finish();
     if (!root) return 0;
-    const std::string workers =
-        std::to_string(jobs) + (jobs == 1 ? " thread" : " threads") +
-        (session.size() > 1 ? " on each of " + std::to_string(session.size()) + " MPI ranks" : "");
-    return finish(q, *e, workers, outcomes, seconds, *summary_out, timings);
+    return finish(q, *e, workers_of(session, q, *e, jobs, ran), *writer, seconds, timings);
 }
 
 } // namespace rotgen

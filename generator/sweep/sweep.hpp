@@ -27,6 +27,7 @@ struct sweep_request {
     bool trajectories = false;     // also DIR/trajectories.h5 (sweep/trajectories.hpp)
     bool timings = false;          // one line per pipeline stage to stderr
     bool quiet = false;            // no summary and no progress line
+    bool resume = false;           // go on from DIR's journal (sweep/journal.hpp)
 };
 
 // Returns the exit status: 0, or 3 if a member failed. Throws user_error for bad input (nothing
