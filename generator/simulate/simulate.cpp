@@ -95,8 +95,8 @@ void print_summary(std::ostream& os, const simulate_request& q, const scene_spec
     const double compile =
         timings.total("lower") + timings.total("emit") + timings.total("compile");
     os << "rotgen simulate " << q.scene << "\n"
-       << "  model   " << scene.model.name << " (" << scene.model.file << "), "
-       << to_string(scene.form) << " form, " << r.state_size << " states\n";
+       << "  model   " << scene.model.name << " (" << scene.model.file << "), " << to_string(r.form)
+       << " form, " << r.state_size << " states\n";
     if (!r.chart_note.empty()) os << "  chart   " << r.chart_note << "\n";
     os << "  method  " << ig.method;
     if (ig.fixed_step())
@@ -108,8 +108,8 @@ void print_summary(std::ostream& os, const simulate_request& q, const scene_spec
        << "  steps   " << r.stats.accepted << " accepted, " << r.stats.rejected << " rejected; "
        << r.stats.rhs_evals << " RHS and " << r.stats.jac_evals << " Jacobian evaluations, "
        << r.stats.factorisations << " factorisations\n"
-       << "  time    " << short_number(r.integrate_seconds * 1e3) << " ms integrating; "
-       << short_number(prepare) << " s deriving, " << short_number(compile) << " s "
+       << "  time    " << format_duration(r.integrate_seconds) << " integrating; "
+       << format_duration(prepare) << " deriving, " << format_duration(compile) << " "
        << (r.kernels_cached ? "emitting and loading the cached kernels"
                             : "emitting and compiling the kernels")
        << "\n";
@@ -131,7 +131,7 @@ void draw_plot(const simulate_request& q, std::string csv, const scene_spec& sce
     for (std::size_t i = 0; i < r.columns.size(); ++i)
         if (r.columns[i] == "energy" && !r.rows.empty()) energy0 = r.rows[0][i + 1];
     plot_run(q.plot, csv, r.record,
-             scene.model.name + " (" + to_string(scene.form) + " form, " + scene.integrator.method +
+             scene.model.name + " (" + to_string(r.form) + " form, " + scene.integrator.method +
                  ")",
              energy0);
 }
@@ -179,7 +179,7 @@ int report_partial(const simulate_request& q, const std::string& csv, const scen
 } // namespace
 
 int simulate(const simulate_request& q) {
-    const scene_spec scene = load_scene(q.scene);
+    const scene_spec scene = load_scene(q.scene, "simulate");
     const std::vector<std::string> inputs{q.scene, scene.model.file};
     const std::string csv = csv_path(q);
     // Output paths are checked before any work (no partial output, early clear error).

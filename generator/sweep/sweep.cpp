@@ -66,7 +66,7 @@ void print_summary(std::ostream& os, const sweep_request& q, const scene_spec& s
        << "  members " << outcomes.size() << " (" << mode_name(plan.mode) << " over " << keys
        << "), " << outcomes.size() - failed << " ok, " << failed << " failed; " << workers << "\n"
        << "  steps   " << steps << " accepted; " << evals << " RHS evaluations\n"
-       << "  time    " << short_number(seconds) << " s running the members ("
+       << "  time    " << format_duration(seconds) << " running the members ("
        << short_number(outcomes.empty() ? 0 : outcomes.size() / seconds) << " members/s)\n";
 }
 
@@ -113,7 +113,7 @@ struct ensemble {
     std::unique_ptr<lane_kernels> lanes; // with --lanes W > 1
 
     ensemble(const sweep_request& q, stage_timings& timings)
-        : scene(load_scene(q.scene)), plan(read_sweep_plan(scene, q.vary)),
+        : scene(load_scene(q.scene, "sweep")), plan(read_sweep_plan(scene, q.vary)),
           rows(member_rows(plan)) {
         if (q.lanes > 1) lane_check(scene);
         prepared = std::make_unique<prepared_scene>(scene, timings);
@@ -171,8 +171,8 @@ int finish(const sweep_request& q, const ensemble& e, const std::string& workers
         timings.time("write", h5,
                      [&] { write_h5(h5, e.scene, e.plan, e.rows, e.layout, outcomes); });
     std::ostringstream discarded;
-    std::ostream& summary = q.quiet ? discarded : std::cerr;
-    print_summary(summary, q, e.scene, e.plan, outcomes, workers, seconds);
+    std::ostream& summary = q.quiet ? discarded : std::cout; // standard output: no data there
+    print_summary(summary, q, e.prepared->scene(), e.plan, outcomes, workers, seconds);
     summary << "  wrote   " << summary_out.path() << " (" << outcomes.size() << " members)\n";
     if (q.trajectories)
         summary << "  wrote   " << h5 << " (" << outcomes.size() << " x " << e.layout.samples
