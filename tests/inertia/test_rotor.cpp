@@ -111,9 +111,10 @@ TEST_CASE("rotor: inspect prints a rotor's equations, bench refuses it, emit wri
         CHECK(r.err.empty());
         const bool json = options.find("json") != std::string::npos;
         const bool latex = options.find("latex") != std::string::npos;
-        CHECK(contains(r.out, json    ? "\"coordinates\": [\"phi\", \"theta\"]"
-                              : latex ? "p_{\\phi} &= 6 \\sin^{2}\\theta \\dot{\\phi}"
-                                      : "  p_phi = 6*sin(theta)**2*phi_dot\n"));
+        CHECK(contains(r.out,
+                       json    ? "\"coordinates\": [\"phi\", \"theta\"]"
+                       : latex ? "p_{\\varphi} &= 6 \\dot{\\varphi} \\sin^{2}\\left(\\theta\\right)"
+                               : "  p_phi = 6*phi_dot*sin(theta)**2\n"));
         if (json) CHECK(contains(r.out, "\"inertia\": {") == contains(options, "--inertia"));
     }
     const scratch_file scene("rotor_site_scene.yaml",
