@@ -6,7 +6,7 @@
 # once per nutation period (theta_dot, falling: at each maximum of theta).
 #   bench/events.sh [path/to/rotgen] [repeats] > bench/results/events.md
 # Each variant runs `repeats` times (default 11), interleaved; the time is the integration's own
-# wall time (the summary's "ms integrating": stepping, sampling, events; no derivation or compiling,
+# wall time (the summary's "integrating" time: stepping, sampling, events; no derivation or compiling,
 # the kernels come from the cache after the first run); the table gives the medians and the ratios
 # to the run without events.
 set -euo pipefail
@@ -32,10 +32,15 @@ ${events[$i]}
 YAML
   (cd "$work" && "$rotgen" simulate "scene$i.yaml" -o "out$i.csv" -q) # compile once
 done
+# The summary's "time    <number> <s|ms|us> <what>" (a unit that fits the duration), in ms.
+in_ms() {
+  sed -n "s/^  time    \([0-9.]*\) \(s\|ms\|us\) $1.*/\1 \2/p" |
+    awk '{ print $1 * ($2 == "s" ? 1e3 : $2 == "ms" ? 1 : 1e-3) }'
+}
 for ((r = 0; r < repeats; r++)); do
   for i in 0 1 2; do
-    (cd "$work" && "$rotgen" simulate "scene$i.yaml" -o "out$i.csv") |
-      sed -n 's/.*time    \([0-9.e+-]*\) ms integrating.*/\1/p' >> "$work/times$i"
+    (cd "$work" && "$rotgen" simulate "scene$i.yaml" -o "out$i.csv") | in_ms integrating \
+      >> "$work/times$i"
   done
 done
 median() { sort -g "$1" | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }

@@ -46,8 +46,10 @@ lanes=8
 one_run() {
   rm -rf "$work/out"
   local t cpu
-  t=$(/usr/bin/time -f "cpu %U %S" -o "$work/cpu" "$@" -o "$work/out" 2>&1 |
-      sed -n 's/^  time    \([0-9.e+-]*\) s running the members.*/\1/p')
+  # the summary (standard output): "time    <number> <s|ms|us> running the members", in seconds
+  t=$(/usr/bin/time -f "cpu %U %S" -o "$work/cpu" "$@" -o "$work/out" |
+      sed -n 's/^  time    \([0-9.]*\) \(s\|ms\|us\) running the members.*/\1 \2/p' |
+      awk '{ print $1 * ($2 == "s" ? 1 : $2 == "ms" ? 1e-3 : 1e-6) }')
   [[ -n $t ]] || { echo "sweep.sh: no time from: $*" >&2; exit 1; }
   cpu=$(awk '/^cpu/ { print $2 + $3 }' "$work/cpu")
   echo "$t $cpu"
@@ -94,7 +96,7 @@ echo "rk4, 1 thread, without and with --lanes $lanes" >&2
 read -r rk4_1 rk4_1c rk4_l rk4_lc < <(best_of_9_each "$work/rk4.yaml" one lanes)
 echo "rk4 to t = 0.01, 1 thread, without and with --lanes $lanes" >&2
 read -r short_1 short_1c short_l short_lc < <(best_of_9_each "$work/short.yaml" one lanes)
-arch=$("$rotgen" sweep "$work/rk4.yaml" -o "$work/out" -j 1 --lanes $lanes 2>&1 |
+arch=$("$rotgen" sweep "$work/rk4.yaml" -o "$work/out" -j 1 --lanes $lanes |
        sed -n 's/^  lanes .* in batches of [0-9]* (\(.*\))$/\1/p')
 echo "dop853: 1 thread, --lanes $lanes, 2 threads, mpirun -n 2" >&2
 read -r dop_1 dop_1c dop_l dop_lc dop_2 dop_2c mpi_2 mpi_2c < <(best_of_9_each "$work/dop853.yaml" \

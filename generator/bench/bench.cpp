@@ -17,6 +17,7 @@
 #include "run/engine.hpp"
 #include "run/kinematics.hpp"
 #include "support/error.hpp"
+#include "support/format.hpp"
 
 #include <unistd.h>
 
@@ -113,10 +114,17 @@ class bench_run {
 void bench_run::prepare(const bench_options& options) {
     bench_context& c = m_ctx;
     c.opt = options;
-    c.scene = load_scene(c.opt.scene);
+    c.scene = load_scene(c.opt.scene, "bench");
     if (c.scene.t_end < c.scene.t_start) // its references and plans are for forward runs
         throw user_error(c.scene.time_where, "bench measures forward runs: time end must be "
                                              "after time start (simulate runs backward)");
+    if (c.scene.model.rotor)
+        throw user_error(c.scene.model.rotor_where,
+                         "model '" + c.scene.model.name +
+                             "' is a linear rotor (a body on a line, Example 5.4): bench compares "
+                             "the three-angle forms and their peers (Boost.Odeint, CVODE) on "
+                             "them, and a rotor has one form of two angles, rotor; run it with "
+                             "'rotgen simulate' or 'rotgen sweep'");
     c.spec = c.scene.model; // with the scene's parameter values
     for (std::size_t i = 0; i < c.spec.parameters.size(); ++i)
         c.spec.parameters[i].value = c.scene.parameters[i];
@@ -172,11 +180,11 @@ void bench_run::print_summary(double wall_seconds) const {
               << short_number(out.reference_error) << ")\n  compared  " << out.compared << "\n"
               << "  runs      " << out.rows.size() << " configurations (" << failed << " failed), "
               << c.plan.drift_labels.size() << " long runs\n"
-              << "  time      " << short_number(c.generate_seconds) << " s generating, "
+              << "  time      " << format_duration(c.generate_seconds) << " generating, "
               << (c.driver.cached ? std::string("cached driver")
-                                  : short_number(c.driver.seconds) + " s compiling")
-              << ", " << short_number(c.run.seconds) << " s sweeping, "
-              << short_number(wall_seconds) << " s in all\n"
+                                  : format_duration(c.driver.seconds) + " compiling")
+              << ", " << format_duration(c.run.seconds) << " sweeping, "
+              << format_duration(wall_seconds) << " in all\n"
               << "  harness   " << c.src.harness.string() << ", runtime " << c.src.runtime.string()
               << "\n";
     for (const auto& why : c.plan.left_out)

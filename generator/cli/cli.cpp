@@ -75,10 +75,12 @@ int run_cli(int argc, char** argv) {
         if (command == "bench") return cmd_bench(args);
         if (command == "sweep") return cmd_sweep(args);
         if (command == "view") return cmd_view(args);
-        throw user_error(
-            {"rotgen"},
-            "unknown command '" + command +
-                "' (expected inspect, emit, simulate, bench, sweep or view; see rotgen --help)");
+        const std::string best = closest_name(
+            command, {"inspect", "emit", "simulate", "bench", "sweep", "view", "help"});
+        throw user_error({}, "unknown command '" + command + "'" +
+                                 (best.empty() ? "" : "; did you mean '" + best + "'?") +
+                                 " (expected inspect, emit, simulate, bench, sweep or view; see "
+                                 "rotgen --help)");
     } catch (const user_error& e) {
         std::cerr << "rotgen: error: " << one_line(e.message()) << "\n";
         return 2;

@@ -190,7 +190,7 @@ int cmd_emit(const std::vector<std::string>& args) {
         request.specialise = split_list(o.value("--specialise"), "--specialise");
 
     stage_timings timings;
-    const model_spec spec = load_model(o.operand);
+    const model_spec spec = load_model(o.operand, "emit");
     // A linear rotor has its own form (derive/rotor.hpp), derived where it is built.
     form = rotor_form_of(spec, form, o.has("--form"));
     const header_options header{regenerate_command(o, form, strategy), o.value("--name")};

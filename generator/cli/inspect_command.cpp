@@ -42,6 +42,7 @@ output_format format_of(const std::string& f) {
 // derivation (and a linear rotor has none).
 std::string model_text(const model_spec& spec, output_format format, bool inertia, bool symbolic) {
     if (inertia && format != output_format::json) return inspect_inertia(spec, format, symbolic);
+    if (spec.rotor) return inspect_rotor(spec, format, inertia, symbolic);
     return inspect(spec, derive(spec), format, inertia, symbolic);
 }
 

@@ -20,9 +20,11 @@ const option_spec* find_option(const command_spec& c, const std::string& word) {
 
 [[noreturn]] void unknown_option(const command_spec& c, const std::string& word) {
     std::vector<std::string> names;
-    for (const auto& o : c.options)
+    for (const auto& o : c.options) {
         names.push_back(o.name);
-    const std::string best = closest_name(word, names);
+        names.insert(names.end(), o.aliases.begin(), o.aliases.end()); // --outptu: --output
+    }
+    const std::string best = closest_name(word.substr(0, word.find('=')), names);
     usage_error(c, "unknown option '" + word + "' for " + c.name +
                        (best.empty() ? "" : "; did you mean '" + best + "'?"));
 }

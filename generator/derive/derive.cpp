@@ -83,7 +83,7 @@ void refuse_rotor(const model_spec& spec) {
                              "5.4); its motion has two angles (phi, theta): emit and simulate "
                              "run it in the rotor form, and this command takes three-angle "
                              "tops only; 'rotgen inspect " +
-                             spec.file + " --inertia' reports it");
+                             spec.file + "' prints its equations");
 }
 
 // Q = -c q_dot + J^T tau (virtual work of a body torque: tau . J dq); tau may use omega (body

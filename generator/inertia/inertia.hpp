@@ -133,6 +133,12 @@ principal_axes numeric_principal_axes(const std::array<std::array<double, 3>, 3>
 // characteristic polynomial (c3 = det I = 0: one at least; c2 = Σ principal minors = 0 too: two;
 // tr I = 0 too: all), the entries compared after sin² → 1 − cos² (rotor.cpp).
 int exact_zero_moments(const matrix3& tensor);
+
+// What makes numeric principal moments (in any order) unphysical, "" when nothing does (relative
+// tolerance 1e-12): "a principal moment is negative (m1, m2, m3)", or "principal moments (...)
+// break the triangle inequality (each at most the sum of the other two): a + b < c".
+std::string negative_moment_problem(const std::array<double, 3>& moments);
+std::string triangle_problem(const std::array<double, 3>& moments);
 // For a tensor with exactly one zero moment (with the triangle inequality: a linear rotor,
 // Example 5.4) the two equal moments across the line, I2 = I3 = tr I / 2, exactly; else nullopt.
 std::optional<GiNaC::ex> exact_rotor_moment(const matrix3& tensor);

@@ -3,6 +3,7 @@
 #include "expr/print.hpp"
 #include "expr/symbols.hpp"
 #include "inertia/inertia.hpp"
+#include "inspect/equations.hpp"
 
 #include <algorithm>
 #include <sstream>
@@ -41,10 +42,6 @@ std::string json_quote(const std::string& s) {
 }
 
 namespace {
-
-const std::array<std::string, 3>& names() {
-    return coordinate_names();
-}
 
 std::string json_array(const vector3& v) {
     std::string s = "[";
@@ -249,109 +246,140 @@ std::string inertia_json(const model_spec& spec, const inertia_report& r) {
     return os.str();
 }
 
-std::string as_json(const model_spec& spec, const derivation& d, const inertia_report* inertia) {
+std::string json_list(const std::vector<ex>& v) {
+    std::string s = "[";
+    for (std::size_t i = 0; i < v.size(); ++i)
+        s += (i ? ", " : "") + json_quote(to_text(v[i]));
+    return s + "]";
+}
+
+std::string as_json(const model_spec& spec, const equations& d, const inertia_report* inertia) {
     std::ostringstream os;
     os << "{\n  \"model\": " << json_quote(spec.name) << ",\n  \"parameters\": {";
     for (std::size_t i = 0; i < spec.parameters.size(); ++i)
         os << (i ? ", " : "") << json_quote(spec.parameters[i].name) << ": "
            << format_double(spec.parameters[i].value);
-    os << "},\n  \"coordinates\": [\"phi\", \"theta\", \"psi\"],\n";
+    os << "},\n  \"coordinates\": [";
+    for (std::size_t i = 0; i < d.names.size(); ++i)
+        os << (i ? ", " : "") << json_quote(d.names[i]);
+    os << "],\n";
+    if (!d.direction.empty()) os << "  \"direction\": " << json_list(d.direction) << ",\n";
     os << "  \"kinetic\": " << json_quote(to_text(d.kinetic)) << ",\n";
     os << "  \"potential\": " << json_quote(to_text(d.potential)) << ",\n";
     os << "  \"lagrangian\": " << json_quote(to_text(d.lagrangian)) << ",\n";
-    os << "  \"momenta\": " << json_array(d.momenta) << ",\n";
+    os << "  \"momenta\": " << json_list(d.momenta) << ",\n";
     os << "  \"mass_matrix\": [";
-    for (int i = 0; i < 3; ++i)
-        os << (i ? ", " : "") << json_array(d.mass_matrix[i]);
-    os << "],\n  \"euler_lagrange\": " << json_array(d.euler_lagrange) << ",\n";
+    for (std::size_t i = 0; i < d.mass_matrix.size(); ++i)
+        os << (i ? ", " : "") << json_list(d.mass_matrix[i]);
+    os << "],\n  \"euler_lagrange\": " << json_list(d.euler_lagrange) << ",\n";
     os << "  \"hamiltonian\": " << json_quote(to_text(d.hamiltonian)) << ",\n";
-    os << "  \"hamilton_equations\": {\"qdot\": " << json_array(d.hamilton_qdot)
-       << ", \"pdot\": " << json_array(d.hamilton_pdot) << "},\n";
+    os << "  \"hamilton_equations\": {\"qdot\": " << json_list(d.qdot)
+       << ", \"pdot\": " << json_list(d.pdot) << "},\n";
     os << "  \"cyclic\": [";
     for (std::size_t i = 0; i < d.cyclic.size(); ++i)
-        os << (i ? ", " : "") << json_quote(names()[d.cyclic[i]]);
+        os << (i ? ", " : "") << json_quote(d.names[static_cast<std::size_t>(d.cyclic[i])]);
     os << "],\n  \"energy\": " << json_quote(to_text(d.energy));
     if (inertia) os << ",\n" << inertia_json(spec, *inertia);
     os << "\n}\n";
     return os.str();
 }
 
-std::string as_text(const model_spec& spec, const derivation& d) {
+std::string as_text(const model_spec& spec, const equations& d) {
     std::ostringstream os;
     os << "model " << spec.name << " (" << spec.file << ")\n";
-    os << "coordinates: phi, theta, psi (z-x-z Euler angles; singular at theta = 0, pi)\n";
+    os << "coordinates: " << d.coordinates_note << "\n";
     os << "parameters:";
     if (spec.parameters.empty()) os << " none";
     for (const auto& p : spec.parameters)
         os << " " << p.name << " = " << format_double(p.value);
-    os << "\n\nbody angular velocity (5.30):\n";
-    for (int i = 0; i < 3; ++i)
+    if (!d.omega.empty()) os << "\n\nbody angular velocity (5.30):\n";
+    for (std::size_t i = 0; i < d.omega.size(); ++i)
         os << "  omega" << i + 1 << " = " << to_text(d.omega[i]) << "\n";
+    if (!d.direction.empty())
+        os << "\n\ndirection of the line in space (the third row of A, 5.25):\n";
+    for (std::size_t i = 0; i < d.direction.size(); ++i)
+        os << "  n"
+           << "xyz"[i] << " = " << to_text(d.direction[i]) << "\n";
     os << "\nkinetic energy   T = " << to_text(d.kinetic) << "\n";
     os << "potential energy V = " << to_text(d.potential) << "\n";
     os << "Lagrangian       L = " << to_text(d.lagrangian) << "\n";
     os << "\ncanonical momenta p = dL/dq_dot:\n";
-    for (int i = 0; i < 3; ++i)
-        os << "  p_" << names()[i] << " = " << to_text(d.momenta[i]) << "\n";
+    const std::size_t n = d.names.size();
+    for (std::size_t i = 0; i < n; ++i)
+        os << "  p_" << d.names[i] << " = " << to_text(d.momenta[i]) << "\n";
     os << "\nmass matrix M(q) (symmetric; M q_ddot = f):\n";
-    for (int i = 0; i < 3; ++i)
-        for (int j = i; j < 3; ++j)
-            os << "  M[" << names()[i] << "][" << names()[j]
+    for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = i; j < n; ++j)
+            os << "  M[" << d.names[i] << "][" << d.names[j]
                << "] = " << to_text(d.mass_matrix[i][j]) << "\n";
     os << "\nf(q, q_dot, t):\n";
-    for (int i = 0; i < 3; ++i)
-        os << "  f_" << names()[i] << " = " << to_text(d.forcing[i]) << "\n";
+    for (std::size_t i = 0; i < n; ++i)
+        os << "  f_" << d.names[i] << " = " << to_text(d.forcing[i]) << "\n";
     os << "\nEuler-Lagrange equations (each = 0):\n";
-    for (int i = 0; i < 3; ++i)
+    for (std::size_t i = 0; i < n; ++i)
         os << "  " << to_text(d.euler_lagrange[i]) << " = 0\n";
     os << "\nHamiltonian H(q, p) = " << to_text(d.hamiltonian) << "\n";
     os << "\nHamilton's equations:\n";
-    for (int i = 0; i < 3; ++i)
-        os << "  " << names()[i] << "_dot = " << to_text(d.hamilton_qdot[i]) << "\n";
-    for (int i = 0; i < 3; ++i)
-        os << "  p_" << names()[i] << "_dot = " << to_text(d.hamilton_pdot[i]) << "\n";
+    for (std::size_t i = 0; i < n; ++i)
+        os << "  " << d.names[i] << "_dot = " << to_text(d.qdot[i]) << "\n";
+    for (std::size_t i = 0; i < n; ++i)
+        os << "  p_" << d.names[i] << "_dot = " << to_text(d.pdot[i]) << "\n";
     os << "\ncyclic coordinates:";
     if (d.cyclic.empty()) os << " none";
     for (int i : d.cyclic)
-        os << " " << names()[i] << " (p_" << names()[i] << " conserved)";
+        os << " " << d.names[static_cast<std::size_t>(i)] << " (p_"
+           << d.names[static_cast<std::size_t>(i)] << " conserved)";
     os << "\nenergy E = T + V = " << to_text(d.energy) << "\n";
     return os.str();
 }
 
-std::string as_latex(const model_spec& spec, const derivation& d) {
-    const auto& s = symbols();
+std::string as_latex(const model_spec& spec, const equations& d) {
     std::ostringstream os;
     const auto tex = [](const ex& e) { return to_latex(e); };
     os << "% rotgen inspect --format latex: model " << spec.name << " (" << spec.file << ")\n";
-    os << "% z-x-z Euler angles; singular at \\theta = 0, \\pi\n";
+    os << "% " << d.latex_note << "\n";
     os << "\\begin{align*}\n";
-    for (int i = 0; i < 3; ++i)
+    for (std::size_t i = 0; i < d.omega.size(); ++i)
         os << "  \\omega_{" << i + 1 << "} &= " << tex(d.omega[i]) << " \\\\\n";
+    for (std::size_t i = 0; i < d.direction.size(); ++i)
+        os << "  n_{"
+           << "xyz"[i] << "} &= " << tex(d.direction[i]) << " \\\\\n";
     os << "  T &= " << tex(d.kinetic) << " \\\\\n";
     os << "  V &= " << tex(d.potential) << " \\\\\n";
     os << "  L &= " << tex(d.lagrangian) << " \\\\\n";
-    for (int i = 0; i < 3; ++i)
-        os << "  " << tex(s.p[i]) << " &= " << tex(d.momenta[i]) << " \\\\\n";
-    for (int i = 0; i < 3; ++i)
-        for (int j = i; j < 3; ++j)
-            os << "  M_{" << tex(s.q[i]) << tex(s.q[j]) << "} &= " << tex(d.mass_matrix[i][j])
+    const std::size_t n = d.names.size();
+    for (std::size_t i = 0; i < n; ++i)
+        os << "  " << tex(d.p[i]) << " &= " << tex(d.momenta[i]) << " \\\\\n";
+    for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = i; j < n; ++j)
+            os << "  M_{" << tex(d.q[i]) << tex(d.q[j]) << "} &= " << tex(d.mass_matrix[i][j])
                << " \\\\\n";
-    for (int i = 0; i < 3; ++i)
+    for (std::size_t i = 0; i < n; ++i)
         os << "  0 &= " << tex(d.euler_lagrange[i]) << " \\\\\n";
     os << "  H &= " << tex(d.hamiltonian) << " \\\\\n";
-    for (int i = 0; i < 3; ++i)
-        os << "  \\dot{" << tex(s.q[i]) << "} &= " << tex(d.hamilton_qdot[i]) << " \\\\\n";
-    for (int i = 0; i < 3; ++i)
-        os << "  \\dot{p}_{" << tex(s.q[i]) << "} &= " << tex(d.hamilton_pdot[i]) << " \\\\\n";
+    for (std::size_t i = 0; i < n; ++i)
+        os << "  \\dot{" << tex(d.q[i]) << "} &= " << tex(d.qdot[i]) << " \\\\\n";
+    for (std::size_t i = 0; i < n; ++i)
+        os << "  \\dot{p}_{" << tex(d.q[i]) << "} &= " << tex(d.pdot[i]) << " \\\\\n";
     os << "  E &= " << tex(d.energy) << "\n";
     os << "\\end{align*}\n";
     if (!d.cyclic.empty()) {
         os << "% cyclic coordinates (momentum conserved):";
         for (int i : d.cyclic)
-            os << " " << names()[i];
+            os << " " << d.names[static_cast<std::size_t>(i)];
         os << "\n";
     }
     return os.str();
+}
+
+// The three-angle derivation as the printers take it.
+equations top_equations(const derivation& d) {
+    const auto& s = symbols();
+    equations e = equations_of(d, 3, {s.q[0], s.q[1], s.q[2]}, {s.p[0], s.p[1], s.p[2]});
+    e.omega.assign(d.omega.begin(), d.omega.end());
+    e.coordinates_note = "phi, theta, psi (z-x-z Euler angles; singular at theta = 0, pi)";
+    e.latex_note = "z-x-z Euler angles; singular at \\theta = 0, \\pi";
+    return e;
 }
 
 } // namespace
@@ -362,22 +390,36 @@ std::string inspect_inertia(const model_spec& spec, output_format format, bool s
                                           : inertia_text(spec, r, symbolic);
 }
 
-std::string inspect(const model_spec& spec, const derivation& d, output_format format,
-                    bool with_inertia, bool symbolic) {
+namespace {
+
+std::string print(const model_spec& spec, const equations& e, output_format format,
+                  bool with_inertia, bool symbolic) {
     if (with_inertia) {
         if (format != output_format::json) return inspect_inertia(spec, format, symbolic);
         const inertia_report r = analyse_inertia(spec.inertia, spec.parameter_defaults());
-        return as_json(spec, d, &r);
+        return as_json(spec, e, &r);
     }
     switch (format) {
     case output_format::json:
-        return as_json(spec, d, nullptr);
+        return as_json(spec, e, nullptr);
     case output_format::latex:
-        return as_latex(spec, d);
+        return as_latex(spec, e);
     case output_format::text:
         break;
     }
-    return as_text(spec, d);
+    return as_text(spec, e);
+}
+
+} // namespace
+
+std::string inspect(const model_spec& spec, const derivation& d, output_format format,
+                    bool with_inertia, bool symbolic) {
+    return print(spec, top_equations(d), format, with_inertia, symbolic);
+}
+
+std::string inspect_rotor(const model_spec& spec, output_format format, bool with_inertia,
+                          bool symbolic) {
+    return print(spec, rotor_equations(spec), format, with_inertia, symbolic);
 }
 
 } // namespace rotgen

@@ -29,6 +29,12 @@ enum class output_format { text, latex, json };
 std::string inspect(const model_spec& spec, const derivation& d, output_format format,
                     bool with_inertia = false, bool symbolic = false);
 
+// The same for a linear rotor (spec.rotor; derive/rotor.hpp, Example 5.4): its two angles phi,
+// theta, the direction of its line, T, V, L, p, M, f, the Euler-Lagrange equations, H and
+// Hamilton's equations (JSON: the same keys, with two coordinates, and `direction` [3]).
+std::string inspect_rotor(const model_spec& spec, output_format format, bool with_inertia = false,
+                          bool symbolic = false);
+
 // The inertia report alone, text or LaTeX (as `inspect` with `with_inertia`): it needs no
 // derivation.
 std::string inspect_inertia(const model_spec& spec, output_format format, bool symbolic);

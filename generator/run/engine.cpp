@@ -121,6 +121,7 @@ initial_kinematics scene_run::exact_start() {
     decide_chart();
     member_start start = m_prepared.exact_start(m_values);
     m_inertia = start.inertia;
+    check_physical_inertia(m_scene, m_inertia);
     m_model_parameters = std::move(start.model_parameters);
     if (m_scene.initial == initial_kind::momenta && !start.k0.have_rates)
         throw user_error(m_scene.initial_where,
@@ -253,13 +254,29 @@ void scene_run::check_finite_start(const initial_kinematics& k, const compiled_f
                                    const Eigen::VectorXd& y) const {
     const std::vector<double>& parameters = m_parameters[m_current];
     const loaded_system sys = cf.system(parameters);
+    // Values far below the overflow threshold cannot overflow a product of a few of them: a
+    // non-finite f or invariant is then the model's own singularity (1/(theta - 0.5) at 0.5).
+    double largest = y.size() > 0 ? y.cwiseAbs().maxCoeff() : 0;
+    for (double v : parameters)
+        largest = std::max(largest, std::abs(v));
+    for (std::size_t i = 0; k.have_rates && i < 3; ++i)
+        for (long double v : {k.qd[i], k.p[i], k.omega[i]})
+            largest = std::max(largest, static_cast<double>(std::abs(v)));
     const auto check = [&](const std::string& what, double v, const std::string& in = "") {
         if (std::isfinite(v)) return;
-        throw user_error(
-            m_scene.initial_where,
-            "initial values too large for double precision: " + what + " = " + format_number(v) +
-                in + " at t = " + format_double(m_scene.t_start) +
-                "; give smaller initial rates or momenta, or rescale the model's units");
+        const std::string value =
+            what + " = " + format_number(v) + in + " at t = " + format_double(m_scene.t_start);
+        if (!in.empty() || what == "energy" || what == "V") // what the model computes
+            if (largest < 1e50)
+                throw user_error(m_scene.initial_where,
+                                 "the model's equations are not finite at the initial state (" +
+                                     value +
+                                     "): its potential, torque or damping is singular there; "
+                                     "start the scene away from that state");
+        throw user_error(m_scene.initial_where,
+                         "initial values too large for double precision: " + value +
+                             "; give smaller initial rates or momenta, or rescale the model's "
+                             "units");
     };
     const auto& q = coordinate_names();
     if (k.have_rates)
@@ -455,6 +472,7 @@ Eigen::VectorXd scene_run::start() {
     for (const auto& name : m_scene.record)
         for (const auto& c : record_columns(name))
             m_result.columns.push_back(c);
+    m_result.form = first.form;
     m_result.state_size = first.f.state.size();
     start_method();
     m_times = sample_times(m_scene);

@@ -32,10 +32,12 @@ struct invariant_drift {
 };
 
 struct run_result {
-    std::size_t state_size = 0;            // of the scene's form (the first form run)
-    std::vector<std::string> record;       // the recorded quantities (the scene's, or its default)
-    std::vector<std::string> columns;      // the recorded columns, after t (body_x expands to 3)
-    std::vector<std::vector<double>> rows; // t, then one value per column, per sample
+    form_kind form = form_kind::lagrangian; // the first form run: the scene's, or the body form
+                                            // (a split method, a start at the gimbal lock)
+    std::size_t state_size = 0;             // of that form
+    std::vector<std::string> record;        // the recorded quantities (the scene's, or its default)
+    std::vector<std::string> columns;       // the recorded columns, after t (body_x expands to 3)
+    std::vector<std::vector<double>> rows;  // t, then one value per column, per sample
     std::vector<invariant_drift> invariants;
     step_stats stats;
     // Events (the scene's `events:`), in time order: which (index into event_names) and the row

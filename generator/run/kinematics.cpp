@@ -3,7 +3,9 @@
 #include "emit/emit.hpp" // exact_decimal
 #include "expr/numbers.hpp"
 #include "expr/symbols.hpp"
+#include "inertia/inertia.hpp"
 #include "support/error.hpp"
+#include "support/format.hpp"
 
 #include <rotation.hpp> // runtime: quaternion_from_euler
 
@@ -132,6 +134,21 @@ void check_double_range(const scene_spec& scene, const initial_kinematics& k) {
         twice_kinetic += k.p[i] * k.qd[i];
     }
     check("the kinetic energy", twice_kinetic / 2);
+}
+
+// The scene's own parameter values were checked when it was read (scene/scene.cpp); a sweep
+// member's may still make the tensor unphysical: such a member is rejected, with the reason.
+void check_physical_inertia(const scene_spec& scene, const Eigen::Matrix3d& inertia) {
+    const Eigen::Vector3d m = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(inertia).eigenvalues();
+    std::string problem = negative_moment_problem({m[0], m[1], m[2]});
+    if (problem.empty()) problem = triangle_problem({m[0], m[1], m[2]});
+    if (problem.empty() && !scene.model.rotor && !(m[0] > 1e-14 * m.cwiseAbs().maxCoeff()))
+        problem = "a principal moment is zero (" + short_number(m[0]) + ", " + short_number(m[1]) +
+                  ", " + short_number(m[2]) + "): the mass matrix is singular";
+    if (!problem.empty())
+        throw user_error(scene.where, "rejected: with these parameter values the inertia is not "
+                                      "physical: " +
+                                          problem);
 }
 
 long double scene_parameter_value(const scene_spec& scene, const initial_kinematics& k,

@@ -43,6 +43,11 @@ std::array<std::string, 3> rates_text(const Eigen::Matrix<long double, 3, 3>& M,
 // kinetic energy (1/2 p . q_dot) overflow double: the runs are in double.
 void check_double_range(const scene_spec& scene, const initial_kinematics& k);
 
+// A member's inertia tensor (its parameter values) must be physical: no negative or (but for a
+// linear rotor) zero principal moment, the triangle inequality. Throws user_error ("rejected: ...",
+// located at the scene) otherwise.
+void check_physical_inertia(const scene_spec& scene, const Eigen::Matrix3d& inertia);
+
 // A parameter of the scene (a model parameter, with the scene's overrides) or a conserved momentum
 // p_<angle> (the reduced form's parameters), in long double. std::logic_error for another name.
 long double scene_parameter_value(const scene_spec& scene, const initial_kinematics& k,

@@ -36,11 +36,13 @@ namespace {
 
 class scene_reader {
   public:
-    explicit scene_reader(std::string file) : m_file(std::move(file)) {}
+    scene_reader(std::string file, std::string command)
+        : m_file(std::move(file)), m_command(std::move(command)) {}
 
     scene_spec read() {
         std::string source;
         const YAML::Node root = load_yaml_file(m_file, &source);
+        refuse_model_file(root);
         check_keys(root,
                    {"model", "parameters", "form", "initial", "time", "integrator", "record",
                     "description", "switch_chart", "sweep", "events"},
@@ -70,6 +72,19 @@ class scene_reader {
 
   private:
     source_location at(const YAML::Node& n) const { return location_of(n, m_file); }
+
+    // A model file given where a scene is expected: located at the key that makes it a model.
+    void refuse_model_file(const YAML::Node& root) const {
+        if (root["model"]) return;
+        for (const auto& kv : root) {
+            const std::string key = kv.first.IsScalar() ? kv.first.Scalar() : "";
+            if (key == "inertia" || key == "body")
+                throw user_error(at(kv.first), "this is a model file (it has '" + key + ":'); " +
+                                                   m_command +
+                                                   " takes a scene, which names its model with "
+                                                   "'model:'");
+        }
+    }
 
     double number(const YAML::Node& n, const std::string& what) const {
         return scene_detail::scene_number(n, m_file, what);
@@ -324,8 +339,8 @@ class scene_reader {
             m_scene.record_where.assign(m_scene.record.size(), m_scene.where);
             return;
         }
-        if (!n.IsSequence() || n.size() == 0)
-            throw user_error(at(n), "'record' must be a list of quantities");
+        if (!n.IsSequence()) throw user_error(at(n), "'record' must be a list of quantities");
+        if (n.size() == 0) throw user_error(at(n), "'record' must list at least one quantity");
         const auto& allowed = recordable_names();
         for (const auto& item : n) {
             const std::string name = item.IsScalar() ? item.Scalar() : "";
@@ -348,6 +363,7 @@ class scene_reader {
     }
 
     std::string m_file;
+    std::string m_command; // the command that reads the scene, for messages
     scene_spec m_scene;
     YAML::Node
         m_model_root; // the model's mapping, its file and text (for check_model_with_overrides)
@@ -357,8 +373,8 @@ class scene_reader {
 
 } // namespace
 
-scene_spec load_scene(const std::string& path) {
-    return scene_reader(path).read();
+scene_spec load_scene(const std::string& path, const std::string& command) {
+    return scene_reader(path, command).read();
 }
 
 } // namespace rotgen

@@ -95,7 +95,9 @@ struct scene_spec {
 const std::vector<std::string>& recordable_names();
 std::vector<std::string> record_columns(const std::string& name);
 
-// Reads and validates a scene file (and the model it names). Throws user_error.
-scene_spec load_scene(const std::string& path);
+// Reads and validates a scene file (and the model it names). Throws user_error; a model file (one
+// with `inertia:` or `body:` and no `model:`) is refused with a message that says so and names
+// `command`, the command that takes a scene ("simulate").
+scene_spec load_scene(const std::string& path, const std::string& command = "this command");
 
 } // namespace rotgen

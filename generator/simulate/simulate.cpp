@@ -113,8 +113,8 @@ void print_summary(std::ostream& os, const simulate_request& q, const scene_spec
     const double compile =
         timings.total("lower") + timings.total("emit") + timings.total("compile");
     os << "rotgen simulate " << q.scene << "\n"
-       << "  model   " << scene.model.name << " (" << scene.model.file << "), "
-       << to_string(scene.form) << " form, " << r.state_size << " states\n";
+       << "  model   " << scene.model.name << " (" << scene.model.file << "), " << to_string(r.form)
+       << " form, " << r.state_size << " states\n";
     if (scene.from)
         os << "  start   from the last row of " << scene.from->file << " (line " << scene.from->line
            << "), t = " << format_double(scene.t_start) << "\n";
@@ -129,8 +129,8 @@ void print_summary(std::ostream& os, const simulate_request& q, const scene_spec
        << "  steps   " << r.stats.accepted << " accepted, " << r.stats.rejected << " rejected; "
        << r.stats.rhs_evals << " RHS and " << r.stats.jac_evals << " Jacobian evaluations, "
        << r.stats.factorisations << " factorisations\n"
-       << "  time    " << short_number(r.integrate_seconds * 1e3) << " ms integrating; "
-       << short_number(prepare) << " s deriving, " << short_number(compile) << " s "
+       << "  time    " << format_duration(r.integrate_seconds) << " integrating; "
+       << format_duration(prepare) << " deriving, " << format_duration(compile) << " "
        << (r.kernels_cached ? "emitting and loading the cached kernels"
                             : "emitting and compiling the kernels")
        << "\n";
@@ -156,7 +156,7 @@ void draw_plot(const simulate_request& q, std::string csv, const scene_spec& sce
                 (inv.what.conserved || inv.what.name == "energy"))
                 drifts[inv.what.name] = r.rows[0][i + 1];
     plot_run(q.plot, csv, r.record,
-             scene.model.name + " (" + to_string(scene.form) + " form, " + scene.integrator.method +
+             scene.model.name + " (" + to_string(r.form) + " form, " + scene.integrator.method +
                  ")",
              drifts);
 }
@@ -206,7 +206,7 @@ int report_partial(const simulate_request& q, const std::string& csv, const scen
 
 // The scene, continued from the last row of q.from when given.
 scene_spec scene_of(const simulate_request& q) {
-    scene_spec scene = load_scene(q.scene);
+    scene_spec scene = load_scene(q.scene, "simulate");
     if (!q.from.empty()) continue_from(scene, q.from);
     return scene;
 }

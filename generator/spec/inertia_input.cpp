@@ -69,9 +69,8 @@ void model_reader::check_physical(const YAML::Node& n, const std::string& what) 
     const double scale = m.cwiseAbs().maxCoeff();
     std::ostringstream moments;
     moments << "(" << m[0] << ", " << m[1] << ", " << m[2] << ")";
-    if (m[0] < -1e-12 * scale)
-        throw user_error(at(n), what + " is not physical: a principal moment is negative " +
-                                    moments.str());
+    if (const std::string problem = negative_moment_problem({m[0], m[1], m[2]}); !problem.empty())
+        throw user_error(at(n), what + " is not physical: " + problem);
     // Zero moments decided exactly (inertia/rotor.cpp), not from the eigensolver's 1e-17.
     const int zeros = exact_zero_moments(m_spec.inertia);
     if (zeros >= 2)
@@ -89,14 +88,8 @@ void model_reader::check_physical(const YAML::Node& n, const std::string& what) 
                                     "5.4) has I1 = 0 exactly: give its moments exactly");
     // m ascending: m0 + m1 >= m2 is the one of the three inequalities that can fail; equality
     // is the planar limit (a lamina: I3 = I1 + I2, the perpendicular-axis theorem).
-    if (m[0] + m[1] < m[2] * (1 - 1e-12)) {
-        std::ostringstream sum;
-        sum << m[0] << " + " << m[1] << " < " << m[2];
-        throw user_error(at(n), what + " is not physical: principal moments " + moments.str() +
-                                    " break the triangle inequality (each at most the sum of "
-                                    "the other two): " +
-                                    sum.str());
-    }
+    if (const std::string problem = triangle_problem({m[0], m[1], m[2]}); !problem.empty())
+        throw user_error(at(n), what + " is not physical: " + problem);
 }
 
 } // namespace rotgen::spec_detail

@@ -79,8 +79,9 @@ struct model_spec {
     GiNaC::exmap parameter_defaults() const;
 };
 
-// Reads and validates a model file. Throws user_error.
-model_spec load_model(const std::string& path);
+// Reads and validates a model file. Throws user_error; a scene file (one with `model:`) is refused
+// with a message that says so and names `command`, the command that takes a model ("emit").
+model_spec load_model(const std::string& path, const std::string& command = "this command");
 
 // Parses a model from an already-loaded YAML mapping (inline models in scene files);
 // `file` and `source` are those of the file that holds the mapping.

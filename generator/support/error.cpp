@@ -1,6 +1,7 @@
 #include "support/error.hpp"
 
 #include <algorithm>
+#include <cctype>
 
 namespace rotgen {
 
@@ -32,7 +33,15 @@ static std::size_t edit_distance(const std::string& a, const std::string& b) {
     return d[a.size()][b.size()];
 }
 
+static std::string lower_case(std::string s) {
+    for (char& c : s)
+        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+}
+
 std::string closest_name(const std::string& word, const std::vector<std::string>& candidates) {
+    for (const auto& c : candidates)
+        if (c != word && lower_case(c) == lower_case(word)) return c;
     std::string best;
     std::size_t best_distance = std::max<std::size_t>(1, word.size() / 3) + 1;
     for (const auto& c : candidates) {

@@ -32,14 +32,19 @@ class user_error : public std::runtime_error {
         : std::runtime_error(problem), m_where(std::move(where)) {}
     const source_location& where() const { return m_where; }
     std::string problem() const { return what(); }
-    // The whole one-line diagnostic, without the "rotgen: error: " prefix.
-    std::string message() const { return to_string(m_where) + ": " + what(); }
+    // The whole one-line diagnostic, without the "rotgen: error: " prefix; a problem with no
+    // place (an unknown command) is the problem alone.
+    std::string message() const {
+        if (m_where.file.empty() && m_where.line == 0) return what();
+        return to_string(m_where) + ": " + what();
+    }
 
   private:
     source_location m_where;
 };
 
 // Closest candidate by edit distance, for "did you mean 'theta'?" hints; empty if none is close.
+// A candidate that differs only in case ("DOP853" for "dop853") is the closest of all.
 std::string closest_name(const std::string& word, const std::vector<std::string>& candidates);
 
 } // namespace rotgen

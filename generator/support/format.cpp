@@ -27,4 +27,16 @@ std::string short_number(double x, int digits) {
     return buf;
 }
 
+std::string format_duration(double seconds) {
+    // the unit: the largest whose value rounds to 1.00 or more (999.7 ms is "1.00 s")
+    double v = seconds < 0 || !(seconds == seconds) ? 0 : seconds;
+    const char* unit = "s";
+    if (v < 0.9995) v *= 1e3, unit = "ms";
+    if (v < 0.9995 && unit[0] == 'm') v *= 1e3, unit = "us";
+    const int decimals = v >= 99.95 ? 0 : v >= 9.995 ? 1 : v >= 0.9995 ? 2 : 3;
+    char buf[48];
+    std::snprintf(buf, sizeof buf, "%.*f %s", decimals, v, unit);
+    return buf;
+}
+
 } // namespace rotgen

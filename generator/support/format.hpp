@@ -15,4 +15,9 @@ std::string format_number(double x);
 // `digits` significant digits (printf "%.<digits>g"): for summaries and tables.
 std::string short_number(double x, int digits = 3);
 
+// A duration in the one unit that fits, three significant digits, never an exponent: "1.30 s",
+// "14.8 ms", "507 us" (ASCII "us"; summaries print "time    <number> <s|ms|us> <what>" and
+// scripts read it). Seconds of 1000 and more stay in s ("1300 s").
+std::string format_duration(double seconds);
+
 } // namespace rotgen

@@ -105,7 +105,7 @@ void print_summary(std::ostream& os, const sweep_request& q, const scene_spec& s
         os << "  resumed after the journal's " << w.first() << " members (the lines below: the "
            << w.members() << " run now)\n";
     os << "  steps   " << w.steps() << " accepted; " << w.rhs_evals() << " RHS evaluations\n"
-       << "  time    " << short_number(seconds) << " s running the members ("
+       << "  time    " << format_duration(seconds) << " running the members ("
        << short_number(w.members() == 0 ? 0 : double(w.members()) / seconds) << " members/s)\n";
 }
 
@@ -129,7 +129,7 @@ struct ensemble {
     writer_setup files;                  // rank 0
 
     ensemble(const sweep_request& q, bool root, stage_timings& timings)
-        : scene(load_scene(q.scene)), plan(read_sweep_plan(scene, q.vary)), table(plan) {
+        : scene(load_scene(q.scene, "sweep")), plan(read_sweep_plan(scene, q.vary)), table(plan) {
         // what cannot be done is refused before any derivation or compilation
         if (root) {
             check_room(q.directory, estimated_output(scene, plan, table.size(), q.trajectories),
@@ -201,8 +201,9 @@ int finish(const sweep_request& q, const ensemble& e, const std::string& workers
            double seconds, stage_timings& timings) {
     timings.time("write", w.summary_path(), [&] { w.commit(); });
     std::ostringstream discarded;
-    std::ostream& summary = q.quiet ? discarded : std::cerr;
-    print_summary(summary, q, e.scene, e.plan, w, workers, e.lanes ? e.lanes->arch : "", seconds);
+    std::ostream& summary = q.quiet ? discarded : std::cout; // standard output: no data there
+    print_summary(summary, q, e.prepared->scene(), e.plan, w, workers, e.lanes ? e.lanes->arch : "",
+                  seconds);
     const std::size_t all = w.first() + w.members();
     summary << "  wrote   " << w.summary_path() << " (" << all << " members)\n";
     if (q.trajectories)

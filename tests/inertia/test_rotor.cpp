@@ -95,19 +95,40 @@ TEST_CASE("rotor: inspect --inertia reports the dumbbell", "[inertia][rotor][ins
     CHECK(contains(r.out, "axis 1: none: the line of a rotor"));
 }
 
-TEST_CASE("rotor: the three-angle commands refuse a rotor at its key, emit writes its rotor form",
+TEST_CASE("rotor: inspect prints a rotor's equations, bench refuses it, emit writes its form",
           "[inertia][rotor][errors]") {
     const std::string body = "name: rod\nbody:\n  parts:\n    - point: {mass: 1, at: [1, 1, 1]}\n"
                              "    - point: {mass: 1, at: [-1, -1, -1]}\n";
     const scratch_file file("rotor_site.yaml", body);
-    const std::string line = "rotor_site.yaml:3:3: model 'rod' is a linear rotor (I1 = 0, I2 = "
-                             "I3: a body on a line, Example 5.4); its motion has two angles (phi, "
-                             "theta): emit and simulate run it in the rotor form, and this command "
-                             "takes three-angle tops only; 'rotgen inspect rotor_site.yaml "
-                             "--inertia' reports it";
-    check_error_line(run_rotgen("inspect rotor_site.yaml", ROTGEN_BINARY_DIR), line);
+    // inspect: text, LaTeX and JSON, with and without --inertia (the equations themselves are
+    // checked against SymPy by tests/python/rotor_sympy.py --inspect)
+    for (const std::string options :
+         {"", " --format latex", " --format json", " --inertia --format json"}) {
+        INFO(options);
+        const run_result r = run_rotgen("inspect rotor_site.yaml" + options, ROTGEN_BINARY_DIR);
+        INFO(r.err);
+        CHECK(r.status == 0);
+        CHECK(r.err.empty());
+        const bool json = options.find("json") != std::string::npos;
+        const bool latex = options.find("latex") != std::string::npos;
+        CHECK(contains(r.out,
+                       json    ? "\"coordinates\": [\"phi\", \"theta\"]"
+                       : latex ? "p_{\\varphi} &= 6 \\dot{\\varphi} \\sin^{2}\\left(\\theta\\right)"
+                               : "  p_phi = 6*phi_dot*sin(theta)**2\n"));
+        if (json) CHECK(contains(r.out, "\"inertia\": {") == contains(options, "--inertia"));
+    }
+    const scratch_file scene("rotor_site_scene.yaml",
+                             "model: rotor_site.yaml\ninitial: {phi: 0, theta: 1, phi_dot: 1, "
+                             "theta_dot: 0}\ntime: {end: 1}\n");
+    const scratch_dir bench_out("rotor_site_bench");
     check_error_line(
-        run_rotgen("inspect rotor_site.yaml --inertia --format json", ROTGEN_BINARY_DIR), line);
+        run_rotgen("bench rotor_site_scene.yaml --quick -o '" + bench_out.path.string() + "'",
+                   ROTGEN_BINARY_DIR),
+        "rotor_site.yaml:3:3: model 'rod' is a linear rotor (a body on a line, "
+        "Example 5.4): bench compares the three-angle forms and their peers "
+        "(Boost.Odeint, CVODE) on them, and a rotor has one form of two angles, "
+        "rotor; run it with 'rotgen simulate' or 'rotgen sweep'");
+    CHECK(!fs::exists(bench_out.path));
     // emit writes the rotor form (tests/run/test_rotor_run.cpp checks its equations); another
     // form is refused at the rotor's key
     const scratch_dir out("rotor_site_out");

@@ -24,6 +24,7 @@ with the quantity, the state and both values.
 """
 
 import argparse
+import json
 import math
 import os
 import random
@@ -114,15 +115,27 @@ def derive(model, flip_potential=False):
     to_plain = {qd[0]: plain[2], qd[1]: plain[3]}
     to_plain2 = {phi_t: plain[0], theta_t: plain[1]}
 
-    def flat(e):
-        return sp.sympify(e).subs(to_plain).subs(to_plain2).subs(params)
+    plain_dd = sp.symbols("phi_ddot theta_ddot", real=True)
 
-    return plain, {
+    def flat(e):
+        e = sp.sympify(e).subs({qdd[0]: plain_dd[0], qdd[1]: plain_dd[1]})
+        return e.subs(to_plain).subs(to_plain2).subs(params)
+
+    return plain + plain_dd, {
         "phi_ddot": flat(acc[qdd[0]]),
         "theta_ddot": flat(acc[qdd[1]]),
         "energy": flat(T + V),
         "p_phi": flat(L.diff(qd[0])),
         "p_theta": flat(L.diff(qd[1])),
+        # for `inspect` (--inspect): T, V, L, Lagrange's equations d/dt dL/dq_dot - dL/dq (= 0),
+        # and dL/dq, which is p_dot along a motion
+        "kinetic": flat(T),
+        "potential": flat(V),
+        "lagrangian": flat(L),
+        "el_phi": flat(eqs[0]),
+        "el_theta": flat(eqs[1]),
+        "dLdq_phi": flat(L.diff(q[0])),
+        "dLdq_theta": flat(L.diff(q[1])),
     }
 
 
@@ -160,6 +173,76 @@ def generated(rotgen, model_path, model, points, work):
     return [[float(v) for v in line.split()] for line in out.splitlines()]
 
 
+def inspected(rotgen, model_path, extra):
+    """`rotgen inspect MODEL --format json` (with `extra` options) as a dict of SymPy
+    expressions in phi, theta, their rates and accelerations, p_phi, p_theta and the
+    parameters (at their defaults)."""
+    out = subprocess.run([rotgen, "inspect", model_path, "--format", "json"] + extra,
+                         capture_output=True, text=True, check=True).stdout
+    return json.loads(out)
+
+
+def check_inspect(rotgen, model_path, model, exprs, points, extra):
+    """Compare inspect's T, V, L, momenta, Euler-Lagrange equations, H, Hamilton's equations and
+    energy with the SymPy derivation at `points` (phi, theta, phi_dot, theta_dot, and the
+    accelerations SymPy's Lagrange equations give there)."""
+    doc = inspected(rotgen, model_path, extra)
+    params = defaults(model)
+    names = {str(k): k for k in params}
+    syms = sp.symbols("phi theta phi_dot theta_dot phi_ddot theta_ddot p_phi p_theta", real=True)
+    names.update({str(x): x for x in syms})
+    names.update({"pi": sp.pi})
+
+    def read(text):
+        return sp.sympify(text.replace("^", "**"), locals=names).subs(params)
+
+    assert doc["coordinates"] == ["phi", "theta"], doc["coordinates"]
+    assert len(doc["momenta"]) == 2 and len(doc["mass_matrix"]) == 2
+    if extra:
+        assert doc["inertia"]["class"] == "rotor", doc["inertia"]["class"]
+    phi, theta, phid, thetad, phidd, thetadd, pphi, ptheta = syms
+    bad = 0
+    for y in points:
+        at = dict(zip(syms[:4], y))
+        acc = {phidd: exprs["phi_ddot"].subs(at), thetadd: exprs["theta_ddot"].subs(at)}
+        at_dd = {**at, **acc}
+        p = [exprs["p_phi"].subs(at), exprs["p_theta"].subs(at)]
+        at_p = {phi: y[0], theta: y[1], pphi: p[0], ptheta: p[1]}
+        pairs = [
+            ("kinetic", read(doc["kinetic"]).subs(at), exprs["kinetic"].subs(at)),
+            ("potential", read(doc["potential"]).subs(at), exprs["potential"].subs(at)),
+            ("lagrangian", read(doc["lagrangian"]).subs(at), exprs["lagrangian"].subs(at)),
+            ("energy", read(doc["energy"]).subs(at), exprs["energy"].subs(at)),
+            ("p_phi", read(doc["momenta"][0]).subs(at), p[0]),
+            ("p_theta", read(doc["momenta"][1]).subs(at), p[1]),
+            # Lagrange's equations, each = 0: equal at any accelerations (here y's and 0.7 more)
+            ("el_phi", read(doc["euler_lagrange"][0]).subs(at_dd), 0),
+            ("el_theta", read(doc["euler_lagrange"][1]).subs(at_dd), 0),
+            ("el_phi off", read(doc["euler_lagrange"][0]).subs({**at, phidd: acc[phidd] + 0.7,
+                                                                thetadd: acc[thetadd]}),
+             exprs["el_phi"].subs({**at, phidd: acc[phidd] + 0.7, thetadd: acc[thetadd]})),
+            ("hamiltonian", read(doc["hamiltonian"]).subs(at_p), exprs["energy"].subs(at)),
+            ("phi_dot", read(doc["hamilton_equations"]["qdot"][0]).subs(at_p), y[2]),
+            ("theta_dot", read(doc["hamilton_equations"]["qdot"][1]).subs(at_p), y[3]),
+            ("p_phi_dot", read(doc["hamilton_equations"]["pdot"][0]).subs(at_p),
+             exprs["dLdq_phi"].subs(at)),
+            ("p_theta_dot", read(doc["hamilton_equations"]["pdot"][1]).subs(at_p),
+             exprs["dLdq_theta"].subs(at)),
+        ]
+        for name, got, want in pairs:
+            got, want = float(sp.N(got, 30)), float(sp.N(want, 30))
+            if abs(got - want) > max(ATOL, RTOL * max(abs(got), abs(want))):
+                bad += 1
+                print("MISMATCH %s: inspect %s at %s: rotgen %r, sympy %r" % (
+                    model["name"], name, y, got, want))
+    cyclic = [c for c in doc["cyclic"]]
+    want_cyclic = ["phi"] if sp.simplify(exprs["dLdq_phi"]) == 0 else []
+    if cyclic != want_cyclic:
+        bad += 1
+        print("MISMATCH %s: cyclic %s, sympy %s" % (model["name"], cyclic, want_cyclic))
+    return bad, len(points) * 14 + 1
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--rotgen", required=True)
@@ -167,18 +250,31 @@ def main():
     ap.add_argument("--points", type=int, default=8)
     ap.add_argument("--inject-error", choices=["potential-sign"],
                     help="derive V with the wrong sign on the SymPy side (the check must fail)")
+    ap.add_argument("--inspect", action="store_true",
+                    help="check `rotgen inspect --format json` (and with --inertia) instead of "
+                         "the emitted header")
     args = ap.parse_args()
     model = load_model(args.model)
     plain, exprs = derive(model, args.inject_error == "potential-sign")
     rng = random.Random(14)
     points = [[rng.uniform(-3, 3), rng.uniform(0.2, math.pi - 0.2), rng.uniform(-2, 2),
                rng.uniform(-2, 2)] for _ in range(args.points)]
+    if args.inspect:
+        bad, checked = 0, 0
+        for extra in ([], ["--inertia"]):
+            b, c = check_inspect(args.rotgen, args.model, model, exprs, points, extra)
+            bad, checked = bad + b, checked + c
+        if bad:
+            print("FAILED: %d of %d values" % (bad, checked))
+            return 1
+        print("rotor_sympy --inspect %s: %d values agree" % (model["name"], checked))
+        return 0
     with tempfile.TemporaryDirectory() as work:
         got = generated(args.rotgen, args.model, model, points, work)
     names = ["phi_ddot", "theta_ddot", "energy", "p_phi", "p_theta"]
     bad = 0
     for y, row in zip(points, got):
-        at = dict(zip(plain, y))
+        at = dict(zip(plain[:4], y))
         for name, value in zip(names, row):
             want = float(exprs[name].subs(at).evalf(30))
             if abs(value - want) > max(ATOL, RTOL * max(abs(value), abs(want))):
