@@ -6,6 +6,7 @@
 #include "support/atomic_file.hpp"
 #include "support/error.hpp"
 #include "support/format.hpp"
+#include "support/output_paths.hpp"
 #include "support/progress.hpp"
 #include "support/timings.hpp"
 #include "sweep/distribute.hpp"
@@ -42,6 +43,13 @@ void make_directory(const std::string& dir) {
     if (::mkdir(dir.c_str(), 0755) != 0)
         throw user_error({dir},
                          std::string("cannot create the directory: ") + std::strerror(errno));
+}
+
+// The files the sweep writes into DIR, none of them one of its inputs (refused before any work).
+void check_files(const sweep_request& q, const scene_spec& scene) {
+    std::vector<named_file> outputs{{q.directory + "/summary.csv", "-o " + q.directory}};
+    if (q.trajectories) outputs.push_back({q.directory + "/trajectories.h5", "--trajectories"});
+    check_distinct_files(outputs, {{q.scene, "the scene"}, {scene.model.file, "the model"}});
 }
 
 std::string mode_name(sweep_mode m) {
@@ -120,6 +128,7 @@ struct ensemble {
     ensemble(const sweep_request& q, stage_timings& timings)
         : scene(load_scene(q.scene)), plan(read_sweep_plan(scene, q.vary)),
           rows(member_rows(plan)) {
+        check_files(q, scene);
         if (q.lanes > 1) lane_check(scene);
         prepared = std::make_unique<prepared_scene>(scene, timings);
         prepared->compile_all(timings);
