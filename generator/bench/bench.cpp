@@ -18,6 +18,7 @@
 #include "run/kinematics.hpp"
 #include "support/error.hpp"
 #include "support/format.hpp"
+#include "support/output_paths.hpp"
 
 #include <unistd.h>
 
@@ -52,6 +53,30 @@ void make_output_directory(const fs::path& dir) {
     if (!p) throw user_error({dir.string()}, std::string("cannot write: ") + std::strerror(errno));
     p.close();
     fs::remove(probe, ec);
+}
+
+// Every file a bench run writes into its folder (the tables, the plots, their scripts and data).
+const char* const bench_files[] = {"plan.txt",
+                                   "raw.txt",
+                                   "results.csv",
+                                   "final_states.csv",
+                                   "drift.csv",
+                                   "results.md",
+                                   "plot_data.dat",
+                                   "drift_data.dat",
+                                   "work_precision_time.png",
+                                   "work_precision_time.png.gp",
+                                   "work_precision_evals.png",
+                                   "work_precision_evals.png.gp",
+                                   "invariant_drift.png",
+                                   "invariant_drift.gp"};
+
+// None of them may be the scene or the model (refused before any work).
+void check_files(const fs::path& dir, const scene_spec& scene) {
+    std::vector<named_file> outputs;
+    for (const char* f : bench_files)
+        outputs.push_back({(dir / f).string(), "-o " + dir.string() + " (" + f + ")"});
+    check_distinct_files(outputs, {{scene.file, "the scene"}, {scene.model.file, "the model"}});
 }
 
 // One `rotgen bench` run: its state (bench_context), and the stages, in the order run() calls
@@ -130,6 +155,7 @@ void bench_run::prepare(const bench_options& options) {
         c.spec.parameters[i].value = c.scene.parameters[i];
     c.src = find_bench_sources();
     c.dir = c.opt.dir;
+    check_files(c.dir, c.scene);
     c.euler_ok = std::abs(std::sin(c.scene.angles[1])) > 1e-10;
     if (!c.euler_ok && c.scene.form != form_kind::body)
         throw user_error(c.scene.initial_where,

@@ -122,7 +122,7 @@ std::string driver_source(std::vector<variant>& variants, const scene_spec& scen
 // The driver is an executable with SUNDIALS, not a shared object: its own compile step, over the
 // one cache directory and compiler identity of run/compile_cache.hpp.
 fs::path bench_cache_root() {
-    const fs::path root = fs::path(cache_directory()) / "bench";
+    const fs::path root = fs::path(usable_cache_directory()) / "bench";
     std::error_code ec;
     fs::create_directories(root, ec);
     if (ec) throw user_error({root.string()}, "cannot create the cache directory: " + ec.message());

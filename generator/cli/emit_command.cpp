@@ -4,7 +4,8 @@
 //             [--specialise | --specialise=NAME,NAME...] [--strategy explicit|solve] [--name UNIT]
 //
 // Writes DIR/<unit>.hpp (unit: the model's name, plus _<form> for forms other than lagrangian),
-// through a temporary file renamed into place: a failed run leaves no partial header.
+// through a temporary file renamed into place: a failed run leaves no partial header; -o -
+// writes the header to standard output.
 #include "cli/commands.hpp"
 #include "cli/options.hpp"
 #include "derive/derive.hpp"
@@ -13,6 +14,7 @@
 #include "spec/spec.hpp"
 #include "support/atomic_file.hpp"
 #include "support/error.hpp"
+#include "support/output_paths.hpp"
 #include "support/timings.hpp"
 
 #include <unistd.h>
@@ -37,10 +39,14 @@ const command_spec emit_command{
     "Writes DIR/<unit>.hpp: the model's kernels as a dependency-free C++ header, templated on the\n"
     "scalar (unit: the model's name, plus _<form> for forms other than lagrangian). Written "
     "through\n"
-    "a temporary renamed into place: a failed run leaves no partial header.\n\n"
+    "a temporary renamed into place: a failed run leaves no partial header. -o - writes it to\n"
+    "standard output.\n\n"
     "example: rotgen emit models/heavy_top.yaml -o generated --form hamiltonian --outputs "
     "rhs,energy",
-    {{"-o", "DIR", "the output directory (created if missing)", {"--output"}},
+    {{"-o",
+      "DIR",
+      "the output directory (created if missing); - for standard output",
+      {"--output"}},
      {"--form",
       "lagrangian|hamiltonian|reduced|body|rotor",
       "the form of the equations (default lagrangian; rotor, the only one, for a linear rotor)",
@@ -92,16 +98,27 @@ std::string shell_quote(const std::string& s) {
     return q + "'";
 }
 
-// DIR/file, created if missing, through support/'s atomic writer (never a partial header).
-void write_header(const std::filesystem::path& dir, const std::string& file,
-                  const std::string& text) {
+// DIR/file, or standard output for -o -, checked before any work: DIR is a folder or can be
+// made, and the header is not the model file.
+std::string header_path(const std::string& dir, const std::string& file, const std::string& model) {
     namespace fs = std::filesystem;
+    if (dir == "-") return dir;
     std::error_code ec;
     if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
-        throw user_error({dir.string()}, "the output path exists and is not a directory");
-    fs::create_directories(dir, ec);
-    if (ec) throw user_error({dir.string()}, "cannot create the output directory: " + ec.message());
-    write_file_atomically((dir / file).string(), text);
+        throw user_error({dir}, "the output path exists and is not a directory");
+    const std::string path = (fs::path(dir) / file).string();
+    check_distinct_files({{path, "-o " + dir}}, {{model, "the model"}});
+    return path;
+}
+
+// The header at `path` (DIR created if missing) through support/'s atomic writer (never a
+// partial header), or on standard output.
+void write_header(const std::string& dir, const std::string& path, const std::string& text) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (path != "-") fs::create_directories(dir, ec);
+    if (ec) throw user_error({dir}, "cannot create the output directory: " + ec.message());
+    write_file_atomically(path, text);
 }
 
 form_kind form_of(const std::string& f) {
@@ -154,15 +171,18 @@ std::string regenerate_command(const parsed_options& o, form_kind form,
     return command;
 }
 
-void print_written(const std::string& dir, const emitted_header& h) {
+void print_written(const std::string& path, const emitted_header& h) {
     std::string summary;
     for (const auto& s : h.stats)
         summary += (summary.empty() ? "" : ", ") + s.function + " " +
                    (s.summary.empty() ? std::to_string(s.before.total()) + " -> " +
                                             std::to_string(s.after.total())
                                       : s.summary);
-    std::cout << "rotgen: wrote " << (std::filesystem::path(dir) / h.file_name).string()
-              << " (operations: " << summary << ")\n";
+    // with -o - the header is the data on standard output: this line goes to standard error
+    (path == "-" ? std::cerr : std::cout)
+        << "rotgen: wrote "
+        << (path == "-" ? "standard output (" + h.file_name + "; " : path + " (")
+        << "operations: " << summary << ")\n";
 }
 
 } // namespace
@@ -193,6 +213,9 @@ int cmd_emit(const std::vector<std::string>& args) {
     const model_spec spec = load_model(o.operand, "emit");
     // A linear rotor has its own form (derive/rotor.hpp), derived where it is built.
     form = rotor_form_of(spec, form, o.has("--form"));
+    const std::string path = header_path(
+        dir, (o.has("--name") ? o.value("--name") : unit_name(spec.name, form)) + ".hpp",
+        o.operand);
     const header_options header{regenerate_command(o, form, strategy), o.value("--name")};
     const derivation d =
         timings.time("derive", spec.name, [&] { return spec.rotor ? derivation{} : derive(spec); });
@@ -209,8 +232,8 @@ int cmd_emit(const std::vector<std::string>& args) {
                                                     "; leave taylor out of --outputs");
         }
     });
-    timings.time("write", h.file_name, [&] { write_header(dir, h.file_name, h.text); });
-    print_written(dir, h);
+    timings.time("write", h.file_name, [&] { write_header(dir, path, h.text); });
+    print_written(path, h);
     if (o.has("--timings")) timings.print(std::cerr);
     return 0;
 }

@@ -19,7 +19,8 @@ const command_spec simulate_command{
     "Integrates the scene: derives the model's equations, emits and compiles the scene's form\n"
     "(cached), integrates it and records the scene's quantities at its sample times. Prints a\n"
     "summary (steps, evaluations, invariant drifts) on standard output. A run that cannot finish\n"
-    "exits 3 with its rows in <output>.partial.csv.\n\n"
+    "exits 3 with its rows in <output>.partial.csv (its events in <output>.partial.events.csv).\n"
+    "Outputs must be distinct files, none of them the scene or the model (exit 2 otherwise).\n\n"
     "example: rotgen simulate models/scenes/heavy_top_nutation.yaml -o nutation.csv --plot "
     "nutation.png",
     {{"-o",
@@ -30,7 +31,8 @@ const command_spec simulate_command{
      {"--events",
       "FILE",
       "the scene's events as CSV (header event,t,<recorded columns>);\n"
-      "                     default <output stem>.events.csv when the scene has events",
+      "                     default <output stem>.events.csv when the scene has events\n"
+      "                     (<scene name>.events.csv when -o is -, a device or a FIFO)",
       {}},
      {"--plot", "FILE", "the recorded quantities against t (gnuplot): .png, .svg or .pdf", {}},
      {"--view", "FILE", "a self-contained HTML page that plays the run in 3D in a browser", {}},

@@ -1,6 +1,7 @@
 #include "run/compile_cache.hpp"
 
 #include "support/atomic_file.hpp"
+#include "support/error.hpp"
 #include "support/hash.hpp"
 #include "support/process.hpp"
 
@@ -9,8 +10,10 @@
 #include <unistd.h>
 
 #include <array>
+#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -37,6 +40,23 @@ const std::string& compiler_identity() {
         return v;
     }();
     return id;
+}
+
+std::string usable_cache_directory() {
+    const std::string dir = cache_directory();
+    make_directories(dir);
+    struct stat st {};
+    std::string problem;
+    if (::stat(dir.c_str(), &st) != 0)
+        problem = std::strerror(errno);
+    else if (!S_ISDIR(st.st_mode))
+        problem = "it is not a folder";
+    else if (::access(dir.c_str(), W_OK | X_OK) != 0)
+        problem = std::strerror(errno);
+    if (!problem.empty())
+        throw user_error({dir}, "cannot use this folder as the kernel cache: " + problem +
+                                    "; set ROTGEN_CACHE_DIR to a folder you can write");
+    return dir;
 }
 
 std::string cache_directory() {
@@ -77,8 +97,7 @@ loaded_library compile_and_load(const std::string& source, const std::string& na
     const std::string all_flags = extra_flags.empty() ? flags : flags + (" " + extra_flags);
     const std::string key =
         hex(fnv1a(source + '\0' + compiler_identity() + '\0' + all_flags + '\0' + ROTGEN_VERSION));
-    const std::string dir = cache_directory();
-    make_directories(dir);
+    const std::string dir = usable_cache_directory();
     const std::string base = dir + "/" + name + "-" + key;
     loaded_library lib;
     lib.m_path = base + ".so";

@@ -34,6 +34,10 @@ class loaded_library {
 
 std::string cache_directory();
 
+// cache_directory(), created; throws user_error naming it (and ROTGEN_CACHE_DIR) if it cannot be
+// made or written: a read-only folder, one under a regular file, a HOME that does not exist.
+std::string usable_cache_directory();
+
 // `$CXX --version` (once per process): part of every cache key, so another compiler builds anew.
 // Throws std::runtime_error if the compiler does not run.
 const std::string& compiler_identity();

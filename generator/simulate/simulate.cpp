@@ -7,6 +7,7 @@
 #include "support/atomic_file.hpp"
 #include "support/error.hpp"
 #include "support/format.hpp"
+#include "support/output_paths.hpp"
 #include "support/progress.hpp"
 #include "support/timings.hpp"
 #include "view/view.hpp"
@@ -142,7 +143,7 @@ void print_summary(std::ostream& os, const simulate_request& q, const scene_spec
 void draw_plot(const simulate_request& q, std::string csv, const scene_spec& scene,
                const run_result& r) {
     std::optional<atomic_file> scratch;
-    if (csv.empty() || csv == "-") {
+    if (csv.empty() || is_stream_output(csv)) { // a stream cannot be read back
         scratch.emplace(q.plot + ".csv");
         write_rows(scratch->stream(), r.rows);
         scratch->stream().flush();
@@ -173,34 +174,64 @@ std::string csv_path(const simulate_request& q) {
     return q.csv.empty() ? default_csv(q.scene) : q.csv;
 }
 
-// Where the events go: --events, or <output stem>.events.csv beside the samples (the scene's
-// name when the samples go to standard output); empty when the scene has no events.
-std::string events_path(const simulate_request& q, const std::string& csv,
-                        const scene_spec& scene) {
-    if (!q.events.empty()) return q.events;
-    if (scene.events.empty()) return "";
-    std::string base = csv == "-" ? default_csv(q.scene) : csv;
+// Every file one run may write, named before any work. Sibling names derive from the output's
+// stem, or from the scene's name (in the current folder) when the output is a stream: "-", a
+// device, a FIFO.
+struct run_files {
+    std::string csv, events, partial, partial_events; // events: empty when none
+};
+
+run_files files_of(const simulate_request& q, const scene_spec& scene) {
+    run_files f;
+    f.csv = csv_path(q);
+    std::string base = is_stream_output(f.csv) ? default_csv(q.scene) : f.csv;
     if (base.size() > 4 && base.compare(base.size() - 4, 4, ".csv") == 0)
         base.erase(base.size() - 4);
-    return base + ".events.csv";
+    if (!q.events.empty())
+        f.events = q.events;
+    else if (!scene.events.empty())
+        f.events = base + ".events.csv";
+    f.partial = base + ".partial.csv";
+    if (!f.events.empty()) f.partial_events = base + ".partial.events.csv";
+    return f;
+}
+
+// Refuses (exit 2) two outputs that are one file, or an output that is an input.
+void check_files(const simulate_request& q, const scene_spec& scene, const run_files& f) {
+    std::vector<named_file> outputs{{f.csv, q.csv.empty() ? "the default output" : "-o"}};
+    if (!f.events.empty())
+        outputs.push_back({f.events, q.events.empty() ? "the events file" : "--events"});
+    if (!q.plot.empty()) outputs.push_back({q.plot, "--plot"});
+    if (!q.view.empty()) outputs.push_back({q.view, "--view"});
+    outputs.push_back({f.partial, "the partial rows' file (exit 3)"});
+    if (!f.partial_events.empty())
+        outputs.push_back({f.partial_events, "the partial events' file (exit 3)"});
+    std::vector<named_file> inputs{{q.scene, "the scene"}, {scene.model.file, "the model"}};
+    if (!q.from.empty()) inputs.push_back({q.from, "--from"});
+    check_distinct_files(outputs, inputs);
 }
 
 // A run that could not finish: the rows so far go to <output stem>.partial.csv (never under the
-// requested name); exit status 3.
-int report_partial(const simulate_request& q, const std::string& csv, const scene_spec& scene,
-                   const run_result& r, std::ostream& summary) {
-    std::string base = csv == "-" ? default_csv(q.scene) : csv;
-    if (base.size() > 4 && base.compare(base.size() - 4, 4, ".csv") == 0)
-        base.erase(base.size() - 4);
-    const std::string partial = base + ".partial.csv";
-    atomic_file out(partial, {q.scene, scene.model.file});
+// requested name), its events to <output stem>.partial.events.csv; exit status 3.
+int report_partial(const std::vector<std::string>& inputs, const run_files& f,
+                   const scene_spec& scene, const run_result& r, std::ostream& summary) {
+    atomic_file out(f.partial, inputs);
     write_csv(out, r);
-    summary << "  wrote   " << partial << " (" << r.rows.size() << " samples, partial)\n";
+    summary << "  wrote   " << f.partial << " (" << r.rows.size() << " samples, partial)\n";
+    std::string events;
+    if (!f.partial_events.empty()) {
+        atomic_file ev(f.partial_events, inputs);
+        write_events(ev, r);
+        summary << "  wrote   " << f.partial_events << " (" << r.event_rows.size()
+                << " events, partial)\n";
+        events =
+            " and its " + std::to_string(r.event_rows.size()) + " events in " + f.partial_events;
+    }
     const double t = r.rows.empty() ? scene.t_start : r.rows.back()[0];
     std::cerr << "rotgen: error: " << to_string(scene.integrator_where)
               << ": the run stopped at t = " << format_double(t) << " of "
               << format_double(scene.t_end) << ": " << r.message << "; the " << r.rows.size()
-              << " samples computed so far are in " << partial << "\n";
+              << " samples computed so far are in " << f.partial << events << "\n";
     return 3;
 }
 
@@ -217,12 +248,13 @@ int simulate(const simulate_request& q) {
     const scene_spec scene = scene_of(q);
     std::vector<std::string> inputs{q.scene, scene.model.file};
     if (!q.from.empty()) inputs.push_back(q.from);
-    const std::string csv = csv_path(q);
+    const run_files files = files_of(q, scene);
+    const std::string &csv = files.csv, &events = files.events;
     // Output paths are checked before any work (no partial output, early clear error).
+    check_files(q, scene, files);
     if (!q.plot.empty()) plot_terminal(q.plot, 1);
     atomic_file csv_out(csv, inputs);
     if (!q.plot.empty()) atomic_file probe(q.plot, inputs);
-    const std::string events = events_path(q, csv, scene);
     std::optional<atomic_file> events_out;
     if (!events.empty()) events_out.emplace(events, inputs);
     if (!q.view.empty()) atomic_file probe(q.view, inputs);
@@ -230,14 +262,14 @@ int simulate(const simulate_request& q) {
 
     stage_timings timings;
     std::ostringstream discarded;
-    std::ostream& summary = q.quiet ? discarded : (csv_out.is_stdout() ? std::cerr : std::cout);
+    std::ostream& summary = q.quiet ? discarded : (is_standard_output(csv) ? std::cerr : std::cout);
     progress_line progress(scene.t_start, scene.t_end, !q.quiet);
     const run_result run = run_scene(viewed, timings, [&](double t) { progress.update(t); });
     const run_result r = q.view.empty() ? run : only_scene_records(run, scene);
     progress.finish();
     print_summary(summary, q, scene, r, timings);
     if (!r.ok) {
-        const int status = report_partial(q, csv, scene, r, summary);
+        const int status = report_partial(inputs, files, scene, r, summary);
         if (q.timings) timings.print(std::cerr);
         return status;
     }
@@ -248,7 +280,8 @@ int simulate(const simulate_request& q) {
     if (events_out) {
         timings.time("write", events, [&] { write_events(*events_out, r); });
         summary << "  wrote   " << (events == "-" ? "standard output" : events) << " ("
-                << r.event_rows.size() << " events)\n";
+                << r.event_rows.size() << " events"
+                << (scene.events.empty() ? "; the scene has no events:" : "") << ")\n";
     }
     if (!q.plot.empty()) {
         timings.time("plot", q.plot, [&] { draw_plot(q, csv, scene, r); });

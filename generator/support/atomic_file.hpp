@@ -8,9 +8,11 @@
 //   a FIFO, a device, ...      (anything that exists and is not a regular file) written directly;
 //   one of `inputs`            refused (user_error): rotgen never overwrites a file it reads.
 // Errors are user errors naming the target: "out.csv: cannot write: No such file or directory".
-// Every temporary is registered with remove_temporaries_on_signal(): SIGINT and SIGTERM remove
-// them all and exit with 130 / 143.
+// Every temporary is registered with support/signals.hpp: SIGINT, SIGTERM and SIGPIPE remove them
+// all and exit with 130 / 143 / 141.
 #pragma once
+
+#include "support/signals.hpp" // register_temporary, used with atomic files
 
 #include <fstream>
 #include <sstream>
@@ -47,15 +49,5 @@ class atomic_file {
 
 // `text` into `path`, atomically.
 void write_file_atomically(const std::string& path, const std::string& text);
-
-// Registers a temporary file to remove if the process is interrupted (SIGINT, SIGTERM);
-// forget_temporary() when it was renamed or removed. At most 64 at a time.
-void register_temporary(const std::string& path);
-void forget_temporary(const std::string& path);
-// Installs the SIGINT/SIGTERM handler: remove the registered temporaries, exit 128 + signal.
-void remove_temporaries_on_signal();
-// A function the handler calls first, with the signal (async-signal-safe; nullptr: none): a
-// command that keeps something of an interrupted run (the sweep's journal) sets it.
-void set_interrupt_hook(void (*hook)(int));
 
 } // namespace rotgen

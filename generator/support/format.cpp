@@ -1,6 +1,7 @@
 #include "support/format.hpp"
 
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 
 namespace rotgen {
@@ -16,6 +17,7 @@ std::string format_double(double x) {
 }
 
 std::string format_number(double x) {
+    if (std::isnan(x)) return "nan"; // undefined: a sign would mean nothing ("-nan")
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.17g", x);
     return buf;

@@ -8,6 +8,8 @@
 // twice.
 #pragma once
 
+#include "support/signals.hpp"
+
 #include <chrono>
 #include <ostream>
 #include <string>
@@ -25,6 +27,7 @@ class stage_timings {
     // Runs `work()` as stage `stage` and records its wall time; returns what work() returns.
     template <class Work>
     auto time(const std::string& stage, const std::string& detail, Work&& work) {
+        signal_test_hook(stage);
         const auto start = std::chrono::steady_clock::now();
         struct recorder { // records on the way out, also when work() throws
             stage_timings& t;

@@ -3,6 +3,7 @@
 #include "support/atomic_file.hpp"
 #include "support/error.hpp"
 #include "support/hash.hpp"
+#include "support/signals.hpp"
 
 #include <sys/stat.h>
 #include <unistd.h>

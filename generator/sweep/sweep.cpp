@@ -6,6 +6,7 @@
 #include "support/atomic_file.hpp"
 #include "support/error.hpp"
 #include "support/format.hpp"
+#include "support/output_paths.hpp"
 #include "support/progress.hpp"
 #include "support/timings.hpp"
 #include "sweep/distribute.hpp"
@@ -81,6 +82,13 @@ writer_setup files_of(const sweep_request& q, const scene_spec& scene, std::size
     return w;
 }
 
+// The files the sweep writes into DIR, none of them one of its inputs (refused before any work).
+void check_files(const sweep_request& q, const scene_spec& scene) {
+    std::vector<named_file> outputs{{q.directory + "/summary.csv", "-o " + q.directory}};
+    if (q.trajectories) outputs.push_back({q.directory + "/trajectories.h5", "--trajectories"});
+    check_distinct_files(outputs, {{q.scene, "the scene"}, {scene.model.file, "the model"}});
+}
+
 std::string mode_name(sweep_mode m) {
     return m == sweep_mode::grid ? "grid" : m == sweep_mode::zip ? "zip" : "random";
 }
@@ -131,6 +139,7 @@ struct ensemble {
     ensemble(const sweep_request& q, bool root, stage_timings& timings)
         : scene(load_scene(q.scene, "sweep")), plan(read_sweep_plan(scene, q.vary)), table(plan) {
         // what cannot be done is refused before any derivation or compilation
+        check_files(q, scene);
         if (root) {
             check_room(q.directory, estimated_output(scene, plan, table.size(), q.trajectories),
                        table.size());

@@ -84,12 +84,13 @@ TEST_CASE("bench: an Euler-angle form at theta = 0 is refused at the initial key
 TEST_CASE("bench: a cache directory that cannot be made is refused before any output",
           "[bench][errors]") {
     const scratch_dir out("bench_error_site_cache_out");
-    // the cache is $ROTGEN_CACHE_DIR/bench; /proc refuses new directories
+    // the cache is $ROTGEN_CACHE_DIR (bench's under it); /proc refuses new directories
     ::setenv("ROTGEN_CACHE_DIR", "/proc/nope", 1); // inherited by the child only
     const run_result r = run_rotgen("bench '" + scene + "' --quick -o '" + out.path.string() + "'");
     ::unsetenv("ROTGEN_CACHE_DIR");
     check_error_line(
-        r, "/proc/nope/bench: cannot create the cache directory: No such file or directory");
+        r, "/proc/nope: cannot use this folder as the kernel cache: No such file or directory; set "
+           "ROTGEN_CACHE_DIR to a folder you can write");
     CHECK(!fs::exists(out.path)); // before this fix, plan.txt was written first
 }
 

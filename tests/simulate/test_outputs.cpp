@@ -1,8 +1,8 @@
 // rotgen simulate's output contract: where the samples go (-o FILE, -o -, the default name, a
 // symlink, a device), what is refused (an input as output, an unknown plot format), a run that
-// cannot finish (exit 3, rows in <output>.partial.csv), an interrupted run (exit 143, nothing
-// left).
-#include "support.hpp"
+// cannot finish (exit 3, rows in <output>.partial.csv). Interrupted runs:
+// tests/cli/test_signals.cpp.
+#include "files_support.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -17,28 +17,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A fresh, empty scratch folder under the build tree.
 std::string scratch_dir(const std::string& name) {
-    const std::string dir = std::string(ROTGEN_BINARY_DIR) + "/outputs_" + name;
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
+    return fresh_folder("outputs_" + name);
 }
 
 // A short heavy-top scene in `dir`, returning its path.
 std::string heavy_scene(const std::string& dir, const std::string& extra = "") {
-    const std::string path = dir + "/top.yaml";
-    std::ofstream(path) << "model: " << model_path("heavy_top") << "\n"
-                        << "initial: {theta: 0.5, psi_dot: 30, phi: 0, psi: 0, phi_dot: 0, "
-                           "theta_dot: 0}\ntime: {end: 1, samples: 11}\n"
-                        << "record: [theta]\n"
-                        << extra;
-    return path;
-}
-
-std::size_t files_in(const std::string& dir) {
-    return static_cast<std::size_t>(
-        std::distance(fs::directory_iterator(dir), fs::directory_iterator()));
+    return write_top_scene(dir + "/top.yaml", extra);
 }
 
 } // namespace
@@ -73,17 +58,17 @@ TEST_CASE("simulate refuses an output that names one of its inputs and changes n
     const std::string before = read_file(scene);
     run_result r = run_rotgen("simulate '" + scene + "' -o '" + scene + "'");
     CHECK(r.status == 2);
-    CHECK(r.err == "rotgen: error: " + scene + ": refusing to write over '" + scene +
+    CHECK(r.err == "rotgen: error: " + scene + ": -o would write over the scene '" + scene +
                        "', a file this command reads\n");
     // the model, through another path to the same file (a symlink)
     fs::create_symlink(model_path("heavy_top"), dir + "/model_link.csv");
     r = run_rotgen("simulate '" + scene + "' -o '" + dir + "/model_link.csv'");
     CHECK(r.status == 2);
-    CHECK(r.err.find("refusing to write over '" + model_path("heavy_top") + "'") !=
+    CHECK(r.err.find("-o would write over the model '" + model_path("heavy_top") + "'") !=
           std::string::npos);
     CHECK(fs::is_symlink(dir + "/model_link.csv"));
     CHECK(read_file(scene) == before);
-    CHECK(files_in(dir) == 2); // the scene and the link
+    CHECK(entries_in(dir) == 2); // the scene and the link
 }
 
 TEST_CASE("simulate writes through a symlink and into a named pipe, never replacing them",
@@ -147,22 +132,6 @@ TEST_CASE("max_steps reached is exit 3 with a partial file, not a chart switch",
     const auto rows = std::count(partial.begin(), partial.end(), '\n') - 1;
     CHECK(rows >= 1); // observed: the samples before step 20 (t < 1)
     CHECK(rows < 11);
-}
-
-TEST_CASE("SIGTERM during a run leaves nothing behind and exits 143", "[simulate][outputs]") {
-    const std::string dir = scratch_dir("sigterm");
-    // Far too long to finish before the signal: 1e9 fixed RK4 steps (minutes), sampled 1e5 times.
-    const std::string scene =
-        heavy_scene(dir, "integrator: {method: rk4, step: 1e-5, max_steps: 1e12}\n");
-    std::string text = read_file(scene);
-    text.replace(text.find("end: 1, samples: 11"), 19, "end: 1e4, samples: 100001");
-    std::ofstream(scene) << text;
-    const std::string cmd = "timeout --preserve-status -s TERM 2 '" + std::string(ROTGEN_EXE) +
-                            "' simulate '" + scene + "' -o '" + dir + "/out.csv' --plot '" + dir +
-                            "/out.png' >/dev/null 2>&1";
-    const int raw = std::system(cmd.c_str());
-    CHECK(WEXITSTATUS(raw) == 143);
-    CHECK(files_in(dir) == 1); // the scene alone: no output, no temporary
 }
 
 TEST_CASE("a conserved momentum that starts at 0 gets an absolute drift, not a relative one",

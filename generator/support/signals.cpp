@@ -1,0 +1,99 @@
+#include "support/signals.hpp"
+
+#include <signal.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdlib>
+#include <cstring>
+
+namespace rotgen {
+
+namespace {
+
+// What the handler reads: fixed storage, no allocation in the handler.
+constexpr std::size_t max_temporaries = 64, max_path = 4096, max_note = 1024;
+std::array<std::array<char, max_path>, max_temporaries> g_temporaries{};
+std::array<volatile sig_atomic_t, max_temporaries> g_used{};
+
+// Two note buffers: one is written while the handler may read the other, then they swap.
+const char* const default_note = "rotgen: interrupted; nothing written\n";
+std::array<std::array<char, max_note>, 2> g_notes{};
+volatile sig_atomic_t g_note = -1; // -1: default_note
+std::string g_first_written;
+std::size_t g_written = 0;
+
+void (*volatile g_hook)(int) = nullptr; // set_interrupt_hook
+
+extern "C" void on_signal(int sig) {
+    void (*hook)(int) = g_hook;
+    if (hook) hook(sig);
+    for (std::size_t i = 0; i < max_temporaries; ++i)
+        if (g_used[i]) ::unlink(g_temporaries[i].data());
+    if (sig != SIGPIPE && !hook) {
+        const char* note = g_note < 0 ? default_note : g_notes[g_note].data();
+        [[maybe_unused]] const ssize_t n = ::write(2, note, std::strlen(note));
+    }
+    ::_exit(128 + sig);
+}
+
+} // namespace
+
+void register_temporary(const std::string& path) {
+    if (path.size() >= max_path) return;
+    for (std::size_t i = 0; i < max_temporaries; ++i)
+        if (!g_used[i]) {
+            std::memcpy(g_temporaries[i].data(), path.c_str(), path.size() + 1);
+            g_used[i] = 1;
+            return;
+        }
+}
+
+void forget_temporary(const std::string& path) {
+    for (std::size_t i = 0; i < max_temporaries; ++i)
+        if (g_used[i] && path == g_temporaries[i].data()) g_used[i] = 0;
+}
+
+void remove_temporaries_on_signal() {
+    struct sigaction sa {};
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    ::sigaction(SIGINT, &sa, nullptr);
+    ::sigaction(SIGTERM, &sa, nullptr);
+    ::sigaction(SIGPIPE, &sa, nullptr);
+}
+
+void set_interrupt_hook(void (*hook)(int)) {
+    g_hook = hook;
+}
+
+void set_interrupt_note(const std::string& note) {
+    if (note.empty()) {
+        g_note = -1;
+        return;
+    }
+    const std::string line = "rotgen: " + note.substr(0, max_note - 16) + "\n";
+    const int next = g_note == 0 ? 1 : 0;
+    std::memcpy(g_notes[next].data(), line.c_str(), line.size() + 1);
+    g_note = next;
+}
+
+void note_written(const std::string& what) {
+    if (g_written++ == 0) g_first_written = what;
+    const std::size_t more = g_written - 1;
+    set_interrupt_note(
+        "interrupted; wrote " + g_first_written +
+        (more == 0 ? ""
+                   : " and " + std::to_string(more) + (more == 1 ? " more file" : " more files")));
+}
+
+void signal_test_hook(const std::string& stage) {
+    static const char* const hook = std::getenv("ROTGEN_TEST_SIGNAL");
+    if (!hook) return;
+    const char* colon = std::strchr(hook, ':');
+    if (!colon || stage != colon + 1) return;
+    const std::string name(hook, colon);
+    ::raise(name == "INT" ? SIGINT : name == "PIPE" ? SIGPIPE : SIGTERM);
+}
+
+} // namespace rotgen
