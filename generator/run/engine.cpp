@@ -2,6 +2,7 @@
 
 #include "expr/numbers.hpp"
 #include "expr/symbols.hpp"
+#include "run/chart_kinematics.hpp"
 #include "run/continue_from.hpp"
 #include "run/kinematics.hpp"
 #include "run/prepared.hpp"
@@ -27,20 +28,6 @@ struct sample {
     Eigen::VectorXd y;
     std::size_t form; // index into scene_run::m_compiled
 };
-
-// The initial kinematics of a continuation in the body form from an Euler-angle state (q, q_dot
-// from f): omega = J q_dot (5.30).
-initial_kinematics continuation(const Eigen::VectorXd& y, const Eigen::VectorXd& dydt) {
-    initial_kinematics k;
-    for (int i = 0; i < 3; ++i)
-        k.q[i] = y[i], k.qd[i] = dydt[i];
-    const double st = std::sin(y[1]), ct = std::cos(y[1]), sp = std::sin(y[2]), cp = std::cos(y[2]);
-    const double qd0 = dydt[0], qd1 = dydt[1], qd2 = dydt[2];
-    k.omega = {qd0 * st * sp + qd1 * cp, qd0 * st * cp - qd1 * sp, qd0 * ct + qd2};
-    const Eigen::Quaterniond q = quaternion_from_euler(double(y[0]), double(y[1]), double(y[2]));
-    k.quat = Eigen::Quaternion<long double>(q.w(), q.x(), q.y(), q.z());
-    return k;
-}
 
 // t is the end time or beyond it, in the direction of the run (backward when t_end < t_start).
 bool reached_end(const scene_spec& scene, double t) {
@@ -300,32 +287,6 @@ void scene_run::check_finite_start(const initial_kinematics& k, const compiled_f
     const std::vector<invariant>& invariants = m_prepared.invariants();
     for (std::size_t i = 0; i < invariants.size(); ++i)
         check(invariants[i].name, source_value(cf.invariants[i], y, out, m_inertia, e));
-}
-
-// The initial kinematics in the Euler-angle chart from a body-form state (quaternion, omega):
-// q_dot = J^{-1} omega, p = J^T I omega (5.30); needs |sin theta| away from 0.
-initial_kinematics from_body(const Eigen::VectorXd& y, const Eigen::Matrix3d& inertia) {
-    const euler_angles<double> e =
-        euler_from_quaternion(Eigen::Quaterniond(y[0], y[1], y[2], y[3]));
-    initial_kinematics k;
-    k.q = {e.phi, e.theta, e.psi};
-    const Eigen::Vector3d w(y[4], y[5], y[6]), l = inertia * w;
-    const double st = std::sin(e.theta), ct = std::cos(e.theta), sp = std::sin(e.psi),
-                 cp = std::cos(e.psi);
-    const double phi_dot = (w[0] * sp + w[1] * cp) / st;
-    k.qd = {phi_dot, w[0] * cp - w[1] * sp, w[2] - phi_dot * ct};
-    k.p = {st * sp * l[0] + st * cp * l[1] + ct * l[2], cp * l[0] - sp * l[1], l[2]};
-    k.omega = {w[0], w[1], w[2]};
-    k.quat = Eigen::Quaternion<long double>(y[0], y[1], y[2], y[3]);
-    return k;
-}
-
-// |sin theta| of a state of the given form (Euler-angle forms: theta is y[1]).
-double sin_theta_of(form_kind form, const Eigen::VectorXd& y) {
-    if (is_rotor_form(form)) return rotor_sin_theta(form, y);
-    if (form != form_kind::body) return std::abs(std::sin(y[1]));
-    return std::abs(
-        std::sin(euler_from_quaternion(Eigen::Quaterniond(y[0], y[1], y[2], y[3])).theta));
 }
 
 // Integrates the current form from t_from over the remaining sample times, and says where to go
