@@ -305,7 +305,7 @@ std::vector<double> fast_zeros(const Method& method, double c, std::size_t* hidd
 
 } // namespace
 
-TEST_CASE("all 318 zeros of sin(1000 t) on (0, 1], several in every step, with every method",
+TEST_CASE("all 318 zeros of sin(1000 t) for 0 < t <= 1, several in every step, with every method",
           "[events]") {
     struct row {
         std::string method;

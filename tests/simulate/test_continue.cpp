@@ -118,7 +118,8 @@ TEST_CASE("the CSV's numbers have 17 significant digits: enough to restart exact
     CHECK(most == 17);
 }
 
-TEST_CASE("--from refuses a row that is not a complete state of the scene's form, naming what is "
+TEST_CASE("simulate --from refuses a row that is not a complete state of the scene's form, naming "
+          "what is "
           "missing, and writes nothing",
           "[simulate][continue][errors]") {
     // the earlier run: a Lagrangian heavy top recording some of its state
@@ -148,8 +149,9 @@ TEST_CASE("--from refuses a row that is not a complete state of the scene's form
     CHECK_FALSE(std::ifstream(scratch("from_refused.csv")).good());
 }
 
-TEST_CASE("--from refuses what cannot be continued: the reduced form's angle, a value, the file",
-          "[simulate][continue][errors]") {
+TEST_CASE(
+    "simulate --from refuses what cannot be continued: the reduced form's angle, a value, the file",
+    "[simulate][continue][errors]") {
     // The reduced free asymmetric top keeps psi (I1 != I2): a row without it cannot start it.
     const std::string asym = "model: " + model_path("free_asymmetric_top") +
                              "\ninitial: {phi: 0, theta: 1, psi: 0.3, omega1: 0.1, omega2: 0.5, "

@@ -32,7 +32,7 @@ TEST_CASE("Euler-angle rates at theta = 0 are written nan, as the README says",
     CHECK(text.find("as `nan`, and the summary says so") != std::string::npos);
 }
 
-TEST_CASE("--events on a scene without events writes the header and says why it is empty",
+TEST_CASE("simulate --events on a scene without events writes the header and says why it is empty",
           "[simulate][claims]") {
     const std::string dir = fresh_folder("claims_no_events");
     write_top_scene(dir + "/top.yaml");

@@ -209,7 +209,7 @@ TEST_CASE("inspect of a scene lists its event functions", "[inspect][events]") {
           std::string::npos);
 }
 
-TEST_CASE("a scene finds all 318 zeros of sin(1000 t) on (0, 1] with every method",
+TEST_CASE("a scene finds all 318 zeros of sin(1000 t) for 0 < t <= 1 with every method",
           "[simulate][events]") {
     // g depends on t alone: its zeros are k pi / 1000 exactly, several in each step the top takes
     const std::string integrator =

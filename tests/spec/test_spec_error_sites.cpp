@@ -77,7 +77,9 @@ TEST_CASE("spec: a model file that cannot be read is named without a line", "[sp
     SECTION("a directory") {
         const scratch_dir dir("spec_error_site_dir");
         fs::create_directories(dir.path);
-        check_emit_refuses("spec_error_site_dir", "spec_error_site_dir: cannot read file");
+        check_emit_refuses(
+            "spec_error_site_dir",
+            "spec_error_site_dir: is a folder, not a file; give a model or scene file");
     }
     SECTION("a file over 1 MiB") {
         const scratch_file file("spec_error_site_big.yaml",

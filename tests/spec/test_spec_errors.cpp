@@ -71,7 +71,6 @@ TEST_CASE("bad model files give one clear line and exit 2", "[spec][errors]") {
             "a principal moment is negative"},
         row{"triangle inequality", "name: top\ninertia: [1, 1, 3]\n", "2:10",
             "break the triangle inequality (each at most the sum of the other two): 1 + 1 < 3"},
-        row{"rotor", "name: top\ninertia: [0, 1, 1]\n", "2:10", "is a linear rotor"},
         row{"symbolic inertia, unphysical defaults",
             "name: top\nparameters: {a: 1, b: 5}\ninertia: [a, a, b]\n", "3:10",
             "triangle inequality"},

@@ -48,7 +48,7 @@ ranks() {
 for n in 2 3; do
   status=0
   "$mpiexec" -n $n --oversubscribe "${root[@]}" "$rotgen" sweep "$work/scene.yaml" \
-    -o "$work/ranks$n" --trajectories 2>"$work/err$n" || status=$?
+    -o "$work/ranks$n" --trajectories >"$work/err$n" 2>&1 || status=$?
   [[ $status == 3 ]] || { echo "mpirun -n $n: exit $status, expected 3"; cat "$work/err$n"; exit 1; }
   same "$work/ranks$n" "$n ranks"
   ranks $n "$work/err$n"
