@@ -93,6 +93,39 @@ def png_pixels(path):
         prev = line
     return width, height, bpp, rows
 
+def refused(rotgen, work, args, line, page):
+    r = subprocess.run([os.path.abspath(rotgen), *args], stdout=subprocess.PIPE,
+                       stderr=subprocess.PIPE, cwd=work)
+    err = r.stderr.decode()
+    check(r.returncode == 2 and err == "rotgen: error: " + line + "\n" and not os.path.exists(page),
+          f"refused with exit 2, one line, no page: {line!r} (got {r.returncode}, {err!r})")
+
+def refusals(rotgen, work, scene, csv):
+    """Bad input to the viewer: exit 2, one located line, no page written."""
+    page = os.path.join(work, "bad.html")
+    no_q = os.path.join(work, "no_q.csv")
+    rows = open(csv).read().splitlines()
+    header = rows[0].split(",")
+    keep = [i for i, c in enumerate(header) if c not in ("q0", "q1", "q2", "q3")]
+    open(no_q, "w").write("\n".join(",".join(r.split(",")[i] for i in keep) for r in rows[:3]) + "\n")
+    refused(rotgen, work, ["view", no_q, "--scene", scene, "-o", page],
+            f"{no_q}:1:1: no attitude to show: the view needs the columns q0, q1, q2, q3 or phi, "
+            "theta, psi (add them to the scene's record)", page)
+    bad = os.path.join(work, "bad.csv")
+    open(bad, "w").write("t,q0\n0,1\n0.5,x1\n")
+    refused(rotgen, work, ["view", bad, "--scene", scene, "-o", page],
+            f"{bad}:3:5: not a number: 'x1'", page)
+    reduced = os.path.join(work, "reduced.yaml")
+    open(reduced, "w").write(open(scene).read().replace("form: lagrangian", "form: reduced")
+                             .replace("record: [q0, q1, q2, q3, Lx, Ly, Lz, theta, energy]",
+                                      "record: [theta]"))
+    refused(rotgen, work, ["simulate", reduced, "-o", os.path.join(work, "r.csv"), "--view", page],
+            "--view: the view needs the attitude, which the reduced form does not keep (its "
+            "ignored angles): use another form", page)
+    check(not os.path.exists(os.path.join(work, "r.csv")), "simulate --view refused: no CSV")
+    refused(rotgen, work, ["view", csv, "-o", page],
+            "rotgen view: give the run's scene (--scene FILE) or its model (--model FILE)", page)
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--rotgen", required=True)
@@ -106,6 +139,7 @@ def main():
     subprocess.run([a.rotgen, "simulate", scene, "-o", csv, "-q"], check=True)
     subprocess.run([a.rotgen, "view", csv, "--scene", scene, "-o", page], check=True,
                    stdout=subprocess.DEVNULL)
+    refusals(a.rotgen, work, scene, csv)
     rows = [[float(v) for v in line.split(",")] for line in open(csv).read().splitlines()[1:]]
     html = open(page).read()
 
