@@ -97,6 +97,13 @@ template <class T> struct taylor {
         using std::log;
         return std::max(2, static_cast<int>(ceil(-log(eps) / T(2) + T(1))));
     }
+
+    // The highest order a step may take: `order` if fixed, else the larger of the tolerances'.
+    int max_order() const {
+        return order > 0
+                   ? order
+                   : std::max(rtol > T(0) ? order_for(rtol) : 2, atol > T(0) ? order_for(atol) : 2);
+    }
 };
 
 template <class T, class S> class taylor_stepper {
@@ -115,10 +122,7 @@ template <class T, class S> class taylor_stepper {
 
     taylor_stepper(const taylor<T>& m, std::size_t n)
         : m_method(m), m_n(n), m_y1(vector::Zero(static_cast<Eigen::Index>(n))), m_f0(m_y1) {
-        const bool rel = m.rtol > T(0), abs_ = m.atol > T(0);
-        m_max_order = m.order > 0 ? m.order
-                                  : std::max(rel ? taylor<T>::order_for(m.rtol) : 2,
-                                             abs_ ? taylor<T>::order_for(m.atol) : 2);
+        m_max_order = m.max_order();
     }
 
     bool start(const S& sys, T t0, const vector& y0, step_stats& stats) {

@@ -41,10 +41,7 @@ template <class T, class S> class taylor_lane_stepper {
 
     taylor_lane_stepper(const taylor<T>& m, std::size_t n)
         : m_method(m), m_size(n), m_y1(vector::Zero(static_cast<Eigen::Index>(n))), m_f0(m_y1) {
-        const bool rel = m.rtol > T(0), abs_ = m.atol > T(0);
-        m_max_order = m.order > 0 ? m.order
-                                  : std::max(rel ? taylor<T>::order_for(m.rtol) : 2,
-                                             abs_ ? taylor<T>::order_for(m.atol) : 2);
+        m_max_order = m.max_order();
     }
 
     bool start(const S& sys, T t0, const vector& y0, step_stats& stats) {
