@@ -20,7 +20,7 @@ out=bench/results/split.md
 # Splitting on the exact free flow against DOP853 at fast spin
 
 `bench/split/split.sh` (bench/split/split_bench.cpp). Heavy top, M g h = 0.981, centre of mass on
-the body z axis, tilted 0.5 rad, released with phi_dot = theta_dot = 0 and psi_dot = spin; t = 0..10.
+the body z axis, the symmetric body I = (1, 1, 0.5) and the asymmetric I = (1, 1.2, 0.5), tilted 0.5 rad, released with phi_dot = theta_dot = 0 and psi_dot = spin; t = 0..10.
 Error: the angle between the attitude at t = 10 and a long-double DOP853 run at rtol 1e-17. Cost: the
 wall time of one run (median of 5), the cheapest run of the method that meets the error target
 (DOP853 at rtol = atol = 1e-4 .. 1e-13 on the body form, quaternion and omega; split2/4/6 under
