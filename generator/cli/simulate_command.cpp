@@ -1,4 +1,5 @@
-// rotgen simulate SCENE.yaml [-o out.csv] [--events FILE] [--plot out.png] [--from RUN.csv]
+// rotgen simulate SCENE.yaml [-o out.csv] [--events FILE] [--plot out.png] [--view FILE]
+//                 [--plot-axis FILE] [--plot-polhode FILE] [--from RUN.csv]
 // [--timings]
 #include "cli/commands.hpp"
 #include "cli/options.hpp"
@@ -13,9 +14,8 @@ namespace {
 const command_spec simulate_command{
     "simulate",
     "scene file",
-    "SCENE.yaml [-o out.csv] [--events FILE] [--plot out.png] [--view run.html] [--from RUN.csv] "
-    "[--timings] "
-    "[--quiet]",
+    "SCENE.yaml [-o out.csv] [--events FILE] [--plot out.png] [--view run.html] [--plot-axis "
+    "axis.png] [--plot-polhode polhode.png] [--from RUN.csv] [--timings] [--quiet]",
     "Integrates the scene: derives the model's equations, emits and compiles the scene's form\n"
     "(cached), integrates it and records the scene's quantities at its sample times. Prints a\n"
     "summary (steps, evaluations, invariant drifts) on standard output. A run that cannot finish\n"
@@ -36,6 +36,16 @@ const command_spec simulate_command{
       {}},
      {"--plot", "FILE", "the recorded quantities against t (gnuplot): .png, .svg or .pdf", {}},
      {"--view", "FILE", "a self-contained HTML page that plays the run in 3D in a browser", {}},
+     {"--plot-axis",
+      "FILE",
+      "the figure axis's path on the unit sphere (loops, cusps, waves);\n"
+      "                     its data in FILE with the extension .axis.csv",
+      {}},
+     {"--plot-polhode",
+      "FILE",
+      "the polhode: the body angular momentum's path on its sphere;\n"
+      "                     its data in FILE with the extension .polhode.csv",
+      {}},
      {"--from",
       "FILE",
       "start from the last row of an earlier run of the same model: its t and\n"
@@ -58,6 +68,8 @@ int cmd_simulate(const std::vector<std::string>& args) {
     request.plot = o.value("--plot");
     request.events = o.value("--events");
     request.view = o.value("--view");
+    request.plot_axis = o.value("--plot-axis");
+    request.plot_polhode = o.value("--plot-polhode");
     request.from = o.value("--from");
     request.timings = o.has("--timings");
     request.quiet = o.has("--quiet");

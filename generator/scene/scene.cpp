@@ -377,4 +377,15 @@ scene_spec load_scene(const std::string& path, const std::string& command) {
     return scene_reader(path, command).read();
 }
 
+scene_spec with_records(const scene_spec& scene, const std::vector<std::string>& extra) {
+    scene_spec more = scene;
+    for (const auto& name : extra)
+        if (std::find(more.record.begin(), more.record.end(), name) == more.record.end()) {
+            more.record.push_back(name);
+            more.record_where.push_back(scene.where);
+        }
+    more.record_default = false;
+    return more;
+}
+
 } // namespace rotgen

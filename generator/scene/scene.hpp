@@ -95,6 +95,10 @@ struct scene_spec {
 const std::vector<std::string>& recordable_names();
 std::vector<std::string> record_columns(const std::string& name);
 
+// The scene recording also `extra` (those it does not record already), each located at the scene
+// file; the run's rows then hold them beside the scene's own columns.
+scene_spec with_records(const scene_spec& scene, const std::vector<std::string>& extra);
+
 // Reads and validates a scene file (and the model it names). Throws user_error; a model file (one
 // with `inertia:` or `body:` and no `model:`) is refused with a message that says so and names
 // `command`, the command that takes a scene ("simulate").

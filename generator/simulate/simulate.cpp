@@ -3,6 +3,7 @@
 #include "run/continue_from.hpp"
 #include "run/engine.hpp"
 #include "scene/scene.hpp"
+#include "simulate/figures.hpp"
 #include "simulate/plot.hpp"
 #include "support/atomic_file.hpp"
 #include "support/error.hpp"
@@ -203,6 +204,12 @@ void check_files(const simulate_request& q, const scene_spec& scene, const run_f
         outputs.push_back({f.events, q.events.empty() ? "the events file" : "--events"});
     if (!q.plot.empty()) outputs.push_back({q.plot, "--plot"});
     if (!q.view.empty()) outputs.push_back({q.view, "--view"});
+    for (const auto& [file, kind] : {std::pair{q.plot_axis, "axis"}, {q.plot_polhode, "polhode"}})
+        if (!file.empty()) {
+            outputs.push_back({file, std::string("--plot-") + kind});
+            outputs.push_back(
+                {figure_data_path(file, kind), std::string("--plot-") + kind + "'s data"});
+        }
     outputs.push_back({f.partial, "the partial rows' file (exit 3)"});
     if (!f.partial_events.empty())
         outputs.push_back({f.partial_events, "the partial events' file (exit 3)"});
@@ -235,6 +242,50 @@ int report_partial(const std::vector<std::string>& inputs, const run_files& f,
     return 3;
 }
 
+figure_request figures_of(const simulate_request& q) {
+    return {q.plot_axis, q.plot_polhode};
+}
+
+// What the run records: the scene's columns, and what the page and the figures need.
+scene_spec scene_to_run(const simulate_request& q, const scene_spec& scene) {
+    const figure_request f = figures_of(q);
+    check_figures(f, scene);
+    if (q.view.empty() && f.axis.empty() && f.polhode.empty()) return scene;
+    return with_records(q.view.empty() ? scene : scene_for_view(scene, "--view"),
+                        figure_records(f, scene));
+}
+
+// The plot, the page and the figures, from the run (`run`, with what they need recorded) or
+// the scene's columns of it (`r`).
+void write_pictures(const simulate_request& q, const scene_spec& scene, const scene_spec& viewed,
+                    const run_result& run, const run_result& r,
+                    const std::vector<std::string>& inputs, stage_timings& timings,
+                    std::ostream& summary) {
+    if (!q.plot.empty()) {
+        timings.time("plot", q.plot, [&] { draw_plot(q, csv_path(q), scene, r); });
+        summary << "  wrote   " << q.plot << "\n";
+    }
+    if (!q.plot_axis.empty()) {
+        timings.time("plot", q.plot_axis,
+                     [&] { draw_axis_figure(q.plot_axis, scene, run, inputs); });
+        summary << "  wrote   " << q.plot_axis
+                << " (its data: " << figure_data_path(q.plot_axis, "axis") << ")\n";
+    }
+    if (!q.plot_polhode.empty()) {
+        timings.time("plot", q.plot_polhode,
+                     [&] { draw_polhode(q.plot_polhode, scene, run, inputs); });
+        summary << "  wrote   " << q.plot_polhode
+                << " (its data: " << figure_data_path(q.plot_polhode, "polhode") << ")\n";
+    }
+    if (!q.view.empty()) {
+        view_data page = view_of_run(viewed, run);
+        page.title = scene.model.name + " (" + q.scene + ")";
+        page.source = q.scene;
+        timings.time("write", q.view, [&] { write_view(q.view, page, inputs); });
+        summary << "  wrote   " << q.view << " (the run in 3D: open it in a browser)\n";
+    }
+}
+
 // The scene, continued from the last row of q.from when given.
 scene_spec scene_of(const simulate_request& q) {
     scene_spec scene = load_scene(q.scene, "simulate");
@@ -257,15 +308,17 @@ int simulate(const simulate_request& q) {
     if (!q.plot.empty()) atomic_file probe(q.plot, inputs);
     std::optional<atomic_file> events_out;
     if (!events.empty()) events_out.emplace(events, inputs);
-    if (!q.view.empty()) atomic_file probe(q.view, inputs);
-    const scene_spec viewed = q.view.empty() ? scene : scene_for_view(scene, "--view");
+    for (const auto& file : {q.view, q.plot_axis, q.plot_polhode})
+        if (!file.empty()) atomic_file probe(file, inputs);
+    const scene_spec viewed = scene_to_run(q, scene);
 
     stage_timings timings;
     std::ostringstream discarded;
     std::ostream& summary = q.quiet ? discarded : (is_standard_output(csv) ? std::cerr : std::cout);
     progress_line progress(scene.t_start, scene.t_end, !q.quiet);
     const run_result run = run_scene(viewed, timings, [&](double t) { progress.update(t); });
-    const run_result r = q.view.empty() ? run : only_scene_records(run, scene);
+    const bool extra = !q.view.empty() || !q.plot_axis.empty() || !q.plot_polhode.empty();
+    const run_result r = extra ? only_scene_records(run, scene) : run;
     progress.finish();
     print_summary(summary, q, scene, r, timings);
     if (!r.ok) {
@@ -283,17 +336,7 @@ int simulate(const simulate_request& q) {
                 << r.event_rows.size() << " events"
                 << (scene.events.empty() ? "; the scene has no events:" : "") << ")\n";
     }
-    if (!q.plot.empty()) {
-        timings.time("plot", q.plot, [&] { draw_plot(q, csv, scene, r); });
-        summary << "  wrote   " << q.plot << "\n";
-    }
-    if (!q.view.empty()) {
-        view_data page = view_of_run(viewed, run);
-        page.title = scene.model.name + " (" + q.scene + ")";
-        page.source = q.scene;
-        timings.time("write", q.view, [&] { write_view(q.view, page, inputs); });
-        summary << "  wrote   " << q.view << " (the run in 3D: open it in a browser)\n";
-    }
+    write_pictures(q, scene, viewed, run, r, inputs, timings, summary);
     if (q.timings) timings.print(std::cerr);
     return 0;
 }

@@ -10,14 +10,16 @@
 namespace rotgen {
 
 struct simulate_request {
-    std::string scene;    // the scene file
-    std::string csv;      // where to write the samples; empty: not written
-    std::string plot;     // a PNG of the recorded columns; empty: none
-    std::string events;   // the scene's events as CSV; empty: <output stem>.events.csv
-    std::string view;     // a self-contained HTML page playing the run in 3D; empty: none
-    bool timings = false; // one line per pipeline stage to stderr
-    bool quiet = false;   // no summary and no progress line
-    std::string from;     // continue from the last row of this CSV (run/continue_from.hpp)
+    std::string scene;        // the scene file
+    std::string csv;          // where to write the samples; empty: not written
+    std::string plot;         // a PNG of the recorded columns; empty: none
+    std::string events;       // the scene's events as CSV; empty: <output stem>.events.csv
+    std::string view;         // a self-contained HTML page playing the run in 3D; empty: none
+    std::string plot_axis;    // the figure axis on the unit sphere (simulate/figures.hpp)
+    std::string plot_polhode; // the polhode of the body angular momentum
+    bool timings = false;     // one line per pipeline stage to stderr
+    bool quiet = false;       // no summary and no progress line
+    std::string from;         // continue from the last row of this CSV (run/continue_from.hpp)
 };
 
 // Returns the exit status. Throws user_error for bad input (nothing is written then).

@@ -9,17 +9,9 @@ scene_spec scene_for_view(const scene_spec& scene, const std::string& option) {
     if (scene.form == form_kind::reduced)
         throw user_error({option}, "the view needs the attitude, which the reduced form does "
                                    "not keep (its ignored angles): use another form");
-    scene_spec viewed = scene;
-    const std::vector<std::string> wanted = scene.model.rotor
-                                                ? std::vector<std::string>{"phi", "theta"}
-                                                : std::vector<std::string>{"q0", "q1", "q2", "q3"};
-    for (const auto& name : wanted)
-        if (std::find(viewed.record.begin(), viewed.record.end(), name) == viewed.record.end()) {
-            viewed.record.push_back(name);
-            viewed.record_where.push_back(scene.where);
-        }
-    viewed.record_default = false;
-    return viewed;
+    return with_records(scene, scene.model.rotor
+                                   ? std::vector<std::string>{"phi", "theta"}
+                                   : std::vector<std::string>{"q0", "q1", "q2", "q3"});
 }
 
 view_data view_of_run(const scene_spec& viewed, const run_result& r) {
