@@ -149,6 +149,9 @@ bool mpi_session::all(bool ok) const {
 std::size_t mpi_session::broadcast(std::size_t value) const {
     return value;
 }
+std::size_t mpi_session::least(std::size_t value) const {
+    return value;
+}
 
 std::vector<std::size_t> run_distributed(const mpi_session&, std::size_t count, std::size_t group,
                                          unsigned jobs, const batch_work& work, in_order* out,
@@ -310,6 +313,13 @@ std::size_t mpi_session::broadcast(std::size_t value) const {
     std::uint64_t v = value;
     MPI_Bcast(&v, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
     return std::size_t(v);
+}
+
+std::size_t mpi_session::least(std::size_t value) const {
+    if (!m_active) return value;
+    std::uint64_t mine = value, least = 0;
+    MPI_Allreduce(&mine, &least, 1, MPI_UINT64_T, MPI_MIN, MPI_COMM_WORLD);
+    return std::size_t(least);
 }
 
 bool mpi_session::all(bool ok) const {

@@ -29,6 +29,8 @@ class mpi_session {
     bool all(bool ok) const;
     // Rank 0's value, on every rank.
     std::size_t broadcast(std::size_t value) const;
+    // The least of every rank's `value`, on every rank (all ranks call it; one process: value).
+    std::size_t least(std::size_t value) const;
 
   private:
     int m_rank = 0, m_size = 1;

@@ -1,5 +1,9 @@
 #include "sweep/parallel.hpp"
 
+#ifdef __linux__
+#include <sched.h>
+#endif
+
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -11,6 +15,12 @@
 namespace rotgen {
 
 unsigned all_cores() {
+#ifdef __linux__
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    if (sched_getaffinity(0, sizeof set, &set) == 0 && CPU_COUNT(&set) > 0)
+        return static_cast<unsigned>(CPU_COUNT(&set));
+#endif
     const unsigned n = std::thread::hardware_concurrency();
     return n == 0 ? 1 : n;
 }

@@ -256,9 +256,24 @@ std::unique_ptr<ensemble> prepare_everywhere(const mpi_session& session, const s
     return e;
 }
 
+// A warning when a process's threads outnumber the cores it may run on (`cores`, the least over
+// the ranks): they then share cores and the sweep runs no faster than on those cores. mpirun binds
+// each rank to one core when it starts 2 ranks or fewer (Open MPI), so that `mpirun -n 2 rotgen
+// sweep -j 8` runs 8 threads on one core.
+std::string oversubscribed(const mpi_session& session, unsigned jobs, std::size_t cores) {
+    if (jobs <= cores) return "";
+    const std::string who = session.size() > 1 ? "an MPI rank" : "this process";
+    return "\n  warning " + std::to_string(jobs) + " threads share the " + std::to_string(cores) +
+           (cores == 1 ? " core " : " cores ") + who + " may run on" +
+           (session.size() > 1 ? " (mpirun binds each rank to a core or a socket: give it "
+                                 "--bind-to none, or --map-by slot:PE=" +
+                                     std::to_string(jobs) + ")"
+                               : " (its CPU affinity: taskset, a batch system's cpuset)");
+}
+
 // "1 thread on each of 2 MPI ranks, lanes of 4 (avx2)"; with MPI, the members each rank ran.
-std::string workers_of(const mpi_session& session, const sweep_request& q, const ensemble& e,
-                       unsigned jobs, const std::vector<std::size_t>& ran) {
+std::string workers_of(const mpi_session& session, unsigned jobs, std::size_t cores,
+                       const std::vector<std::size_t>& ran) {
     std::string w =
         std::to_string(jobs) + (jobs == 1 ? " thread" : " threads") +
         (session.size() > 1 ? " on each of " + std::to_string(session.size()) + " MPI ranks" : "");
@@ -267,7 +282,7 @@ std::string workers_of(const mpi_session& session, const sweep_request& q, const
         for (std::size_t r = 0; r < ran.size(); ++r)
             w += (r == 0 ? " " : ", ") + std::to_string(ran[r]);
     }
-    return w;
+    return w + oversubscribed(session, jobs, cores);
 }
 
 } // namespace
@@ -285,6 +300,7 @@ int sweep(const sweep_request& q) {
     progress_line progress(double(from), double(e->table.size()), root && !q.quiet, "members");
     // under mpirun a rank per core, each with one thread, unless -j says otherwise
     const unsigned jobs = q.jobs != 0 ? q.jobs : session.size() > 1 ? 1 : all_cores();
+    const std::size_t cores = session.least(all_cores());
     std::unique_ptr<in_order> out;
     if (root)
         out = std::make_unique<in_order>(
@@ -300,7 +316,7 @@ int sweep(const sweep_request& q) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     progress.finish();
     if (!root) return 0;
-    return finish(q, *e, workers_of(session, q, *e, jobs, ran), *writer, seconds, timings);
+    return finish(q, *e, workers_of(session, jobs, cores, ran), *writer, seconds, timings);
 }
 
 } // namespace rotgen
