@@ -1,0 +1,100 @@
+#!/usr/bin/env bash
+# rotgen sweep — how the members' time scales with the cores this machine has, as threads, as MPI
+# ranks and as both (Markdown on stdout, progress on stderr):
+#
+#   bash bench/sweep_scaling.sh build/rotgen [MEMBERS] > bench/results/sweep_scaling.md
+#
+# The heavy top (models/heavy_top.yaml), MEMBERS (default 16,384) members over initial theta
+# 0.1 .. 1.5, t = 0 .. 10, DOP853 rtol 1e-8, the summary's "running the members" time. For each
+# power of two k up to the cores (nproc): k threads, k ranks of one thread, and above 2 cores 2
+# ranks of k/2 threads (--bind-to none, and with mpirun's default binding, which the summary warns
+# about); then all the cores with --lanes 8. Best of 5 runs of each, the ways interleaved (one of
+# each in turn); every summary.csv is compared with the one-thread run's (with lanes, the one-thread
+# lanes run's: DOP853's lanes share steps), byte for byte.
+set -euo pipefail
+rotgen=$(realpath "${1:?usage: sweep_scaling.sh ROTGEN [MEMBERS]}")
+members=${2:-16384}
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+export ROTGEN_CACHE_DIR=$work/cache
+cores=$(nproc)
+run_root=()
+[[ $(id -u) == 0 ]] && run_root=(--allow-run-as-root)
+cat >"$work/scene.yaml" <<YAML
+model: $root/models/heavy_top.yaml
+initial: {phi: 0, theta: 0.5, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 30}
+time: {start: 0, end: 10, samples: 101}
+integrator: {method: dop853, rtol: 1e-8, atol: 1e-10}
+record: [theta, energy]
+sweep:
+  vary:
+    initial.theta: {from: 0.1, to: 1.5, count: $members}
+YAML
+
+# The ways, "label|command words" (the scene and -o are added)
+ways=("1 thread|sweep -j 1")
+for ((k = 2; k <= cores; k *= 2)); do
+  ways+=("$k threads (\`-j $k\`)|sweep -j $k")
+  ways+=("\`mpirun -n $k\`, 1 thread each|mpirun -n $k sweep -j 1")
+  if ((k >= 4)); then
+    ways+=("\`mpirun -n 2 --bind-to none -j $((k / 2))\`|mpirun -n 2 --bind-to none sweep -j $((k / 2))")
+    ways+=("\`mpirun -n 2 -j $((k / 2))\` (default binding)|mpirun -n 2 sweep -j $((k / 2))")
+  fi
+done
+ways+=("$cores threads, \`--lanes 8\`|sweep -j $cores --lanes 8")
+((cores >= 2)) && ways+=("\`mpirun -n $cores --lanes 8\`|mpirun -n $cores sweep -j 1 --lanes 8")
+
+one_run() { # $1: the way's command words; prints the seconds, leaves $work/out
+  local words=($1) cmd=()
+  rm -rf "$work/out"
+  if [[ ${words[0]} == mpirun ]]; then
+    local i=1
+    cmd=(mpirun --oversubscribe "${run_root[@]}")
+    while [[ ${words[i]} != sweep ]]; do cmd+=("${words[i]}"); i=$((i + 1)); done
+    cmd+=("$rotgen" "${words[@]:i}")
+  else
+    cmd=("$rotgen" "${words[@]}")
+  fi
+  "${cmd[@]:0:${#cmd[@]}}" "$work/scene.yaml" -o "$work/out" 2>/dev/null |
+    sed -n 's/^  time    \([0-9.]*\) \(s\|ms\|us\) running the members.*/\1 \2/p' |
+    awk '{ print $1 * ($2 == "s" ? 1 : $2 == "ms" ? 1e-3 : 1e-6) }'
+}
+
+"$rotgen" sweep "$work/scene.yaml" -o "$work/reference" -j 1 -q # the kernels into the cache
+"$rotgen" sweep "$work/scene.yaml" -o "$work/reference_lanes" -j 1 -q --lanes 8
+declare -a best
+for round in 1 2 3 4 5; do
+  echo "round $round of 5" >&2
+  for i in "${!ways[@]}"; do
+    t=$(one_run "${ways[i]#*|}")
+    [[ -n $t ]] || { echo "sweep_scaling.sh: no time from ${ways[i]#*|}" >&2; exit 1; }
+    reference=$work/reference
+    [[ ${ways[i]} == *--lanes* ]] && reference=$work/reference_lanes
+    cmp -s "$work/out/summary.csv" "$reference/summary.csv" ||
+      { echo "sweep_scaling.sh: ${ways[i]%%|*} wrote another summary.csv" >&2; exit 1; }
+    if [[ -z ${best[i]:-} ]] || awk -v a="$t" -v b="${best[i]}" 'BEGIN { exit !(a < b) }'; then
+      best[i]=$t
+    fi
+  done
+done
+
+cat <<EOF2
+# rotgen sweep: scaling with the cores
+
+\`bash bench/sweep_scaling.sh build/rotgen > bench/results/sweep_scaling.md\`; $cores cores
+($(grep -m1 'model name' /proc/cpuinfo | sed 's/.*: //')), $(mpirun --version | head -1),
+load average $(cut -d' ' -f1-3 /proc/loadavg) when it finished.
+
+The heavy top, $members members (initial theta 0.1 .. 1.5), t = 0 .. 10, 101 samples, DOP853
+rtol 1e-8; the summary's "running the members" time, best of 5 runs of each, interleaved; every
+run's summary.csv is byte-identical to the one-thread run's (with lanes, to the one-thread lanes
+run's).
+
+| run | seconds | speed-up over 1 thread |
+|---|---:|---:|
+EOF2
+for i in "${!ways[@]}"; do
+  awk -v l="${ways[i]%%|*}" -v t="${best[i]}" -v b="${best[0]}" \
+    'BEGIN { printf "| %s | %.3g | %.2f |\n", l, t, b / t }'
+done
