@@ -13,6 +13,7 @@
 # before, and cached), the ways of running a scene interleaved (one of each in turn).
 # Timing claims live here, never in ctest.
 set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/summary_time.sh"
 rotgen=$(realpath "${1:?usage: sweep.sh ROTGEN}")
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 work=$(mktemp -d)
@@ -48,8 +49,7 @@ one_run() {
   local t cpu
   # the summary (standard output): "time    <number> <s|ms|us> running the members", in seconds
   t=$(/usr/bin/time -f "cpu %U %S" -o "$work/cpu" "$@" -o "$work/out" |
-      sed -n 's/^  time    \([0-9.]*\) \(s\|ms\|us\) running the members.*/\1 \2/p' |
-      awk '{ print $1 * ($2 == "s" ? 1 : $2 == "ms" ? 1e-3 : 1e-6) }')
+      summary_seconds "running the members")
   [[ -n $t ]] || { echo "sweep.sh: no time from: $*" >&2; exit 1; }
   cpu=$(awk '/^cpu/ { print $2 + $3 }' "$work/cpu")
   echo "$t $cpu"

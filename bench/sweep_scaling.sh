@@ -12,6 +12,7 @@
 # each in turn); every summary.csv is compared with the one-thread run's (with lanes, the one-thread
 # lanes run's: DOP853's lanes share steps), byte for byte.
 set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/summary_time.sh"
 rotgen=$(realpath "${1:?usage: sweep_scaling.sh ROTGEN [MEMBERS]}")
 members=${2:-16384}
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -57,8 +58,7 @@ one_run() { # $1: the way's command words; prints the seconds, leaves $work/out
     cmd=("$rotgen" "${words[@]}")
   fi
   "${cmd[@]:0:${#cmd[@]}}" "$work/scene.yaml" -o "$work/out" 2>/dev/null |
-    sed -n 's/^  time    \([0-9.]*\) \(s\|ms\|us\) running the members.*/\1 \2/p' |
-    awk '{ print $1 * ($2 == "s" ? 1 : $2 == "ms" ? 1e-3 : 1e-6) }'
+    summary_seconds "running the members"
 }
 
 "$rotgen" sweep "$work/scene.yaml" -o "$work/reference" -j 1 -q # the kernels into the cache

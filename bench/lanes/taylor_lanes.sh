@@ -10,6 +10,7 @@
 # the members" time (kernels compiled once, before), the three ways interleaved (one of each in
 # turn) so that all see the same load. Timing claims live here, never in ctest.
 set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/../summary_time.sh"
 rotgen=$(realpath "${1:?usage: taylor_lanes.sh ROTGEN}")
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 work=$(mktemp -d)
@@ -36,7 +37,7 @@ one_run() {
   shift
   rm -rf "$work/out"
   t=$(/usr/bin/time -f "cpu %U %S" -o "$work/cpu" "$rotgen" sweep "$scene" -o "$work/out" -j 1 "$@" 2>&1 |
-      sed -n 's/^  time    \([0-9.e+-]*\) s running the members.*/\1/p')
+      summary_seconds "running the members")
   [[ -n $t ]] || { echo "taylor_lanes.sh: no time from: $scene $*" >&2; exit 1; }
   echo "$t $(awk '/^cpu/ { print $2 + $3 }' "$work/cpu")"
 }
