@@ -84,7 +84,7 @@ TEST_CASE("J of all twelve sequences: det J is sin or cos of the middle angle, J
                 worst = std::max(worst, std::abs(value(prod, at) - (i == j ? 1 : 0)));
             }
     }
-    CHECK(worst <= 1e-14); // observed
+    CHECK(worst <= 1e-18); // observed 7.5e-20 (17 digits)
 }
 
 TEST_CASE("a model's angle names are parsed and printed, the chapter's refused", "[derive]") {
@@ -99,9 +99,9 @@ TEST_CASE("a model's angle names are parsed and printed, the chapter's refused",
     CHECK(text.find("theta") == std::string::npos);
     CHECK_THROWS_WITH(read("seq_bad", "name: sat\nangles: zyx\ninertia: [1.2, 1, 0.4]\n"
                                       "potential: cos(theta)\n"),
-                      Catch::Contains("seq_bad.yaml:4:") && Catch::Contains("theta"));
+                      Catch::Contains("unknown symbol 'theta'"));
     CHECK_THROWS_WITH(read("seq_bad", "name: sat\nangles: zzx\ninertia: [1, 1, 1]\n"),
-                      Catch::Contains("seq_bad.yaml:2:") && Catch::Contains("unknown Euler"));
+                      Catch::Contains("unknown Euler sequence 'zzx'"));
     CHECK_THROWS_WITH(read("seq_bad", "name: sat\nangles: {sequence: xyz, names: [a, a, b]}\n"
                                       "inertia: [1, 1, 1]\n"),
                       Catch::Contains("given twice"));

@@ -79,7 +79,7 @@ TEST_CASE("the heavy top's motion is the same in zxz, zyx, xyz angles and the bo
         INFO(seq << ": " << d);
         worst = std::max(worst, d);
     }
-    CHECK(worst <= 1e-9); // observed
+    CHECK(worst <= 5e-12); // observed 4.7e-13 (issue 28 asks for 1e-9)
 }
 
 TEST_CASE("the free asymmetric top's motion over t = 100 is the same in zxz, zyx, xyz angles",
@@ -95,5 +95,5 @@ TEST_CASE("the free asymmetric top's motion over t = 100 is the same in zxz, zyx
         INFO(seq << ": " << d);
         worst = std::max(worst, d);
     }
-    CHECK(worst <= 1e-9); // observed
+    CHECK(worst <= 4e-10); // observed 3.7e-11 (issue 28 asks for 1e-9)
 }
