@@ -80,16 +80,19 @@ class initial_reader {
         for (const auto& name : missing)
             list += (list.empty() ? "" : ", ") + name;
         const auto& r = m_rates;
+        std::string attitude;
+        for (const auto& name : m_attitude[static_cast<std::size_t>(att < 0 ? 0 : att)])
+            attitude += (attitude.empty() ? "" : ", ") + name;
         const std::string why =
-            rates >= 0 ? " (a state is the attitude (" + angle_list() + ", or q0..q3, or A) with " +
-                             r[static_cast<std::size_t>(rates)][0] + ", " +
-                             r[static_cast<std::size_t>(rates)][1] + ", " +
-                             r[static_cast<std::size_t>(rates)][2] + "; nothing defaults to 0)"
-                       : std::string(list.empty() ? "" : " and ") + "the rates (" + r[0][0] + ", " +
-                             r[0][1] + ", " + r[0][2] + ", or " + r[1][0] + ", " + r[1][1] + ", " +
-                             r[1][2] +
-                             ", or omega1, omega2, omega3, or omega_x, omega_y, omega_z; nothing "
-                             "defaults to 0)";
+            rates >= 0
+                ? " (a state is " + attitude + " with " + r[static_cast<std::size_t>(rates)][0] +
+                      ", " + r[static_cast<std::size_t>(rates)][1] + ", " +
+                      r[static_cast<std::size_t>(rates)][2] + "; nothing defaults to 0)"
+                : std::string(list.empty() ? "" : " and ") + "the rates (" + r[0][0] + ", " +
+                      r[0][1] + ", " + r[0][2] + ", or " + r[1][0] + ", " + r[1][1] + ", " +
+                      r[1][2] +
+                      ", or omega1, omega2, omega3, or omega_x, omega_y, omega_z; nothing "
+                      "defaults to 0)";
         throw user_error(key, "the initial state is incomplete: missing " + list + why);
     }
 
