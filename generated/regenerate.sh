@@ -11,6 +11,10 @@ for model in heavy_top free_asymmetric_top full_tensor_top damped_driven_top cub
     "$rotgen" emit "models/$model.yaml" -o generated --form "$form" >/dev/null
   done
 done
+# A model in yaw, pitch, roll (z-y-x angles, issue 28): its Euler-angle and body forms.
+for form in lagrangian body; do
+  "$rotgen" emit models/satellite_zyx.yaml -o generated --form "$form" >/dev/null
+done
 # Examples of the Taylor coefficients (--outputs taylor), readable beside the rhs they expand.
 "$rotgen" emit models/free_asymmetric_top.yaml -o generated --form body --outputs rhs,taylor \
   --name free_asymmetric_top_body_taylor >/dev/null

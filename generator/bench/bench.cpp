@@ -14,6 +14,8 @@
 #include "bench/bench_internal.hpp"
 #include "bench/files.hpp"
 #include "bench/numbers.hpp"
+#include "expr/symbols.hpp"
+#include "run/angle_chart.hpp"
 #include "run/engine.hpp"
 #include "run/kinematics.hpp"
 #include "support/error.hpp"
@@ -156,11 +158,13 @@ void bench_run::prepare(const bench_options& options) {
     c.src = find_bench_sources();
     c.dir = c.opt.dir;
     check_files(c.dir, c.scene);
-    c.euler_ok = std::abs(std::sin(c.scene.angles[1])) > 1e-10;
+    c.euler_ok = chart_distance(c.scene.angles[1]) > 1e-10;
     if (!c.euler_ok && c.scene.form != form_kind::body)
         throw user_error(c.scene.initial_where,
-                         "initial theta is the gimbal-lock singularity of the "
-                         "Euler-angle forms (sin theta = 0); use form: body");
+                         "initial " + coordinate_names()[1] +
+                             " is the gimbal-lock singularity of the Euler-angle forms (" +
+                             distance_label().substr(1, distance_label().size() - 2) +
+                             " = 0); use form: body");
     bench_cache_root(); // a cache that cannot be made is refused before any output
 }
 

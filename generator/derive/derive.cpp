@@ -1,5 +1,6 @@
 #include "derive/derive.hpp"
 
+#include "expr/angles.hpp"
 #include "expr/symbols.hpp"
 
 namespace rotgen {
@@ -27,24 +28,46 @@ ex time_derivative(const ex& e) {
 
 namespace {
 
-// (5.30): omega = J(q) q_dot with
+// (5.30) for z-x-z, any sequence a-b-c alike: omega = J(q) q_dot with J derived from the product
+// of the elementary rotations (expr/angles.hpp), J = [A_c A_b e_a | A_c e_b | e_c]; for z-x-z
 //   J = [[sin(theta) sin(psi),  cos(psi), 0],
 //        [sin(theta) cos(psi), -sin(psi), 0],
 //        [cos(theta),           0,        1]].
 matrix3 omega_jacobian() {
-    const auto& s = symbols();
-    const ex st = GiNaC::sin(s.q[1]), ct = GiNaC::cos(s.q[1]);
-    const ex sp = GiNaC::sin(s.q[2]), cp = GiNaC::cos(s.q[2]);
-    return {{{st * sp, cp, 0}, {st * cp, -sp, 0}, {ct, 0, 1}}};
+    return omega_jacobian_of(active_angles());
 }
 
-// J^{-1} (det J = -sin theta): phi_dot = (omega1 sin psi + omega2 cos psi) / sin theta,
-// theta_dot = omega1 cos psi - omega2 sin psi, psi_dot = omega3 - phi_dot cos theta.
-matrix3 inverse_omega_jacobian() {
-    const auto& s = symbols();
-    const ex st = GiNaC::sin(s.q[1]), ct = GiNaC::cos(s.q[1]);
-    const ex sp = GiNaC::sin(s.q[2]), cp = GiNaC::cos(s.q[2]);
-    return {{{sp / st, cp / st, 0}, {cp, -sp, 0}, {-sp * ct / st, -cp * ct / st, 1}}};
+// sin^2 -> 1 - cos^2 of the last angle (J does not depend on the first), then expanded: what
+// collapses J's cofactors.
+ex trig_collapse(const ex& e) {
+    const ex gamma = symbols().q[2];
+    const ex sin2 = GiNaC::pow(GiNaC::sin(gamma), 2);
+    return e.expand()
+        .subs(sin2 == 1 - GiNaC::pow(GiNaC::cos(gamma), 2), GiNaC::subs_options::algebraic)
+        .expand();
+}
+
+// J^{-1} = adj(J) / det J by cofactors. det J is one term: -sin(theta) for z-x-z (so that
+// phi_dot = (omega1 sin psi + omega2 cos psi) / sin theta, theta_dot = omega1 cos psi - omega2
+// sin psi, psi_dot = omega3 - phi_dot cos theta), +-sin(beta) for a proper Euler sequence and
+// +-cos(beta) for a Tait-Bryan one: the singular set.
+matrix3 inverse_omega_jacobian(const matrix3& J) {
+    matrix3 adj, inv;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            const int r0 = (j + 1) % 3, r1 = (j + 2) % 3, c0 = (i + 1) % 3, c1 = (i + 2) % 3;
+            adj[i][j] = trig_collapse(J[r0][c0] * J[r1][c1] - J[r0][c1] * J[r1][c0]);
+        }
+    ex det = 0;
+    for (int k = 0; k < 3; ++k)
+        det += J[0][k] * adj[k][0];
+    det = trig_collapse(det);
+    if (GiNaC::is_a<GiNaC::add>(det))
+        throw std::logic_error("derive: det J did not collapse to one term");
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            inv[i][j] = trig_collapse(adj[i][j] / det);
+    return inv;
 }
 
 // I^{-1} by the adjugate: small and exact for a symbolic tensor; 1/I_ii when diagonal.
@@ -110,7 +133,7 @@ derivation derive(const model_spec& spec) {
     const auto& s = symbols();
     derivation d;
     d.omega_jacobian = omega_jacobian();
-    d.inverse_omega_jacobian = inverse_omega_jacobian();
+    d.inverse_omega_jacobian = inverse_omega_jacobian(d.omega_jacobian);
     d.inverse_inertia = inverse_inertia(spec);
 
     // omega = J q_dot (5.30)

@@ -2,6 +2,7 @@
 #include "emit/emit.hpp"
 
 #include "emit/taylor.hpp"
+#include "expr/angles.hpp"
 #include "expr/print.hpp"
 #include "support/error.hpp"
 #include "support/hash.hpp"
@@ -216,6 +217,72 @@ std::string comment_block(const std::string& text, const std::string& indent = "
     return out;
 }
 
+// quaternion_from_angles and angles_from_quaternion: the chapter's z-x-z by half angles
+// (templates/quaternion.hpp.in), any other sequence through R = A^T
+// (templates/quaternion_sequence.hpp.in; the formulas of runtime/euler_sequence.hpp).
+std::string quaternion_functions() {
+    const angle_convention& c = active_angles();
+    if (c.is_zxz()) return fill_template("quaternion.hpp.in", {});
+    const std::string s = c.sequence();
+    const std::string extract =
+        c.proper()
+            ? "    const T two_pi = S(2) * S(3.141592653589793238462643383279502884L);\n"
+              "    const T alpha = atan2(R(b, a), S(-e) * R(d, a));\n"
+              "    const T gamma = atan2(R(a, b), S(e) * R(a, d));\n"
+              "    angles[0] = alpha - two_pi * floor(alpha / two_pi);\n"
+              "    angles[1] = atan2(sqrt(R(a, b) * R(a, b) + R(a, d) * R(a, d)), R(a, a));\n"
+              "    angles[2] = gamma - two_pi * floor(gamma / two_pi);"
+            : "    angles[0] = atan2(S(-e) * R(b, c), R(c, c));\n"
+              "    angles[1] = atan2(S(e) * R(a, c), sqrt(R(a, a) * R(a, a) + R(a, b) * R(a, "
+              "b)));\n"
+              "    angles[2] = atan2(S(-e) * R(a, b), R(a, a));";
+    const std::string range = c.proper() ? c.names[1] + " in [0, pi], " + c.names[0] + " and " +
+                                               c.names[2] + " in [0, 2 pi)"
+                                         : c.names[1] + " in [-pi/2, pi/2], " + c.names[0] +
+                                               " and " + c.names[2] + " in (-pi, pi]";
+    return fill_template("quaternion_sequence.hpp.in",
+                         {{"description", c.description()},
+                          {"names", c.names[0] + ", " + c.names[1] + ", " + c.names[2]},
+                          {"matrix", c.matrix_text()},
+                          {"x0", std::string(1, s[0])},
+                          {"x1", std::string(1, s[1])},
+                          {"x2", std::string(1, s[2])},
+                          {"n0", c.names[0]},
+                          {"n1", c.names[1]},
+                          {"n2", c.names[2]},
+                          {"a", std::to_string(c.axes[0])},
+                          {"b", std::to_string(c.axes[1])},
+                          {"c", std::to_string(c.axes[2])},
+                          {"parity", (c.axes[1] - c.axes[0] + 3) % 3 == 1 ? "1" : "-1"},
+                          {"range", range},
+                          {"singular", c.singular_text()},
+                          {"extract", extract}});
+}
+
+// The header's note on the angles: the chapter's words for z-x-z, the model's sequence otherwise.
+std::string angles_comment() {
+    const angle_convention& c = active_angles();
+    if (c.is_default())
+        return "Angles: z-x-z Euler angles (5.3), phi about z, theta about the new x, psi about "
+               "the "
+               "new z; phi, psi in [0, 2 pi), theta in [0, pi], in radians. A = Az(psi) Ax(theta) "
+               "Az(phi) is passive, body <- space (5.25); omega is in body axes (5.30).";
+    return "Angles: " + c.description() + ", " + c.axes_text() +
+           ", in radians. A = " + c.matrix_text() +
+           " is passive, body <- space (as 5.25); omega is in body axes (as 5.30).";
+}
+
+std::string singular_comment() {
+    const angle_convention& c = active_angles();
+    if (c.is_default())
+        return "Singular at theta = 0 and theta = pi (gimbal lock: det J = -sin(theta), J = d "
+               "omega / d q_dot): rates and Jacobian grow like 1/sin(theta) there. Keep theta away "
+               "from 0 and pi, or use the body form (--form body).";
+    return "Singular at " + c.singular_text() + " (gimbal lock: det J = +-" + c.singular_factor() +
+           ", J = d omega / d q_dot): rates and Jacobian grow like 1/" + c.singular_factor() +
+           " there. Keep " + c.names[1] + " away from it, or use the body form (--form body).";
+}
+
 std::string literal(const numeric& v, const std::string& scalar) {
     // As lowering prints numbers: exact rationals, folded by the compiler.
     lowered_program p;
@@ -347,21 +414,14 @@ std::string description(const lowered_form& lf, const std::vector<function_stats
             "like 1/sin(theta) there; rotgen simulate continues in a chart with its pole "
             "elsewhere.");
     else if (lf.form != form_kind::body || n == 7)
-        desc += comment_block(
-            "Angles: z-x-z Euler angles (5.3), phi about z, theta about the new x, psi about the "
-            "new z; phi, psi in [0, 2 pi), theta in [0, pi], in radians. A = Az(psi) Ax(theta) "
-            "Az(phi) is passive, body <- space (5.25); omega is in body axes (5.30).");
+        desc += comment_block(angles_comment());
     if (rotor)
         ;
     else if (lf.form == form_kind::body)
         desc += comment_block(
             "Singularities: none from the coordinates (unless a warning above says otherwise).");
     else
-        desc += comment_block(
-            "Singular at theta = 0 and theta = pi (gimbal lock: det J = -sin(theta), J = d omega / "
-            "d "
-            "q_dot): rates and Jacobian grow like 1/sin(theta) there. Keep theta away from 0 and "
-            "pi, or use the body form (--form body).");
+        desc += comment_block(singular_comment());
     desc += "//\n";
     if (lf.runtime_parameters.empty()) {
         desc += comment_block("Parameters: none at run time; folded in: " + join(lf.folded, ", ") +
@@ -440,7 +500,7 @@ emitted_header emit_header(const model_spec& spec, const lowered_form& lf,
         functions += function_text(lf, fn, b);
     }
     if (lf.form == form_kind::body && lf.state_names.size() == 7)
-        functions += fill_template("quaternion.hpp.in", {});
+        functions += quaternion_functions();
     const std::string params = fill_template(
         "params.hpp.in", {{"model_file", one_line(spec.file)}, {"members", params_members(lf)}});
     h.text =

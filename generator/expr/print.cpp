@@ -1,5 +1,7 @@
 #include "expr/print.hpp"
 
+#include "expr/angles.hpp"
+
 #include <algorithm>
 #include <charconv>
 #include <regex>
@@ -117,7 +119,7 @@ std::string expression_printer::number(const GiNaC::numeric& n, int context) con
 }
 
 std::string expression_printer::symbol(const GiNaC::symbol& s) const {
-    return s.get_name();
+    return display_name(s);
 }
 
 std::string expression_printer::constant(const GiNaC::constant& c) const {
@@ -241,7 +243,7 @@ std::string latex_printer::number(const GiNaC::numeric& n, int context) const {
 }
 
 std::string latex_printer::symbol(const GiNaC::symbol& s) const {
-    const std::string tex = s.get_TeX_name();
+    const std::string tex = display_tex_name(s);
     if (!tex.empty() && tex != s.get_name()) return tex;
     // Parameters: trailing digits become a subscript, multi-letter names upright.
     static const std::regex with_index("([A-Za-z]+)_?([0-9]+)");

@@ -1,5 +1,7 @@
 #include "expr/symbols.hpp"
 
+#include "expr/angles.hpp"
+
 #include <algorithm>
 #include <regex>
 
@@ -29,8 +31,44 @@ const coordinate_symbols& symbols() {
 }
 
 const std::array<std::string, 3>& coordinate_names() {
-    static const std::array<std::string, 3> names{"phi", "theta", "psi"};
-    return names;
+    return active_angles().names;
+}
+
+std::vector<std::string> momentum_names() {
+    const auto& n = coordinate_names();
+    return {"p_" + n[0], "p_" + n[1], "p_" + n[2]};
+}
+
+std::string display_name(const GiNaC::symbol& x) {
+    const auto& s = symbols();
+    const auto& n = coordinate_names();
+    for (int i = 0; i < 3; ++i) {
+        if (x.is_equal(s.q[i])) return n[i];
+        if (x.is_equal(s.qd[i])) return n[i] + "_dot";
+        if (x.is_equal(s.qdd[i])) return n[i] + "_ddot";
+        if (x.is_equal(s.p[i])) return "p_" + n[i];
+    }
+    return x.get_name();
+}
+
+std::string display_tex_name(const GiNaC::symbol& x) {
+    if (active_angles().is_default()) return x.get_TeX_name();
+    const auto& s = symbols();
+    const auto& n = coordinate_names();
+    static const std::vector<std::string> greek{"alpha", "beta", "gamma", "delta", "eta",
+                                                "theta", "phi",  "psi",   "chi",   "xi"};
+    for (int i = 0; i < 3; ++i) {
+        const std::string base =
+            n[i] == "phi" ? "\\varphi"
+            : std::find(greek.begin(), greek.end(), n[i]) != greek.end()
+                ? "\\" + n[i]
+                : "\\mathrm{" + std::regex_replace(n[i], std::regex("_"), "\\_") + "}";
+        if (x.is_equal(s.q[i])) return base;
+        if (x.is_equal(s.qd[i])) return "\\dot{" + base + "}";
+        if (x.is_equal(s.qdd[i])) return "\\ddot{" + base + "}";
+        if (x.is_equal(s.p[i])) return "p_{" + base + "}";
+    }
+    return x.get_TeX_name();
 }
 
 const std::vector<std::string>& known_functions() {
@@ -47,6 +85,9 @@ std::string reserved_reason(const std::string& name) {
         "omega1",   "omega2",     "omega3",   "t",       "energy"};
     if (std::find(state.begin(), state.end(), name) != state.end())
         return "it names a coordinate, rate, momentum or output";
+    for (const auto& q : coordinate_names())
+        if (name == q || name == q + "_dot" || name == q + "_ddot" || name == "p_" + q)
+            return "it names a coordinate, rate, momentum or output";
     static const std::vector<std::string> ginac{"I",       "Pi",   "pi",   "Euler",
                                                 "Catalan", "beta", "zeta", "e"};
     if (std::find(ginac.begin(), ginac.end(), name) != ginac.end())
@@ -60,6 +101,8 @@ std::string reserved_reason(const std::string& name) {
         return "it is used by the generated code";
     static const std::regex temporary("t[0-9]+|(sin|cos)_(phi|theta|psi)|rg_.*");
     if (std::regex_match(name, temporary)) return "it is used by the generated code";
+    for (const auto& q : coordinate_names())
+        if (name == "sin_" + q || name == "cos_" + q) return "it is used by the generated code";
     static const std::vector<std::string> keywords{
         "auto",      "bool",      "break",    "case",     "char",      "class",    "const",
         "constexpr", "continue",  "default",  "delete",   "do",        "double",   "else",

@@ -8,6 +8,7 @@
 // unless the orientation is asked for.
 #include "forms/form_algebra.hpp"
 
+#include "expr/angles.hpp"
 #include "expr/symbols.hpp"
 
 namespace rotgen::form_detail {
@@ -32,31 +33,42 @@ std::array<ex, 9> rotation_of_quaternion() {
             (qw * qw - qx * qx - qy * qy + qz * qz) / n2};
 }
 
-// The Euler-angle chart, for whatever is only known in angles: from R = Rz(phi) Rx(theta) Rz(psi),
-// R20 = sin(theta) sin(psi), R21 = sin(theta) cos(psi), R22 = cos(theta), R02 = sin(phi)
-// sin(theta), R12 = -cos(phi) sin(theta); the rates q_dot = J^{-1} omega.
+// The Euler-angle chart, for whatever is only known in angles. With R = A^T = R_a(alpha) R_b(beta)
+// R_c(gamma) (sequence a-b-c, d the third axis, e = +-1 its parity; runtime/euler_sequence.hpp):
+//   proper Euler: sin beta = |(R_ab, R_ad)|, cos beta = R_aa, alpha = atan2(R_ba, -e R_da),
+//                 gamma = atan2(R_ab, e R_ad);
+//   Tait-Bryan:   cos beta = |(R_aa, R_ab)|, sin beta = e R_ac, alpha = atan2(-e R_bc, R_cc),
+//                 gamma = atan2(-e R_ab, R_aa).
+// For z-x-z: R20 = sin(theta) sin(psi), R21 = sin(theta) cos(psi), R22 = cos(theta), R02 = sin(phi)
+// sin(theta), R12 = -cos(phi) sin(theta). The rates q_dot = J^{-1} omega.
 class euler_chart {
   public:
     euler_chart(const std::array<ex, 9>& R, const derivation& d, const vec& w) {
         const auto& s = symbols();
-        const ex st = GiNaC::sqrt(R[6] * R[6] + R[7] * R[7]);
-        std::array<GiNaC::realsymbol, 6> place{
-            GiNaC::realsymbol("rg_sin_phi"),   GiNaC::realsymbol("rg_cos_phi"),
-            GiNaC::realsymbol("rg_sin_theta"), GiNaC::realsymbol("rg_cos_theta"),
-            GiNaC::realsymbol("rg_sin_psi"),   GiNaC::realsymbol("rg_cos_psi")};
-        m_trig_value[place[0]] = R[2] / st;
-        m_trig_value[place[1]] = -R[5] / st;
-        m_trig_value[place[2]] = st;
-        m_trig_value[place[3]] = R[8];
-        m_trig_value[place[4]] = R[6] / st;
-        m_trig_value[place[5]] = R[7] / st;
-        for (int i = 0; i < 3; ++i) {
-            m_to_place[GiNaC::sin(s.q[i])] = place[2 * i];
-            m_to_place[GiNaC::cos(s.q[i])] = place[2 * i + 1];
+        const angle_convention& c = active_angles();
+        const auto r = [&R](int i, int j) { return R[3 * i + j]; };
+        const int a = c.axes[0], b = c.axes[1], cc = c.axes[2], o = 3 - a - b;
+        const ex e = (b - a + 3) % 3 == 1 ? 1 : -1;
+        std::array<ex, 6> yx; // atan2 arguments (y, x) of alpha, beta, gamma
+        std::array<ex, 3> scale;
+        if (c.proper()) {
+            const ex sb = GiNaC::sqrt(r(a, b) * r(a, b) + r(a, o) * r(a, o));
+            yx = {r(b, a), -e * r(o, a), sb, r(a, a), r(a, b), e * r(a, o)};
+            scale = {sb, 1, sb};
+        } else {
+            const ex cb = GiNaC::sqrt(r(a, a) * r(a, a) + r(a, b) * r(a, b));
+            yx = {-e * r(b, cc), r(cc, cc), e * r(a, cc), cb, -e * r(a, b), r(a, a)};
+            scale = {cb, 1, cb};
         }
-        m_angle_value[s.q[0]] = GiNaC::atan2(R[2], -R[5]);
-        m_angle_value[s.q[1]] = GiNaC::atan2(st, R[8]);
-        m_angle_value[s.q[2]] = GiNaC::atan2(R[6], R[7]);
+        for (int i = 0; i < 3; ++i) {
+            const std::string n = coordinate_names()[i];
+            const GiNaC::realsymbol ps("rg_sin_" + n), pc("rg_cos_" + n);
+            m_trig_value[ps] = yx[2 * i] / scale[i];
+            m_trig_value[pc] = yx[2 * i + 1] / scale[i];
+            m_to_place[GiNaC::sin(s.q[i])] = ps;
+            m_to_place[GiNaC::cos(s.q[i])] = pc;
+            m_angle_value[s.q[i]] = GiNaC::atan2(yx[2 * i], yx[2 * i + 1]);
+        }
         const vec qdot = mat_vec(d.inverse_omega_jacobian, w); // q_dot = J^{-1} omega
         for (int i = 0; i < 3; ++i)
             m_rates[s.qd[i]] = qdot[i];
@@ -79,16 +91,14 @@ class euler_chart {
     bool m_used = false;
 };
 
-// The gravity shorthand's potential, as the spec stage builds it: M g (com . e), e = (sin theta
-// sin psi, sin theta cos psi, cos theta) the third column of A.
+// The gravity shorthand's potential, as the spec stage builds it: M g (com . e), e the third
+// column of A ((sin theta sin psi, sin theta cos psi, cos theta) for z-x-z).
 ex gravity_potential(const model_spec& spec) {
     if (!spec.gravity) return 0;
-    const auto& s = symbols();
-    const vec e{GiNaC::sin(s.q[1]) * GiNaC::sin(s.q[2]), GiNaC::sin(s.q[1]) * GiNaC::cos(s.q[2]),
-                GiNaC::cos(s.q[1])};
+    const ex_matrix3 A = rotation_of_angles(active_angles());
     ex h = 0;
     for (int i = 0; i < 3; ++i)
-        h += spec.gravity->com[i] * e[i];
+        h += spec.gravity->com[i] * A[i][2];
     return spec.gravity->mass * spec.gravity->g * h;
 }
 
@@ -203,6 +213,15 @@ void body_state_and_rates(const model_spec& spec, const derivation& d, const vec
     }
 }
 
+// "qz(phi) (x) qx(theta) (x) qz(psi)" for the model's sequence and names.
+std::string quaternion_of_angles_text() {
+    const angle_convention& c = active_angles();
+    std::string t;
+    for (int i = 0; i < 3; ++i)
+        t += (i ? " (x) q" : "q") + std::string(1, "xyz"[c.axes[i]]) + "(" + c.names[i] + ")";
+    return t;
+}
+
 void body_notes(const model_spec& spec, bool quaternion, bool chart_used, form_expressions& f) {
     f.notes.push_back(
         "I omega_dot = tau - omega x I omega (Euler's equations (5.87)-(5.89) for a full tensor "
@@ -211,8 +230,9 @@ void body_notes(const model_spec& spec, bool quaternion, bool chart_used, form_e
     if (quaternion)
         f.notes.push_back(
             "q = (qw, qx, qy, qz) rotates body axes into space axes: R(q) = A^T with A of "
-            "(5.25); from Euler angles q = qz(phi) (x) qx(theta) (x) qz(psi). Every use "
-            "divides by |q|^2, so q need not stay normalised.");
+            "(5.25); from Euler angles q = " +
+            quaternion_of_angles_text() +
+            ". Every use divides by |q|^2, so q need not stay normalised.");
     if (spec.gravity)
         f.notes.push_back(
             "gravity torque r_com x (-M g e), e = third row of R(q): no singularity.");
@@ -220,7 +240,8 @@ void body_notes(const model_spec& spec, bool quaternion, bool chart_used, form_e
     if (chart_used)
         f.notes.push_back(
             "WARNING: part of the torque or potential is known only in Euler angles and is "
-            "evaluated through the chart (angles from q): singular at theta = 0, pi.");
+            "evaluated through the chart (angles from q): singular at " +
+            active_angles().singular_text() + ".");
 }
 
 // energy T + V with T = 1/2 omega . I omega; l = I omega; omega; I; A = R^T if q is kept.

@@ -3,6 +3,7 @@
 // matrix A (5.25), the quaternion symbols and the output names.
 #include "forms/forms.hpp"
 
+#include "expr/angles.hpp"
 #include "expr/symbols.hpp"
 #include "forms/form_algebra.hpp"
 
@@ -30,29 +31,15 @@ const std::vector<std::string>& output_names() {
 }
 
 std::array<ex, 9> rotation_matrix() {
-    // (5.25): A = Az(psi) Ax(theta) Az(phi), Az(a) = [[c, s, 0], [-s, c, 0], [0, 0, 1]],
-    // Ax(a) = [[1, 0, 0], [0, c, s], [0, -s, c]] (5.8, 5.9).
-    const auto& s = symbols();
-    const auto az = [](const ex& a) {
-        return std::array<ex, 9>{
-            GiNaC::cos(a), GiNaC::sin(a), 0, -GiNaC::sin(a), GiNaC::cos(a), 0, 0, 0, 1};
-    };
-    const auto ax = [](const ex& a) {
-        return std::array<ex, 9>{
-            1, 0, 0, 0, GiNaC::cos(a), GiNaC::sin(a), 0, -GiNaC::sin(a), GiNaC::cos(a)};
-    };
-    const auto times = [](const std::array<ex, 9>& a, const std::array<ex, 9>& b) {
-        std::array<ex, 9> c;
-        for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j) {
-                ex v = 0;
-                for (int k = 0; k < 3; ++k)
-                    v += a[3 * i + k] * b[3 * k + j];
-                c[3 * i + j] = v.expand();
-            }
-        return c;
-    };
-    return times(az(s.q[2]), times(ax(s.q[1]), az(s.q[0])));
+    // (5.25): A = A_c(gamma) A_b(beta) A_a(alpha) for the model's sequence a-b-c, Az(psi) Ax(theta)
+    // Az(phi) for z-x-z, Az(a) = [[c, s, 0], [-s, c, 0], [0, 0, 1]], Ax(a) = [[1, 0, 0], [0, c, s],
+    // [0, -s, c]] (5.8, 5.9); expr/angles.hpp.
+    const ex_matrix3 A = rotation_of_angles(active_angles());
+    std::array<ex, 9> r;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            r[3 * i + j] = A[i][j];
+    return r;
 }
 
 std::vector<ex> jacobian(const form_expressions& f) {

@@ -3,6 +3,7 @@
 // (H = 1/2 l . I^{-1} l + V; the pieces are form_algebra.cpp's hamilton()).
 #include "forms/form_algebra.hpp"
 
+#include "expr/angles.hpp"
 #include "expr/symbols.hpp"
 
 namespace rotgen::form_detail {
@@ -27,10 +28,11 @@ void build_hamiltonian(const derivation& d, form_expressions& f) {
                                    d.hamilton_pdot[0], d.hamilton_pdot[1], d.hamilton_pdot[2]});
     f.notes.push_back(
         "l = J^{-T} p (body angular momentum), omega = I^{-1} l, q_dot = J^{-1} omega = dH/dp, "
-        "p_dot = -dH/dq + Q; singular at theta = 0, pi through 1/sin(theta).");
+        "p_dot = -dH/dq + Q; " +
+        active_angles().singular_clause() + ".");
     add_output(f, "energy", {dot(h.w, h.l) / 2 + d.potential}, {"energy"});
     f.outputs["energy"].alternatives.push_back({d.hamiltonian});
-    add_output(f, "momenta", {s.p[0], s.p[1], s.p[2]}, {"p_phi", "p_theta", "p_psi"});
+    add_output(f, "momenta", {s.p[0], s.p[1], s.p[2]}, momentum_names());
     add_output(f, "omega", {h.w[0], h.w[1], h.w[2]}, {"omega1", "omega2", "omega3"});
 }
 

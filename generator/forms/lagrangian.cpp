@@ -7,6 +7,7 @@
 // L^T.
 #include "forms/form_algebra.hpp"
 
+#include "expr/angles.hpp"
 #include "expr/symbols.hpp"
 
 namespace rotgen::form_detail {
@@ -72,7 +73,8 @@ void explicit_rates(const model_spec& spec, const derivation& d, form_expression
     f.alternative_rates.push_back({s.qd[0], s.qd[1], s.qd[2], qdd3[0], qdd3[1], qdd3[2]});
     f.notes.push_back(
         "q_ddot = J^{-1} I^{-1} J^{-T} f (M^{-1} = J^{-1} I^{-1} J^{-T}, M = J^T I J, "
-        "J = d omega/d q_dot of (5.30)); singular at theta = 0, pi through 1/sin(theta).");
+        "J = d omega/d q_dot of (5.30)); " +
+        active_angles().singular_clause() + ".");
 }
 
 void solve_rates(const derivation& d, form_expressions& f) {
@@ -84,7 +86,9 @@ void solve_rates(const derivation& d, form_expressions& f) {
         f.rates.push_back(qdd[i]);
     f.notes.push_back(
         "M(q) q_ddot = f(t, q, q_dot) solved by an inline LDL^T (no pivoting; M = J^T I J "
-        "is positive definite for 0 < theta < pi, singular at theta = 0, pi).");
+        "is positive definite for " +
+        active_angles().regular_range() + ", singular at " + active_angles().singular_text() +
+        ").");
 }
 
 } // namespace
@@ -113,7 +117,7 @@ void build_lagrangian(const model_spec& spec, const derivation& d, form_expressi
     add_output(f, "energy", {dot(w, Iw) / 2 + d.potential}, {"energy"});
     f.outputs["energy"].alternatives.push_back({d.energy});
     const vec p = mat_t_vec(d.omega_jacobian, Iw);
-    add_output(f, "momenta", {p[0], p[1], p[2]}, {"p_phi", "p_theta", "p_psi"});
+    add_output(f, "momenta", {p[0], p[1], p[2]}, momentum_names());
     f.outputs["momenta"].alternatives.push_back({d.momenta[0], d.momenta[1], d.momenta[2]});
     add_output(f, "omega", {w[0], w[1], w[2]}, {"omega1", "omega2", "omega3"});
 }

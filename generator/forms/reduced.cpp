@@ -7,6 +7,7 @@
 // composed ones of hamilton() are an alternative when they do not mention an ignored angle.
 #include "forms/form_algebra.hpp"
 
+#include "expr/angles.hpp"
 #include "expr/symbols.hpp"
 #include "support/error.hpp"
 
@@ -129,7 +130,7 @@ void reduced_outputs(const derivation& d, const hamilton_parts& h, const std::ve
     const ex energy = dot(h.w, h.l) / 2 + d.potential;
     if (f.outputs.count("energy") && mentioned_ignored({energy}, dropped).empty())
         f.outputs["energy"].alternatives.push_back({energy});
-    add_output(f, "momenta", {s.p[0], s.p[1], s.p[2]}, {"p_phi", "p_theta", "p_psi"});
+    add_output(f, "momenta", {s.p[0], s.p[1], s.p[2]}, momentum_names());
     offer(f, dropped, "omega", {h.w[0], h.w[1], h.w[2]}, {"omega1", "omega2", "omega3"});
     offer(f, dropped, "mass_matrix", flat(d.mass_matrix), matrix_names("M"));
     f.unavailable["rotation"] = depends_on_ignored(coordinate_names()[dropped.front()]);

@@ -1,5 +1,6 @@
 #include "inspect/inspect.hpp"
 
+#include "expr/angles.hpp"
 #include "expr/print.hpp"
 #include "expr/symbols.hpp"
 #include "inertia/inertia.hpp"
@@ -263,6 +264,13 @@ std::string as_json(const model_spec& spec, const equations& d, const inertia_re
     for (std::size_t i = 0; i < d.names.size(); ++i)
         os << (i ? ", " : "") << json_quote(d.names[i]);
     os << "],\n";
+    if (!spec.rotor) {
+        const angle_convention& c = active_angles();
+        os << "  \"angles\": {\"sequence\": " << json_quote(c.sequence()) << ", \"names\": ["
+           << json_quote(c.names[0]) << ", " << json_quote(c.names[1]) << ", "
+           << json_quote(c.names[2]) << "]},\n";
+    }
+    if (!d.omega.empty()) os << "  \"omega\": " << json_list(d.omega) << ",\n";
     if (!d.direction.empty()) os << "  \"direction\": " << json_list(d.direction) << ",\n";
     os << "  \"kinetic\": " << json_quote(to_text(d.kinetic)) << ",\n";
     os << "  \"potential\": " << json_quote(to_text(d.potential)) << ",\n";
@@ -377,8 +385,16 @@ equations top_equations(const derivation& d) {
     const auto& s = symbols();
     equations e = equations_of(d, 3, {s.q[0], s.q[1], s.q[2]}, {s.p[0], s.p[1], s.p[2]});
     e.omega.assign(d.omega.begin(), d.omega.end());
-    e.coordinates_note = "phi, theta, psi (z-x-z Euler angles; singular at theta = 0, pi)";
-    e.latex_note = "z-x-z Euler angles; singular at \\theta = 0, \\pi";
+    const angle_convention& c = active_angles();
+    if (c.is_default()) {
+        e.coordinates_note = "phi, theta, psi (z-x-z Euler angles; singular at theta = 0, pi)";
+        e.latex_note = "z-x-z Euler angles; singular at \\theta = 0, \\pi";
+    } else {
+        e.coordinates_note = c.names[0] + ", " + c.names[1] + ", " + c.names[2] + " (" +
+                             c.description() + ", A = " + c.matrix_text() + "; singular at " +
+                             c.singular_text() + ")";
+        e.latex_note = c.description() + "; singular at " + c.singular_text();
+    }
     return e;
 }
 

@@ -1,5 +1,6 @@
 #include "run/chart_kinematics.hpp"
 
+#include "run/angle_chart.hpp"
 #include "run/rotor_chart.hpp"
 
 #include <rotgen.hpp> // runtime: quaternion_from_euler, euler_from_quaternion
@@ -14,38 +15,51 @@ initial_kinematics continuation(const Eigen::VectorXd& y, const Eigen::VectorXd&
     initial_kinematics k;
     for (int i = 0; i < 3; ++i)
         k.q[i] = y[i], k.qd[i] = dydt[i];
-    const double st = std::sin(y[1]), ct = std::cos(y[1]), sp = std::sin(y[2]), cp = std::cos(y[2]);
-    const double qd0 = dydt[0], qd1 = dydt[1], qd2 = dydt[2];
-    k.omega = {qd0 * st * sp + qd1 * cp, qd0 * st * cp - qd1 * sp, qd0 * ct + qd2};
-    const Eigen::Quaterniond q = quaternion_from_euler(double(y[0]), double(y[1]), double(y[2]));
+    if (active_sequence().is_zxz()) {
+        const double st = std::sin(y[1]), ct = std::cos(y[1]), sp = std::sin(y[2]),
+                     cp = std::cos(y[2]);
+        const double qd0 = dydt[0], qd1 = dydt[1], qd2 = dydt[2];
+        k.omega = {qd0 * st * sp + qd1 * cp, qd0 * st * cp - qd1 * sp, qd0 * ct + qd2};
+    } else {
+        const Eigen::Vector3d w = omega_jacobian_at<double>({y[0], y[1], y[2]}) * dydt.head<3>();
+        k.omega = {w[0], w[1], w[2]};
+    }
+    const Eigen::Quaterniond q = quaternion_of_angles(double(y[0]), double(y[1]), double(y[2]));
     k.quat = Eigen::Quaternion<long double>(q.w(), q.x(), q.y(), q.z());
     return k;
 }
 
 // The initial kinematics in the Euler-angle chart from a body-form state (quaternion, omega):
-// q_dot = J^{-1} omega, p = J^T I omega (5.30); needs |sin theta| away from 0.
+// q_dot = J^{-1} omega, p = J^T I omega (5.30); needs the chart distance away from 0.
 initial_kinematics from_body(const Eigen::VectorXd& y, const Eigen::Matrix3d& inertia) {
-    const euler_angles<double> e =
-        euler_from_quaternion(Eigen::Quaterniond(y[0], y[1], y[2], y[3]));
+    const std::array<double, 3> e =
+        angles_of_quaternion(Eigen::Quaterniond(y[0], y[1], y[2], y[3]));
     initial_kinematics k;
-    k.q = {e.phi, e.theta, e.psi};
+    k.q = {e[0], e[1], e[2]};
     const Eigen::Vector3d w(y[4], y[5], y[6]), l = inertia * w;
-    const double st = std::sin(e.theta), ct = std::cos(e.theta), sp = std::sin(e.psi),
-                 cp = std::cos(e.psi);
-    const double phi_dot = (w[0] * sp + w[1] * cp) / st;
-    k.qd = {phi_dot, w[0] * cp - w[1] * sp, w[2] - phi_dot * ct};
-    k.p = {st * sp * l[0] + st * cp * l[1] + ct * l[2], cp * l[0] - sp * l[1], l[2]};
+    if (active_sequence().is_zxz()) {
+        const double st = std::sin(e[1]), ct = std::cos(e[1]), sp = std::sin(e[2]),
+                     cp = std::cos(e[2]);
+        const double phi_dot = (w[0] * sp + w[1] * cp) / st;
+        k.qd = {phi_dot, w[0] * cp - w[1] * sp, w[2] - phi_dot * ct};
+        k.p = {st * sp * l[0] + st * cp * l[1] + ct * l[2], cp * l[0] - sp * l[1], l[2]};
+    } else {
+        const Eigen::Matrix3d J = omega_jacobian_at(e);
+        const Eigen::Vector3d qd = J.lu().solve(w), p = J.transpose() * l;
+        k.qd = {qd[0], qd[1], qd[2]};
+        k.p = {p[0], p[1], p[2]};
+    }
     k.omega = {w[0], w[1], w[2]};
     k.quat = Eigen::Quaternion<long double>(y[0], y[1], y[2], y[3]);
     return k;
 }
 
-// |sin theta| of a state of the given form (Euler-angle forms: theta is y[1]).
+// The chart distance (|sin theta| for z-x-z) of a state of the given form (Euler-angle forms:
+// the middle angle is y[1]).
 double sin_theta_of(form_kind form, const Eigen::VectorXd& y) {
     if (is_rotor_form(form)) return rotor_sin_theta(form, y);
-    if (form != form_kind::body) return std::abs(std::sin(y[1]));
-    return std::abs(
-        std::sin(euler_from_quaternion(Eigen::Quaterniond(y[0], y[1], y[2], y[3])).theta));
+    if (form != form_kind::body) return chart_distance(y[1]);
+    return chart_distance(angles_of_quaternion(Eigen::Quaterniond(y[0], y[1], y[2], y[3]))[1]);
 }
 
 } // namespace rotgen

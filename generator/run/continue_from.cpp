@@ -3,7 +3,8 @@
 #include "support/error.hpp"
 #include "support/format.hpp"
 
-#include <rotation.hpp> // runtime: euler_from_quaternion
+#include "expr/symbols.hpp"
+#include "run/angle_chart.hpp"
 
 #include <Eigen/Geometry>
 
@@ -77,13 +78,14 @@ start_row read_last_row(const std::string& csv) {
 // The recorded columns that make a state of the scene's form (reduced: those every reduced form
 // needs; check_start_row checks the angles it keeps).
 std::vector<std::string> required_names(form_kind form) {
+    const auto& q = coordinate_names();
     switch (form) {
     case form_kind::lagrangian:
-        return {"phi", "theta", "psi", "phi_dot", "theta_dot", "psi_dot"};
+        return {q[0], q[1], q[2], q[0] + "_dot", q[1] + "_dot", q[2] + "_dot"};
     case form_kind::hamiltonian:
-        return {"phi", "theta", "psi", "p_phi", "p_theta", "p_psi"};
+        return {q[0], q[1], q[2], "p_" + q[0], "p_" + q[1], "p_" + q[2]};
     case form_kind::reduced:
-        return {"theta", "p_phi", "p_theta", "p_psi"};
+        return {q[1], "p_" + q[0], "p_" + q[1], "p_" + q[2]};
     case form_kind::body:
         return {"q0", "q1", "q2", "q3", "omega1", "omega2", "omega3"};
     default:
@@ -118,25 +120,31 @@ void set_initial(scene_spec& scene, const start_row& row) {
         const double x = row_value(row, name);
         return std::isnan(x) ? 0.0 : x; // an angle the reduced form ignores
     };
-    std::array<std::string, 3> rates{"phi_dot", "theta_dot", "psi_dot"};
+    const auto& q = coordinate_names();
+    std::array<std::string, 3> rates{q[0] + "_dot", q[1] + "_dot", q[2] + "_dot"};
     scene.initial = initial_kind::rates;
     if (scene.form == form_kind::hamiltonian || scene.form == form_kind::reduced)
-        rates = {"p_phi", "p_theta", "p_psi"}, scene.initial = initial_kind::momenta;
+        rates = {"p_" + q[0], "p_" + q[1], "p_" + q[2]}, scene.initial = initial_kind::momenta;
     if (scene.form == form_kind::body)
         rates = {"omega1", "omega2", "omega3"}, scene.initial = initial_kind::omega;
-    std::array<double, 3> angles{v("phi"), v("theta"), v("psi")};
-    if (scene.form == form_kind::body) {
-        const euler_angles<double> e = euler_from_quaternion(
+    std::array<double, 3> angles{0, 0, 0};
+    if (scene.form == form_kind::body)
+        angles = angles_of_quaternion(
             Eigen::Quaterniond(v("q0"), v("q1"), v("q2"), v("q3")).normalized());
-        angles = {e.phi, e.theta, e.psi};
-    }
+    else
+        angles = {v(q[0]), v(q[1]), v(q[2])};
     for (std::size_t i = 0; i < 3; ++i) {
         scene.angles[i] = angles[i], scene.angles_written[i] = plain(angles[i]);
         scene.initial_rates[i] = v(rates[i]), scene.rates_written[i] = plain(v(rates[i]));
     }
-    if (!(angles[1] >= 0 && angles[1] <= 3.141592653589793238))
-        throw user_error({row.file, row.line, 1}, "theta = " + format_number(angles[1]) +
-                                                      " is outside [0, pi] (z-x-z Euler angles)");
+    const bool proper = active_angles().proper();
+    const double lo = proper ? 0 : -1.570796326794896619,
+                 hi = proper ? 3.141592653589793238 : 1.570796326794896619;
+    if (!(angles[1] >= lo && angles[1] <= hi))
+        throw user_error({row.file, row.line, 1}, q[1] + " = " + format_number(angles[1]) +
+                                                      " is outside " +
+                                                      (proper ? "[0, pi]" : "[-pi/2, pi/2]") +
+                                                      " (" + active_angles().description() + ")");
 }
 
 } // namespace
@@ -176,7 +184,8 @@ void check_start_row(const start_row& row, const form_expressions& f) {
                                     : n);
     }
     for (const auto& p : f.parameters)
-        if (p.name == "p_phi" || p.name == "p_theta" || p.name == "p_psi") names.push_back(p.name);
+        for (const auto& m : momentum_names())
+            if (p.name == m) names.push_back(p.name);
     require(row, names, f.form);
 }
 

@@ -2,6 +2,7 @@
 
 #include "expr/numbers.hpp"
 #include "expr/symbols.hpp"
+#include "run/angle_chart.hpp"
 #include "run/chart_kinematics.hpp"
 #include "run/continue_from.hpp"
 #include "run/kinematics.hpp"
@@ -112,8 +113,9 @@ initial_kinematics scene_run::exact_start() {
     m_model_parameters = std::move(start.model_parameters);
     if (m_scene.initial == initial_kind::momenta && !start.k0.have_rates)
         throw user_error(m_scene.initial_where,
-                         "momenta cannot give the rates at theta = 0 or pi (the mass matrix is "
-                         "singular there); give body omega1..3 instead");
+                         "momenta cannot give the rates at " + singular_words() +
+                             " (the mass matrix is singular there); give body omega1..3 "
+                             "instead");
     return start.k0;
 }
 
@@ -160,23 +162,24 @@ void scene_run::end_at_event(std::size_t which) {
 void scene_run::decide_chart() {
     const form_kind form = m_scene.form;
     const bool euler_form = form != form_kind::body;
-    const double sin_theta0 = std::abs(std::sin(m_values.angles[1]));
+    const double sin_theta0 = is_rotor_form(form) ? std::abs(std::sin(m_values.angles[1]))
+                                                  : chart_distance(m_values.angles[1]);
     if (euler_form && sin_theta0 < 1e-10 && !m_prepared.can_switch() && is_rotor_form(form))
         throw user_error(m_scene.initial_where, rotor_pole_message(m_values.angles[1]));
     if (euler_form && sin_theta0 < 1e-10 && !m_prepared.can_switch())
         throw user_error(
             m_scene.initial_where,
-            "initial theta = " + format_number(m_values.angles[1]) +
-                " is the gimbal-lock singularity of the Euler-angle forms (sin theta = "
-                "0); use form: body" +
+            "initial " + coordinate_names()[1] + " = " + format_number(m_values.angles[1]) +
+                " is the gimbal-lock singularity of the Euler-angle forms (" +
+                distance_label().substr(1, distance_label().size() - 2) + " = 0); use form: body" +
                 (form == form_kind::reduced || !m_scene.switch_chart
                      ? ""
                      : " (this model's body form goes through the Euler-angle chart too)"));
     m_start_in_body = euler_form && m_prepared.can_switch() && sin_theta0 < switch_below;
     if (m_start_in_body)
         m_result.chart_note = "started in the " + std::string(to_string(other_chart(form))) +
-                              " form (initial |sin theta| = " + short_number(sin_theta0) + " < " +
-                              short_number(switch_below) + ")";
+                              " form (initial " + distance_label() + " = " +
+                              short_number(sin_theta0) + " < " + short_number(switch_below) + ")";
 }
 
 // The prepared kernels of `form` (compiled on first use), made current.
@@ -205,7 +208,7 @@ Eigen::VectorXd scene_run::state_of(const form_expressions& f, const initial_kin
         // only above |sin theta| = 0.3.
         if (needs_rates && !k.have_rates)
             throw std::logic_error("run: the " + std::string(to_string(m_scene.form)) +
-                                   " form was started at theta = 0 from body omega");
+                                   " form was started at the singularity from body omega");
         y[static_cast<Eigen::Index>(s)] = static_cast<double>(state_value(k, name));
     }
     return y;
@@ -283,7 +286,7 @@ void scene_run::check_finite_start(const initial_kinematics& k, const compiled_f
         check(f.rate_names[i], dydt[static_cast<Eigen::Index>(i)], " in f(t0, y0)");
     std::vector<double> out(cf.outputs);
     cf.record(parameters.data(), m_scene.t_start, y.data(), out.data());
-    std::optional<euler_angles<double>> e;
+    std::optional<std::array<double, 3>> e;
     const std::vector<invariant>& invariants = m_prepared.invariants();
     for (std::size_t i = 0; i < invariants.size(); ++i)
         check(invariants[i].name, source_value(cf.invariants[i], y, out, m_inertia, e));
@@ -352,10 +355,12 @@ void scene_run::switch_chart(next to, Eigen::VectorXd& y, double& t_from) {
                             : to == next::body ? " < " + short_number(switch_below)
                                                : " > " + short_number(switch_back_above);
     if (m_switches++ == 0)
-        m_result.chart_note += std::string(m_result.chart_note.empty() ? "" : "; ") +
-                               "switched to the " + to_string(target) +
-                               " form at t = " + short_number(last.t) +
-                               " (|sin theta| = " + short_number(st) + why + ")";
+        m_result.chart_note +=
+            std::string(m_result.chart_note.empty() ? "" : "; ") + "switched to the " +
+            to_string(target) + " form at t = " + short_number(last.t) + " (" +
+            (is_rotor_form(target) || is_rotor_form(from.form) ? std::string("|sin theta|")
+                                                               : distance_label()) +
+            " = " + short_number(st) + why + ")";
     const compiled_form& next_form = compile(target);
     y = is_rotor_form(target) ? rotor_other_chart(from.form, last.y) : state_of(next_form.f, k);
     m_parameters[m_current] = parameters_of(next_form.f, k);
@@ -368,7 +373,7 @@ std::vector<double> scene_run::record_row(const sample& s, std::vector<double>& 
     const compiled_form& cf = *m_compiled[s.form];
     out.resize(cf.outputs);
     cf.record(m_parameters[s.form].data(), s.t, s.y.data(), out.data());
-    std::optional<euler_angles<double>> e;
+    std::optional<std::array<double, 3>> e;
     std::vector<double> row;
     row.reserve(cf.columns.size() + 1);
     row.push_back(s.t);
@@ -391,7 +396,7 @@ void scene_run::record() {
         const compiled_form& cf = *m_compiled[m_samples[k].form];
         const Eigen::VectorXd& ys = m_samples[k].y;
         m_result.rows.push_back(record_row(m_samples[k], out));
-        std::optional<euler_angles<double>> e;
+        std::optional<std::array<double, 3>> e;
         for (std::size_t i = 0; i < invariants.size(); ++i) {
             invariant_drift& d = m_result.invariants[i];
             const double v = source_value(cf.invariants[i], ys, out, m_inertia, e);
@@ -565,7 +570,8 @@ run_result run_scene(const scene_spec& scene, stage_timings& timings,
 bool needs_orientation(const scene_spec& scene, bool chart_switch) {
     bool orientation = chart_switch;
     for (const auto& name : scene.record)
-        orientation = orientation || name == "phi" || name == "theta" || name == "psi" ||
+        orientation = orientation || name == coordinate_names()[0] ||
+                      name == coordinate_names()[1] || name == coordinate_names()[2] ||
                       name.rfind("body_", 0) == 0 || name.find("_dot") != std::string::npos ||
                       name.rfind("p_", 0) == 0 || (name.size() == 2 && name[0] == 'q') ||
                       name == "Lx" || name == "Ly" || name == "Lz";

@@ -6,6 +6,7 @@
 #include "emit/taylor.hpp"
 #include "expr/symbols.hpp"
 #include "lower/lower.hpp"
+#include "run/angle_chart.hpp"
 #include "run/records.hpp"
 #include "support/error.hpp"
 
@@ -232,23 +233,29 @@ compiled_form compile_form(const scene_spec& scene, form_expressions f, bool ori
 
 double source_value(const value_source& src, const Eigen::VectorXd& y,
                     const std::vector<double>& out, const Eigen::Matrix3d& inertia,
-                    std::optional<euler_angles<double>>& e) {
+                    std::optional<std::array<double, 3>>& e) {
     if (src.kind == value_source::compiled) return out[static_cast<std::size_t>(src.index)];
     if (src.kind == value_source::quaternion_of_state ||
         src.kind == value_source::quaternion_of_angles) {
         Eigen::Quaterniond q = src.kind == value_source::quaternion_of_state
                                    ? Eigen::Quaterniond(y[0], y[1], y[2], y[3]).normalized()
-                                   : quaternion_from_euler(y[0], y[1], y[2]);
+                                   : quaternion_of_angles(y[0], y[1], y[2]);
         if (q.w() < 0) q.coeffs() = -q.coeffs(); // q and -q: the same attitude
         const double c[4] = {q.w(), q.x(), q.y(), q.z()};
         return c[src.index];
     }
-    if (!e) e = euler_from_quaternion(Eigen::Quaterniond(y[0], y[1], y[2], y[3]));
+    if (!e) e = angles_of_quaternion(Eigen::Quaterniond(y[0], y[1], y[2], y[3]));
     const Eigen::Vector3d w(y[4], y[5], y[6]);
-    const double st = std::sin(e->theta), ct = std::cos(e->theta), sp = std::sin(e->psi),
-                 cp = std::cos(e->psi);
-    if (src.kind == value_source::angle)
-        return src.index == 0 ? e->phi : src.index == 1 ? e->theta : e->psi;
+    if (src.kind == value_source::angle) return (*e)[static_cast<std::size_t>(src.index)];
+    if (!active_sequence().is_zxz()) {
+        const Eigen::Matrix3d J = omega_jacobian_at(*e); // undefined on the singular set
+        const Eigen::Vector3d v = src.kind == value_source::euler_rate
+                                      ? Eigen::Vector3d(J.lu().solve(w))
+                                      : Eigen::Vector3d(J.transpose() * (inertia * w));
+        return v[src.index];
+    }
+    const double st = std::sin((*e)[1]), ct = std::cos((*e)[1]), sp = std::sin((*e)[2]),
+                 cp = std::cos((*e)[2]);
     if (src.kind == value_source::euler_rate) {
         const double phi_dot = (w[0] * sp + w[1] * cp) / st; // undefined at theta = 0, pi
         return src.index == 0   ? phi_dot

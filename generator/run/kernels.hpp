@@ -107,6 +107,6 @@ std::optional<GiNaC::ex> form_value(const form_expressions& f, const std::string
 // every form and across a chart switch). `e` caches the angles between calls at one sample.
 double source_value(const value_source& src, const Eigen::VectorXd& y,
                     const std::vector<double>& out, const Eigen::Matrix3d& inertia,
-                    std::optional<euler_angles<double>>& e);
+                    std::optional<std::array<double, 3>>& e);
 
 } // namespace rotgen

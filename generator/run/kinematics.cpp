@@ -7,7 +7,7 @@
 #include "support/error.hpp"
 #include "support/format.hpp"
 
-#include <rotation.hpp> // runtime: quaternion_from_euler
+#include "run/angle_chart.hpp"
 
 #include <Eigen/Dense>
 
@@ -88,7 +88,7 @@ initial_kinematics initial_kinematics_of(const scene_spec& scene, const derivati
         at[s.q[i]] = exact_scene_value(scene.angles[i], scene.angles_written[i]);
         k.q[i] = to_long_double(at[s.q[i]]);
     }
-    k.have_rates = std::abs(std::sin(scene.angles[1])) >= 1e-12;
+    k.have_rates = chart_distance(scene.angles[1]) >= 1e-12;
     std::array<ex, 3> qd;
     if (scene.initial == initial_kind::rates)
         for (int i = 0; i < 3; ++i)
@@ -110,7 +110,7 @@ initial_kinematics initial_kinematics_of(const scene_spec& scene, const derivati
         for (int i = 0; i < 3; ++i)
             k.omega[i] =
                 to_long_double(exact_scene_value(scene.initial_rates[i], scene.rates_written[i]));
-    k.quat = quaternion_from_euler<long double>(k.q[0], k.q[1], k.q[2]);
+    k.quat = quaternion_of_angles<long double>(k.q[0], k.q[1], k.q[2]);
     return k;
 }
 

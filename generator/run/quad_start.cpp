@@ -5,7 +5,7 @@
 #include "expr/symbols.hpp"
 #include "support/format.hpp"
 
-#include <rotation.hpp> // runtime: quaternion_from_euler
+#include "run/angle_chart.hpp"
 
 #include <Eigen/Dense>
 
@@ -218,8 +218,7 @@ initial_kinematics quad_start::kinematics(const programs& p, const start_values&
     initial_kinematics k;
     for (std::size_t i = 0; i < 3; ++i)
         k.q[i] = value(i);
-    k.have_rates =
-        m_scene.initial == initial_kind::rates || std::abs(std::sin(v.angles[1])) >= 1e-12;
+    k.have_rates = m_scene.initial == initial_kind::rates || chart_distance(v.angles[1]) >= 1e-12;
     std::array<quad, 3> qd{};
     if (m_scene.initial == initial_kind::rates) {
         for (std::size_t i = 0; i < 3; ++i) {
@@ -258,7 +257,7 @@ initial_kinematics quad_start::kinematics(const programs& p, const start_values&
     if (m_scene.initial == initial_kind::omega)
         for (std::size_t i = 0; i < 3; ++i)
             k.omega[i] = value(first_rate + i);
-    k.quat = quaternion_from_euler<long double>(k.q[0], k.q[1], k.q[2]);
+    k.quat = quaternion_of_angles<long double>(k.q[0], k.q[1], k.q[2]);
     return k;
 }
 

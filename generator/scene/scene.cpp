@@ -1,6 +1,7 @@
 #include "scene/scene.hpp"
 
 #include "expr/numbers.hpp"
+#include "scene/initial_input.hpp"
 #include "scene/rotor_scene.hpp"
 #include "scene/values.hpp"
 
@@ -8,6 +9,7 @@
 #include <cstring>
 #include <fstream>
 
+#include "expr/angles.hpp"
 #include "expr/symbols.hpp"
 
 #include <algorithm>
@@ -18,12 +20,16 @@
 
 namespace rotgen {
 
+// The model's angles, their rates and momenta (the active convention's names), then the rest.
 const std::vector<std::string>& recordable_names() {
-    static const std::vector<std::string> names{
-        "phi",     "theta",  "psi",    "phi_dot", "theta_dot", "psi_dot", "p_phi",
-        "p_theta", "p_psi",  "omega1", "omega2",  "omega3",    "energy",  "body_x",
-        "body_y",  "body_z", "q0",     "q1",      "q2",        "q3",      "Lx",
-        "Ly",      "Lz",     "L1",     "L2",      "L3",        "T",       "V"};
+    static std::vector<std::string> names;
+    const auto& q = coordinate_names();
+    names = {q[0],          q[1],        q[2],        q[0] + "_dot", q[1] + "_dot",
+             q[2] + "_dot", "p_" + q[0], "p_" + q[1], "p_" + q[2],   "omega1",
+             "omega2",      "omega3",    "energy",    "body_x",      "body_y",
+             "body_z",      "q0",        "q1",        "q2",          "q3",
+             "Lx",          "Ly",        "Lz",        "L1",          "L2",
+             "L3",          "T",         "V"};
     return names;
 }
 
@@ -187,62 +193,7 @@ class scene_reader {
         if (m_scene.model.rotor)
             return scene_detail::read_rotor_initial(m_scene, n, initial_key(root), *m_values,
                                                     m_file);
-        const std::vector<std::string> allowed{"phi",       "theta",   "psi",    "phi_dot",
-                                               "theta_dot", "psi_dot", "p_phi",  "p_theta",
-                                               "p_psi",     "omega1",  "omega2", "omega3"};
-        check_keys(n, allowed, m_file, "initial");
-        const auto& q = coordinate_names();
-        const std::array<std::array<std::string, 3>, 3> groups{{{"phi_dot", "theta_dot", "psi_dot"},
-                                                                {"p_phi", "p_theta", "p_psi"},
-                                                                {"omega1", "omega2", "omega3"}}};
-        int chosen = -1;
-        for (int g = 0; g < 3; ++g)
-            for (const auto& key : groups[g])
-                if (n[key]) {
-                    if (chosen >= 0 && chosen != g)
-                        throw user_error(at(n[key]), "give the initial rates one way only: "
-                                                     "angle rates, momenta or body omega");
-                    chosen = g;
-                }
-        check_complete(root, n, chosen < 0 ? nullptr : &groups[chosen]);
-        for (std::size_t i = 0; i < 3; ++i) {
-            m_scene.angles_written[i] = m_values->value(n[q[i]], "initial " + q[i]);
-            m_scene.angles[i] = m_scene.angles_written[i].value;
-        }
-        m_scene.initial = static_cast<initial_kind>(chosen);
-        for (std::size_t i = 0; i < 3; ++i) {
-            const std::string& key = groups[chosen][i];
-            m_scene.rates_written[i] = m_values->value(n[key], "initial " + key);
-            m_scene.initial_rates[i] = m_scene.rates_written[i].value;
-        }
-        const double theta = m_scene.angles[1];
-        if (theta < 0 || theta > 3.141592653589793238)
-            throw user_error(at(n["theta"]), "initial theta = " + std::to_string(theta) +
-                                                 " is outside [0, pi] (z-x-z Euler angles)");
-    }
-
-    // Every name of the state the scene started to give (the angles and `rates`, or, with no
-    // rates at all, one of the three groups), or an error at the `initial` key naming the missing.
-    void check_complete(const YAML::Node& root, const YAML::Node& n,
-                        const std::array<std::string, 3>* rates) const {
-        std::vector<std::string> missing;
-        for (const auto& name : coordinate_names())
-            if (!n[name]) missing.push_back(name);
-        if (rates)
-            for (const auto& name : *rates)
-                if (!n[name]) missing.push_back(name);
-        if (missing.empty() && rates) return;
-        std::string list;
-        for (const auto& name : missing)
-            list += (list.empty() ? "" : ", ") + name;
-        const std::string why =
-            rates ? " (a state is phi, theta, psi with " + (*rates)[0] + ", " + (*rates)[1] + ", " +
-                        (*rates)[2] + "; nothing defaults to 0)"
-                  : std::string(list.empty() ? "" : " and ") +
-                        "the rates (phi_dot, theta_dot, psi_dot, or p_phi, p_theta, p_psi, or "
-                        "omega1, omega2, omega3; nothing defaults to 0)";
-        throw user_error(initial_key(root),
-                         "the initial state is incomplete: missing " + list + why);
+        scene_detail::read_initial_state(m_scene, n, initial_key(root), *m_values, m_file);
     }
 
     // Where the `initial` key is written (the mapping's location if not found).
@@ -332,9 +283,11 @@ class scene_reader {
 
     void read_record(const YAML::Node& n) {
         if (!n) {
-            m_scene.record = m_scene.model.rotor
-                                 ? std::vector<std::string>{"phi", "theta", "energy"}
-                                 : std::vector<std::string>{"phi", "theta", "psi", "energy"};
+            m_scene.record =
+                m_scene.model.rotor
+                    ? std::vector<std::string>{"phi", "theta", "energy"}
+                    : std::vector<std::string>{coordinate_names()[0], coordinate_names()[1],
+                                               coordinate_names()[2], "energy"};
             m_scene.record_default = true;
             m_scene.record_where.assign(m_scene.record.size(), m_scene.where);
             return;

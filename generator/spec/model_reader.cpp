@@ -4,6 +4,7 @@
 // inertia_input.cpp and body_parts.cpp.
 #include "spec/spec_detail.hpp"
 
+#include "expr/angles.hpp"
 #include "expr/numbers.hpp"
 #include "expr/symbols.hpp"
 
@@ -21,10 +22,11 @@ model_reader::model_reader(const std::string& file, const std::string& source) :
 
 model_spec model_reader::read(const YAML::Node& root) {
     check_keys(root,
-               {"name", "description", "parameters", "inertia", "body", "potential", "gravity",
-                "damping", "torque"},
+               {"name", "description", "angles", "parameters", "inertia", "body", "potential",
+                "gravity", "damping", "torque"},
                m_file, "the model");
     read_name(root);
+    read_angles(root);
     if (root["parameters"]) read_parameters(root["parameters"]);
     if (root["body"] && root["inertia"])
         throw user_error(at(root["body"]), "give either 'inertia' or 'body' (the inertia from "
@@ -38,6 +40,11 @@ model_spec model_reader::read(const YAML::Node& root) {
                          "missing field 'inertia' (or 'body', the inertia from parts)");
     read_potential(root);
     read_forces(root);
+    if (m_spec.rotor && !active_angles().is_default())
+        throw user_error(at(root["angles"]), "model '" + m_spec.name +
+                                                 "' is a linear rotor (Example 5.4): its two "
+                                                 "angles are the z-x-z phi and theta; leave "
+                                                 "'angles' out");
     if (m_spec.rotor) read_rotor(root);
     return std::move(m_spec);
 }
@@ -152,13 +159,12 @@ void model_reader::read_potential(const YAML::Node& root) {
         m_spec.potential = expression(root["potential"], angle_names(), "potential");
     if (const YAML::Node g = root["gravity"]) {
         const gravity_spec grav = read_gravity(g);
-        const auto& s = symbols();
-        // e_z, the space vertical in body axes: the third column of A (5.25).
-        const vector3 ez{GiNaC::sin(s.q[1]) * GiNaC::sin(s.q[2]),
-                         GiNaC::sin(s.q[1]) * GiNaC::cos(s.q[2]), GiNaC::cos(s.q[1])};
+        // e_z, the space vertical in body axes: the third column of A (5.25; for z-x-z
+        // (sin theta sin psi, sin theta cos psi, cos theta)).
+        const ex_matrix3 A = rotation_of_angles(active_angles());
         ex height = 0;
         for (int i = 0; i < 3; ++i)
-            height += grav.com[i] * ez[i];
+            height += grav.com[i] * A[i][2];
         m_spec.potential += grav.mass * grav.g * height;
         if (!finite_at_generic_state(m_spec.potential))
             throw user_error(at(g), "the potential with gravity is not a finite real number with "

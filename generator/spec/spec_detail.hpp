@@ -42,6 +42,9 @@ class model_reader {
     gravity_spec read_gravity(const YAML::Node& g) const;
     void read_forces(const YAML::Node& root);
 
+    // angles_input.cpp: `angles:` (the Euler sequence and the angles' names)
+    void read_angles(const YAML::Node& root);
+
     // rotor_input.cpp: a linear rotor's moment and potential, and what a rotor cannot take
     void read_rotor(const YAML::Node& root);
 

@@ -1,5 +1,6 @@
 #include "sweep/members.hpp"
 
+#include "expr/angles.hpp"
 #include "expr/numbers.hpp"
 #include "expr/symbols.hpp"
 #include "spec/spec.hpp"
@@ -18,11 +19,13 @@ constexpr double pi = 3.141592653589793238;
 
 // The names `initial.<name>` may use in this scene: the angles and the rates it gives.
 std::vector<std::string> initial_names(const scene_spec& scene) {
-    static const char* const rates[3][3] = {{"phi_dot", "theta_dot", "psi_dot"},
-                                            {"p_phi", "p_theta", "p_psi"},
-                                            {"omega1", "omega2", "omega3"}};
-    std::vector<std::string> names(coordinate_names().begin(), coordinate_names().end());
-    for (const char* r : rates[static_cast<int>(scene.initial)])
+    const auto& q = coordinate_names();
+    const std::array<std::array<std::string, 3>, 3> rates{
+        {{q[0] + "_dot", q[1] + "_dot", q[2] + "_dot"},
+         {"p_" + q[0], "p_" + q[1], "p_" + q[2]},
+         {"omega1", "omega2", "omega3"}}};
+    std::vector<std::string> names(q.begin(), q.end());
+    for (const auto& r : rates[static_cast<std::size_t>(scene.initial)])
         names.push_back(r);
     return names;
 }
@@ -168,15 +171,20 @@ sweep_key read_cli(const std::string& arg, sweep_mode mode) {
     return k;
 }
 
-// theta in [0, pi] (z-x-z Euler angles), as the scene requires of its own value.
+// The middle angle in [0, pi] (proper Euler; theta of z-x-z) or [-pi/2, pi/2] (Tait-Bryan), as
+// the scene requires of its own value.
 void check_values(const sweep_key& k) {
     if (k.target != sweep_key::angle || k.index != 1) return;
+    const angle_convention& c = active_angles();
+    const double lo = c.proper() ? 0 : -pi / 2, hi = c.proper() ? pi : pi / 2;
     std::vector<double> v = k.values;
     if (v.empty()) v = {k.from, k.to};
     for (double x : v)
-        if (x < 0 || x > pi)
-            throw user_error(k.where, "initial theta = " + format_double(x) +
-                                          " is outside [0, pi] (z-x-z Euler angles)");
+        if (x < lo || x > hi)
+            throw user_error(k.where, "initial " + c.names[1] + " = " + format_double(x) +
+                                          " is outside " +
+                                          (c.proper() ? "[0, pi]" : "[-pi/2, pi/2]") + " (" +
+                                          c.description() + ")");
 }
 
 void read_block(const YAML::Node& block, const std::string& file, sweep_plan& plan) {

@@ -1,6 +1,8 @@
 #include "view/view.hpp"
 
 #include "emit/emit.hpp"
+#include "expr/symbols.hpp"
+#include "run/angle_chart.hpp"
 #include "support/atomic_file.hpp"
 #include "support/format.hpp"
 
@@ -89,8 +91,14 @@ int column_of(const std::vector<std::string>& columns, const std::string& name) 
     return it == columns.end() ? -1 : static_cast<int>(it - columns.begin()) + 1;
 }
 
-// q = q_z(phi) (x) q_x(theta) (x) q_z(psi): R(q) = Rz(phi) Rx(theta) Rz(psi) = A^T (5.25).
+// q = q_z(phi) (x) q_x(theta) (x) q_z(psi): R(q) = Rz(phi) Rx(theta) Rz(psi) = A^T (5.25); any
+// other sequence by runtime/euler_sequence.hpp.
 std::array<double, 4> quaternion_of_angles(double phi, double theta, double psi) {
+    if (!active_angles().is_zxz()) {
+        const Eigen::Quaterniond q =
+            sequence_quaternion<double>(euler_sequence{active_angles().axes}, {phi, theta, psi});
+        return {q.w(), q.x(), q.y(), q.z()};
+    }
     const double cp = std::cos(phi / 2), sp = std::sin(phi / 2);
     const double ct = std::cos(theta / 2), st = std::sin(theta / 2);
     const double cs = std::cos(psi / 2), ss = std::sin(psi / 2);
@@ -106,12 +114,15 @@ view_data view_of_rows(const scene_spec& scene, const std::vector<std::string>& 
     for (int k = 0; k < 4; ++k)
         q[k] = column_of(columns, "q" + std::to_string(k));
     const bool quaternion = *std::min_element(q.begin(), q.end()) > 0;
-    const std::array<int, 3> angles{column_of(columns, "phi"), column_of(columns, "theta"),
-                                    column_of(columns, "psi")};
+    const auto& names = coordinate_names();
+    const std::array<int, 3> angles{column_of(columns, names[0]), column_of(columns, names[1]),
+                                    column_of(columns, names[2])};
     const bool rotor = scene.model.rotor;
     if (!quaternion && (angles[0] < 0 || angles[1] < 0 || (!rotor && angles[2] < 0)))
         throw user_error(where, std::string("no attitude to show: the view needs the columns ") +
-                                    (rotor ? "phi, theta" : "q0, q1, q2, q3 or phi, theta, psi") +
+                                    (rotor ? "phi, theta"
+                                           : "q0, q1, q2, q3 or " + names[0] + ", " + names[1] +
+                                                 ", " + names[2]) +
                                     " (add them to the scene's record)");
     const std::array<int, 3> L{column_of(columns, "Lx"), column_of(columns, "Ly"),
                                column_of(columns, "Lz")};

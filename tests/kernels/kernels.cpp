@@ -113,16 +113,20 @@ const kernel& find_kernel(const std::string& unit) {
 
 std::vector<double> random_state(const kernel& k, std::mt19937& rng, double theta_min) {
     const double pi = 3.141592653589793;
-    std::uniform_real_distribution<double> angle(0, 2 * pi), polar(theta_min, pi - theta_min),
-        rate(-2, 2), norm(0.5, 2);
+    // z-y-x models (satellite_zyx: yaw, pitch, roll) have the middle angle in [-pi/2, pi/2],
+    // singular at its ends; the others are the chapter's z-x-z with theta in [0, pi]
+    const bool tait_bryan = k.unit.find("_zyx") != std::string::npos;
+    const double shift = tait_bryan ? -pi / 2 : 0;
+    std::uniform_real_distribution<double> angle(0, 2 * pi),
+        polar(theta_min + shift, pi - theta_min + shift), rate(-2, 2), norm(0.5, 2);
     std::normal_distribution<double> gauss;
     std::vector<double> y(k.n);
     double q2 = 0;
     for (std::size_t i = 0; i < k.n; ++i) {
         const std::string& s = k.state_names[i];
-        if (s == "theta")
+        if (s == "theta" || s == "pitch")
             y[i] = polar(rng);
-        else if (s == "phi" || s == "psi")
+        else if (s == "phi" || s == "psi" || s == "yaw" || s == "roll")
             y[i] = angle(rng);
         else if (s == "qw" || s == "qx" || s == "qy" || s == "qz")
             q2 += (y[i] = gauss(rng)) * y[i];

@@ -54,8 +54,25 @@ COORDS = ("phi", "theta", "psi")
 RATES = tuple(c + "_dot" for c in COORDS)
 ACCELS = tuple(c + "_ddot" for c in COORDS)
 MOMENTA = tuple("p_" + c for c in COORDS)
-MODEL_KEYS = {"name", "description", "parameters", "inertia", "body", "potential", "gravity",
-              "damping", "torque"}
+MODEL_KEYS = {"name", "description", "angles", "parameters", "inertia", "body", "potential",
+              "gravity", "damping", "torque"}
+AXES = (2, 0, 2)  # the model's sequence a-b-c (0 = x, 1 = y, 2 = z); set by use_angles()
+
+
+def use_angles(doc):
+    """The model's `angles:` (default z-x-z phi, theta, psi; zyx defaults to yaw, pitch, roll):
+    sets AXES and the coordinate names COORDS, RATES, ACCELS, MOMENTA."""
+    global AXES, COORDS, RATES, ACCELS, MOMENTA
+    spec = doc.get("angles", "zxz")
+    seq = spec["sequence"] if isinstance(spec, dict) else spec
+    AXES = tuple("xyz".index(c) for c in seq)
+    names = ("yaw", "pitch", "roll") if seq == "zyx" else ("phi", "theta", "psi")
+    if isinstance(spec, dict) and "names" in spec:
+        names = tuple(spec["names"])
+    COORDS = names
+    RATES = tuple(c + "_dot" for c in COORDS)
+    ACCELS = tuple(c + "_ddot" for c in COORDS)
+    MOMENTA = tuple("p_" + c for c in COORDS)
 # Names rotgen's expression language and SymPy share; every other identifier is a Symbol.
 FUNCTIONS = {"sin": sp.sin, "cos": sp.cos, "tan": sp.tan, "asin": sp.asin, "acos": sp.acos,
              "atan": sp.atan, "atan2": sp.atan2, "sinh": sp.sinh, "cosh": sp.cosh,
@@ -128,15 +145,18 @@ def read_model(path):
     return doc, params
 
 
-def rotation(phi, theta, psi):
-    """Passive A = Az(psi) Ax(theta) Az(phi), body <- space (5.25, 5.8, 5.9)."""
-    def az(a):
-        return sp.Matrix([[sp.cos(a), sp.sin(a), 0], [-sp.sin(a), sp.cos(a), 0], [0, 0, 1]])
+def rotation(alpha, beta, gamma, reverse=False):
+    """Passive A = A_c(gamma) A_b(beta) A_a(alpha) for the sequence AXES = a-b-c, body <- space;
+    Az(psi) Ax(theta) Az(phi) for z-x-z (5.25, 5.8, 5.9). `reverse`: the product in the wrong
+    order (a deliberate error)."""
+    def elementary(n, a):
+        c, s = sp.cos(a), sp.sin(a)
+        return [sp.Matrix([[1, 0, 0], [0, c, s], [0, -s, c]]),    # Ax (5.9)
+                sp.Matrix([[c, 0, -s], [0, 1, 0], [s, 0, c]]),    # Ay
+                sp.Matrix([[c, s, 0], [-s, c, 0], [0, 0, 1]])][n]  # Az (5.8)
 
-    def ax(a):
-        return sp.Matrix([[1, 0, 0], [0, sp.cos(a), sp.sin(a)], [0, -sp.sin(a), sp.cos(a)]])
-
-    return az(psi) * ax(theta) * az(phi)
+    m = [elementary(AXES[0], alpha), elementary(AXES[1], beta), elementary(AXES[2], gamma)]
+    return m[0] * m[1] * m[2] if reverse else m[2] * m[1] * m[0]
 
 
 class Derivation:
@@ -156,7 +176,7 @@ class Derivation:
 
         # omega from the rotation itself: A(t) = A(q(t)), [omega]x = -A' A^T (body frame).
         fq = [sp.Function(n)(t) for n in COORDS]
-        A_t = rotation(*fq)
+        A_t = rotation(*fq, reverse=inject == "sequence-order")
         W = -(A_t.diff(t) * A_t.T)
         back1 = {**{fq[i].diff(t): qd[i] for i in range(3)}, **{fq[i]: q[i] for i in range(3)}}
         omega_A = [W[2, 1].xreplace(back1), W[0, 2].xreplace(back1), W[1, 0].xreplace(back1)]
@@ -165,11 +185,11 @@ class Derivation:
                  qd[0] * st * cps - qd[1] * sps,
                  qd[0] * ct + qd[2]]
         pythagoras = {sp.sin(a) ** 2: 1 - sp.cos(a) ** 2 for a in q}
-        for i in range(3):
+        for i in range(3 if AXES == (2, 0, 2) else 0):
             if sp.expand(sp.expand(omega_A[i] - omega[i]).subs(pythagoras)) != 0:
                 raise AssertionError("omega%d from -A'A^T differs from (5.30): %s vs %s"
                                      % (i + 1, omega_A[i], omega[i]))
-        self.omega = sp.Matrix(omega)
+        self.omega = sp.Matrix(omega if AXES == (2, 0, 2) else omega_A)
 
         # Inertia tensor in body axes (5.39 sign convention when given in full).
         inertia = doc.get("inertia")
@@ -194,7 +214,7 @@ class Derivation:
             V += expr(doc["potential"], angles, "potential")
         if doc.get("gravity") is not None:
             g = doc["gravity"]
-            e = rotation(*q)[:, 2]
+            e = rotation(*q, reverse=inject == "sequence-order")[:, 2]
             com = [expr(v, pnames, "gravity com") for v in g["com"]]
             V += (expr(g["mass"], pnames, "gravity mass") * expr(g["g"], pnames, "gravity g")
                   * sum(com[i] * e[i] for i in range(3)))
@@ -254,7 +274,7 @@ def main():
     ap.add_argument("--points", type=int, default=24,
                     help="points per parameter set (defaults, random); default 24")
     ap.add_argument("--seed", type=int, default=20240605)
-    ap.add_argument("--inject-error", choices=["force-sign", "product-sign"],
+    ap.add_argument("--inject-error", choices=["force-sign", "product-sign", "sequence-order"],
                     help="derive with a deliberate error, to show that the check fails")
     args = ap.parse_args()
     mpmath.mp.dps = DIGITS
@@ -264,6 +284,7 @@ def main():
     except ModelError as exc:
         print("sympy_crosscheck: error: %s" % exc, file=sys.stderr)
         return 2
+    use_angles(doc)
 
     run = subprocess.run([args.rotgen, "inspect", args.model, "--format", "json"],
                          capture_output=True, text=True)
@@ -307,6 +328,8 @@ def main():
 
         rot = {}
         rot["kinetic"] = rg(["kinetic"], P | q_ | qd_)
+        for i in range(3):  # omega = J(q) q_dot: J, compared at random q_dot
+            rot["omega[%d]" % i] = rg(["omega", i], q_ | qd_)
         rot["potential"] = rg(["potential"], P | q_)
         rot["lagrangian"] = rg(["lagrangian"], P | q_ | qd_)
         rot["energy"] = rg(["energy"], P | q_ | qd_)
@@ -340,6 +363,7 @@ def main():
 
     f_rot = {k: numeric(v) for k, v in rot.items()}
     f_T, f_V, f_L, f_E = (numeric(e) for e in (ref.T, ref.V, ref.L, ref.E))
+    f_w = [numeric(e) for e in ref.omega]
     f_p = [numeric(e) for e in ref.p]
     f_M = numeric(ref.M)
     f_dM = [numeric(m) for m in ref.dM]
@@ -364,7 +388,11 @@ def main():
         for k in range(args.points):
             pv = ({n: mpmath.mpf(repr(v)) for n, v in params.items()} if kind == "default"
                   else random_parameters())
-            qv = [u(0, 2 * math.pi), u(0.2, math.pi - 0.2), u(0, 2 * math.pi)]
+            # the middle angle away from the singular set: sin beta = 0 (proper Euler), cos beta = 0
+            # (Tait-Bryan)
+            beta = (u(0.2, math.pi - 0.2) if AXES[0] == AXES[2]
+                    else u(-math.pi / 2 + 0.2, math.pi / 2 - 0.2))
+            qv = [u(0, 2 * math.pi), beta, u(0, 2 * math.pi)]
             qdv = [u(-3, 3) for _ in range(3)]
             qddv = [u(-5, 5) for _ in range(3)]
             pr = [u(-3, 3) for _ in range(3)]  # a random momentum, for the Hamiltonian side
@@ -393,6 +421,8 @@ def main():
             a, vals = at(qdv, p_of_qd)
             lag_vars = list(COORDS + RATES)
             compare("kinetic", a, vals, f_T(*a), lag_vars)
+            for i in range(3):
+                compare("omega[%d]" % i, a, vals, f_w[i](*a), lag_vars)
             compare("potential", a, vals, f_V(*a), list(COORDS))
             compare("lagrangian", a, vals, f_L(*a), lag_vars)
             compare("energy", a, vals, f_E(*a), lag_vars)

@@ -35,7 +35,8 @@ TEST_CASE("an incomplete initial state is refused at the initial key, naming wha
           "[scene][errors]") {
     const std::string model = "model: " + rotgen::test::model_path("heavy_top") + "\n";
     const std::string rates = "(phi_dot, theta_dot, psi_dot, or p_phi, p_theta, p_psi, or "
-                              "omega1, omega2, omega3; nothing defaults to 0)";
+                              "omega1, omega2, omega3, or omega_x, omega_y, omega_z; nothing "
+                              "defaults to 0)";
     using row = std::tuple<std::string, std::string>;
     const auto [initial, expected] = GENERATE_COPY(table<std::string, std::string>({
         row{"initial: {theta: 1}\n", "missing phi, psi and the rates " + rates},
