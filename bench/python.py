@@ -1,0 +1,126 @@
+#!/usr/bin/env python3
+"""rotgen from Python against the CLI, in one command (Markdown on stdout):
+
+    PYTHONPATH=build/python /usr/bin/python3 bench/python.py build/rotgen > bench/results/python.md
+
+1. A 1,000-member sweep (the heavy top, initial theta 0.1 .. 1.5, t = 0 .. 10, 101 samples,
+   DOP853 rtol 1e-10) started from Python (rotgen.sweep) and through the CLI (rotgen sweep): the
+   "running the members" time of each (the CLI's `--timings` line `members`, the Python result's
+   `seconds`: the same span, around the pool of members), medians of 9 runs, the two interleaved
+   (one of each in turn), the kernels compiled once before (a warm cache of its own). On 1 thread
+   and on 2, without trajectories and with them (the CLI's --trajectories keeps them too, its HDF5
+   file is written after the span timed). Goal: Python at most 10% more.
+2. Two Python threads each running rotgen.simulate (the nutating top to t = 400) at once against
+   one: the GIL is released while members integrate, so on 2 cores two take about as long as one.
+   Medians of 7, interleaved. Goal (the issue's): two in less than 1.6x one.
+Timing claims live here, never in ctest.
+"""
+
+import os
+import re
+import statistics
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+
+import rotgen
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
+MEMBERS = 1000
+
+
+def scene_text(end):
+    return f"""model: {ROOT}/models/heavy_top.yaml
+initial: {{phi: 0, theta: 0.5, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 30}}
+time: {{start: 0, end: {end}, samples: 101}}
+integrator: {{method: dop853, rtol: 1e-10, atol: 1e-12}}
+record: [theta, energy]
+sweep:
+  vary:
+    initial.theta: {{from: 0.1, to: 1.5, count: {MEMBERS}}}
+"""
+
+
+def cli_members_seconds(rotgen_exe, scene, out, threads, trajectories):
+    args = [rotgen_exe, "sweep", scene, "-o", out, "-j", str(threads), "--quiet", "--timings"]
+    if trajectories:
+        args.append("--trajectories")
+    p = subprocess.run(args, capture_output=True, text=True, check=True)
+    return float(re.search(r"rotgen: timing members\s+([0-9.]+) s", p.stderr).group(1))
+
+
+def sweep_rows(rotgen_exe, work):
+    scene = os.path.join(work, "sweep.yaml")
+    with open(scene, "w") as f:
+        f.write(scene_text(10))
+    out = os.path.join(work, "out")
+    rotgen.sweep(scene, threads=1)  # compiles the kernels into the cache
+    rows = []
+    for threads in (1, 2):
+        for trajectories in (False, True):
+            cli, py = [], []
+            for _ in range(9):
+                cli.append(cli_members_seconds(rotgen_exe, scene, out, threads, trajectories))
+                py.append(rotgen.sweep(scene, threads=threads, trajectories=trajectories).seconds)
+            c, p = statistics.median(cli), statistics.median(py)
+            rows.append((threads, trajectories, c, p, min(cli), min(py)))
+            print(f"sweep: {threads} threads, trajectories {trajectories}: CLI {c:.4f} s, "
+                  f"Python {p:.4f} s", file=sys.stderr)
+    return rows
+
+
+def threads_rows(work):
+    scene = rotgen.Scene(yaml_text=scene_text(400))
+    rotgen.simulate(scene)  # compiled and cached
+    one, two = [], []
+    for _ in range(7):
+        start = time.perf_counter()
+        rotgen.simulate(scene)
+        one.append(time.perf_counter() - start)
+        pair = [threading.Thread(target=rotgen.simulate, args=(scene,)) for _ in range(2)]
+        start = time.perf_counter()
+        for t in pair:
+            t.start()
+        for t in pair:
+            t.join()
+        two.append(time.perf_counter() - start)
+    return statistics.median(one), statistics.median(two), one, two
+
+
+def main():
+    rotgen_exe = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else "build/rotgen")
+    with tempfile.TemporaryDirectory() as work:
+        os.environ["ROTGEN_CACHE_DIR"] = os.path.join(work, "cache")
+        rows = sweep_rows(rotgen_exe, work)
+        one, two, ones, twos = threads_rows(work)
+    load = " ".join(f"{x:.2f}" for x in os.getloadavg())
+    print("# rotgen from Python against the CLI\n")
+    print("`PYTHONPATH=build/python /usr/bin/python3 bench/python.py build/rotgen > "
+          "bench/results/python.md`;")
+    print(f"{os.cpu_count()} cores, load average {load} when it finished (the machine is shared: "
+          "medians of interleaved runs, which still move with the load).\n")
+    print(f"## A {MEMBERS}-member sweep: `rotgen.sweep` against `rotgen sweep`\n")
+    print("The heavy top, initial theta 0.1 .. 1.5, t = 0 .. 10, 101 samples, DOP853 rtol 1e-10, "
+          "records theta and energy; the time is \"running the members\" (the CLI's `--timings` "
+          "line `members`, the Python result's `seconds`), median of 9 runs interleaved (min in "
+          "brackets), kernels cached.\n")
+    print("| threads | trajectories kept | CLI s | Python s | Python / CLI (goal <= 1.10) |")
+    print("|---:|---|---:|---:|---:|")
+    for threads, traj, c, p, cmin, pmin in rows:
+        print(f"| {threads} | {'yes' if traj else 'no'} | {c:.4f} ({cmin:.4f}) | "
+              f"{p:.4f} ({pmin:.4f}) | {p / c:.3f} |")
+    print("\n## Two Python threads running `rotgen.simulate` at once\n")
+    print("The nutating top (DOP853, rtol 1e-10) to t = 400, 101 samples; wall time of one call "
+          "alone against two calls on two Python threads started together, median of 7, "
+          "interleaved.\n")
+    print("| one simulate s | two at once s | ratio (goal < 1.6) |")
+    print("|---:|---:|---:|")
+    print(f"| {one:.3f} | {two:.3f} | {two / one:.2f} |")
+    print("\nRuns, one: " + ", ".join(f"{x:.3f}" for x in ones) +
+          "; two: " + ", ".join(f"{x:.3f}" for x in twos) + ".")
+
+
+if __name__ == "__main__":
+    main()
