@@ -178,8 +178,12 @@ class SweepResult:
         Wall time running the members (the CLI's "running the members").
     threads, lanes : int
         How they ran.
-    failed : int
-        Members whose status is not ``ok``.
+    members, failed : int
+        Members, and those whose status is not ``ok``.
+    info : dict
+        ``members``, ``failed``, ``in_lanes`` (members that ran in a batch of lanes), ``steps``,
+        ``rhs_evals`` (all members'), ``seconds``, ``threads``, ``lanes``, ``arch`` (the lanes'
+        SIMD target): the CLI's summary lines.
     """
 
     def __init__(self, d):
@@ -195,9 +199,10 @@ class SweepResult:
         self.trajectories = d["trajectories"]
         self.columns = list(d["columns"])
         self.keys = list(d["keys"])
-        self.seconds = d["seconds"]
-        self.threads = d["threads"]
-        self.lanes = d["lanes"]
+        self.info = d["info"]
+        self.seconds = self.info["seconds"]
+        self.threads = self.info["threads"]
+        self.lanes = self.info["lanes"]
         self.members = len(statuses)
         self.failed = sum(1 for s in statuses if s != "ok")
 

@@ -9,7 +9,8 @@
 
 #include <pybind11/pybind11.h>
 
-#include <chrono>
+#include <atomic>
+#include <functional>
 #include <mutex>
 #include <string>
 
@@ -33,22 +34,12 @@ class symbolic_scope {
     bool m_registered = false;
 };
 
-// Thrown (as a C++ exception, through the engine) when Ctrl-C was seen: the Python error is set,
-// and the binding raises it once the GIL is back.
-struct interrupted {};
-
-// Called on the thread that holds no GIL, while members integrate: every `period` it takes the
-// GIL and runs the Python signal handlers (PyErr_CheckSignals); true once one raised.
-class signal_check {
-  public:
-    bool due() const { return std::chrono::steady_clock::now() - m_last >= period; }
-    bool interrupted();
-
-  private:
-    static constexpr std::chrono::milliseconds period{5};
-    std::chrono::steady_clock::time_point m_last = std::chrono::steady_clock::now();
-    bool m_raised = false;
-};
+// Runs work() on a thread of its own with the GIL released. The calling thread waits, taking the
+// GIL back every 5 ms to run the Python signal handlers (PyErr_CheckSignals: Ctrl-C); when one
+// raises, `stop` is set, work() is expected to end soon after (at its next sample or member), and
+// the handler's exception (KeyboardInterrupt) is raised here once it has. An exception work()
+// throws is rethrown here, with the GIL held. No signal handler of the module's own is installed.
+void run_released(const std::function<void()>& work, std::atomic<bool>& stop);
 
 void init_errors(py::module_& m);
 void init_model(py::module_& m);

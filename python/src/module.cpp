@@ -5,6 +5,11 @@
 #include "run/prepared.hpp"
 #include "support/memory_files.hpp"
 
+#include <chrono>
+#include <condition_variable>
+#include <exception>
+#include <thread>
+
 namespace rotgen::python {
 
 symbolic_scope::symbolic_scope(const std::string& path, const std::string& text)
@@ -19,12 +24,40 @@ symbolic_scope::~symbolic_scope() {
     if (m_registered) erase_memory_file(m_path);
 }
 
-bool signal_check::interrupted() {
-    m_last = std::chrono::steady_clock::now();
-    if (m_raised) return true;
-    py::gil_scoped_acquire gil;
-    m_raised = PyErr_CheckSignals() != 0;
-    return m_raised;
+void run_released(const std::function<void()>& work, std::atomic<bool>& stop) {
+    std::mutex m;
+    std::condition_variable finished;
+    bool done = false;
+    std::exception_ptr failure;
+    bool raised = false;
+    {
+        py::gil_scoped_release released;
+        std::thread worker([&] {
+            try {
+                work();
+            } catch (...) {
+                failure = std::current_exception();
+            }
+            const std::lock_guard<std::mutex> lock(m);
+            done = true;
+            finished.notify_all();
+        });
+        std::unique_lock<std::mutex> lock(m);
+        while (!finished.wait_for(lock, std::chrono::milliseconds(5), [&] { return done; })) {
+            if (raised) continue;
+            lock.unlock();
+            {
+                py::gil_scoped_acquire gil;
+                raised = PyErr_CheckSignals() != 0; // the handler's exception is now set
+            }
+            if (raised) stop = true;
+            lock.lock();
+        }
+        lock.unlock();
+        worker.join();
+    }
+    if (raised) throw py::error_already_set();
+    if (failure) std::rethrow_exception(failure);
 }
 
 } // namespace rotgen::python

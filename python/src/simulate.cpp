@@ -85,26 +85,26 @@ py::dict result_of(const scene_spec& scene, const run_result& r) {
     return d;
 }
 
-// Reads and prepares the scene (under the lock), then runs it with the GIL released, taking it
-// back every few milliseconds (at a sample) to let Ctrl-C stop the run.
+// Reads and prepares the scene (under the lock), as `rotgen simulate` does (run_scene), then runs
+// it with the GIL released; Ctrl-C stops it at the next sample (run_released).
 py::dict simulate_scene(const std::string& path, const std::string& text) {
     prepared_run run(path, text);
     stage_timings timings;
     {
         symbolic_scope scope(path, text);
-        run.scene = std::make_unique<scene_spec>(load_scene(path));
+        run.scene = std::make_unique<scene_spec>(load_scene(path, "simulate"));
         run.prepared = std::make_unique<prepared_scene>(*run.scene, timings);
     }
-    signal_check signals;
+    struct interrupted {};
+    std::atomic<bool> stop{false};
     run_result r;
-    try {
-        py::gil_scoped_release released;
-        r = run_member(*run.prepared, values_of(*run.scene), timings, [&](double) {
-            if (signals.due() && signals.interrupted()) throw interrupted{};
-        });
-    } catch (const interrupted&) {
-        throw py::error_already_set();
-    }
+    run_released(
+        [&] {
+            r = run_member(*run.prepared, values_of(*run.scene), timings, [&](double) {
+                if (stop) throw interrupted{};
+            });
+        },
+        stop);
     return result_of(*run.scene, r);
 }
 
@@ -116,7 +116,7 @@ py::dict scene_info(const std::string& path, const std::string& text) {
     std::vector<std::string> record, events;
     {
         symbolic_scope scope(path, text); // no Python object is touched in here
-        const scene_spec scene = load_scene(path);
+        const scene_spec scene = load_scene(path, "simulate");
         model = scene.model.name;
         model_file = scene.model.file;
         form = to_string(scene.form);

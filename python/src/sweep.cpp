@@ -1,12 +1,14 @@
 // rotgen.sweep: an ensemble in this process, on threads and in SIMD lanes, through the functions
-// `rotgen sweep` runs (sweep/members.hpp, sweep/outcome.hpp, sweep/parallel.hpp, run/lanes.hpp);
-// the summary is write_summary's text, the same bytes as the CLI's summary.csv. MPI stays the
-// CLI's.
+// `rotgen sweep` runs (sweep/members.hpp, sweep/batch.hpp, sweep/parallel.hpp); each member's
+// summary row is write_summary_row's text, so the summary is the CLI's summary.csv byte for byte.
+// Nothing is written to disk: the rows and samples go to memory, each member to its own slot
+// (the CLI's streaming writer and journal are for files). MPI stays the CLI's.
 #include "bindings.hpp"
 
 #include "run/lanes.hpp"
 #include "run/prepared.hpp"
 #include "scene/scene.hpp"
+#include "sweep/batch.hpp"
 #include "sweep/members.hpp"
 #include "sweep/outcome.hpp"
 #include "sweep/parallel.hpp"
@@ -15,11 +17,9 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <limits>
 #include <memory>
-#include <optional>
 #include <sstream>
 
 namespace rotgen::python {
@@ -33,12 +33,13 @@ struct sweep_options {
     bool trajectories = true;
 };
 
-// The ensemble, prepared once; what holds GiNaC objects is destroyed under the lock.
+// The ensemble, prepared once (as sweep.cpp's); what holds GiNaC objects is destroyed under the
+// lock.
 struct ensemble {
     std::string path;
     std::unique_ptr<scene_spec> scene;
-    sweep_plan plan;
-    std::vector<std::vector<double>> rows;
+    std::unique_ptr<sweep_plan> plan;
+    std::unique_ptr<member_table> table; // refers to *plan
     std::unique_ptr<prepared_scene> prepared;
     summary_layout layout;
     std::unique_ptr<lane_kernels> lanes;
@@ -56,9 +57,9 @@ void prepare(ensemble& e, const std::string& text, const sweep_options& o) {
     stage_timings timings;
     {
         symbolic_scope scope(e.path, text);
-        e.scene = std::make_unique<scene_spec>(load_scene(e.path));
-        e.plan = read_sweep_plan(*e.scene, o.vary);
-        e.rows = member_rows(e.plan);
+        e.scene = std::make_unique<scene_spec>(load_scene(e.path, "sweep"));
+        e.plan = std::make_unique<sweep_plan>(read_sweep_plan(*e.scene, o.vary));
+        e.table = std::make_unique<member_table>(*e.plan);
         if (o.lanes > 1) lane_check(*e.scene);
         e.prepared = std::make_unique<prepared_scene>(*e.scene, timings);
     }
@@ -68,93 +69,111 @@ void prepare(ensemble& e, const std::string& text, const sweep_options& o) {
     if (o.lanes > 1) e.lanes = std::make_unique<lane_kernels>(compile_lanes(*e.prepared, timings));
 }
 
-// Members first .. first+count-1 in lanes; those a batch cannot carry run alone (as sweep.cpp).
-void run_batch(const ensemble& e, const member_values& base, std::size_t first, std::size_t count,
-               bool trajectories, std::vector<member_outcome>& outcomes) {
-    std::vector<member_values> values;
-    for (std::size_t m = first; m < first + count; ++m)
-        values.push_back(member_of(e.plan, base, e.rows[m]));
-    const std::vector<std::optional<run_result>> results = run_lanes(*e.prepared, *e.lanes, values);
-    for (std::size_t k = 0; k < count; ++k)
-        outcomes[first + k] = results[k]
-                                  ? outcome_of(*e.prepared, e.layout, *results[k], trajectories)
-                                  : run_one(*e.prepared, e.layout, values[k], trajectories);
+// What the members leave: each member's summary row (text) and samples, in its own slot.
+struct ensemble_output {
+    std::vector<std::string> rows;
+    double* samples = nullptr; // [member, sample, t and the columns], or null
+    std::size_t failed = 0, in_lanes = 0;
+    std::uint64_t steps = 0, rhs_evals = 0;
+    double seconds = 0; // running the members
+};
+
+// Member m's outcome into its slot (called from the pool's threads; the counters under `m`).
+void keep(const ensemble& e, std::size_t member, const member_outcome& o, ensemble_output& out,
+          std::mutex& m) {
+    std::ostringstream row;
+    write_summary_row(row, member, e.table->row(member), e.layout, o);
+    out.rows[member] = row.str();
+    if (out.samples) { // a member that could not start has no samples
+        const std::size_t size = e.layout.samples * (e.layout.columns.size() + 1);
+        double* to = out.samples + member * size;
+        const std::size_t n = std::min(size, o.trajectory.size());
+        std::copy(o.trajectory.begin(), o.trajectory.begin() + n, to);
+        std::fill(to + n, to + size, std::numeric_limits<double>::quiet_NaN());
+    }
+    const std::lock_guard<std::mutex> lock(m);
+    out.failed += o.ok() ? 0 : 1;
+    out.in_lanes += o.in_lanes ? 1 : 0;
+    out.steps += o.steps;
+    out.rhs_evals += o.rhs_evals;
 }
 
-// Every member's outcome, in member order, with the GIL released; the calling thread checks for
-// Ctrl-C between members (one thread) or about ten times a second (a pool): then no new member
-// starts, and the Python error is raised once the members running have finished.
-std::vector<member_outcome> run_members(const ensemble& e, const sweep_options& o,
-                                        double& seconds) {
+// Every member, in groups of neighbours (a batch of lanes, or one member) taken by the pool's
+// threads, with the GIL released; Ctrl-C starts no new group (run_released).
+void run_members(const ensemble& e, const sweep_options& o, ensemble_output& out) {
     const member_values base = values_of(e.prepared->scene());
-    const std::size_t group = e.lanes ? o.lanes : 1;
-    const std::size_t groups = (e.rows.size() + group - 1) / group;
-    std::vector<member_outcome> outcomes(e.rows.size());
+    const sweep_members members{*e.prepared, e.layout,      *e.plan,
+                                *e.table,    e.lanes.get(), o.trajectories};
+    const std::size_t group = e.lanes ? o.lanes : 1, count = e.table->size();
+    const std::size_t groups = (count + group - 1) / group;
     std::atomic<std::size_t> next{0};
     std::atomic<bool> stop{false};
-    signal_check signals;
-    {
-        py::gil_scoped_release released;
-        const auto start = std::chrono::steady_clock::now();
-        run_pool(
-            o.threads == 0 ? all_cores() : o.threads,
-            [&] {
-                const std::size_t g = next++;
-                return stop || g >= groups ? none : g;
-            },
-            [&](std::size_t g) {
-                if (e.lanes)
-                    run_batch(e, base, g * group, std::min(group, e.rows.size() - g * group),
-                              o.trajectories, outcomes);
-                else
-                    outcomes[g] = run_one(*e.prepared, e.layout, member_of(e.plan, base, e.rows[g]),
-                                          o.trajectories);
-            },
-            [&] { stop = stop || (signals.due() && signals.interrupted()); });
-        seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    }
-    if (stop) throw py::error_already_set();
-    return outcomes;
+    std::mutex m;
+    run_released(
+        [&] {
+            const auto start = std::chrono::steady_clock::now();
+            run_pool(
+                o.threads == 0 ? all_cores() : o.threads,
+                [&] {
+                    const std::size_t g = next++;
+                    return stop || g >= groups ? none : g;
+                },
+                [&](std::size_t g) {
+                    const std::size_t first = g * group;
+                    const std::vector<member_outcome> done =
+                        run_neighbours(members, base, first, std::min(group, count - first));
+                    for (std::size_t k = 0; k < done.size(); ++k)
+                        keep(e, first + k, done[k], out, m);
+                },
+                {});
+            out.seconds =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        },
+        stop);
 }
 
-// [member, sample, t and the columns]; NaN past a member's last sample (outcome.hpp).
-py::array_t<double> trajectories_of(const std::vector<member_outcome>& outcomes,
-                                    const summary_layout& layout) {
-    const std::size_t width = layout.columns.size() + 1;
-    py::array_t<double> a({outcomes.size(), layout.samples, width});
-    const std::size_t size = layout.samples * width;
-    double* out = a.mutable_data();
-    for (const auto& o : outcomes) { // a member that could not start has no samples
-        const std::size_t n = std::min(size, o.trajectory.size());
-        std::copy(o.trajectory.begin(), o.trajectory.begin() + n, out);
-        std::fill(out + n, out + size, std::numeric_limits<double>::quiet_NaN());
-        out += size;
-    }
-    return a;
+py::dict summary_of(const ensemble& e, const sweep_options& o, const ensemble_output& out) {
+    py::dict s;
+    s["members"] = e.table->size();
+    s["failed"] = out.failed;
+    s["in_lanes"] = out.in_lanes;
+    s["steps"] = out.steps;
+    s["rhs_evals"] = out.rhs_evals;
+    s["seconds"] = out.seconds;
+    s["threads"] = o.threads == 0 ? all_cores() : o.threads;
+    s["lanes"] = e.lanes ? o.lanes : 1u;
+    s["arch"] = e.lanes ? e.lanes->arch : std::string();
+    return s;
 }
 
 py::dict sweep_scene(const std::string& path, const std::string& text, const sweep_options& o) {
     ensemble e(path);
     prepare(e, text, o);
-    double seconds = 0;
-    const std::vector<member_outcome> outcomes = run_members(e, o, seconds);
+    const std::size_t width = e.layout.columns.size() + 1;
+    ensemble_output out;
+    out.rows.resize(e.table->size());
+    py::object trajectories = py::none();
+    if (o.trajectories) {
+        py::array_t<double> a({e.table->size(), e.layout.samples, width});
+        out.samples = a.mutable_data();
+        trajectories = a;
+    }
+    run_members(e, o, out);
     std::ostringstream summary;
-    write_summary(summary, e.plan, e.rows, e.layout, outcomes);
+    write_summary_header(summary, *e.plan, e.layout);
+    for (const auto& row : out.rows)
+        summary << row;
     py::dict d;
     d["summary_csv"] = summary.str();
     std::vector<std::string> columns{"t"};
     columns.insert(columns.end(), e.layout.columns.begin(), e.layout.columns.end());
     d["columns"] = columns;
     std::vector<std::string> keys;
-    for (const auto& k : e.plan.keys)
+    for (const auto& k : e.plan->keys)
         keys.push_back(k.key);
     d["keys"] = keys;
-    d["trajectories"] =
-        o.trajectories ? py::object(trajectories_of(outcomes, e.layout)) : py::object(py::none());
-    d["seconds"] = seconds;
-    d["threads"] = o.threads == 0 ? all_cores() : o.threads;
-    d["lanes"] = e.lanes ? o.lanes : 1u;
-    d["arch"] = e.lanes ? e.lanes->arch : std::string();
+    d["trajectories"] = trajectories;
+    d["info"] = summary_of(e, o, out);
     return d;
 }
 
