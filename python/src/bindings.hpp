@@ -18,9 +18,12 @@ namespace rotgen::python {
 
 namespace py = pybind11;
 
+// Hidden, as pybind11's own types are (the module is built with default visibility).
+#define ROTGEN_PYTHON_LOCAL __attribute__((visibility("hidden")))
+
 // The GIL released, symbolic_mutex() held, and `text` (when not empty) registered as the content of
 // `path` (support/memory_files.hpp) for as long as the scope lives.
-class symbolic_scope {
+class ROTGEN_PYTHON_LOCAL symbolic_scope {
   public:
     symbolic_scope(const std::string& path, const std::string& text);
     symbolic_scope(const symbolic_scope&) = delete;
