@@ -45,3 +45,23 @@ def test_emit_writes_the_cli_header(in_tmp):
     cli = open(os.path.join("cli", "heavy_top_body.hpp")).read()
     # the header's comment names the command that regenerates it, with its -o
     assert open(path).read() == cli.replace(" -o cli ", " -o py ")
+
+
+def test_inertia_from_parameters_reads_as_in_the_cli():
+    # Regression: inside the module a model whose inertia uses its parameters was refused
+    # ("inertia is not a finite real number with the parameters' defaults") while the CLI read it:
+    # the module kept its own copy of GiNaC's realsymbol typeinfo (hidden visibility), so a
+    # parameter symbol hashed two ways and was not found in its substitution map.
+    heavy = rotgen.Model(HEAVY)  # inertia: [I1, I1, I3]
+    assert heavy.parameters["I1"] == 1.0
+    assert heavy.inertia()["principal_moments"] == ["I1", "I1", "I3"]
+    path = source("models", "cube_on_corner.yaml")  # the tensor from a part: a box of mass M
+    status, out, err = run_cli("inspect", path, "--inertia", "--format", "json")
+    assert status == 0, err
+    got = rotgen.Model(path).inertia()
+    assert got == json.loads(out)["inertia"]
+    # (5.69): about the corner, 1/6 M L^2 along the diagonal and 11/12 M L^2 twice, exactly
+    assert got["principal_moments"] == ["L**2*M/6", "11*L**2*M/12", "11*L**2*M/12"]
+    values = got["principal_moment_values"]  # M = 1, L = 0.2
+    expected = [0.04 / 6, 0.04 * 11 / 12, 0.04 * 11 / 12]
+    assert max(abs(a - b) for a, b in zip(values, expected)) < 1e-16  # observed 6.9e-18
