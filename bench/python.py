@@ -6,10 +6,11 @@
 1. A 1,000-member sweep (the heavy top, initial theta 0.1 .. 1.5, t = 0 .. 10, 101 samples,
    DOP853 rtol 1e-10) started from Python (rotgen.sweep) and through the CLI (rotgen sweep): the
    "running the members" time of each (the CLI's `--timings` line `members`, the Python result's
-   `seconds`: the same span, around the pool of members), medians of 9 runs, the two interleaved
+   `seconds`: the same span, around the pool of members), medians of 7 runs, the two interleaved
    (one of each in turn), the kernels compiled once before (a warm cache of its own). On 1 thread
-   and on 2, without trajectories and with them (the CLI's --trajectories keeps them too, its HDF5
-   file is written after the span timed). Goal: Python at most 10% more.
+   and on 2 without trajectories, and on 2 with them (the CLI's --trajectories streams them to
+   its HDF5 file within the span; Python copies them into one array). Goal: Python at most 10%
+   more.
 2. Two Python threads each running rotgen.simulate (the nutating top to t = 400) at once against
    one: the GIL is released while members integrate, so on 2 cores two take about as long as one.
    Medians of 7, interleaved. Goal (the issue's): two in less than 1.6x one.
@@ -29,6 +30,8 @@ import rotgen
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
 MEMBERS = 1000
+RUNS = 7  # of each, interleaved
+CONFIGS = [(1, False), (2, False), (2, True)]  # (threads, trajectories kept)
 
 
 def scene_text(end):
@@ -58,16 +61,15 @@ def sweep_rows(rotgen_exe, work):
     out = os.path.join(work, "out")
     rotgen.sweep(scene, threads=1)  # compiles the kernels into the cache
     rows = []
-    for threads in (1, 2):
-        for trajectories in (False, True):
-            cli, py = [], []
-            for _ in range(9):
-                cli.append(cli_members_seconds(rotgen_exe, scene, out, threads, trajectories))
-                py.append(rotgen.sweep(scene, threads=threads, trajectories=trajectories).seconds)
-            c, p = statistics.median(cli), statistics.median(py)
-            rows.append((threads, trajectories, c, p, min(cli), min(py)))
-            print(f"sweep: {threads} threads, trajectories {trajectories}: CLI {c:.4f} s, "
-                  f"Python {p:.4f} s", file=sys.stderr)
+    for threads, trajectories in CONFIGS:
+        cli, py = [], []
+        for _ in range(RUNS):
+            cli.append(cli_members_seconds(rotgen_exe, scene, out, threads, trajectories))
+            py.append(rotgen.sweep(scene, threads=threads, trajectories=trajectories).seconds)
+        c, p = statistics.median(cli), statistics.median(py)
+        rows.append((threads, trajectories, c, p, min(cli), min(py)))
+        print(f"sweep: {threads} threads, trajectories {trajectories}: CLI {c:.4f} s, "
+              f"Python {p:.4f} s", file=sys.stderr)
     return rows
 
 
@@ -89,6 +91,9 @@ def threads_rows(work):
     return statistics.median(one), statistics.median(two), one, two
 
 
+START_LOAD = " ".join(f"{x:.2f}" for x in os.getloadavg())
+
+
 def main():
     rotgen_exe = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else "build/rotgen")
     with tempfile.TemporaryDirectory() as work:
@@ -96,15 +101,17 @@ def main():
         rows = sweep_rows(rotgen_exe, work)
         one, two, ones, twos = threads_rows(work)
     load = " ".join(f"{x:.2f}" for x in os.getloadavg())
+    start_load = START_LOAD
     print("# rotgen from Python against the CLI\n")
     print("`PYTHONPATH=build/python /usr/bin/python3 bench/python.py build/rotgen > "
           "bench/results/python.md`;")
-    print(f"{os.cpu_count()} cores, load average {load} when it finished (the machine is shared: "
-          "medians of interleaved runs, which still move with the load).\n")
+    print(f"{os.cpu_count()} cores, load average {start_load} when it started and {load} when it "
+          "finished (1, 5, 15 minutes; the machine is shared with other builds and tests: medians "
+          "of interleaved runs, which still move with the load).\n")
     print(f"## A {MEMBERS}-member sweep: `rotgen.sweep` against `rotgen sweep`\n")
-    print("The heavy top, initial theta 0.1 .. 1.5, t = 0 .. 10, 101 samples, DOP853 rtol 1e-10, "
+    print(f"The heavy top, initial theta 0.1 .. 1.5, t = 0 .. 10, 101 samples, DOP853 rtol 1e-10, "
           "records theta and energy; the time is \"running the members\" (the CLI's `--timings` "
-          "line `members`, the Python result's `seconds`), median of 9 runs interleaved (min in "
+          f"line `members`, the Python result's `seconds`), median of {RUNS} runs interleaved (min in "
           "brackets), kernels cached.\n")
     print("| threads | trajectories kept | CLI s | Python s | Python / CLI (goal <= 1.10) |")
     print("|---:|---|---:|---:|---:|")
