@@ -3,7 +3,7 @@
 # for Debian's interpreter /usr/bin/python3 (the `python3` on PATH may be another one, without
 # NumPy); under ROTGEN_REQUIRE_ALL they are required. Decided before generator/ is read: the
 # stages are then compiled position-independent, since the module links them into a shared object.
-# Sets ROTGEN_PYTHON_MODULE (ON when python/ builds the module).
+# Sets ROTGEN_PYTHON_MODULE (ON when python/ builds the module) and ROTGEN_PIC_FLAGS.
 option(ROTGEN_PYTHON "Build the Python module when pybind11 and NumPy are found" ON)
 set(ROTGEN_PYTHON_MODULE OFF)
 if(ROTGEN_PYTHON)
@@ -20,4 +20,14 @@ if(ROTGEN_PYTHON)
   rotgen_optional(_rotgen_have_pybind11
     "pybind11 and NumPy for ${Python3_EXECUTABLE} (Debian: pybind11-dev python3-pybind11 python3-numpy python3-dev)")
   set(ROTGEN_PYTHON_MODULE ${_rotgen_have_pybind11})
+endif()
+# Position-independent stages (for the module) keep the calls between rotgen's own functions
+# direct and inlinable, as in the executable: nothing interposes them.
+set(ROTGEN_PIC_FLAGS)
+if(ROTGEN_PYTHON_MODULE)
+  include(CheckCXXCompilerFlag)
+  check_cxx_compiler_flag(-fno-semantic-interposition ROTGEN_HAVE_NO_INTERPOSITION)
+  if(ROTGEN_HAVE_NO_INTERPOSITION)
+    set(ROTGEN_PIC_FLAGS -fno-semantic-interposition)
+  endif()
 endif()
