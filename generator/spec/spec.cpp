@@ -4,6 +4,7 @@
 #include "spec/spec_detail.hpp"
 
 #include "expr/numbers.hpp"
+#include "support/memory_files.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -64,9 +65,10 @@ void check_indentation(const std::string& path, const std::string& source) {
     }
 }
 
-} // namespace
-
-YAML::Node load_yaml_file(const std::string& path, std::string* source_out) {
+// The file's text (support/memory_files.hpp first: a text held in memory under that name).
+std::string read_source(const std::string& path) {
+    std::string source;
+    if (memory_file(path, source)) return source;
     struct stat st {};
     if (::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
         throw user_error({path}, "is a folder, not a file; give a model or scene file");
@@ -74,7 +76,6 @@ YAML::Node load_yaml_file(const std::string& path, std::string* source_out) {
     if (!in) throw user_error({path}, "cannot open file: " + std::string(std::strerror(errno)));
     // At most 1 MiB: a model or scene is a few hundred bytes, and `model: /dev/zero` must end.
     constexpr std::size_t max_size = std::size_t(1) << 20;
-    std::string source;
     char chunk[1 << 14];
     do {
         in.read(chunk, sizeof chunk);
@@ -82,6 +83,13 @@ YAML::Node load_yaml_file(const std::string& path, std::string* source_out) {
         if (source.size() > max_size) throw user_error({path}, "file is larger than 1 MiB");
     } while (in);
     if (in.bad()) throw user_error({path}, "cannot read file");
+    return source;
+}
+
+} // namespace
+
+YAML::Node load_yaml_file(const std::string& path, std::string* source_out) {
+    const std::string source = read_source(path);
     if (source_out) *source_out = source;
     check_text(path, source);
     try {

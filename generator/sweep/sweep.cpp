@@ -9,6 +9,7 @@
 #include "support/output_paths.hpp"
 #include "support/progress.hpp"
 #include "support/timings.hpp"
+#include "sweep/batch.hpp"
 #include "sweep/distribute.hpp"
 #include "sweep/journal.hpp"
 #include "sweep/members.hpp"
@@ -153,22 +154,6 @@ struct ensemble {
     }
 };
 
-// Members first .. first+count-1 in lanes (run/lanes.hpp); those a batch cannot carry alone.
-std::vector<member_outcome> run_batch(const ensemble& e, const member_values& base,
-                                      std::size_t first, std::size_t count, bool trajectories) {
-    std::vector<member_values> values;
-    for (std::size_t m = first; m < first + count; ++m)
-        values.push_back(member_of(e.plan, base, e.table.row(m)));
-    const std::vector<std::optional<run_result>> results = run_lanes(*e.prepared, *e.lanes, values);
-    std::vector<member_outcome> out;
-    for (std::size_t k = 0; k < count; ++k) {
-        out.push_back(results[k] ? outcome_of(*e.prepared, e.layout, *results[k], trajectories)
-                                 : run_one(*e.prepared, e.layout, values[k], trajectories));
-        out.back().in_lanes = results[k].has_value();
-    }
-    return out;
-}
-
 // Outcomes that may wait in memory: about 32 MB of them, and enough for every thread.
 std::size_t window_of(const sweep_request& q, const ensemble& e, unsigned jobs, int ranks) {
     const std::size_t numbers =
@@ -187,20 +172,12 @@ std::vector<std::size_t> run_members(const mpi_session& session, const sweep_req
                                      in_order* out,
                                      const std::function<void(std::size_t)>& progress) {
     const member_values base = values_of(e.prepared->scene());
-    const std::size_t count = e.table.size() - from;
-    if (e.lanes)
-        return run_distributed(
-            session, count, q.lanes, jobs,
-            [&](std::size_t first, std::size_t n) {
-                return run_batch(e, base, from + first, n, q.trajectories);
-            },
-            out, progress);
+    const sweep_members members{*e.prepared, e.layout,      e.plan,
+                                e.table,     e.lanes.get(), q.trajectories};
     return run_distributed(
-        session, count, 1, jobs,
-        [&](std::size_t m, std::size_t) {
-            return std::vector<member_outcome>{
-                run_one(*e.prepared, e.layout, member_of(e.plan, base, e.table.row(from + m)),
-                        q.trajectories)};
+        session, e.table.size() - from, e.lanes ? q.lanes : 1, jobs,
+        [&](std::size_t first, std::size_t n) {
+            return run_neighbours(members, base, from + first, n);
         },
         out, progress);
 }

@@ -6,7 +6,8 @@
 # next "$ " line or the end of the block, are its expected output. The commands of a block run in
 # one shell (so `echo $?` reports the previous command's status) in a scratch folder where
 # `models/` and `examples/` are the source tree's and `build/` is BUILD_DIR, so that paths read as
-# they do from the repository root and nothing is written into the source tree.
+# they do from the repository root and nothing is written into the source tree. A block that
+# runs the Python module (PYTHONPATH=build/python) is skipped when the build has no module.
 # Only timings may differ: a line "  time    ..." of the simulate summary and a line
 # "rotgen: timing ..." compare equal whatever they hold. On a difference it prints a unified diff
 # (README above, program below) and exits 1.
@@ -23,6 +24,11 @@ normalise() { sed -E -e 's/^(  time    ).*/\1<timings>/' -e 's/^(rotgen: timing 
 blocks=0 failed=0
 run_block() { # $1: README line of the block, $2: file holding the block's lines
   local line=$1 body=$2 dir="$work/block$1"
+  # A block that imports the Python module runs only where the build made it (pybind11, NumPy).
+  if grep -q 'PYTHONPATH=build/python' "$body" && [[ ! -d $build/python/rotgen ]]; then
+    echo "README.md line $line: skipped (no Python module in $build: pybind11 or NumPy missing)"
+    return
+  fi
   mkdir -p "$dir"
   ln -s "$src/models" "$dir/models"
   ln -s "$src/examples" "$dir/examples"

@@ -1,0 +1,23 @@
+"""rotgen from Python: rigid-body rotational dynamics, derived symbolically, run as compiled code.
+
+The module calls the stages the ``rotgen`` command calls (no second engine):
+
+- :class:`Model` -- a model file: ``.parameters``, ``.equations(format=)``, ``.inertia()``;
+- :class:`Scene` -- a scene file or dict: ``.with_(...)`` for a changed copy;
+- :func:`simulate` -- one run: ``.t``, ``.y``, ``.columns``, ``.to_pandas()``, ``.events``,
+  ``.summary``;
+- :func:`sweep` -- an ensemble on threads and SIMD lanes: ``.summary`` (summary.csv as a
+  DataFrame), ``.trajectories``;
+- :func:`emit` -- the generated C++ header, as ``rotgen emit``;
+- :class:`InputError` (a ValueError with ``file``, ``line``, ``column``) and :class:`RunError`
+  (with the partial ``result``).
+"""
+
+from ._errors import InputError, RunError
+from ._model import Model, emit
+from ._run import SimulateResult, SweepResult, simulate, sweep
+from ._scene import Scene
+from ._rotgen import version as __version__
+
+__all__ = ["InputError", "RunError", "Model", "Scene", "SimulateResult", "SweepResult",
+           "emit", "simulate", "sweep", "__version__"]
