@@ -121,17 +121,48 @@ def check_polhode(rotgen, source, work, axis):
     print(f"polhode about axis {axis}: 2T drifts {drift_t:.2g}, |L|^2 {drift_l:.2g} (relative)")
 
 
+def check_refusals(rotgen, source, work):
+    """Bad figure requests: exit 2, one line naming the file or option and the problem, nothing
+    written."""
+    rotgen, scenes = str(pathlib.Path(rotgen).resolve()), source.resolve() / "models" / "scenes"
+    reduced = yaml.safe_load((scenes / "heavy_top_loops.yaml").read_text())
+    reduced["model"] = str((source / "models" / "heavy_top.yaml").resolve())
+    reduced["form"] = "reduced"
+    (work / "reduced.yaml").write_text(yaml.safe_dump(reduced))
+    cases = [  # scene, options, what the line must say
+        (scenes / "heavy_top_loops.yaml", ["-o", "a.csv", "--plot-axis", "a.txt"],
+         "rotgen: error: a.txt: cannot tell the plot format from the extension '.txt'"),
+        (scenes / "dumbbell_pendulum.yaml", ["-o", "b.csv", "--plot-polhode", "b.png"],
+         "rotgen: error: --plot-polhode: a linear rotor has no polhode"),
+        (scenes / "heavy_top_loops.yaml", ["-o", "c.axis.csv", "--plot-axis", "c.png"],
+         "rotgen: error: c.axis.csv: -o and --plot-axis's data name the same file"),
+        (work / "reduced.yaml", ["-o", "d.csv", "--plot-axis", "d.png"],
+         "rotgen: error: --plot-axis: the figure needs the attitude"),
+    ]
+    for scene, options, message in cases:
+        before = sorted(p.name for p in work.iterdir())
+        r = subprocess.run([rotgen, "simulate", str(scene)] + options, cwd=work,
+                           capture_output=True, text=True)
+        lines = r.stderr.splitlines()
+        assert r.returncode == 2, (options, r.returncode, r.stderr)
+        assert len(lines) == 1 and lines[0].startswith(message), (options, r.stderr)
+        assert sorted(p.name for p in work.iterdir()) == before, f"{options} wrote a file"
+    print(f"{len(cases)} bad figure requests refused with exit 2, one line, nothing written")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--rotgen", required=True)
     ap.add_argument("--source", required=True, type=pathlib.Path)
-    ap.add_argument("figure", choices=["axis", "polhode"])
+    ap.add_argument("figure", choices=["axis", "polhode", "refusals"])
     a = ap.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         work = pathlib.Path(tmp)
         if a.figure == "axis":
             for regime in ("cusps", "loops", "waves"):
                 check_axis(a.rotgen, a.source, work, regime)
+        elif a.figure == "refusals":
+            check_refusals(a.rotgen, a.source, work)
         else:
             for axis in (1, 2, 3):
                 check_polhode(a.rotgen, a.source, work, axis)
