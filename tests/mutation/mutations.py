@@ -128,7 +128,7 @@ MUTATIONS = [
      "const bool resolved = true;",
      [RUNTIME + " '[events]'"]),
     ("events: clear() forgets the last event times (the chattering guard)",
-     "k.last_fire = last, k.fired = fired;",
-     "k.last_fire = last, k.fired = false;",
+     "const bool fired = k.fired;",
+     "const bool fired = k.fired && false;",
      [RUNTIME + " '[events]'"]),
 ]
