@@ -28,6 +28,8 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <type_traits>
+#include <utility>
 
 namespace rotgen {
 namespace models {
@@ -181,6 +183,64 @@ T taylor_atan2(const T* u, const T* y, const T* x, const T* r, int k) {
     return s / (S(k) * r[0]);
 }
 
+// ---- the same recurrences with k a constant K (taylor_fixed) ----
+
+// sum_{j=Lo..Hi-1} f(j), f given j as a constant, added as a balanced tree; inlined (each call is a
+// few instructions: GCC's heuristics otherwise leave the larger orders' calls)
+#ifndef ROTGEN_TAYLOR_INLINE
+#if defined(__GNUC__)
+#define ROTGEN_TAYLOR_INLINE __attribute__((always_inline)) inline
+#else
+#define ROTGEN_TAYLOR_INLINE inline
+#endif
+#endif
+template <int Lo, int Hi, class F>
+ROTGEN_TAYLOR_INLINE auto taylor_pairwise(const F& f) {
+    if constexpr (Hi - Lo == 1) {
+        return f(std::integral_constant<int, Lo>{});
+    } else {
+        constexpr int mid = Lo + (Hi - Lo) / 2;
+        return taylor_pairwise<Lo, mid>(f) + taylor_pairwise<mid, Hi>(f);
+    }
+}
+
+template <int K, class T>
+ROTGEN_TAYLOR_INLINE T taylor_mul(const T* a, const T* b) {
+    return taylor_pairwise<0, K + 1>([&](auto j) { return a[j] * b[K - j]; });
+}
+
+template <int K, class T>
+ROTGEN_TAYLOR_INLINE T taylor_square(const T* a) {
+    using S = typename scalar_of<T>::type;
+    T s = S(2) * taylor_pairwise<0, (K + 1) / 2>([&](auto j) { return a[j] * a[K - j]; });
+    if constexpr (K % 2 == 0) s += a[K / 2] * a[K / 2];
+    return s;
+}
+
+template <int K, class T>
+ROTGEN_TAYLOR_INLINE T taylor_div(T n_k, const T* b, const T* u) {
+    return (n_k - taylor_pairwise<1, K + 1>([&](auto j) { return b[j] * u[K - j]; })) / b[0];
+}
+
+template <int K, class T>
+ROTGEN_TAYLOR_INLINE void taylor_sin_cos(T* s, T* c, const T* a) {
+    using S = typename scalar_of<T>::type;
+    const T ss = taylor_pairwise<1, K + 1>([&](auto j) { return S(j) * a[j] * c[K - j]; });
+    const T cs = taylor_pairwise<1, K + 1>([&](auto j) { return S(j) * a[j] * s[K - j]; });
+    s[K] = ss / S(K);
+    c[K] = -cs / S(K);
+}
+
+// f(k) for k = 1 .. Order, k a constant (std::integral_constant)
+template <int... K, class F>
+ROTGEN_TAYLOR_INLINE void taylor_orders_(const F& f, std::integer_sequence<int, K...>) {
+    (f(std::integral_constant<int, K + 1>{}), ...);
+}
+template <int Order, class F>
+ROTGEN_TAYLOR_INLINE void taylor_orders(const F& f) {
+    taylor_orders_(f, std::make_integer_sequence<int, Order>{});
+}
+
 } // namespace detail
 
 // The number of coefficient series taylor() fills: the state's, then its intermediates'.
@@ -201,7 +261,7 @@ template <class T>
 void taylor(T t, T* c, int order, const params<T>& p) {
     using S = typename detail::scalar_of<T>::type;
     (void)t;
-    const int m = order + 1; // coefficients per series
+    const int m = order + 1;; // coefficients per series
     T* const omega1 = c + 0 * m;
     T* const omega2 = c + 1 * m;
     T* const omega3 = c + 2 * m;
@@ -229,6 +289,55 @@ void taylor(T t, T* c, int order, const params<T>& p) {
         u001[k] = k003*detail::taylor_mul(omega1, omega3, k);
         u002[k] = k005*detail::taylor_mul(omega1, omega2, k);
     }
+}
+
+// taylor() for one order known when compiled: the same recurrences with each sum of products
+// unrolled and added as a balanced tree (pairwise: a dependency chain of log2(k) additions where
+// the loop's is k, and a smaller rounding error), so its last bits may differ from taylor()'s.
+template <int Order, class T>
+void taylor_fixed(T t, T* c, const params<T>& p) {
+    static_assert(Order >= 1, "taylor_fixed: Order >= 1");
+    using S = typename detail::scalar_of<T>::type;
+    (void)t;
+    constexpr int m = Order + 1;; // coefficients per series
+    T* const omega1 = c + 0 * m;
+    T* const omega2 = c + 1 * m;
+    T* const omega3 = c + 2 * m;
+    T* const u000 = c + 3 * m;
+    T* const u001 = c + 4 * m;
+    T* const u002 = c + 5 * m;
+    const T k000 = p.I3 - p.I2;
+    const T k001 = k000/p.I1;
+    const T k002 = p.I3 - p.I1;
+    const T k003 = k002/p.I2;
+    const T k004 = p.I2 - p.I1;
+    const T k005 = k004/p.I3;
+    // order 0: the values
+    u000[0] = k001*omega3[0]*omega2[0];
+    u001[0] = k003*omega1[0]*omega3[0];
+    u002[0] = k005*omega1[0]*omega2[0];
+    // orders 1 .. Order: the state's from the rates' (y^[k] = f^[k-1] / k), then each operation's
+    detail::taylor_orders<Order>([&](auto order_k) {
+        constexpr int k = decltype(order_k)::value;
+        const S inv_k = S(1)/S(k);
+        omega1[k] = -u000[k - 1]*inv_k;
+        omega2[k] = u001[k - 1]*inv_k;
+        omega3[k] = -u002[k - 1]*inv_k;
+        if constexpr (k < Order) {
+            u000[k] = k001*detail::taylor_mul<k>(omega3, omega2);
+            u001[k] = k003*detail::taylor_mul<k>(omega1, omega3);
+            u002[k] = k005*detail::taylor_mul<k>(omega1, omega2);
+        }
+    });
+}
+
+// taylor() with the orders Orders... as taylor_fixed (straight-line code; each one compiled adds
+// to the compile time), any other order by the loop. For example, the order of a tolerance tol
+// is ceil(-ln(tol)/2 + 1) (rotgen::taylor<T>::order_for): 15 for 1e-12.
+template <int... Orders, class T>
+void taylor_specialised(T t, T* c, int order, const params<T>& p) {
+    const bool done = ((order == Orders && (taylor_fixed<Orders>(t, c, p), true)) || ...);
+    if (!done) taylor(t, c, order, p);
 }
 
 } // namespace free_asymmetric_top_body_taylor

@@ -40,6 +40,8 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <type_traits>
+#include <utility>
 
 namespace rotgen {
 namespace models {

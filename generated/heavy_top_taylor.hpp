@@ -36,6 +36,8 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <type_traits>
+#include <utility>
 
 namespace rotgen {
 namespace models {
@@ -247,6 +249,64 @@ T taylor_atan2(const T* u, const T* y, const T* x, const T* r, int k) {
     return s / (S(k) * r[0]);
 }
 
+// ---- the same recurrences with k a constant K (taylor_fixed) ----
+
+// sum_{j=Lo..Hi-1} f(j), f given j as a constant, added as a balanced tree; inlined (each call is a
+// few instructions: GCC's heuristics otherwise leave the larger orders' calls)
+#ifndef ROTGEN_TAYLOR_INLINE
+#if defined(__GNUC__)
+#define ROTGEN_TAYLOR_INLINE __attribute__((always_inline)) inline
+#else
+#define ROTGEN_TAYLOR_INLINE inline
+#endif
+#endif
+template <int Lo, int Hi, class F>
+ROTGEN_TAYLOR_INLINE auto taylor_pairwise(const F& f) {
+    if constexpr (Hi - Lo == 1) {
+        return f(std::integral_constant<int, Lo>{});
+    } else {
+        constexpr int mid = Lo + (Hi - Lo) / 2;
+        return taylor_pairwise<Lo, mid>(f) + taylor_pairwise<mid, Hi>(f);
+    }
+}
+
+template <int K, class T>
+ROTGEN_TAYLOR_INLINE T taylor_mul(const T* a, const T* b) {
+    return taylor_pairwise<0, K + 1>([&](auto j) { return a[j] * b[K - j]; });
+}
+
+template <int K, class T>
+ROTGEN_TAYLOR_INLINE T taylor_square(const T* a) {
+    using S = typename scalar_of<T>::type;
+    T s = S(2) * taylor_pairwise<0, (K + 1) / 2>([&](auto j) { return a[j] * a[K - j]; });
+    if constexpr (K % 2 == 0) s += a[K / 2] * a[K / 2];
+    return s;
+}
+
+template <int K, class T>
+ROTGEN_TAYLOR_INLINE T taylor_div(T n_k, const T* b, const T* u) {
+    return (n_k - taylor_pairwise<1, K + 1>([&](auto j) { return b[j] * u[K - j]; })) / b[0];
+}
+
+template <int K, class T>
+ROTGEN_TAYLOR_INLINE void taylor_sin_cos(T* s, T* c, const T* a) {
+    using S = typename scalar_of<T>::type;
+    const T ss = taylor_pairwise<1, K + 1>([&](auto j) { return S(j) * a[j] * c[K - j]; });
+    const T cs = taylor_pairwise<1, K + 1>([&](auto j) { return S(j) * a[j] * s[K - j]; });
+    s[K] = ss / S(K);
+    c[K] = -cs / S(K);
+}
+
+// f(k) for k = 1 .. Order, k a constant (std::integral_constant)
+template <int... K, class F>
+ROTGEN_TAYLOR_INLINE void taylor_orders_(const F& f, std::integer_sequence<int, K...>) {
+    (f(std::integral_constant<int, K + 1>{}), ...);
+}
+template <int Order, class F>
+ROTGEN_TAYLOR_INLINE void taylor_orders(const F& f) {
+    taylor_orders_(f, std::make_integer_sequence<int, Order>{});
+}
+
 } // namespace detail
 
 // The number of coefficient series taylor() fills: the state's, then its intermediates'.
@@ -269,7 +329,7 @@ void taylor(T t, T* c, int order, const params<T>& p) {
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
     (void)t;
-    const int m = order + 1; // coefficients per series
+    const int m = order + 1;; // coefficients per series
     T* const phi = c + 0 * m;
     T* const theta = c + 1 * m;
     T* const psi = c + 2 * m;
@@ -361,6 +421,121 @@ void taylor(T t, T* c, int order, const params<T>& p) {
         u021[k] = u017[k] - u020[k];
         u022[k] = detail::taylor_mul(u021, theta_dot, k);
     }
+}
+
+// taylor() for one order known when compiled: the same recurrences with each sum of products
+// unrolled and added as a balanced tree (pairwise: a dependency chain of log2(k) additions where
+// the loop's is k, and a smaller rounding error), so its last bits may differ from taylor()'s.
+template <int Order, class T>
+void taylor_fixed(T t, T* c, const params<T>& p) {
+    static_assert(Order >= 1, "taylor_fixed: Order >= 1");
+    using std::cos;
+    using std::sin;
+    using S = typename detail::scalar_of<T>::type;
+    (void)t;
+    constexpr int m = Order + 1;; // coefficients per series
+    T* const phi = c + 0 * m;
+    T* const theta = c + 1 * m;
+    T* const psi = c + 2 * m;
+    T* const phi_dot = c + 3 * m;
+    T* const theta_dot = c + 4 * m;
+    T* const psi_dot = c + 5 * m;
+    T* const sin_theta = c + 6 * m;
+    T* const cos_theta = c + 7 * m;
+    T* const u002 = c + 8 * m;
+    T* const u003 = c + 9 * m;
+    T* const u004 = c + 10 * m;
+    T* const u005 = c + 11 * m;
+    T* const u006 = c + 12 * m;
+    T* const u007 = c + 13 * m;
+    T* const u008 = c + 14 * m;
+    T* const u009 = c + 15 * m;
+    T* const u010 = c + 16 * m;
+    T* const u011 = c + 17 * m;
+    T* const u012 = c + 18 * m;
+    T* const u013 = c + 19 * m;
+    T* const u014 = c + 20 * m;
+    T* const u015 = c + 21 * m;
+    T* const u016 = c + 22 * m;
+    T* const u017 = c + 23 * m;
+    T* const u018 = c + 24 * m;
+    T* const u019 = c + 25 * m;
+    T* const u020 = c + 26 * m;
+    T* const u021 = c + 27 * m;
+    T* const u022 = c + 28 * m;
+    const T k000 = S(1)/(p.I1);
+    const T k001 = p.I3 - S(2)*p.I1;
+    const T k002 = S(1)/p.I1;
+    const T k003 = p.I3 - p.I1;
+    const T k004 = p.M*p.g*p.h;
+    const T k005 = -k004;
+    // order 0: the values
+    sin_theta[0] = sin(theta[0]); cos_theta[0] = cos(theta[0]);
+    u002[0] = k000/sin_theta[0];
+    u003[0] = cos_theta[0]*phi_dot[0];
+    u004[0] = k001*u003[0];
+    u005[0] = p.I3*psi_dot[0];
+    u006[0] = u004[0] + u005[0];
+    u007[0] = u002[0]*u006[0];
+    u008[0] = u007[0]*theta_dot[0];
+    u009[0] = k003*u003[0];
+    u010[0] = u005[0] + u009[0];
+    u011[0] = u010[0]*phi_dot[0];
+    u012[0] = k005 + u011[0];
+    u013[0] = k002*sin_theta[0]*u012[0];
+    u014[0] = cos_theta[0]*cos_theta[0];
+    u015[0] = p.I3*u002[0]*u014[0];
+    u016[0] = sin_theta[0] + u015[0];
+    u017[0] = u016[0]*phi_dot[0];
+    u018[0] = u005[0] + S(2)*u009[0];
+    u019[0] = cos_theta[0]*u002[0];
+    u020[0] = u019[0]*u018[0];
+    u021[0] = u017[0] - u020[0];
+    u022[0] = u021[0]*theta_dot[0];
+    // orders 1 .. Order: the state's from the rates' (y^[k] = f^[k-1] / k), then each operation's
+    detail::taylor_orders<Order>([&](auto order_k) {
+        constexpr int k = decltype(order_k)::value;
+        const S inv_k = S(1)/S(k);
+        phi[k] = phi_dot[k - 1]*inv_k;
+        theta[k] = theta_dot[k - 1]*inv_k;
+        psi[k] = psi_dot[k - 1]*inv_k;
+        phi_dot[k] = u008[k - 1]*inv_k;
+        theta_dot[k] = -u013[k - 1]*inv_k;
+        psi_dot[k] = u022[k - 1]*inv_k;
+        if constexpr (k < Order) {
+            detail::taylor_sin_cos<k>(sin_theta, cos_theta, theta);
+            u002[k] = detail::taylor_div<k>(T(S(0)), sin_theta, u002);
+            u003[k] = detail::taylor_mul<k>(cos_theta, phi_dot);
+            u004[k] = k001*u003[k];
+            u005[k] = p.I3*psi_dot[k];
+            u006[k] = u004[k] + u005[k];
+            u007[k] = detail::taylor_mul<k>(u002, u006);
+            u008[k] = detail::taylor_mul<k>(u007, theta_dot);
+            u009[k] = k003*u003[k];
+            u010[k] = u005[k] + u009[k];
+            u011[k] = detail::taylor_mul<k>(u010, phi_dot);
+            u012[k] = u011[k];
+            u013[k] = k002*detail::taylor_mul<k>(sin_theta, u012);
+            u014[k] = detail::taylor_square<k>(cos_theta);
+            u015[k] = p.I3*detail::taylor_mul<k>(u002, u014);
+            u016[k] = sin_theta[k] + u015[k];
+            u017[k] = detail::taylor_mul<k>(u016, phi_dot);
+            u018[k] = u005[k] + S(2)*u009[k];
+            u019[k] = detail::taylor_mul<k>(cos_theta, u002);
+            u020[k] = detail::taylor_mul<k>(u019, u018);
+            u021[k] = u017[k] - u020[k];
+            u022[k] = detail::taylor_mul<k>(u021, theta_dot);
+        }
+    });
+}
+
+// taylor() with the orders Orders... as taylor_fixed (straight-line code; each one compiled adds
+// to the compile time), any other order by the loop. For example, the order of a tolerance tol
+// is ceil(-ln(tol)/2 + 1) (rotgen::taylor<T>::order_for): 15 for 1e-12.
+template <int... Orders, class T>
+void taylor_specialised(T t, T* c, int order, const params<T>& p) {
+    const bool done = ((order == Orders && (taylor_fixed<Orders>(t, c, p), true)) || ...);
+    if (!done) taylor(t, c, order, p);
 }
 
 } // namespace heavy_top_taylor

@@ -47,3 +47,14 @@ auto make_generated_taylor_system(Params p, std::size_t series, Rhs rhs, Taylor 
         ns::params<T>{}, ns::taylor_series,                                                        \
         [](T t_, const T* y_, T* d_, const ns::params<T>& p_) { ns::rhs<T>(t_, y_, d_, p_); },     \
         [](T t_, T* c_, int o_, const ns::params<T>& p_) { ns::taylor<T>(t_, c_, o_, p_); })
+
+// The same with the orders given compiled as straight-line code (ns::taylor_specialised): the
+// orders the tolerances give, rotgen::taylor<T>::order_for(tol) (15 for 1e-12); others by the loop.
+//   auto sys = ROTGEN_GENERATED_TAYLOR_SYSTEM_ORDERS(heavy_top, double, 15);
+#define ROTGEN_GENERATED_TAYLOR_SYSTEM_ORDERS(ns, T, ...)                                          \
+    ::rotgen::make_generated_taylor_system<T, ns::state_size>(                                     \
+        ns::params<T>{}, ns::taylor_series,                                                        \
+        [](T t_, const T* y_, T* d_, const ns::params<T>& p_) { ns::rhs<T>(t_, y_, d_, p_); },     \
+        [](T t_, T* c_, int o_, const ns::params<T>& p_) {                                         \
+            ns::taylor_specialised<__VA_ARGS__>(t_, c_, o_, p_);                                   \
+        })

@@ -12,6 +12,10 @@
 
 namespace rotgen::bench {
 
+std::vector<double> taylor_tolerances() {
+    return {1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13, 1e-14, 1e-15};
+}
+
 namespace {
 
 // The method bits of bench/workprecision/runners.hpp (method_bit, cvode_bit) and peers.hpp
@@ -95,8 +99,7 @@ sweep_grid make_grid(double span, double nu, bool quick) {
                    1e-10, 1e-11, 1e-12, 1e-13, 1e-14, 1e-15};
     // split2's step goes as rtol^(1/2): 1e-9 already takes 4e5 steps of the heavy top (t = 0..10)
     g.tols_split2 = {1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9};
-    g.tols_taylor = {1e-3,  1e-4,  1e-5,  1e-6,  1e-7,  1e-8, 1e-9,
-                     1e-10, 1e-11, 1e-12, 1e-13, 1e-14, 1e-15};
+    g.tols_taylor = taylor_tolerances();
     g.rk4_steps = steps_for({0.3, 0.1, 0.03, 0.01, 0.003, 0.001, 0.0003});
     g.rk4_alt = steps_for({0.1, 0.01, 0.001});
     g.mid_steps = steps_for({0.3, 0.1, 0.03, 0.01, 0.003});

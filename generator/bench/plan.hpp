@@ -28,6 +28,9 @@ struct bench_plan {
 
 // The plan for the scene's variants; sets each variant's method bits (what the driver compiles
 // for it). `conservative`: no damping and no torque; `extra`: whether split2/4/6 and taylor run.
+// The tolerances of the Taylor method's rows (the full plan's; --quick runs two of them).
+std::vector<double> taylor_tolerances();
+
 bench_plan make_plan(const scene_spec& scene, const model_spec& spec,
                      const GiNaC::exmap& parameter_values, const kinematics& k0,
                      const bench_options& opt, bool conservative, variant_set& set,

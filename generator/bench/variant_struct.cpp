@@ -1,7 +1,10 @@
 // rotgen bench: the struct variant_<i> the driver template receives for each variant.
 #include "bench/numbers.hpp"
+#include "bench/plan.hpp"
 #include "bench/variants.hpp"
 #include "expr/symbols.hpp"
+
+#include <rotgen.hpp> // runtime: taylor<double>::order_for
 
 #include <algorithm>
 #include <map>
@@ -37,6 +40,18 @@ void write_data(std::ostream& s, const variant& v, std::size_t index, const std:
     s << "}};\n    }\n";
 }
 
+// The Taylor variant's expansion: the orders of the plan's tolerances as straight-line code
+// (taylor_fixed), as a run of the scene at one of them compiles its own.
+std::string bench_taylor_call() {
+    std::set<int> orders;
+    for (double tol : taylor_tolerances())
+        orders.insert(taylor<double>::order_for(tol));
+    std::string call = "taylor_specialised<";
+    for (int o : orders)
+        call += (call.back() == '<' ? "" : ", ") + std::to_string(o);
+    return call + ">";
+}
+
 // rhs and jacobian (the unlowered rhs from namespace <unit>_naive), energy, conserved momenta.
 void write_functions(std::ostream& s, const variant& v, const std::string& ns,
                      const scene_spec& scene, const derivation& d) {
@@ -50,7 +65,7 @@ void write_functions(std::ostream& s, const variant& v, const std::string& ns,
         s << "    static constexpr std::size_t taylor_series = " << ns << "::taylor_series;\n"
           << "    template <class T> static void taylor(T t, T* c, int order, const params<T>& p) "
              "{\n"
-          << "        " << ns << "::taylor(t, c, order, p);\n    }\n";
+          << "        " << ns << "::" << bench_taylor_call() << "(t, c, order, p);\n    }\n";
     s << "    static bool energy(const long double* y, long double* e) {\n";
     if (v.has_energy)
         s << "        *e = " << ns

@@ -479,7 +479,8 @@ std::string taylor_text(const lowered_form& lf, const lowered_function& fn,
                                            {"layout", layout_of(lf)},
                                            {"series", std::to_string(b.series)},
                                            {"operations", std::to_string(b.operations)},
-                                           {"body", b.text}});
+                                           {"body", b.text},
+                                           {"fixed_body", b.fixed_text}});
 }
 
 } // namespace

@@ -66,7 +66,11 @@ class taylor_builder {
     int chain(const std::vector<int>& factors);
     int call_series(const lowered_node& n);
     std::string order_zero(const series_op& op) const;
-    std::string order_k(const series_op& op) const;
+    // fixed: k is a compile-time constant (taylor_fixed); the sums of products are folded
+    std::string order_k(const series_op& op, bool fixed) const;
+    std::vector<std::string> rates();
+    std::vector<std::string> head(const std::string& m) const;
+    std::vector<std::string> orders(const std::vector<std::string>& rates, bool fixed) const;
     std::string sum_text(const series_op& op, const std::string& index, bool with_constant) const;
     std::string ref(int s, const std::string& index) const {
         return m_names.at(s) + "[" + index + "]";
@@ -370,8 +374,12 @@ std::string taylor_builder::order_zero(const series_op& op) const {
     throw std::logic_error("taylor: unknown operation");
 }
 
-std::string taylor_builder::order_k(const series_op& op) const {
+std::string taylor_builder::order_k(const series_op& op, bool fixed) const {
     const std::string out = ref(op.out, "k") + " = ";
+    // generic: taylor_mul(a, b, k); fixed: taylor_mul<k>(a, b)
+    const auto call = [&](const char* f, const std::string& args) {
+        return std::string("detail::") + f + (fixed ? "<k>(" + args + ")" : "(" + args + ", k)");
+    };
     const std::string k = op.scale.empty() ? "" : op.scale + "*";
     const std::string a = op.a < 0 ? "" : m_names[static_cast<std::size_t>(op.a)];
     const std::string b = op.b < 0 ? "" : m_names[static_cast<std::size_t>(op.b)];
@@ -382,15 +390,18 @@ std::string taylor_builder::order_k(const series_op& op) const {
     case series_op::scaled:
         return out + k + ref(op.a, "k") + ";";
     case series_op::mul:
-        return out + k + "detail::taylor_mul(" + a + ", " + b + ", k);";
+        return out + k + call("taylor_mul", a + ", " + b) + ";";
     case series_op::square:
-        return out + k + "detail::taylor_square(" + a + ", k);";
+        return out + k + call("taylor_square", a) + ";";
     case series_op::div:
-        return out + "detail::taylor_div(" + (op.a < 0 ? "T(S(0))" : k + ref(op.a, "k")) + ", " +
-               b + ", " + u + ", k);";
+        return out +
+               call("taylor_div",
+                    (op.a < 0 ? "T(S(0))" : k + ref(op.a, "k")) + ", " + b + ", " + u) +
+               ";";
     case series_op::sin_cos:
-        return "detail::taylor_sin_cos(" + u + ", " + m_names[static_cast<std::size_t>(op.out2)] +
-               ", " + a + ", k);";
+        return call("taylor_sin_cos",
+                    u + ", " + m_names[static_cast<std::size_t>(op.out2)] + ", " + a) +
+               ";";
     case series_op::exp:
         return out + "detail::taylor_exp(" + u + ", " + a + ", k);";
     case series_op::log:
@@ -406,21 +417,27 @@ std::string taylor_builder::order_k(const series_op& op) const {
     throw std::logic_error("taylor: unknown operation");
 }
 
-taylor_body taylor_builder::build() {
-    std::vector<std::string> rates; // the state's coefficient k, one line per state
+// The state's coefficient k, one line per state: y^[k] = f^[k-1] / k.
+std::vector<std::string> taylor_builder::rates() {
+    std::vector<std::string> lines;
     for (std::size_t i = 0; i < m_p.outputs.size(); ++i) {
         const int o = m_p.outputs[i];
         const std::string x = m_names.at(i) + "[k] = ";
-        if (constant(o))
-            rates.push_back(x + "k == 1 ? T(" + constant_text(o) + ") : T(S(0));");
-        else {
-            const auto [c, series] = linear_of(o);
-            const std::string f = m_names[static_cast<std::size_t>(series)] + "[k - 1]*inv_k;";
-            rates.push_back(x + (c.is_equal(1)    ? f
-                                 : c.is_equal(-1) ? "-" + f
-                                                  : print_number(c) + "*" + f));
+        if (constant(o)) {
+            lines.push_back(x + "k == 1 ? T(" + constant_text(o) + ") : T(S(0));");
+            continue;
         }
+        const auto [c, series] = linear_of(o);
+        const std::string f = m_names[static_cast<std::size_t>(series)] + "[k - 1]*inv_k;";
+        lines.push_back(x + (c.is_equal(1)    ? f
+                             : c.is_equal(-1) ? "-" + f
+                                              : print_number(c) + "*" + f));
     }
+    return lines;
+}
+
+// Up to the orders' loop: the series' pointers (m coefficients each), the constants, order 0.
+std::vector<std::string> taylor_builder::head(const std::string& m) const {
     std::vector<std::string> lines;
     for (const char* f : {"atan2", "cos", "exp", "log", "pow", "sin", "sqrt"})
         if (m_calls.count(f)) lines.push_back(std::string("    using std::") + f + ";");
@@ -432,7 +449,7 @@ taylor_body taylor_builder::build() {
         all += order_zero(op);
     if (m_time < 0) lines.push_back("    (void)t;");
     if (all.find("p.") == std::string::npos) lines.push_back("    (void)p;");
-    lines.push_back("    const int m = order + 1; // coefficients per series");
+    lines.push_back("    " + m + "; // coefficients per series");
     for (std::size_t s = 0; s < m_names.size(); ++s)
         lines.push_back("    T* const " + m_names[s] + " = c + " + std::to_string(s) + " * m;");
     lines.insert(lines.end(), m_constants.begin(), m_constants.end());
@@ -440,20 +457,49 @@ taylor_body taylor_builder::build() {
     if (m_time >= 0) lines.push_back("    time[0] = t;");
     for (const auto& op : m_ops)
         lines.push_back("    " + order_zero(op));
-    lines.push_back("    // orders 1 .. order: the state's from the rates' (y^[k] = f^[k-1] / k), "
-                    "then each operation's");
-    lines.push_back("    for (int k = 1; k <= order; ++k) {");
+    return lines;
+}
+
+// Orders 1 .. order: a loop (generic), or one copy per order with k a constant (fixed).
+std::vector<std::string> taylor_builder::orders(const std::vector<std::string>& rates,
+                                                bool fixed) const {
+    std::vector<std::string> lines;
+    lines.push_back("    // orders 1 .. " + std::string(fixed ? "Order" : "order") +
+                    ": the state's from the rates' (y^[k] = f^[k-1] / k), then each operation's");
+    if (fixed) {
+        lines.push_back("    detail::taylor_orders<Order>([&](auto order_k) {");
+        lines.push_back("        constexpr int k = decltype(order_k)::value;");
+    } else {
+        lines.push_back("    for (int k = 1; k <= order; ++k) {");
+    }
     lines.push_back("        const S inv_k = S(1)/S(k);");
     for (const auto& r : rates)
         lines.push_back("        " + r);
-    if (!m_ops.empty() || m_time >= 0) lines.push_back("        if (k == order) break;");
-    if (m_time >= 0) lines.push_back("        time[k] = k == 1 ? T(S(1)) : T(S(0));");
+    const bool more = !m_ops.empty() || m_time >= 0;
+    const std::string in = fixed && more ? "    " : "";
+    if (more)
+        lines.push_back(fixed ? "        if constexpr (k < Order) {"
+                              : "        if (k == order) break;");
+    if (m_time >= 0) lines.push_back(in + "        time[k] = k == 1 ? T(S(1)) : T(S(0));");
     for (const auto& op : m_ops)
-        lines.push_back("        " + order_k(op));
-    lines.push_back("    }");
+        lines.push_back(in + "        " + order_k(op, fixed));
+    if (fixed && more) lines.push_back("        }");
+    lines.push_back(fixed ? "    });" : "    }");
+    return lines;
+}
+
+taylor_body taylor_builder::build() {
+    const std::vector<std::string> r = rates(); // first: it may name constants
+    const auto join = [](std::vector<std::string> a, const std::vector<std::string>& b) {
+        a.insert(a.end(), b.begin(), b.end());
+        std::string text;
+        for (std::size_t i = 0; i < a.size(); ++i)
+            text += (i ? "\n" : "") + a[i];
+        return text;
+    };
     taylor_body b;
-    for (std::size_t i = 0; i < lines.size(); ++i)
-        b.text += (i ? "\n" : "") + lines[i];
+    b.text = join(head("const int m = order + 1;"), orders(r, false));
+    b.fixed_text = join(head("constexpr int m = Order + 1;"), orders(r, true));
     b.series = m_names.size();
     b.operations = m_ops.size();
     return b;

@@ -43,6 +43,7 @@ struct taylor_unsupported : std::runtime_error {
 
 struct taylor_body {
     std::string text;           // the statements of taylor(t, c, order, p)
+    std::string fixed_text;     // of taylor_fixed<Order>(t, c, p): the order a constant
     std::size_t series = 0;     // coefficient blocks in c: the state's, then the intermediates'
     std::size_t operations = 0; // recurrences per order (sums, products, calls)
 };

@@ -10,6 +10,7 @@
 #include "run/records.hpp"
 #include "support/error.hpp"
 
+#include <algorithm>
 #include <sstream>
 
 namespace rotgen {
@@ -131,7 +132,7 @@ void print_body(std::ostream& shim, const form_expressions& f, const std::vector
 // of an ensemble run its kernels concurrently with their own values.
 std::string entry_points(const form_expressions& f, const std::string& unit,
                          const std::vector<ex>& program, const std::vector<ex>& events,
-                         bool taylor) {
+                         const std::string& taylor) {
     std::ostringstream shim;
     shim << "\n// ---- rotgen run: entry points for the runtime ----\n"
          << "namespace {\nnamespace rg_model = rotgen::models::" << unit << ";\n"
@@ -145,10 +146,10 @@ std::string entry_points(const form_expressions& f, const std::string& unit,
          << "    rg_model::rhs(t, y, dydt, rg_params(v));\n}\n"
          << "void rotgen_jacobian(const double* v, double t, const double* y, double* J) {\n"
          << "    rg_model::jacobian(t, y, J, rg_params(v));\n}\n";
-    if (taylor)
+    if (!taylor.empty())
         shim << "unsigned long rotgen_taylor_series() { return rg_model::taylor_series; }\n"
              << "void rotgen_taylor(const double* v, double t, double* c, int order) {\n"
-             << "    rg_model::taylor(t, c, order, rg_params(v));\n}\n";
+             << "    rg_model::" << taylor << "(t, c, order, rg_params(v));\n}\n";
     // the record program and each event: rg_p from v, then the program's body
     const auto function = [&](const std::string& name, const std::vector<ex>& outputs) {
         shim << "void " << name << "(const double* v, double t, const double* y, double* out) {\n"
@@ -184,6 +185,18 @@ std::string taylor_refusal(const model_spec& spec, const taylor_unsupported& e) 
            "; use dop853, dopri5, rk4, implicit_midpoint or rosenbrock";
 }
 
+std::string taylor_call(const integrator_spec& integrator) {
+    std::vector<int> orders;
+    for (const double tol : {integrator.rtol, integrator.atol})
+        if (tol > 0) orders.push_back(taylor<double>::order_for(tol));
+    std::sort(orders.begin(), orders.end());
+    orders.erase(std::unique(orders.begin(), orders.end()), orders.end());
+    std::string call = "taylor_specialised<";
+    for (std::size_t i = 0; i < orders.size(); ++i)
+        call += (i ? ", " : "") + std::to_string(orders[i]);
+    return call + ">";
+}
+
 compiled_form compile_form(const scene_spec& scene, form_expressions f, bool orientation,
                            const std::vector<invariant>& invariants, const std::string& command,
                            stage_timings& timings) {
@@ -211,8 +224,9 @@ compiled_form compile_form(const scene_spec& scene, form_expressions f, bool ori
         throw std::logic_error("run: the emitted " + header.unit + " does not have " + size_decl);
     const std::vector<ex> program = record_program(scene, c, orientation, invariants);
     const std::vector<ex> events = event_programs(scene, c.f);
+    if (taylor) c.taylor_call = taylor_call(scene.integrator);
     const std::string source =
-        header.text + entry_points(c.f, header.unit, program, events, taylor);
+        header.text + entry_points(c.f, header.unit, program, events, c.taylor_call);
     c.lib =
         timings.time("compile", header.unit, [&] { return compile_and_load(source, header.unit); });
     c.header = header.text, c.unit = header.unit;

@@ -71,6 +71,7 @@ struct compiled_form {
     std::vector<value_source> invariants;      // as the invariants are listed
     std::size_t outputs = 0;                   // of the record program
     std::string header, unit; // the emitted header and its unit (lanes compile it for a batch)
+    std::string taylor_call;  // the header's function the Taylor entry points call
 
     // The system with these parameter values (they must outlive it).
     loaded_system system(const std::vector<double>& values) const {
@@ -79,6 +80,10 @@ struct compiled_form {
         return s;
     }
 };
+
+// The generated function that expands the scene's Taylor series: taylor_specialised<P...> with the
+// orders its tolerances give (rotgen::taylor<double>::order_for) compiled as straight-line code.
+std::string taylor_call(const integrator_spec& integrator);
 
 // Why the Taylor method cannot run the model (a run's refusal, and `rotgen bench`'s plan): `e`
 // from emitting its Taylor coefficients (emit/taylor.hpp).

@@ -51,7 +51,8 @@ std::string lane_source(const compiled_form& cf) {
           << "    for (unsigned long l = 0; l < lanes; l += rg_batch::size) {\n"
           << "        for (unsigned long i = 0; i < " << n << "; ++i)\n"
           << "            cb[i * m] = rg_batch::load_unaligned(c + i * m * lanes + l);\n"
-          << "        rg_model::taylor(rg_batch(t), cb.data(), order, rg_params(v, lanes, l));\n"
+          << "        rg_model::" << cf.taylor_call
+          << "(rg_batch(t), cb.data(), order, rg_params(v, lanes, l));\n"
           << "        for (unsigned long i = 0; i < " << n << "; ++i)\n"
           << "            for (unsigned long k = 1; k < m; ++k)\n"
           << "                cb[i * m + k].store_unaligned(c + (i * m + k) * lanes + l);\n"

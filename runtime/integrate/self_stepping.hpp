@@ -26,6 +26,16 @@ namespace rotgen::detail {
 template <class M, class = void> struct chooses_step : std::false_type {};
 template <class M> struct chooses_step<M, std::enable_if_t<M::chooses_step>> : std::true_type {};
 
+// (hi, lo) + h as (hi', lo'), |lo'| <= ulp(hi')/2: Knuth's two-sum of hi + h, its error joined
+// to lo, renormalised (the time of a long run of many steps keeps the steps' exact sum).
+template <class T> void add_compensated(T hi, T lo, T h, T& hi_out, T& lo_out) {
+    const T s = hi + h;
+    const T b = s - hi;
+    const T e = ((hi - (s - b)) + (h - b)) + lo;
+    hi_out = s + e;
+    lo_out = e - (hi_out - s);
+}
+
 template <class S, class Method, class Sampler, class T>
 ROTGEN_NOINLINE integration_result<T> run_self_stepping(const S& sys, const Method& method, T t0,
                                                         T t_end, state_vector<T, S>& y,
@@ -44,7 +54,7 @@ ROTGEN_NOINLINE integration_result<T> run_self_stepping(const S& sys, const Meth
     state_vector<T, S> y_now = y; // local copies while stepping: see fixed.hpp
     state_vector<T, S> ys = y;
     Sampler samples = sampler_in;
-    T t = t0;
+    T t = t0, t_lo = T(0); // t + t_lo: the sum of the steps taken, compensated (double-double)
     for (;;) {
         if (stats.steps >= method.max_steps) {
             res.code = status::max_steps;
@@ -59,8 +69,9 @@ ROTGEN_NOINLINE integration_result<T> run_self_stepping(const S& sys, const Meth
         }
         T h = dir * min(reach, hmax);
         const bool last = dir * (t + T(1.01) * h - t_end) >= T(0);
-        if (last) h = t_end - t;
-        const T t_next = last ? t_end : t + h;
+        if (last) h = (t_end - t) - t_lo; // the steps' exact sum reaches t_end
+        T t_next = t_end, lo_next = T(0);
+        if (!last) add_compensated(t, t_lo, h, t_next, lo_next);
         if (!(abs(h) >= T(16) * eps * abs(t)) || h == T(0)) {
             res.code = status::step_size_underflow;
             res.message = underflow_message(false, abs(h), t);
@@ -77,6 +88,7 @@ ROTGEN_NOINLINE integration_result<T> run_self_stepping(const S& sys, const Meth
         ++stats.accepted;
         if (!end_of_step(sys, st, stats, samples, need_dense, t, t_next, h, last, y_now, ys, res))
             break;
+        t_lo = lo_next;
     }
     y = y_now;
     res.t = t;

@@ -40,8 +40,10 @@ template <class T, class S> class taylor_lane_stepper {
     static constexpr bool chooses_step = true;
 
     taylor_lane_stepper(const taylor<T>& m, std::size_t n)
-        : m_method(m), m_size(n), m_y1(vector::Zero(static_cast<Eigen::Index>(n))), m_f0(m_y1) {
+        : m_method(m), m_size(n), m_y1(vector::Zero(static_cast<Eigen::Index>(n))), m_f0(m_y1),
+          m_comp(m_y1), m_comp_start(m_y1) {
         m_max_order = m.max_order();
+        m_order_abs = m.order_of(false), m_order_rel = m.order_of(true);
     }
 
     bool start(const S& sys, T t0, const vector& y0, step_stats& stats) {
@@ -51,6 +53,7 @@ template <class T, class S> class taylor_lane_stepper {
         m_norm0.assign(m_w, T(0));
         m_relative.assign(m_w, 0);
         m_acc.assign(m_w, T(0));
+        m_continued.assign(m_w, 0);
         expand(sys, t0, y0, stats);
         for (std::size_t i = 0; i < m_n; ++i)
             for (std::size_t l = 0; l < m_w; ++l)
@@ -62,8 +65,6 @@ template <class T, class S> class taylor_lane_stepper {
     // The smallest of the live lanes' steps from (t, y) (+inf when every series ends or no lane
     // is live); expands the lanes there.
     T choose_step(const S& sys, T t, const vector& y, step_stats& stats) {
-        using std::exp;
-        using std::log;
         if (!m_expanded) expand(sys, t, y, stats);
         const int p = m_p;
         const T inf = std::numeric_limits<T>::infinity();
@@ -73,19 +74,32 @@ template <class T, class S> class taylor_lane_stepper {
             const T s = m_relative[l] ? m_norm0[l] : T(1);
             const T np1 = norm(l, p - 1), np = norm(l, p);
             if (!(np1 == np1) || !(np == np)) return std::numeric_limits<T>::quiet_NaN();
-            const T ln_s = log(s);
-            const T ln_rho_p1 = np1 > T(0) ? (ln_s - log(np1)) / T(p - 1) : inf;
-            const T ln_rho_p = np > T(0) ? (ln_s - log(np)) / T(p) : inf;
-            ln_rho = std::min(ln_rho, std::min(ln_rho_p1, ln_rho_p));
+            ln_rho = std::min(ln_rho, taylor<T>::ln_radius(s, np1, np, p));
         }
         if (ln_rho == inf) return inf;
-        return exp(ln_rho - T(2) - T(0.7) / T(p - 1));
+        return taylor<T>::step_of(ln_rho, p);
     }
 
+    // Each lane's y + sum_{k>=1} y^[k] h^k with Kahan's compensation carried from step to step,
+    // as taylor_stepper::attempt (a lane that did not continue from its last end, or is not live,
+    // starts it anew): one lane's run is its scalar run bit for bit.
     outcome attempt(const S& sys, T t, const vector& y, T h, step_stats& stats, bool) {
         if (!m_expanded) expand(sys, t, y, stats);
         m_h = h;
-        evaluate(h, m_y1);
+        for (std::size_t l = 0; l < m_w; ++l)
+            m_continued[l] = m_stepped && sys.is_live(l) && continues(y, l);
+        T* r = m_acc.data();
+        for (std::size_t i = 0; i < m_n; ++i) {
+            tail(i, h, r);
+            for (std::size_t l = 0; l < m_w; ++l) {
+                const auto e = static_cast<Eigen::Index>(i * m_w + l);
+                m_comp_start[e] = m_continued[l] ? m_comp[e] : T(0);
+                const T increment = h * r[l] - m_comp_start[e];
+                m_y1[e] = y[e] + increment;
+                m_comp[e] = (m_y1[e] - y[e]) - increment;
+            }
+        }
+        m_stepped = true;
         return {m_y1.allFinite() ? status::ok : status::non_finite, T(0)};
     }
 
@@ -96,7 +110,17 @@ template <class T, class S> class taylor_lane_stepper {
 
     const vector& y_new() const { return m_y1; }
 
-    void dense(T theta, vector& out) const { evaluate(theta * m_h, out); }
+    void dense(T theta, vector& out) const {
+        const T th = theta * m_h;
+        T* r = m_acc.data();
+        for (std::size_t i = 0; i < m_n; ++i) {
+            tail(i, th, r);
+            for (std::size_t l = 0; l < m_w; ++l) {
+                const auto e = static_cast<Eigen::Index>(i * m_w + l);
+                out[e] = at(i, 0)[l] + (th * r[l] - m_comp_start[e]);
+            }
+        }
+    }
 
     int last_order() const { return m_p; }
 
@@ -120,21 +144,25 @@ template <class T, class S> class taylor_lane_stepper {
         return r;
     }
 
-    // Every lane's polynomial at h (Horner), into out.
-    template <class V> void evaluate(T h, V& out) const {
-        T* r = m_acc.data();
-        for (std::size_t i = 0; i < m_n; ++i) {
-            const T* top = at(i, m_p);
+    // Every lane's sum_{k>=1} y_i^[k] h^(k-1) (Horner's scheme, as taylor_stepper's), into r.
+    void tail(std::size_t i, T h, T* r) const {
+        const T* top = at(i, m_p);
+        for (std::size_t l = 0; l < m_w; ++l)
+            r[l] = top[l];
+        for (int k = m_p - 1; k >= 1; --k) {
+            const T* c = at(i, k);
             for (std::size_t l = 0; l < m_w; ++l)
-                r[l] = top[l];
-            for (int k = m_p - 1; k >= 0; --k) {
-                const T* c = at(i, k);
-                for (std::size_t l = 0; l < m_w; ++l)
-                    r[l] = r[l] * h + c[l];
-            }
-            for (std::size_t l = 0; l < m_w; ++l)
-                out[static_cast<Eigen::Index>(i * m_w + l)] = r[l];
+                r[l] = r[l] * h + c[l];
         }
+    }
+
+    // Whether lane l of y is the last step's end.
+    bool continues(const vector& y, std::size_t l) const {
+        for (std::size_t i = 0; i < m_n; ++i) {
+            const auto e = static_cast<Eigen::Index>(i * m_w + l);
+            if (!(y[e] == m_y1[e])) return false;
+        }
+        return true;
     }
 
     // Each lane's control, the shared order, then the coefficients of every lane.
@@ -149,7 +177,7 @@ template <class T, class S> class taylor_lane_stepper {
         for (std::size_t l = 0; l < m_w; ++l) {
             m_relative[l] = m.rtol > T(0) && m.rtol * m_norm0[l] > m.atol;
             if (m.order == 0 && sys.is_live(l))
-                p = std::max(p, taylor<T>::order_for(m_relative[l] ? m.rtol : m.atol));
+                p = std::max(p, m_relative[l] ? m_order_rel : m_order_abs);
         }
         m_p = p;
         for (std::size_t i = 0; i < m_n; ++i)
@@ -163,12 +191,16 @@ template <class T, class S> class taylor_lane_stepper {
     taylor<T> m_method;
     std::size_t m_size, m_n = 0, m_w = 1;
     int m_max_order = 2, m_p = 2;
+    int m_order_abs = 2, m_order_rel = 2; // the order of each control (taylor<T>::order_of)
     bool m_expanded = false;
     std::vector<T> m_c, m_norm0;
     std::vector<char> m_relative;
     mutable std::vector<T> m_acc; // Horner's running values, one per lane
     T m_h = T(0);
     vector m_y1, m_f0;
+    vector m_comp, m_comp_start;   // Kahan's compensation of m_y1, and of the step's start
+    std::vector<char> m_continued; // per lane: this step continues from the last step's end
+    bool m_stepped = false;
 };
 
 } // namespace rotgen

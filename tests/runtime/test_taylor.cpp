@@ -154,3 +154,42 @@ TEST_CASE("taylor chooses a higher order, not more steps, for a tighter toleranc
     CHECK(loose.steps > 40);
     CHECK(tight.steps <= loose.steps);
 }
+
+// Kahan's compensation of the state from step to step and the steps' compensated sum for the time
+// (steppers/taylor.hpp, integrate/self_stepping.hpp): without either the rounding of the state or
+// of t accumulates over the steps and sets the error floor. The final states (samples would also
+// measure the dense output's truncation), with the orders of the tolerances as straight-line code.
+TEST_CASE("taylor keeps the rounding of the state and of the time from accumulating", "[taylor]") {
+    using vec = Eigen::Matrix<double, 6, 1>;
+    using lvec = Eigen::Matrix<long double, 6, 1>;
+    const vec y0 = (vec() << 0.1, 0.5, 0.2, 0.3, 0.1, 10.0).finished();
+    taylor<long double> fine;
+    fine.rtol = fine.atol = 2e-19L;
+    lvec ref = y0.cast<long double>();
+    REQUIRE(
+        integrate(ROTGEN_GENERATED_TAYLOR_SYSTEM(heavy_top, long double), fine, 0.0L, ref, 10.0L)
+            .ok());
+    taylor<double> m;
+    m.rtol = m.atol = 1e-15; // order 19
+    vec y = y0;
+    REQUIRE(integrate(ROTGEN_GENERATED_TAYLOR_SYSTEM_ORDERS(heavy_top, double, 19), m, 0.0, y, 10.0)
+                .ok());
+    double heavy = 0;
+    for (Eigen::Index i = 0; i < 6; ++i)
+        heavy = std::max(heavy, double(std::abs(static_cast<long double>(y[i]) - ref[i])));
+    // the free top, t = 0..100 (221 steps) at tol 1e-14 (order 18), against its exact solution
+    const std::array<long double, 3> w0 = {1, 0.1L, 0.5L};
+    const auto e = free_top_exact<long double>({1, 2, 3}, w0)(100.0L);
+    m.rtol = m.atol = 1e-14;
+    Eigen::Vector3d w(1, 0.1, 0.5);
+    REQUIRE(integrate(ROTGEN_GENERATED_TAYLOR_SYSTEM_ORDERS(free_top, double, 18), m, 0.0, w, 100.0)
+                .ok());
+    double free = 0;
+    for (Eigen::Index i = 0; i < 3; ++i)
+        free = std::max(free, double(std::abs(w[i] - e[static_cast<std::size_t>(i)])));
+    // observed: heavy top 4.5e-15 (86 steps, psi reaches 100 rad), free top 3.0e-15; without the
+    // state's compensation 9.0e-14 and 1.4e-14, without the time's 1.9e-14 and 2.5e-16, without
+    // both 7.6e-14 and 1.8e-14
+    CHECK(heavy < 1e-14);
+    CHECK(free < 1e-14);
+}
