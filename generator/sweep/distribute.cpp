@@ -1,14 +1,12 @@
+// rotgen sweep: what one process and every rank share (pack/unpack, the members on this process's
+// threads), and the build without MPI. The MPI build's ranks: distribute_mpi.cpp.
 #include "sweep/distribute.hpp"
 
 #include "sweep/parallel.hpp"
 
 #include <algorithm>
-#include <array>
 #include <atomic>
-#include <cstdlib>
 #include <cstring>
-#include <exception>
-#include <mutex>
 #include <stdexcept>
 
 namespace rotgen {
