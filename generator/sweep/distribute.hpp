@@ -4,9 +4,10 @@
 // - each rank starts on a static block of its own (rank r: groups r*b .. r*b+b-1; b a quarter of
 //   the sweep over R, less where rank 0's window is short), asked of no one;
 // - the rest is handed out by an atomic counter in an MPI window on rank 0 (MPI_Fetch_and_op,
-//   MPI_SUM, passive target: rank 0's main thread does nothing to serve it), in chunks that shrink
-//   as the counter nears the end (guided: the groups left over twice the threads of every rank, at
-//   least 1), so that the tail balances cheap and expensive members;
+//   MPI_SUM, passive target: on one node, or with a network's RDMA atomics, rank 0 does nothing
+//   to serve it; elsewhere its main thread's MPI calls, every millisecond, move it on), in chunks
+//   that shrink as the counter nears the end (guided: the groups left over twice the threads of
+//   every rank, at least 1), so that the tail balances cheap and expensive members;
 // - MPI_THREAD_FUNNELED: only each rank's main thread calls MPI. It fetches chunks ahead into a
 //   local queue (kept `jobs` + 1 chunks deep) that the rank's threads take groups from, so that a
 //   thread never waits for work longer than one fetch; it sends the outcomes its threads finished
