@@ -1,16 +1,30 @@
 // rotgen sweep across processes — under `mpirun -n R rotgen sweep ...` (built with ROTGEN_MPI) the
-// members are shared by R ranks through a dynamic work queue held by rank 0: a rank asks for a
-// chunk of member indices, runs it on its threads, sends the outcomes back and asks again (chunks
-// shrink as the queue empties: remaining / (4 ranks), at least 1, so that the last members do not
-// wait behind a long chunk). Rank 0 runs members on its own threads too, and its main thread
-// answers the other ranks (MPI called from that thread only: MPI_THREAD_FUNNELED). Every outcome
-// goes through rank 0's window, which alone writes the files: they are the same byte for
-// byte as a one-process run's. Started without mpirun (or built without MPI) it is one process.
+// R ranks share the groups of members (a group: `--lanes` neighbours, else one member) with no
+// coordinator in the way of the work:
+// - each rank starts on a static block of its own (rank r: groups r*b .. r*b+b-1; b a quarter of
+//   the sweep over R, less where rank 0's window is short), asked of no one;
+// - the rest is handed out by an atomic counter in an MPI window on rank 0 (MPI_Fetch_and_op,
+//   MPI_SUM, passive target: on one node, or with a network's RDMA atomics, rank 0 does nothing
+//   to serve it; elsewhere its main thread's MPI calls, every millisecond, move it on), in chunks
+//   that shrink as the counter nears the end (guided: the groups left over twice the threads of
+//   every rank, at least 1), so that the tail balances cheap and expensive members;
+// - MPI_THREAD_FUNNELED: only each rank's main thread calls MPI. It fetches chunks ahead into a
+//   local queue (kept `jobs` + 1 chunks deep) that the rank's threads take groups from, so that a
+//   thread never waits for work longer than one fetch; it sends the outcomes its threads finished
+//   to rank 0 (MPI_Isend, messages of at most 1 MiB, pack/unpack), and on rank 0 it receives the
+//   others' outcomes into `in_order`, which alone writes the files: the same byte for byte as a
+//   one-process run's. The main thread sleeps between rounds (woken when its queue runs low).
+// - Memory stays bounded: rank 0 publishes in the window how many members it has written (the
+//   front of `in_order`), and a rank lets its threads start a chunk only when the chunk's members
+//   fit the window of outcomes rank 0 may hold (front + window); chunks are sized so that every
+//   rank's queue together holds at most half of it.
+// Started without mpirun (or built without MPI) it is one process.
 #pragma once
 
 #include "sweep/in_order.hpp"
 #include "sweep/outcome.hpp"
 
+#include <algorithm>
 #include <functional>
 #include <string>
 #include <vector>
@@ -37,6 +51,15 @@ class mpi_session {
     bool m_active = false;
 };
 
+// The groups of `group` members (the last may be shorter) of members 0 .. count-1.
+struct member_groups {
+    std::size_t count, group;
+    std::size_t size() const { return (count + group - 1) / group; }
+    std::size_t first(std::size_t g) const { return g * group; }
+    std::size_t members(std::size_t g) const { return std::min(group, count - g * group); }
+    std::size_t end(std::size_t g) const { return std::min(count, g * group); } // before group g
+};
+
 // Work on members first .. first+count-1 (a group of neighbours; count 1 without lanes).
 using batch_work = std::function<std::vector<member_outcome>(std::size_t first, std::size_t count)>;
 
@@ -49,6 +72,11 @@ std::vector<std::size_t> run_distributed(const mpi_session& session, std::size_t
                                          std::size_t group, unsigned jobs, const batch_work& work,
                                          in_order* out,
                                          const std::function<void(std::size_t)>& progress);
+
+// run_distributed on this process alone: every member on its `jobs` threads (returns {count}).
+std::vector<std::size_t> run_in_process(std::size_t count, std::size_t group, unsigned jobs,
+                                        const batch_work& work, in_order& out,
+                                        const std::function<void(std::size_t)>& progress);
 
 // The bytes of outcomes (with their member indices) for a message, and back.
 std::string pack(const std::vector<std::pair<std::size_t, member_outcome>>& outcomes);

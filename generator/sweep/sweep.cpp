@@ -22,6 +22,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <fstream>
@@ -154,8 +155,12 @@ struct ensemble {
     }
 };
 
-// Outcomes that may wait in memory: about 32 MB of them, and enough for every thread.
+// Outcomes that may wait in memory: about 32 MB of them, and enough for every thread. The tests'
+// hook ROTGEN_TEST_SWEEP_WINDOW=N makes it N members (at least a batch of lanes), so that a small
+// sweep runs against the window's bound.
 std::size_t window_of(const sweep_request& q, const ensemble& e, unsigned jobs, int ranks) {
+    if (const char* v = std::getenv("ROTGEN_TEST_SWEEP_WINDOW"))
+        return std::max<std::size_t>(std::strtoul(v, nullptr, 10), q.lanes);
     const std::size_t numbers =
         1 + e.layout.columns.size() + e.layout.events.size() + e.layout.invariants.size() +
         (q.trajectories ? e.layout.samples * (1 + e.layout.columns.size()) : 0);

@@ -1,0 +1,469 @@
+// rotgen sweep across MPI ranks (built with ROTGEN_MPI): a static block per rank, the rest through
+// an atomic counter in an MPI window on rank 0; each rank's main thread alone calls MPI. The design
+// is written down in sweep/distribute.hpp.
+#ifdef ROTGEN_HAVE_MPI
+
+#include "support/error.hpp"
+#include "sweep/distribute.hpp"
+#include "sweep/journal.hpp"
+#include "sweep/parallel.hpp"
+
+#include <mpi.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <cstdlib>
+#include <deque>
+#include <exception>
+#include <iostream>
+#include <list>
+#include <mutex>
+#include <thread>
+#include <utility>
+
+namespace rotgen {
+
+namespace {
+
+constexpr int results_tag = 3;
+constexpr std::size_t message_bytes = std::size_t(1)
+                                      << 20;       // a message's outcomes (or one), at most
+constexpr auto nap = std::chrono::milliseconds(1); // the main thread's sleep when nothing happens
+
+bool started_by_mpirun() {
+    for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK", "MPI_LOCALNRANKS"})
+        if (std::getenv(v)) return true;
+    return false;
+}
+
+using range = std::pair<std::size_t, std::size_t>; // groups first .. second-1
+
+// How the groups are shared by `ranks` ranks of `jobs` threads each, rank 0 holding at most
+// `window` members' outcomes.
+struct sharing {
+    member_groups gs;
+    std::size_t window, ranks, jobs;
+    // Groups in a chunk or a block, at most: every rank's queue (jobs + 1 chunks) fits half the
+    // window together, so that ranks rarely wait for the writer (and a chunk always fits); no
+    // bound when the window holds the whole sweep.
+    std::size_t most() const {
+        if (window >= gs.count) return std::max<std::size_t>(1, gs.size());
+        return std::max<std::size_t>(1, window / gs.group / (2 * ranks * (jobs + 1)));
+    }
+    // Each rank's static block: a quarter of the sweep, shared equally.
+    std::size_t block() const {
+        return std::clamp<std::size_t>(gs.size() / (4 * ranks), 1, most());
+    }
+    range first_block(std::size_t rank) const {
+        const std::size_t b = block();
+        return {std::min(gs.size(), rank * b), std::min(gs.size(), rank * b + b)};
+    }
+    std::size_t dynamic_start() const { return std::min(gs.size(), ranks * block()); }
+    // Guided: the groups not yet handed out (as of `next`, the counter last seen) over twice the
+    // threads of every rank, at least 1.
+    std::size_t chunk(std::size_t next) const {
+        const std::size_t left = gs.size() - std::min(gs.size(), next);
+        return std::clamp<std::size_t>(left / (2 * ranks * jobs), 1, most());
+    }
+};
+
+// The MPI window on rank 0, two numbers: the next group to hand out, and rank 0's front (the
+// members it has written). Every access is atomic (MPI_Fetch_and_op), with passive target.
+class shared_counter {
+  public:
+    shared_counter(bool root, std::uint64_t next) {
+        MPI_Win_allocate(MPI_Aint(root ? 2 * sizeof(std::uint64_t) : 0), sizeof(std::uint64_t),
+                         MPI_INFO_NULL, MPI_COMM_WORLD, &m_base, &m_win);
+        MPI_Win_lock_all(MPI_MODE_NOCHECK, m_win);
+        if (root) {
+            op(0, next, MPI_REPLACE);
+            op(1, 0, MPI_REPLACE);
+        }
+        MPI_Barrier(MPI_COMM_WORLD); // no one reads before they are set
+    }
+    shared_counter(const shared_counter&) = delete;
+    shared_counter& operator=(const shared_counter&) = delete;
+    ~shared_counter() { // collective
+        MPI_Win_unlock_all(m_win);
+        MPI_Win_free(&m_win);
+    }
+    std::uint64_t fetch_add(std::uint64_t n) { return op(0, n, MPI_SUM); }
+    std::uint64_t front() { return op(1, 0, MPI_NO_OP); }
+    void publish_front(std::uint64_t members) { op(1, members, MPI_REPLACE); }
+
+  private:
+    std::uint64_t op(MPI_Aint slot, std::uint64_t value, MPI_Op what) {
+        std::uint64_t old = 0;
+        MPI_Fetch_and_op(&value, &old, MPI_UINT64_T, 0, slot, what, m_win);
+        MPI_Win_flush(0, m_win);
+        return old;
+    }
+    std::uint64_t* m_base = nullptr;
+    MPI_Win m_win = MPI_WIN_NULL;
+};
+
+// The chunks a rank's threads take groups from (in order), filled by its main thread; and the
+// main thread's sleep, cut short when a chunk runs out or the threads finish or fail.
+class local_queue {
+  public:
+    // The next group (waits for one); `none` once closed and empty.
+    std::size_t take() {
+        std::unique_lock<std::mutex> lock(m_mutex);
+        m_more.wait(lock, [&] { return !m_chunks.empty() || m_closed; });
+        if (m_chunks.empty()) return none;
+        const std::size_t g = m_chunks.front().first++;
+        if (m_chunks.front().first == m_chunks.front().second) {
+            m_chunks.pop_front();
+            m_event = true;
+            m_main.notify_one();
+        }
+        return g;
+    }
+    void push(range r) {
+        const std::lock_guard<std::mutex> lock(m_mutex);
+        if (r.first < r.second) m_chunks.push_back(r);
+        m_more.notify_all();
+    }
+    void close() {
+        const std::lock_guard<std::mutex> lock(m_mutex);
+        m_closed = true;
+        m_more.notify_all();
+    }
+    std::size_t depth() {
+        const std::lock_guard<std::mutex> lock(m_mutex);
+        return m_chunks.size();
+    }
+    void wake() {
+        const std::lock_guard<std::mutex> lock(m_mutex);
+        m_event = true;
+        m_main.notify_one();
+    }
+    void sleep() {
+        std::unique_lock<std::mutex> lock(m_mutex);
+        m_main.wait_for(lock, nap, [&] { return m_event; });
+        m_event = false;
+    }
+
+  private:
+    std::mutex m_mutex;
+    std::condition_variable m_more, m_main;
+    std::deque<range> m_chunks;
+    bool m_closed = false, m_event = false;
+};
+
+// A rank's threads, on a thread of their own (the main thread is MPI's): groups from the queue,
+// each outcome to `out(member, outcome)`.
+class rank_threads {
+  public:
+    using sink = std::function<void(std::size_t, member_outcome&&)>;
+    rank_threads(unsigned jobs, const member_groups& gs, const batch_work& work, local_queue& queue,
+                 sink out)
+        : m_out(std::move(out)), m_thread([this, jobs, gs, &work, &queue] {
+              try {
+                  run_pool(
+                      jobs, [&] { return queue.take(); },
+                      [&](std::size_t g) { run(gs, g, work, queue); }, {});
+              } catch (...) {
+                  fail(std::current_exception(), queue);
+              }
+              m_finished = true;
+              queue.wake();
+          }) {}
+    rank_threads(const rank_threads&) = delete;
+    rank_threads& operator=(const rank_threads&) = delete;
+    ~rank_threads() { m_thread.join(); }
+    bool finished() const { return m_finished; }
+    // Ends every rank (MPI_Abort) after one line on standard error if a thread failed.
+    void check(int rank) const;
+
+  private:
+    void run(const member_groups& gs, std::size_t g, const batch_work& work, local_queue& queue) {
+        try {
+            std::vector<member_outcome> o = work(gs.first(g), gs.members(g));
+            for (std::size_t k = 0; k < o.size(); ++k)
+                m_out(gs.first(g) + k, std::move(o[k]));
+        } catch (...) { // the other threads may be waiting for work: the main thread ends them
+            fail(std::current_exception(), queue);
+            throw;
+        }
+    }
+    void fail(std::exception_ptr e, local_queue& queue) {
+        {
+            const std::lock_guard<std::mutex> lock(m_mutex);
+            if (!m_failure) m_failure = std::move(e);
+        }
+        m_failed = true;
+        queue.wake();
+    }
+    sink m_out;
+    mutable std::mutex m_mutex;
+    std::exception_ptr m_failure;
+    std::atomic<bool> m_failed{false}, m_finished{false};
+    std::thread m_thread; // last: started when the rest is ready
+};
+
+// An internal error (a writer's too) ends every rank, or the others would wait forever: one line,
+// rank 0's journal cut back to its last whole chunk (as an interruption leaves it), MPI_Abort.
+[[noreturn]] void abort_all(std::exception_ptr e, int rank) {
+    std::string what = "an unknown failure";
+    try {
+        std::rethrow_exception(e);
+    } catch (const user_error& u) {
+        what = u.message();
+    } catch (const std::exception& x) {
+        what = x.what();
+    } catch (...) {
+    }
+    std::cerr << "rotgen: error: " << what << " (MPI rank " << rank << ")\n" << std::flush;
+    if (rank == 0) journal_abandon(0);
+    MPI_Abort(MPI_COMM_WORLD, 1);
+    std::abort(); // not reached
+}
+
+void rank_threads::check(int rank) const {
+    if (!m_failed) return;
+    const std::lock_guard<std::mutex> lock(m_mutex);
+    abort_all(m_failure, rank);
+}
+
+// The main thread's side of a rank's queue: it keeps jobs + 1 chunks ahead (fetched from the
+// counter), and passes a fetched chunk on to the threads when its members fit rank 0's window.
+struct feeder {
+    const sharing& sh;
+    shared_counter& counter;
+    local_queue& queue;
+    std::deque<range> fetched; // not yet in the queue: waiting for the window
+    std::size_t next = 0;      // the counter, as last seen
+    std::size_t front = 0;     // rank 0's front, as last seen
+    bool exhausted = false;
+
+    void fetch_ahead() {
+        while (!exhausted && queue.depth() + fetched.size() < sh.jobs + 1) {
+            const std::size_t n = sh.chunk(next), first = counter.fetch_add(n);
+            next = first + n;
+            if (first >= sh.gs.size())
+                exhausted = true;
+            else
+                fetched.emplace_back(first, std::min(sh.gs.size(), next));
+        }
+    }
+    template <class Front> void admit(const Front& read_front) {
+        while (!fetched.empty()) {
+            const std::size_t end = sh.gs.end(fetched.front().second);
+            if (end > front + sh.window && end > (front = read_front()) + sh.window) break;
+            queue.push(fetched.front());
+            fetched.pop_front();
+        }
+        if (exhausted && fetched.empty()) queue.close();
+    }
+};
+
+// Waits for every rank without spinning (a blocking MPI call would keep a core busy).
+void quiet_barrier() {
+    MPI_Request r;
+    MPI_Ibarrier(MPI_COMM_WORLD, &r);
+    for (int flag = 0; MPI_Test(&r, &flag, MPI_STATUS_IGNORE) == MPI_SUCCESS && !flag;)
+        std::this_thread::sleep_for(nap);
+}
+
+// Rank 0: the outcomes the other ranks have sent, into `out` (`ran` counts them by rank). Returns
+// how many there were.
+std::size_t receive(in_order& out, std::vector<std::size_t>& ran) {
+    std::size_t got = 0;
+    for (;;) {
+        int flag = 0;
+        MPI_Status st;
+        MPI_Iprobe(MPI_ANY_SOURCE, results_tag, MPI_COMM_WORLD, &flag, &st);
+        if (!flag) return got;
+        int bytes = 0;
+        MPI_Get_count(&st, MPI_BYTE, &bytes);
+        std::string buffer(std::size_t(bytes), '\0');
+        MPI_Recv(buffer.data(), bytes, MPI_BYTE, st.MPI_SOURCE, results_tag, MPI_COMM_WORLD,
+                 MPI_STATUS_IGNORE);
+        for (auto& [m, o] : unpack(buffer)) {
+            out.deliver(m, std::move(o));
+            ++ran[std::size_t(st.MPI_SOURCE)];
+            ++got;
+        }
+    }
+}
+
+// Rank 0: its threads deliver into `out`; its main thread receives the others' outcomes into it
+// and publishes its front. Returns the members each rank ran.
+std::vector<std::size_t> run_root(const mpi_session& s, const sharing& sh, const batch_work& work,
+                                  in_order& out, const std::function<void(std::size_t)>& progress) {
+    shared_counter counter(true, sh.dynamic_start());
+    std::vector<std::size_t> ran(std::size_t(s.size()), 0);
+    std::atomic<std::size_t> done{0};
+    local_queue queue;
+    feeder feed{sh, counter, queue, {}, sh.dynamic_start()};
+    feed.fetched.push_back(sh.first_block(0));
+    {
+        rank_threads threads(unsigned(sh.jobs), sh.gs, work, queue,
+                             [&](std::size_t m, member_outcome&& o) {
+                                 out.deliver(m, std::move(o));
+                                 ++done;
+                             });
+        std::uint64_t published = 0;
+        auto last = std::chrono::steady_clock::now();
+        try {
+            while (!(threads.finished() && out.done() == sh.gs.count)) {
+                threads.check(0);
+                feed.fetch_ahead();
+                feed.admit([&] { return out.done(); });
+                const std::size_t got = receive(out, ran);
+                if (out.done() != published) counter.publish_front(published = out.done());
+                if (std::chrono::steady_clock::now() - last > std::chrono::milliseconds(100)) {
+                    progress(out.done());
+                    last = std::chrono::steady_clock::now();
+                }
+                if (got == 0) queue.sleep();
+            }
+        } catch (...) { // the writer failed
+            abort_all(std::current_exception(), 0);
+        }
+        threads.check(0);
+    } // the threads joined
+    ran[0] = done;
+    quiet_barrier();
+    return ran;
+}
+
+// The outcomes a rank's threads finished, for its main thread to send.
+class outbox {
+  public:
+    void add(std::size_t m, member_outcome&& o) {
+        const std::lock_guard<std::mutex> lock(m_mutex);
+        m_items.emplace_back(m, std::move(o));
+    }
+    std::vector<std::pair<std::size_t, member_outcome>> take() {
+        const std::lock_guard<std::mutex> lock(m_mutex);
+        return std::exchange(m_items, {});
+    }
+
+  private:
+    std::mutex m_mutex;
+    std::vector<std::pair<std::size_t, member_outcome>> m_items;
+};
+
+// The bytes an outcome takes in a message, about.
+std::size_t packed_size(const member_outcome& o) {
+    return 64 + o.status.size() +
+           8 * (o.final_row.size() + o.drifts.size() + o.event_times.size() + o.trajectory.size());
+}
+
+// Messages on their way to rank 0 (MPI_Isend), each kept until it is delivered.
+class sender {
+  public:
+    // Sends `items` in messages of at most message_bytes (or one outcome).
+    void send(std::vector<std::pair<std::size_t, member_outcome>>&& items) {
+        std::vector<std::pair<std::size_t, member_outcome>> batch;
+        std::size_t bytes = 0;
+        for (std::size_t k = 0; k < items.size(); ++k) {
+            bytes += packed_size(items[k].second);
+            batch.push_back(std::move(items[k]));
+            if (bytes >= message_bytes || k + 1 == items.size()) {
+                m_sending.push_back({pack(batch), MPI_REQUEST_NULL});
+                auto& [buffer, request] = m_sending.back();
+                MPI_Isend(buffer.data(), int(buffer.size()), MPI_BYTE, 0, results_tag,
+                          MPI_COMM_WORLD, &request);
+                batch.clear();
+                bytes = 0;
+            }
+        }
+    }
+    // Whether every message has been delivered (forgets those that have).
+    bool idle() {
+        for (auto it = m_sending.begin(); it != m_sending.end();) {
+            int flag = 0;
+            MPI_Test(&it->second, &flag, MPI_STATUS_IGNORE);
+            it = flag ? m_sending.erase(it) : std::next(it);
+        }
+        return m_sending.empty();
+    }
+
+  private:
+    std::list<std::pair<std::string, MPI_Request>> m_sending;
+};
+
+// A rank other than 0: its threads' outcomes go to rank 0.
+void run_other(const mpi_session& s, const sharing& sh, const batch_work& work) {
+    shared_counter counter(false, 0);
+    local_queue queue;
+    feeder feed{sh, counter, queue, {}, sh.dynamic_start()};
+    feed.fetched.push_back(sh.first_block(std::size_t(s.rank())));
+    outbox box;
+    sender sends;
+    {
+        rank_threads threads(unsigned(sh.jobs), sh.gs, work, queue,
+                             [&](std::size_t m, member_outcome&& o) { box.add(m, std::move(o)); });
+        for (;;) {
+            threads.check(s.rank());
+            feed.fetch_ahead();
+            feed.admit([&] { return counter.front(); });
+            const bool finished = threads.finished(); // before the last outcomes are taken
+            sends.send(box.take());
+            if (sends.idle() && finished) break;
+            queue.sleep();
+        }
+        threads.check(s.rank());
+    }
+    quiet_barrier();
+}
+
+} // namespace
+
+mpi_session::mpi_session() {
+    if (!started_by_mpirun()) return;
+    int provided = 0;
+    MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
+    MPI_Comm_rank(MPI_COMM_WORLD, &m_rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &m_size);
+    m_active = true;
+}
+
+mpi_session::~mpi_session() {
+    if (m_active) MPI_Finalize();
+}
+
+std::size_t mpi_session::broadcast(std::size_t value) const {
+    if (!m_active) return value;
+    std::uint64_t v = value;
+    MPI_Bcast(&v, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+    return std::size_t(v);
+}
+
+std::size_t mpi_session::least(std::size_t value) const {
+    if (!m_active) return value;
+    std::uint64_t mine = value, least = 0;
+    MPI_Allreduce(&mine, &least, 1, MPI_UINT64_T, MPI_MIN, MPI_COMM_WORLD);
+    return std::size_t(least);
+}
+
+bool mpi_session::all(bool ok) const {
+    if (!m_active) return ok;
+    int mine = ok ? 1 : 0, every = 0;
+    MPI_Allreduce(&mine, &every, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+    return every == 1;
+}
+
+std::vector<std::size_t> run_distributed(const mpi_session& s, std::size_t count, std::size_t group,
+                                         unsigned jobs, const batch_work& work, in_order* out,
+                                         const std::function<void(std::size_t)>& progress) {
+    if (s.size() == 1) return run_in_process(count, group, jobs, work, *out, progress);
+    // every rank computes the same sharing (the same count, group and -j; rank 0's window)
+    const sharing sh{{count, group},
+                     s.broadcast(s.rank() == 0 ? out->window() : 0),
+                     std::size_t(s.size()),
+                     std::max<std::size_t>(1, jobs)};
+    if (s.rank() == 0) return run_root(s, sh, work, *out, progress);
+    run_other(s, sh, work);
+    return {};
+}
+
+} // namespace rotgen
+
+#endif
