@@ -40,8 +40,6 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
-#include <type_traits>
-#include <utility>
 
 namespace rotgen {
 namespace models {

@@ -39,8 +39,6 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
-#include <type_traits>
-#include <utility>
 
 namespace rotgen {
 namespace models {

@@ -490,10 +490,11 @@ emitted_header emit_header(const model_spec& spec, const lowered_form& lf,
     emitted_header h;
     h.unit = o.name.empty() ? unit_name(spec.name, lf.form) : o.name;
     h.file_name = h.unit + ".hpp";
-    std::string functions;
+    std::string functions, includes; // the Taylor coefficients' fixed orders need two more
     for (const lowered_function& fn : lf.functions) {
         if (fn.name == "taylor") {
             functions += taylor_text(lf, fn, h.stats);
+            includes = "#include <type_traits>\n#include <utility>\n";
             continue;
         }
         const function_body b = write_body(fn);
@@ -514,6 +515,7 @@ emitted_header emit_header(const model_spec& spec, const lowered_form& lf,
                                         {"command", one_line(o.command)},
                                         {"description", description(lf, h.stats)},
                                         {"guard", guard_of(h.unit)},
+                                        {"includes", includes},
                                         {"unit", h.unit},
                                         {"params", params},
                                         {"constants", constants_text(spec, lf) + pattern_text(lf)},
