@@ -21,9 +21,9 @@
 // Parameters (params<T>, defaults from the model file): M = 1.0, L = 0.2, g = 9.81.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 644 -> 102 (15 temporaries)
-//   jacobian: 2433 -> 227 (39 temporaries)
-//   rhs_and_jacobian: 3077 -> 308 (49 temporaries)
+//   rhs: 644 -> 101 (14 temporaries), and 1 once in prepare()
+//   jacobian: 2433 -> 226 (38 temporaries), and 1 once in prepare()
+//   rhs_and_jacobian: 3077 -> 306 (47 temporaries), and 2 once in prepare()
 //   energy: 98 -> 49 (7 temporaries)
 //   momenta: 42 -> 20 (1 temporaries)
 //   mass_matrix: 27 -> 5 (3 temporaries)
@@ -73,6 +73,28 @@ struct params {
     T g = T(rg_scalar(981)/rg_scalar(100)); // gravitational acceleration
 };
 
+// The parameters and, computed from them once, the 2 subexpressions of parameters alone that
+// rhs, jacobian and rhs_and_jacobian use (2 operations: products and quotients of
+// parameters, reciprocals; a division by a parameter becomes a multiplication). Make one per
+// parameter set with prepare(p) and pass it where params<T> goes: those functions then skip that
+// work at every call. Given params<T>, they prepare it themselves. Changed a parameter: prepare
+// again.
+template <class T>
+struct prepared : params<T> {
+    T c000{};
+    T c001{};
+};
+
+template <class T>
+prepared<T> prepare(const params<T>& parameters) {
+    using S = typename detail::scalar_of<T>::type;
+    prepared<T> p;
+    static_cast<params<T>&>(p) = parameters;
+    p.c000 = S(1)/p.L;
+    p.c001 = p.g/p.L;
+    return p;
+}
+
 // The model and the form this header implements.
 constexpr const char* model_name = "cube_on_corner";
 constexpr const char* form_name = "body";
@@ -102,10 +124,10 @@ constexpr std::array<unsigned char, 49> jacobian_pattern{{
 //   t     time
 //   y     state, dim 7: (qw, qx, qy, qz, omega1, omega2, omega3)
 //   dydt  output, dim 7: qw_dot, qx_dot, qy_dot, qz_dot, omega1_dot, omega2_dot, omega3_dot
-//   p     parameters
-// Operations (+ - * / and calls): 644 before lowering, 102 after (38 +-, 62 *, 2 /, 0 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 644 before lowering, 101 after (38 +-, 62 *, 1 /, 0 calls).
 template <class T>
-void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+void rhs(T t, const T* y, T* dydt, const prepared<T>& p) {
     using S = typename detail::scalar_of<T>::type;
     (void)t;
     const T qw = y[0];
@@ -129,24 +151,30 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     const T t011 = t002 + t004 - t003 - t005;
     const T t012 = (omega1*t010 + omega3*t000)*p.L + S(6)*(t011 - S(2)*t008)*t006;
     const T t013 = (omega3*t001 - omega2*t010)*p.L - S(6)*(S(2)*t007 + t011)*t006;
-    const T t014 = S(1)/p.L;
     dydt[0] = -S(1)/S(2)*(omega1*qx + omega2*qy + omega3*qz);
     dydt[1] = S(1)/S(2)*(omega1*qw + omega3*qy - omega2*qz);
     dydt[2] = S(1)/S(2)*(omega1*qz + omega2*qw - omega3*qx);
     dydt[3] = S(1)/S(2)*(omega2*qx + omega3*qw - omega1*qy);
-    dydt[4] = (S(3)/S(22)*t009 - S(3)/S(22)*t012 - S(5)/S(22)*t013)*t014;
-    dydt[5] = (S(3)/S(22)*t009 - S(3)/S(22)*t013 - S(5)/S(22)*t012)*t014;
-    dydt[6] = (S(5)/S(22)*t009 - S(3)/S(22)*t012 - S(3)/S(22)*t013)*t014;
+    dydt[4] = (S(3)/S(22)*t009 - S(3)/S(22)*t012 - S(5)/S(22)*t013)*p.c000;
+    dydt[5] = (S(3)/S(22)*t009 - S(3)/S(22)*t013 - S(5)/S(22)*t012)*p.c000;
+    dydt[6] = (S(5)/S(22)*t009 - S(3)/S(22)*t012 - S(3)/S(22)*t013)*p.c000;
+}
+
+// rhs with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+    rhs(t, y, dydt, prepare(p));
 }
 
 // The analytic Jacobian J = d(dy/dt)/dy, dense, row-major: J[i * state_size + k] = d dydt[i] / d y[k].
 //   t     time
 //   y     state, dim 7: (qw, qx, qy, qz, omega1, omega2, omega3)
 //   J     output, dim 7 x 7 (row-major); structural zeros in jacobian_pattern
-//   p     parameters
-// Operations (+ - * / and calls): 2433 before lowering, 227 after (93 +-, 132 *, 2 /, 0 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 2433 before lowering, 226 after (93 +-, 132 *, 1 /, 0 calls).
 template <class T>
-void jacobian(T t, const T* y, T* J, const params<T>& p) {
+void jacobian(T t, const T* y, T* J, const prepared<T>& p) {
     using S = typename detail::scalar_of<T>::type;
     (void)t;
     const T qw = y[0];
@@ -170,31 +198,30 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T t011 = qz*qz;
     const T t012 = qy*qy;
     const T t013 = qw*qw;
-    const T t014 = t010 + t011 + t012 + t013;
-    const T t015 = S(1)/t014;
-    const T t016 = t010 + t012 - t011 - t013;
-    const T t017 = qw*qy - qx*qz;
-    const T t018 = (t016 - S(2)*t017)*t015;
-    const T t019 = S(1) + t018;
-    const T t020 = qw*qx + qy*qz;
-    const T t021 = (t017 + t020)*t015;
-    const T t022 = S(18)/S(11)*t019 + S(36)/S(11)*t021;
-    const T t023 = (S(2)*t020 + t016)*t015;
-    const T t024 = S(1) + t023;
-    const T t025 = qx - qw*t024;
-    const T t026 = p.g/(p.L*t014);
-    const T t027 = t023 - S(1);
-    const T t028 = qx*t027 - qw;
-    const T t029 = t018 - S(1);
-    const T t030 = S(18)/S(11)*t029 + S(36)/S(11)*t021;
-    const T t031 = qy*t027 - qz;
-    const T t032 = qz*t024 - qy;
-    const T t033 = S(18)/S(11)*t024 - S(36)/S(11)*t021;
-    const T t034 = qw*t019 + qy;
-    const T t035 = S(18)/S(11)*t027 - S(36)/S(11)*t021;
-    const T t036 = qx*t029 - qz;
-    const T t037 = qw + qy*t029;
-    const T t038 = qx - qz*t019;
+    const T t014 = S(1)/(t010 + t011 + t012 + t013);
+    const T t015 = t010 + t012 - t011 - t013;
+    const T t016 = qw*qy - qx*qz;
+    const T t017 = (t015 - S(2)*t016)*t014;
+    const T t018 = S(1) + t017;
+    const T t019 = qw*qx + qy*qz;
+    const T t020 = (t016 + t019)*t014;
+    const T t021 = S(18)/S(11)*t018 + S(36)/S(11)*t020;
+    const T t022 = (S(2)*t019 + t015)*t014;
+    const T t023 = S(1) + t022;
+    const T t024 = qx - qw*t023;
+    const T t025 = p.c001*t014;
+    const T t026 = t022 - S(1);
+    const T t027 = qx*t026 - qw;
+    const T t028 = t017 - S(1);
+    const T t029 = S(18)/S(11)*t028 + S(36)/S(11)*t020;
+    const T t030 = qy*t026 - qz;
+    const T t031 = qz*t023 - qy;
+    const T t032 = S(18)/S(11)*t023 - S(36)/S(11)*t020;
+    const T t033 = qw*t018 + qy;
+    const T t034 = S(18)/S(11)*t026 - S(36)/S(11)*t020;
+    const T t035 = qx*t028 - qz;
+    const T t036 = qw + qy*t028;
+    const T t037 = qx - qz*t018;
     J[0] = T(S(0));
     J[1] = t000;
     J[2] = t001;
@@ -223,27 +250,34 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     J[25] = t004;
     J[26] = S(1)/S(2)*qx;
     J[27] = t008;
-    J[28] = (S(30)/S(11)*t025 + qw*t022 - S(18)/S(11)*qx)*t026;
-    J[29] = (qx*t030 - S(18)/S(11)*qw - S(30)/S(11)*t028)*t026;
-    J[30] = (qy*t030 - S(18)/S(11)*qz - S(30)/S(11)*t031)*t026;
-    J[31] = (qz*t022 - S(18)/S(11)*qy - S(30)/S(11)*t032)*t026;
+    J[28] = (S(30)/S(11)*t024 + qw*t021 - S(18)/S(11)*qx)*t025;
+    J[29] = (qx*t029 - S(18)/S(11)*qw - S(30)/S(11)*t027)*t025;
+    J[30] = (qy*t029 - S(18)/S(11)*qz - S(30)/S(11)*t030)*t025;
+    J[31] = (qz*t021 - S(18)/S(11)*qy - S(30)/S(11)*t031)*t025;
     J[32] = S(9)/S(22)*omega3 - S(15)/S(22)*(omega3 - omega2) - S(9)/S(22)*omega2;
     J[33] = S(15)/S(11)*omega2 + S(15)/S(22)*omega1 - S(9)/S(11)*omega2 - S(9)/S(22)*omega1;
     J[34] = S(9)/S(11)*omega3 + S(9)/S(22)*omega1 - S(15)/S(11)*omega3 - S(15)/S(22)*omega1;
-    J[35] = (S(30)/S(11)*t034 - S(18)/S(11)*qy - qw*t033)*t026;
-    J[36] = (S(18)/S(11)*qz + S(30)/S(11)*t036 - qx*t035)*t026;
-    J[37] = (S(30)/S(11)*t037 - S(18)/S(11)*qw - qy*t035)*t026;
-    J[38] = (S(18)/S(11)*qx - S(30)/S(11)*t038 - qz*t033)*t026;
+    J[35] = (S(30)/S(11)*t033 - S(18)/S(11)*qy - qw*t032)*t025;
+    J[36] = (S(18)/S(11)*qz + S(30)/S(11)*t035 - qx*t034)*t025;
+    J[37] = (S(30)/S(11)*t036 - S(18)/S(11)*qw - qy*t034)*t025;
+    J[38] = (S(18)/S(11)*qx - S(30)/S(11)*t037 - qz*t032)*t025;
     J[39] = S(9)/S(11)*omega1 + S(9)/S(22)*omega2 - S(15)/S(11)*omega1 - S(15)/S(22)*omega2;
     J[40] = S(9)/S(22)*omega1 - S(15)/S(22)*(omega1 - omega3) - S(9)/S(22)*omega3;
     J[41] = S(15)/S(11)*omega3 + S(15)/S(22)*omega2 - S(9)/S(11)*omega3 - S(9)/S(22)*omega2;
-    J[42] = (S(18)/S(11)*t025 + S(18)/S(11)*t034 + S(30)/S(11)*(S(2)*qw*t021 - qx - qy))*t026;
-    J[43] = (S(18)/S(11)*t036 - S(18)/S(11)*t028 - S(30)/S(11)*(qw - S(2)*qx*t021 - qz))*t026;
-    J[44] = (S(18)/S(11)*t037 + S(30)/S(11)*(S(2)*qy*t021 - qw - qz) - S(18)/S(11)*t031)*t026;
-    J[45] = (-S(18)/S(11)*t032 - S(18)/S(11)*t038 - S(30)/S(11)*(qy - S(2)*qz*t021 - qx))*t026;
+    J[42] = (S(18)/S(11)*t024 + S(18)/S(11)*t033 + S(30)/S(11)*(S(2)*qw*t020 - qx - qy))*t025;
+    J[43] = (S(18)/S(11)*t035 - S(18)/S(11)*t027 - S(30)/S(11)*(qw - S(2)*qx*t020 - qz))*t025;
+    J[44] = (S(18)/S(11)*t036 + S(30)/S(11)*(S(2)*qy*t020 - qw - qz) - S(18)/S(11)*t030)*t025;
+    J[45] = (-S(18)/S(11)*t031 - S(18)/S(11)*t037 - S(30)/S(11)*(qy - S(2)*qz*t020 - qx))*t025;
     J[46] = S(15)/S(11)*omega1 + S(15)/S(22)*omega3 - S(9)/S(11)*omega1 - S(9)/S(22)*omega3;
     J[47] = S(9)/S(11)*omega2 + S(9)/S(22)*omega3 - S(15)/S(11)*omega2 - S(15)/S(22)*omega3;
     J[48] = S(15)/S(22)*(omega1 - omega2) + S(9)/S(22)*omega2 - S(9)/S(22)*omega1;
+}
+
+// jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void jacobian(T t, const T* y, T* J, const params<T>& p) {
+    jacobian(t, y, J, prepare(p));
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -251,10 +285,10 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   y     state, dim 7: (qw, qx, qy, qz, omega1, omega2, omega3)
 //   dydt  output, dim 7: qw_dot, qx_dot, qy_dot, qz_dot, omega1_dot, omega2_dot, omega3_dot
 //   J     output, dim 7 x 7 (row-major)
-//   p     parameters
-// Operations (+ - * / and calls): 3077 before lowering, 308 after (120 +-, 185 *, 3 /, 0 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 3077 before lowering, 306 after (120 +-, 185 *, 1 /, 0 calls).
 template <class T>
-void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const prepared<T>& p) {
     using S = typename detail::scalar_of<T>::type;
     (void)t;
     const T qw = y[0];
@@ -270,105 +304,110 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T t003 = qz*qz;
     const T t004 = qy*qy;
     const T t005 = qw*qw;
-    const T t006 = t002 + t003 + t004 + t005;
-    const T t007 = S(1)/t006;
-    const T t008 = qw*qx + qy*qz;
-    const T t009 = qw*qy - qx*qz;
-    const T t010 = (t008 + t009)*t007;
-    const T t011 = (omega1*t001 + omega2*t000)*p.L - S(12)*p.g*t010;
-    const T t012 = S(3)*omega1 + S(3)*omega2 - S(8)*omega3;
-    const T t013 = p.g*t007;
-    const T t014 = t002 + t004 - t003 - t005;
-    const T t015 = t014 - S(2)*t009;
-    const T t016 = (omega1*t012 + omega3*t000)*p.L + S(6)*t013*t015;
-    const T t017 = S(2)*t008 + t014;
-    const T t018 = (omega3*t001 - omega2*t012)*p.L - S(6)*t013*t017;
-    const T t019 = S(1)/p.L;
-    const T t020 = -S(1)/S(2)*omega1;
-    const T t021 = -S(1)/S(2)*omega2;
-    const T t022 = -S(1)/S(2)*omega3;
-    const T t023 = -S(1)/S(2)*qx;
-    const T t024 = -S(1)/S(2)*qy;
-    const T t025 = -S(1)/S(2)*qz;
-    const T t026 = S(1)/S(2)*omega1;
-    const T t027 = S(1)/S(2)*omega3;
-    const T t028 = S(1)/S(2)*qw;
-    const T t029 = S(1)/S(2)*omega2;
-    const T t030 = t007*t015;
-    const T t031 = S(1) + t030;
-    const T t032 = S(18)/S(11)*t031 + S(36)/S(11)*t010;
-    const T t033 = t007*t017;
-    const T t034 = S(1) + t033;
-    const T t035 = qx - qw*t034;
-    const T t036 = p.g/(p.L*t006);
-    const T t037 = t033 - S(1);
-    const T t038 = qx*t037 - qw;
-    const T t039 = t030 - S(1);
-    const T t040 = S(18)/S(11)*t039 + S(36)/S(11)*t010;
-    const T t041 = qy*t037 - qz;
-    const T t042 = qz*t034 - qy;
-    const T t043 = S(18)/S(11)*t034 - S(36)/S(11)*t010;
-    const T t044 = qw*t031 + qy;
-    const T t045 = S(18)/S(11)*t037 - S(36)/S(11)*t010;
-    const T t046 = qx*t039 - qz;
-    const T t047 = qw + qy*t039;
-    const T t048 = qx - qz*t031;
+    const T t006 = S(1)/(t002 + t003 + t004 + t005);
+    const T t007 = qw*qx + qy*qz;
+    const T t008 = qw*qy - qx*qz;
+    const T t009 = (t007 + t008)*t006;
+    const T t010 = (omega1*t001 + omega2*t000)*p.L - S(12)*p.g*t009;
+    const T t011 = S(3)*omega1 + S(3)*omega2 - S(8)*omega3;
+    const T t012 = p.g*t006;
+    const T t013 = t002 + t004 - t003 - t005;
+    const T t014 = t013 - S(2)*t008;
+    const T t015 = (omega1*t011 + omega3*t000)*p.L + S(6)*t012*t014;
+    const T t016 = S(2)*t007 + t013;
+    const T t017 = (omega3*t001 - omega2*t011)*p.L - S(6)*t012*t016;
+    const T t018 = -S(1)/S(2)*omega1;
+    const T t019 = -S(1)/S(2)*omega2;
+    const T t020 = -S(1)/S(2)*omega3;
+    const T t021 = -S(1)/S(2)*qx;
+    const T t022 = -S(1)/S(2)*qy;
+    const T t023 = -S(1)/S(2)*qz;
+    const T t024 = S(1)/S(2)*omega1;
+    const T t025 = S(1)/S(2)*omega3;
+    const T t026 = S(1)/S(2)*qw;
+    const T t027 = S(1)/S(2)*omega2;
+    const T t028 = t006*t014;
+    const T t029 = S(1) + t028;
+    const T t030 = S(18)/S(11)*t029 + S(36)/S(11)*t009;
+    const T t031 = t006*t016;
+    const T t032 = S(1) + t031;
+    const T t033 = qx - qw*t032;
+    const T t034 = p.c001*t006;
+    const T t035 = t031 - S(1);
+    const T t036 = qx*t035 - qw;
+    const T t037 = t028 - S(1);
+    const T t038 = S(18)/S(11)*t037 + S(36)/S(11)*t009;
+    const T t039 = qy*t035 - qz;
+    const T t040 = qz*t032 - qy;
+    const T t041 = S(18)/S(11)*t032 - S(36)/S(11)*t009;
+    const T t042 = qw*t029 + qy;
+    const T t043 = S(18)/S(11)*t035 - S(36)/S(11)*t009;
+    const T t044 = qx*t037 - qz;
+    const T t045 = qw + qy*t037;
+    const T t046 = qx - qz*t029;
     dydt[0] = -S(1)/S(2)*(omega1*qx + omega2*qy + omega3*qz);
     dydt[1] = S(1)/S(2)*(omega1*qw + omega3*qy - omega2*qz);
     dydt[2] = S(1)/S(2)*(omega1*qz + omega2*qw - omega3*qx);
     dydt[3] = S(1)/S(2)*(omega2*qx + omega3*qw - omega1*qy);
-    dydt[4] = (S(3)/S(22)*t011 - S(3)/S(22)*t016 - S(5)/S(22)*t018)*t019;
-    dydt[5] = (S(3)/S(22)*t011 - S(3)/S(22)*t018 - S(5)/S(22)*t016)*t019;
-    dydt[6] = (S(5)/S(22)*t011 - S(3)/S(22)*t016 - S(3)/S(22)*t018)*t019;
+    dydt[4] = (S(3)/S(22)*t010 - S(3)/S(22)*t015 - S(5)/S(22)*t017)*p.c000;
+    dydt[5] = (S(3)/S(22)*t010 - S(3)/S(22)*t017 - S(5)/S(22)*t015)*p.c000;
+    dydt[6] = (S(5)/S(22)*t010 - S(3)/S(22)*t015 - S(3)/S(22)*t017)*p.c000;
     J[0] = T(S(0));
-    J[1] = t020;
-    J[2] = t021;
-    J[3] = t022;
-    J[4] = t023;
-    J[5] = t024;
-    J[6] = t025;
-    J[7] = t026;
+    J[1] = t018;
+    J[2] = t019;
+    J[3] = t020;
+    J[4] = t021;
+    J[5] = t022;
+    J[6] = t023;
+    J[7] = t024;
     J[8] = T(S(0));
-    J[9] = t027;
-    J[10] = t021;
-    J[11] = t028;
-    J[12] = t025;
+    J[9] = t025;
+    J[10] = t019;
+    J[11] = t026;
+    J[12] = t023;
     J[13] = S(1)/S(2)*qy;
-    J[14] = t029;
-    J[15] = t022;
+    J[14] = t027;
+    J[15] = t020;
     J[16] = T(S(0));
-    J[17] = t026;
+    J[17] = t024;
     J[18] = S(1)/S(2)*qz;
-    J[19] = t028;
-    J[20] = t023;
-    J[21] = t027;
-    J[22] = t029;
-    J[23] = t020;
+    J[19] = t026;
+    J[20] = t021;
+    J[21] = t025;
+    J[22] = t027;
+    J[23] = t018;
     J[24] = T(S(0));
-    J[25] = t024;
+    J[25] = t022;
     J[26] = S(1)/S(2)*qx;
-    J[27] = t028;
-    J[28] = (S(30)/S(11)*t035 + qw*t032 - S(18)/S(11)*qx)*t036;
-    J[29] = (qx*t040 - S(18)/S(11)*qw - S(30)/S(11)*t038)*t036;
-    J[30] = (qy*t040 - S(18)/S(11)*qz - S(30)/S(11)*t041)*t036;
-    J[31] = (qz*t032 - S(18)/S(11)*qy - S(30)/S(11)*t042)*t036;
+    J[27] = t026;
+    J[28] = (S(30)/S(11)*t033 + qw*t030 - S(18)/S(11)*qx)*t034;
+    J[29] = (qx*t038 - S(18)/S(11)*qw - S(30)/S(11)*t036)*t034;
+    J[30] = (qy*t038 - S(18)/S(11)*qz - S(30)/S(11)*t039)*t034;
+    J[31] = (qz*t030 - S(18)/S(11)*qy - S(30)/S(11)*t040)*t034;
     J[32] = S(9)/S(22)*omega3 - S(15)/S(22)*(omega3 - omega2) - S(9)/S(22)*omega2;
     J[33] = S(15)/S(11)*omega2 + S(15)/S(22)*omega1 - S(9)/S(11)*omega2 - S(9)/S(22)*omega1;
     J[34] = S(9)/S(11)*omega3 + S(9)/S(22)*omega1 - S(15)/S(11)*omega3 - S(15)/S(22)*omega1;
-    J[35] = (S(30)/S(11)*t044 - S(18)/S(11)*qy - qw*t043)*t036;
-    J[36] = (S(18)/S(11)*qz + S(30)/S(11)*t046 - qx*t045)*t036;
-    J[37] = (S(30)/S(11)*t047 - S(18)/S(11)*qw - qy*t045)*t036;
-    J[38] = (S(18)/S(11)*qx - S(30)/S(11)*t048 - qz*t043)*t036;
+    J[35] = (S(30)/S(11)*t042 - S(18)/S(11)*qy - qw*t041)*t034;
+    J[36] = (S(18)/S(11)*qz + S(30)/S(11)*t044 - qx*t043)*t034;
+    J[37] = (S(30)/S(11)*t045 - S(18)/S(11)*qw - qy*t043)*t034;
+    J[38] = (S(18)/S(11)*qx - S(30)/S(11)*t046 - qz*t041)*t034;
     J[39] = S(9)/S(11)*omega1 + S(9)/S(22)*omega2 - S(15)/S(11)*omega1 - S(15)/S(22)*omega2;
     J[40] = S(9)/S(22)*omega1 - S(15)/S(22)*(omega1 - omega3) - S(9)/S(22)*omega3;
     J[41] = S(15)/S(11)*omega3 + S(15)/S(22)*omega2 - S(9)/S(11)*omega3 - S(9)/S(22)*omega2;
-    J[42] = (S(18)/S(11)*t035 + S(18)/S(11)*t044 + S(30)/S(11)*(S(2)*qw*t010 - qx - qy))*t036;
-    J[43] = (S(18)/S(11)*t046 - S(18)/S(11)*t038 - S(30)/S(11)*(qw - S(2)*qx*t010 - qz))*t036;
-    J[44] = (S(18)/S(11)*t047 + S(30)/S(11)*(S(2)*qy*t010 - qw - qz) - S(18)/S(11)*t041)*t036;
-    J[45] = (-S(18)/S(11)*t042 - S(18)/S(11)*t048 - S(30)/S(11)*(qy - S(2)*qz*t010 - qx))*t036;
+    J[42] = (S(18)/S(11)*t033 + S(18)/S(11)*t042 + S(30)/S(11)*(S(2)*qw*t009 - qx - qy))*t034;
+    J[43] = (S(18)/S(11)*t044 - S(18)/S(11)*t036 - S(30)/S(11)*(qw - S(2)*qx*t009 - qz))*t034;
+    J[44] = (S(18)/S(11)*t045 + S(30)/S(11)*(S(2)*qy*t009 - qw - qz) - S(18)/S(11)*t039)*t034;
+    J[45] = (-S(18)/S(11)*t040 - S(18)/S(11)*t046 - S(30)/S(11)*(qy - S(2)*qz*t009 - qx))*t034;
     J[46] = S(15)/S(11)*omega1 + S(15)/S(22)*omega3 - S(9)/S(11)*omega1 - S(9)/S(22)*omega3;
     J[47] = S(9)/S(11)*omega2 + S(9)/S(22)*omega3 - S(15)/S(11)*omega2 - S(15)/S(22)*omega3;
     J[48] = S(15)/S(22)*(omega1 - omega2) + S(9)/S(22)*omega2 - S(9)/S(22)*omega1;
+}
+
+// rhs_and_jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+    rhs_and_jacobian(t, y, dydt, J, prepare(p));
 }
 
 // The energy T + V (conserved without damping and driving torques).

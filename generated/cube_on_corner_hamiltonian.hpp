@@ -19,9 +19,9 @@
 // Parameters (params<T>, defaults from the model file): M = 1.0, L = 0.2, g = 9.81.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 610 -> 75 (17 temporaries)
-//   jacobian: 3701 -> 230 (48 temporaries)
-//   rhs_and_jacobian: 4311 -> 257 (51 temporaries)
+//   rhs: 610 -> 68 (15 temporaries), and 5 once in prepare()
+//   jacobian: 3701 -> 222 (44 temporaries), and 5 once in prepare()
+//   rhs_and_jacobian: 4311 -> 249 (47 temporaries), and 5 once in prepare()
 //   energy: 184 -> 46 (9 temporaries)
 //   momenta: 0 -> 0 (0 temporaries)
 //   mass_matrix: 182 -> 39 (12 temporaries)
@@ -71,6 +71,28 @@ struct params {
     T g = T(rg_scalar(981)/rg_scalar(100)); // gravitational acceleration
 };
 
+// The parameters and, computed from them once, the 2 subexpressions of parameters alone that
+// rhs, jacobian and rhs_and_jacobian use (5 operations: products and quotients of
+// parameters, reciprocals; a division by a parameter becomes a multiplication). Make one per
+// parameter set with prepare(p) and pass it where params<T> goes: those functions then skip that
+// work at every call. Given params<T>, they prepare it themselves. Changed a parameter: prepare
+// again.
+template <class T>
+struct prepared : params<T> {
+    T c000{};
+    T c001{};
+};
+
+template <class T>
+prepared<T> prepare(const params<T>& parameters) {
+    using S = typename detail::scalar_of<T>::type;
+    prepared<T> p;
+    static_cast<params<T>&>(p) = parameters;
+    p.c000 = S(1)/(p.L*p.L*p.M);
+    p.c001 = p.L*p.M*p.g;
+    return p;
+}
+
 // The model and the form this header implements.
 constexpr const char* model_name = "cube_on_corner";
 constexpr const char* form_name = "hamiltonian";
@@ -99,10 +121,10 @@ constexpr std::array<unsigned char, 36> jacobian_pattern{{
 //   t     time
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, p_phi_dot, p_theta_dot, p_psi_dot
-//   p     parameters
-// Operations (+ - * / and calls): 610 before lowering, 75 after (20 +-, 47 *, 4 /, 4 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 610 before lowering, 68 after (20 +-, 42 *, 2 /, 4 calls).
 template <class T>
-void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+void rhs(T t, const T* y, T* dydt, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -116,35 +138,40 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    const T t000 = p.L*p.L;
-    const T t001 = S(1)/sin_theta;
-    const T t002 = cos_theta*p_psi - p_phi;
-    const T t003 = t001*t002;
-    const T t004 = cos_psi*t003 + p_theta*sin_psi;
-    const T t005 = cos_psi*p_theta - sin_psi*t003;
-    const T t006 = S(3)*t004 - S(3)*p_psi - S(5)*t005;
-    const T t007 = S(5)*t004 - S(3)*p_psi - S(3)*t005;
-    const T t008 = cos_psi*t007 + sin_psi*t006;
-    const T t009 = S(1)/(p.M*t000);
-    const T t010 = p.L*p.M*p.g;
-    const T t011 = S(1)/S(2)*(sin_theta - (cos_psi + sin_psi)*cos_theta)*t010 + S(6)/S(11)*(cos_theta*t002/(sin_theta*sin_theta) + p_psi)*t008*t009;
-    const T t012 = S(1)/S(2)*(sin_psi - cos_psi)*sin_theta*t010 - S(6)/S(11)*(t004*t006 + t005*t007)*t009;
-    dydt[0] = -S(6)/S(11)*t008/(p.M*sin_theta*t000);
-    dydt[1] = S(6)/S(11)*(sin_psi*t007 - cos_psi*t006)*t009;
-    dydt[2] = (S(18)/S(11)*t005 + S(30)/S(11)*p_psi + S(6)/S(11)*cos_theta*t001*t008 - S(18)/S(11)*t004)*t009;
+    const T t000 = S(1)/sin_theta;
+    const T t001 = cos_theta*p_psi - p_phi;
+    const T t002 = t000*t001;
+    const T t003 = cos_psi*t002 + p_theta*sin_psi;
+    const T t004 = cos_psi*p_theta - sin_psi*t002;
+    const T t005 = S(3)*t003 - S(3)*p_psi - S(5)*t004;
+    const T t006 = S(5)*t003 - S(3)*p_psi - S(3)*t004;
+    const T t007 = cos_psi*t006 + sin_psi*t005;
+    const T t008 = t000*t007;
+    const T t009 = S(1)/S(2)*(sin_theta - (cos_psi + sin_psi)*cos_theta)*p.c001 + S(6)/S(11)*(cos_theta*t001/(sin_theta*sin_theta) + p_psi)*p.c000*t007;
+    const T t010 = S(1)/S(2)*(sin_psi - cos_psi)*p.c001*sin_theta - S(6)/S(11)*(t003*t005 + t004*t006)*p.c000;
+    dydt[0] = -S(6)/S(11)*p.c000*t008;
+    dydt[1] = S(6)/S(11)*(sin_psi*t006 - cos_psi*t005)*p.c000;
+    dydt[2] = (S(18)/S(11)*t004 + S(30)/S(11)*p_psi + S(6)/S(11)*cos_theta*t008 - S(18)/S(11)*t003)*p.c000;
     dydt[3] = T(S(0));
-    dydt[4] = t011;
-    dydt[5] = t012;
+    dydt[4] = t009;
+    dydt[5] = t010;
+}
+
+// rhs with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+    rhs(t, y, dydt, prepare(p));
 }
 
 // The analytic Jacobian J = d(dy/dt)/dy, dense, row-major: J[i * state_size + k] = d dydt[i] / d y[k].
 //   t     time
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   J     output, dim 6 x 6 (row-major); structural zeros in jacobian_pattern
-//   p     parameters
-// Operations (+ - * / and calls): 3701 before lowering, 230 after (69 +-, 152 *, 5 /, 4 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 3701 before lowering, 222 after (69 +-, 147 *, 2 /, 4 calls).
 template <class T>
-void jacobian(T t, const T* y, T* J, const params<T>& p) {
+void jacobian(T t, const T* y, T* J, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -172,54 +199,50 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T t011 = S(3)*sin_psi + S(5)*cos_psi;
     const T t012 = S(3)*cos_psi + S(5)*sin_psi;
     const T t013 = cos_psi*t011 + sin_psi*t012;
-    const T t014 = sin_theta*sin_theta;
-    const T t015 = S(1)/t014;
-    const T t016 = cos_theta*t002*t015 + p_psi;
-    const T t017 = t001*t010 + t013*t016;
-    const T t018 = p.L*p.L;
-    const T t019 = S(1)/(p.M*sin_theta*t018);
-    const T t020 = t017*t019;
-    const T t021 = S(18)/S(11)*p_psi + S(36)/S(11)*t005;
-    const T t022 = S(36)/S(11)*t004 - S(18)/S(11)*p_psi;
-    const T t023 = cos_psi*t022 + sin_psi*t021;
-    const T t024 = S(3)*sin_psi - S(5)*cos_psi;
-    const T t025 = S(5)*sin_psi - S(3)*cos_psi;
-    const T t026 = cos_psi*t025 + sin_psi*t024;
-    const T t027 = t001*t011 - S(3);
-    const T t028 = t001*t012 - S(3);
-    const T t029 = cos_psi*t027 + sin_psi*t028;
-    const T t030 = S(1)/(p.M*t018);
-    const T t031 = t016*t030;
-    const T t032 = sin_psi*t011 - cos_psi*t012;
-    const T t033 = (S(18)/S(11)*t016 - S(6)/S(11)*t008)*cos_psi - (S(6)/S(11)*t006 - S(18)/S(11)*t016)*sin_psi - S(6)/S(11)*t001*t017;
-    const T t034 = ((S(6)/S(11)*t027 - S(18)/S(11))*cos_psi + (S(6)/S(11)*t028 - S(18)/S(11))*sin_psi)*t001 + S(30)/S(11);
-    const T t035 = p.L*p.M*p.g;
-    const T t036 = (cos_psi + sin_psi)*sin_theta;
-    const T t037 = (S(2)*cos_theta*t016 - p_phi)*t000*t010 + t013*t016*t016;
-    const T t038 = (sin_psi - cos_psi)*cos_theta*t035;
-    const T t039 = ((S(1) + cos_theta*cos_theta*t015)*t010 + t016*t029)*t030;
-    const T t040 = sin_psi*t008;
-    const T t041 = cos_psi*t006;
-    const T t042 = t004*t012 + t005*t011 + t041 - t040;
-    const T t043 = (t004*t028 + t005*t027 - (t040 - t041)*t001)*t030;
+    const T t014 = S(1)/(sin_theta*sin_theta);
+    const T t015 = cos_theta*t002*t014 + p_psi;
+    const T t016 = t001*t010 + t013*t015;
+    const T t017 = p.c000*t000;
+    const T t018 = t016*t017;
+    const T t019 = S(18)/S(11)*p_psi + S(36)/S(11)*t005;
+    const T t020 = S(36)/S(11)*t004 - S(18)/S(11)*p_psi;
+    const T t021 = cos_psi*t020 + sin_psi*t019;
+    const T t022 = S(3)*sin_psi - S(5)*cos_psi;
+    const T t023 = S(5)*sin_psi - S(3)*cos_psi;
+    const T t024 = cos_psi*t023 + sin_psi*t022;
+    const T t025 = t001*t011 - S(3);
+    const T t026 = t001*t012 - S(3);
+    const T t027 = cos_psi*t025 + sin_psi*t026;
+    const T t028 = p.c000*t015;
+    const T t029 = sin_psi*t011 - cos_psi*t012;
+    const T t030 = (S(18)/S(11)*t015 - S(6)/S(11)*t008)*cos_psi - (S(6)/S(11)*t006 - S(18)/S(11)*t015)*sin_psi - S(6)/S(11)*t001*t016;
+    const T t031 = ((S(6)/S(11)*t025 - S(18)/S(11))*cos_psi + (S(6)/S(11)*t026 - S(18)/S(11))*sin_psi)*t001 + S(30)/S(11);
+    const T t032 = (cos_psi + sin_psi)*sin_theta;
+    const T t033 = (S(2)*cos_theta*t015 - p_phi)*t000*t010 + t013*t015*t015;
+    const T t034 = (sin_psi - cos_psi)*cos_theta*p.c001;
+    const T t035 = ((S(1) + cos_theta*cos_theta*t014)*t010 + t015*t027)*p.c000;
+    const T t036 = sin_psi*t008;
+    const T t037 = cos_psi*t006;
+    const T t038 = t004*t012 + t005*t011 + t037 - t036;
+    const T t039 = (t004*t026 + t005*t025 - (t036 - t037)*t001)*p.c000;
     J[0] = T(S(0));
-    J[1] = S(6)/S(11)*t020;
-    J[2] = -t019*t023;
-    J[3] = S(6)/S(11)*t013/(p.M*t014*t018);
-    J[4] = -S(6)/S(11)*t019*t026;
-    J[5] = -S(6)/S(11)*t019*t029;
+    J[1] = S(6)/S(11)*t018;
+    J[2] = -t017*t021;
+    J[3] = S(6)/S(11)*p.c000*t013*t014;
+    J[4] = -S(6)/S(11)*t017*t024;
+    J[5] = -S(6)/S(11)*t017*t027;
     J[6] = T(S(0));
-    J[7] = -S(6)/S(11)*t031*t032;
-    J[8] = (sin_psi*t022 - cos_psi*t021)*t030;
-    J[9] = -S(6)/S(11)*t019*t032;
-    J[10] = S(6)/S(11)*(sin_psi*t025 - cos_psi*t024)*t030;
-    J[11] = S(6)/S(11)*(sin_psi*t027 - cos_psi*t028)*t030;
+    J[7] = -S(6)/S(11)*t028*t029;
+    J[8] = (sin_psi*t020 - cos_psi*t019)*p.c000;
+    J[9] = -S(6)/S(11)*t017*t029;
+    J[10] = S(6)/S(11)*(sin_psi*t023 - cos_psi*t022)*p.c000;
+    J[11] = S(6)/S(11)*(sin_psi*t025 - cos_psi*t026)*p.c000;
     J[12] = T(S(0));
-    J[13] = t030*t033;
-    J[14] = (t001*t023 - S(18)/S(11)*t004 - S(18)/S(11)*t005)*t030;
-    J[15] = (S(18)/S(11)*cos_psi + S(18)/S(11)*sin_psi - S(6)/S(11)*t001*t013)*t019;
-    J[16] = (S(18)/S(11)*cos_psi + S(6)/S(11)*t001*t026 - S(18)/S(11)*sin_psi)*t030;
-    J[17] = t030*t034;
+    J[13] = p.c000*t030;
+    J[14] = (t001*t021 - S(18)/S(11)*t004 - S(18)/S(11)*t005)*p.c000;
+    J[15] = (S(18)/S(11)*cos_psi + S(18)/S(11)*sin_psi - S(6)/S(11)*t001*t013)*t017;
+    J[16] = (S(18)/S(11)*cos_psi + S(6)/S(11)*t001*t024 - S(18)/S(11)*sin_psi)*p.c000;
+    J[17] = p.c000*t031;
     J[18] = T(S(0));
     J[19] = T(S(0));
     J[20] = T(S(0));
@@ -227,17 +250,24 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     J[22] = T(S(0));
     J[23] = T(S(0));
     J[24] = T(S(0));
-    J[25] = S(1)/S(2)*(cos_theta + t036)*t035 - S(6)/S(11)*t030*t037;
-    J[26] = S(1)/S(2)*t038 + t023*t031;
-    J[27] = -S(6)/S(11)*t020;
-    J[28] = S(6)/S(11)*t026*t031;
-    J[29] = S(6)/S(11)*t039;
+    J[25] = S(1)/S(2)*(cos_theta + t032)*p.c001 - S(6)/S(11)*p.c000*t033;
+    J[26] = S(1)/S(2)*t034 + t021*t028;
+    J[27] = -S(6)/S(11)*t018;
+    J[28] = S(6)/S(11)*t024*t028;
+    J[29] = S(6)/S(11)*t035;
     J[30] = T(S(0));
-    J[31] = S(1)/S(2)*t038 + S(6)/S(11)*t031*t042;
-    J[32] = S(1)/S(2)*t035*t036 - (t004*t021 + t005*t022)*t030;
-    J[33] = S(6)/S(11)*t019*t042;
-    J[34] = S(6)/S(11)*(-t004*t024 - t005*t025 - t007 - t009)*t030;
-    J[35] = -S(6)/S(11)*t043;
+    J[31] = S(1)/S(2)*t034 + S(6)/S(11)*t028*t038;
+    J[32] = S(1)/S(2)*p.c001*t032 - (t004*t019 + t005*t020)*p.c000;
+    J[33] = S(6)/S(11)*t017*t038;
+    J[34] = S(6)/S(11)*(-t004*t022 - t005*t023 - t007 - t009)*p.c000;
+    J[35] = -S(6)/S(11)*t039;
+}
+
+// jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void jacobian(T t, const T* y, T* J, const params<T>& p) {
+    jacobian(t, y, J, prepare(p));
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -245,10 +275,10 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, p_phi_dot, p_theta_dot, p_psi_dot
 //   J     output, dim 6 x 6 (row-major)
-//   p     parameters
-// Operations (+ - * / and calls): 4311 before lowering, 257 after (76 +-, 172 *, 5 /, 4 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 4311 before lowering, 249 after (76 +-, 167 *, 2 /, 4 calls).
 template <class T>
-void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -262,77 +292,73 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    const T t000 = p.L*p.L;
-    const T t001 = S(1)/(p.M*sin_theta*t000);
-    const T t002 = S(1)/sin_theta;
-    const T t003 = cos_theta*p_psi - p_phi;
-    const T t004 = t002*t003;
-    const T t005 = cos_psi*t004 + p_theta*sin_psi;
-    const T t006 = cos_psi*p_theta - sin_psi*t004;
-    const T t007 = S(3)*t005 - S(3)*p_psi - S(5)*t006;
-    const T t008 = sin_psi*t007;
-    const T t009 = S(5)*t005 - S(3)*p_psi - S(3)*t006;
-    const T t010 = cos_psi*t009;
-    const T t011 = t008 + t010;
-    const T t012 = sin_psi*t009;
-    const T t013 = cos_psi*t007;
-    const T t014 = t012 - t013;
-    const T t015 = S(1)/(p.M*t000);
-    const T t016 = cos_theta*t002;
-    const T t017 = t011*t016;
-    const T t018 = sin_theta*sin_theta;
-    const T t019 = S(1)/t018;
-    const T t020 = cos_theta*t003*t019 + p_psi;
-    const T t021 = t015*t020;
-    const T t022 = p.L*p.M*p.g;
-    const T t023 = cos_psi + sin_psi;
-    const T t024 = (sin_psi - cos_psi)*t022;
-    const T t025 = S(3)*sin_psi + S(5)*cos_psi;
-    const T t026 = S(3)*cos_psi + S(5)*sin_psi;
-    const T t027 = cos_psi*t025 + sin_psi*t026;
-    const T t028 = t017 + t020*t027;
-    const T t029 = t001*t028;
-    const T t030 = S(18)/S(11)*p_psi + S(36)/S(11)*t006;
-    const T t031 = S(36)/S(11)*t005 - S(18)/S(11)*p_psi;
-    const T t032 = cos_psi*t031 + sin_psi*t030;
-    const T t033 = S(3)*sin_psi - S(5)*cos_psi;
-    const T t034 = S(5)*sin_psi - S(3)*cos_psi;
-    const T t035 = cos_psi*t034 + sin_psi*t033;
-    const T t036 = t016*t025 - S(3);
-    const T t037 = t016*t026 - S(3);
-    const T t038 = cos_psi*t036 + sin_psi*t037;
-    const T t039 = sin_psi*t025 - cos_psi*t026;
-    const T t040 = (S(18)/S(11)*t020 - S(6)/S(11)*t009)*cos_psi - (S(6)/S(11)*t007 - S(18)/S(11)*t020)*sin_psi - S(6)/S(11)*t016*t028;
-    const T t041 = ((S(6)/S(11)*t036 - S(18)/S(11))*cos_psi + (S(6)/S(11)*t037 - S(18)/S(11))*sin_psi)*t016 + S(30)/S(11);
-    const T t042 = sin_theta*t023;
-    const T t043 = (S(2)*cos_theta*t020 - p_phi)*t002*t011 + t020*t020*t027;
-    const T t044 = cos_theta*t024;
-    const T t045 = ((S(1) + cos_theta*cos_theta*t019)*t011 + t020*t038)*t015;
-    const T t046 = t005*t026 + t006*t025 + t013 - t012;
-    dydt[0] = -S(6)/S(11)*t001*t011;
-    dydt[1] = S(6)/S(11)*t014*t015;
-    dydt[2] = (S(18)/S(11)*t006 + S(30)/S(11)*p_psi + S(6)/S(11)*t017 - S(18)/S(11)*t005)*t015;
+    const T t000 = S(1)/sin_theta;
+    const T t001 = p.c000*t000;
+    const T t002 = cos_theta*p_psi - p_phi;
+    const T t003 = t000*t002;
+    const T t004 = cos_psi*t003 + p_theta*sin_psi;
+    const T t005 = cos_psi*p_theta - sin_psi*t003;
+    const T t006 = S(3)*t004 - S(3)*p_psi - S(5)*t005;
+    const T t007 = sin_psi*t006;
+    const T t008 = S(5)*t004 - S(3)*p_psi - S(3)*t005;
+    const T t009 = cos_psi*t008;
+    const T t010 = t007 + t009;
+    const T t011 = sin_psi*t008;
+    const T t012 = cos_psi*t006;
+    const T t013 = t011 - t012;
+    const T t014 = cos_theta*t000;
+    const T t015 = t010*t014;
+    const T t016 = cos_psi + sin_psi;
+    const T t017 = S(1)/(sin_theta*sin_theta);
+    const T t018 = cos_theta*t002*t017 + p_psi;
+    const T t019 = p.c000*t018;
+    const T t020 = (sin_psi - cos_psi)*p.c001;
+    const T t021 = S(3)*sin_psi + S(5)*cos_psi;
+    const T t022 = S(3)*cos_psi + S(5)*sin_psi;
+    const T t023 = cos_psi*t021 + sin_psi*t022;
+    const T t024 = t015 + t018*t023;
+    const T t025 = t001*t024;
+    const T t026 = S(18)/S(11)*p_psi + S(36)/S(11)*t005;
+    const T t027 = S(36)/S(11)*t004 - S(18)/S(11)*p_psi;
+    const T t028 = cos_psi*t027 + sin_psi*t026;
+    const T t029 = S(3)*sin_psi - S(5)*cos_psi;
+    const T t030 = S(5)*sin_psi - S(3)*cos_psi;
+    const T t031 = cos_psi*t030 + sin_psi*t029;
+    const T t032 = t014*t021 - S(3);
+    const T t033 = t014*t022 - S(3);
+    const T t034 = cos_psi*t032 + sin_psi*t033;
+    const T t035 = sin_psi*t021 - cos_psi*t022;
+    const T t036 = (S(18)/S(11)*t018 - S(6)/S(11)*t008)*cos_psi - (S(6)/S(11)*t006 - S(18)/S(11)*t018)*sin_psi - S(6)/S(11)*t014*t024;
+    const T t037 = ((S(6)/S(11)*t032 - S(18)/S(11))*cos_psi + (S(6)/S(11)*t033 - S(18)/S(11))*sin_psi)*t014 + S(30)/S(11);
+    const T t038 = sin_theta*t016;
+    const T t039 = (S(2)*cos_theta*t018 - p_phi)*t000*t010 + t018*t018*t023;
+    const T t040 = cos_theta*t020;
+    const T t041 = ((S(1) + cos_theta*cos_theta*t017)*t010 + t018*t034)*p.c000;
+    const T t042 = t004*t022 + t005*t021 + t012 - t011;
+    dydt[0] = -S(6)/S(11)*t001*t010;
+    dydt[1] = S(6)/S(11)*p.c000*t013;
+    dydt[2] = (S(18)/S(11)*t005 + S(30)/S(11)*p_psi + S(6)/S(11)*t015 - S(18)/S(11)*t004)*p.c000;
     dydt[3] = T(S(0));
-    dydt[4] = S(1)/S(2)*(sin_theta - cos_theta*t023)*t022 + S(6)/S(11)*t011*t021;
-    dydt[5] = S(1)/S(2)*sin_theta*t024 - S(6)/S(11)*(t005*t007 + t006*t009)*t015;
+    dydt[4] = S(1)/S(2)*(sin_theta - cos_theta*t016)*p.c001 + S(6)/S(11)*t010*t019;
+    dydt[5] = S(1)/S(2)*sin_theta*t020 - S(6)/S(11)*(t004*t006 + t005*t008)*p.c000;
     J[0] = T(S(0));
-    J[1] = S(6)/S(11)*t029;
-    J[2] = -t001*t032;
-    J[3] = S(6)/S(11)*t027/(p.M*t000*t018);
-    J[4] = -S(6)/S(11)*t001*t035;
-    J[5] = -S(6)/S(11)*t001*t038;
+    J[1] = S(6)/S(11)*t025;
+    J[2] = -t001*t028;
+    J[3] = S(6)/S(11)*p.c000*t017*t023;
+    J[4] = -S(6)/S(11)*t001*t031;
+    J[5] = -S(6)/S(11)*t001*t034;
     J[6] = T(S(0));
-    J[7] = -S(6)/S(11)*t021*t039;
-    J[8] = (sin_psi*t031 - cos_psi*t030)*t015;
-    J[9] = -S(6)/S(11)*t001*t039;
-    J[10] = S(6)/S(11)*(sin_psi*t034 - cos_psi*t033)*t015;
-    J[11] = S(6)/S(11)*(sin_psi*t036 - cos_psi*t037)*t015;
+    J[7] = -S(6)/S(11)*t019*t035;
+    J[8] = (sin_psi*t027 - cos_psi*t026)*p.c000;
+    J[9] = -S(6)/S(11)*t001*t035;
+    J[10] = S(6)/S(11)*(sin_psi*t030 - cos_psi*t029)*p.c000;
+    J[11] = S(6)/S(11)*(sin_psi*t032 - cos_psi*t033)*p.c000;
     J[12] = T(S(0));
-    J[13] = t015*t040;
-    J[14] = (t016*t032 - S(18)/S(11)*t005 - S(18)/S(11)*t006)*t015;
-    J[15] = (S(18)/S(11)*cos_psi + S(18)/S(11)*sin_psi - S(6)/S(11)*t016*t027)*t001;
-    J[16] = (S(18)/S(11)*cos_psi + S(6)/S(11)*t016*t035 - S(18)/S(11)*sin_psi)*t015;
-    J[17] = t015*t041;
+    J[13] = p.c000*t036;
+    J[14] = (t014*t028 - S(18)/S(11)*t004 - S(18)/S(11)*t005)*p.c000;
+    J[15] = (S(18)/S(11)*cos_psi + S(18)/S(11)*sin_psi - S(6)/S(11)*t014*t023)*t001;
+    J[16] = (S(18)/S(11)*cos_psi + S(6)/S(11)*t014*t031 - S(18)/S(11)*sin_psi)*p.c000;
+    J[17] = p.c000*t037;
     J[18] = T(S(0));
     J[19] = T(S(0));
     J[20] = T(S(0));
@@ -340,17 +366,24 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     J[22] = T(S(0));
     J[23] = T(S(0));
     J[24] = T(S(0));
-    J[25] = S(1)/S(2)*(cos_theta + t042)*t022 - S(6)/S(11)*t015*t043;
-    J[26] = S(1)/S(2)*t044 + t021*t032;
-    J[27] = -S(6)/S(11)*t029;
-    J[28] = S(6)/S(11)*t021*t035;
-    J[29] = S(6)/S(11)*t045;
+    J[25] = S(1)/S(2)*(cos_theta + t038)*p.c001 - S(6)/S(11)*p.c000*t039;
+    J[26] = S(1)/S(2)*t040 + t019*t028;
+    J[27] = -S(6)/S(11)*t025;
+    J[28] = S(6)/S(11)*t019*t031;
+    J[29] = S(6)/S(11)*t041;
     J[30] = T(S(0));
-    J[31] = S(1)/S(2)*t044 + S(6)/S(11)*t021*t046;
-    J[32] = S(1)/S(2)*t022*t042 - (t005*t030 + t006*t031)*t015;
-    J[33] = S(6)/S(11)*t001*t046;
-    J[34] = S(6)/S(11)*(-t005*t033 - t006*t034 - t008 - t010)*t015;
-    J[35] = S(6)/S(11)*(t014*t016 - t005*t037 - t006*t036)*t015;
+    J[31] = S(1)/S(2)*t040 + S(6)/S(11)*t019*t042;
+    J[32] = S(1)/S(2)*p.c001*t038 - (t004*t026 + t005*t027)*p.c000;
+    J[33] = S(6)/S(11)*t001*t042;
+    J[34] = S(6)/S(11)*(-t004*t029 - t005*t030 - t007 - t009)*p.c000;
+    J[35] = S(6)/S(11)*(t013*t014 - t004*t033 - t005*t032)*p.c000;
+}
+
+// rhs_and_jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+    rhs_and_jacobian(t, y, dydt, J, prepare(p));
 }
 
 // The energy, the Hamiltonian H = T + V (conserved without damping and driving torques).

@@ -20,9 +20,9 @@
 // Parameters (params<T>, defaults from the model file): M = 1.0, L = 0.2, g = 9.81, p_phi = 0.0.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 515 -> 70 (16 temporaries)
-//   jacobian: 2750 -> 198 (40 temporaries)
-//   rhs_and_jacobian: 3265 -> 222 (43 temporaries)
+//   rhs: 515 -> 65 (14 temporaries), and 5 once in prepare()
+//   jacobian: 2750 -> 193 (38 temporaries), and 5 once in prepare()
+//   rhs_and_jacobian: 3265 -> 217 (41 temporaries), and 5 once in prepare()
 //   energy: 184 -> 45 (9 temporaries)
 //   momenta: 0 -> 0 (0 temporaries)
 //   mass_matrix: 182 -> 39 (12 temporaries)
@@ -73,6 +73,28 @@ struct params {
     T p_phi = T(rg_scalar(0)); // conserved momentum of the ignored coordinate phi
 };
 
+// The parameters and, computed from them once, the 2 subexpressions of parameters alone that
+// rhs, jacobian and rhs_and_jacobian use (5 operations: products and quotients of
+// parameters, reciprocals; a division by a parameter becomes a multiplication). Make one per
+// parameter set with prepare(p) and pass it where params<T> goes: those functions then skip that
+// work at every call. Given params<T>, they prepare it themselves. Changed a parameter: prepare
+// again.
+template <class T>
+struct prepared : params<T> {
+    T c000{};
+    T c001{};
+};
+
+template <class T>
+prepared<T> prepare(const params<T>& parameters) {
+    using S = typename detail::scalar_of<T>::type;
+    prepared<T> p;
+    static_cast<params<T>&>(p) = parameters;
+    p.c000 = S(1)/(p.L*p.L*p.M);
+    p.c001 = p.L*p.M*p.g;
+    return p;
+}
+
 // The model and the form this header implements.
 constexpr const char* model_name = "cube_on_corner";
 constexpr const char* form_name = "reduced";
@@ -99,10 +121,10 @@ constexpr std::array<unsigned char, 16> jacobian_pattern{{
 //   t     time
 //   y     state, dim 4: (theta, psi, p_theta, p_psi)
 //   dydt  output, dim 4: theta_dot, psi_dot, p_theta_dot, p_psi_dot
-//   p     parameters
-// Operations (+ - * / and calls): 515 before lowering, 70 after (19 +-, 44 *, 3 /, 4 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 515 before lowering, 65 after (19 +-, 40 *, 2 /, 4 calls).
 template <class T>
-void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+void rhs(T t, const T* y, T* dydt, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -122,25 +144,30 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     const T t004 = cos_psi*p_theta - sin_psi*t002;
     const T t005 = S(5)*t003 - S(3)*p_psi - S(3)*t004;
     const T t006 = S(3)*t003 - S(3)*p_psi - S(5)*t004;
-    const T t007 = S(1)/(p.L*p.L*p.M);
-    const T t008 = cos_psi*t005 + sin_psi*t006;
-    const T t009 = p.L*p.M*p.g;
-    const T t010 = S(1)/S(2)*(sin_theta - (cos_psi + sin_psi)*cos_theta)*t009 + S(6)/S(11)*(cos_theta*t000/(sin_theta*sin_theta) + p_psi)*t007*t008;
-    const T t011 = S(1)/S(2)*(sin_psi - cos_psi)*sin_theta*t009 - S(6)/S(11)*(t003*t006 + t004*t005)*t007;
-    dydt[0] = S(6)/S(11)*(sin_psi*t005 - cos_psi*t006)*t007;
-    dydt[1] = (S(18)/S(11)*t004 + S(30)/S(11)*p_psi + S(6)/S(11)*cos_theta*t001*t008 - S(18)/S(11)*t003)*t007;
-    dydt[2] = t010;
-    dydt[3] = t011;
+    const T t007 = cos_psi*t005 + sin_psi*t006;
+    const T t008 = S(1)/S(2)*(sin_theta - (cos_psi + sin_psi)*cos_theta)*p.c001 + S(6)/S(11)*(cos_theta*t000/(sin_theta*sin_theta) + p_psi)*p.c000*t007;
+    const T t009 = S(1)/S(2)*(sin_psi - cos_psi)*p.c001*sin_theta - S(6)/S(11)*(t003*t006 + t004*t005)*p.c000;
+    dydt[0] = S(6)/S(11)*(sin_psi*t005 - cos_psi*t006)*p.c000;
+    dydt[1] = (S(18)/S(11)*t004 + S(30)/S(11)*p_psi + S(6)/S(11)*cos_theta*t001*t007 - S(18)/S(11)*t003)*p.c000;
+    dydt[2] = t008;
+    dydt[3] = t009;
+}
+
+// rhs with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+    rhs(t, y, dydt, prepare(p));
 }
 
 // The analytic Jacobian J = d(dy/dt)/dy, dense, row-major: J[i * state_size + k] = d dydt[i] / d y[k].
 //   t     time
 //   y     state, dim 4: (theta, psi, p_theta, p_psi)
 //   J     output, dim 4 x 4 (row-major); structural zeros in jacobian_pattern
-//   p     parameters
-// Operations (+ - * / and calls): 2750 before lowering, 198 after (61 +-, 130 *, 3 /, 4 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 2750 before lowering, 193 after (61 +-, 126 *, 2 /, 4 calls).
 template <class T>
-void jacobian(T t, const T* y, T* J, const params<T>& p) {
+void jacobian(T t, const T* y, T* J, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -156,55 +183,60 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T t000 = S(1)/(sin_theta*sin_theta);
     const T t001 = cos_theta*p_psi - p.p_phi;
     const T t002 = cos_theta*t000*t001 + p_psi;
-    const T t003 = S(1)/(p.L*p.L*p.M);
-    const T t004 = t002*t003;
-    const T t005 = S(3)*sin_psi + S(5)*cos_psi;
-    const T t006 = S(3)*cos_psi + S(5)*sin_psi;
-    const T t007 = S(1)/sin_theta;
-    const T t008 = t001*t007;
-    const T t009 = cos_psi*p_theta - sin_psi*t008;
-    const T t010 = S(18)/S(11)*p_psi + S(36)/S(11)*t009;
-    const T t011 = cos_psi*t008 + p_theta*sin_psi;
-    const T t012 = S(36)/S(11)*t011 - S(18)/S(11)*p_psi;
-    const T t013 = S(3)*sin_psi - S(5)*cos_psi;
-    const T t014 = S(5)*sin_psi - S(3)*cos_psi;
-    const T t015 = cos_theta*t007;
-    const T t016 = t006*t015 - S(3);
-    const T t017 = t005*t015 - S(3);
-    const T t018 = S(5)*t011 - S(3)*p_psi - S(3)*t009;
-    const T t019 = S(3)*t011 - S(3)*p_psi - S(5)*t009;
-    const T t020 = cos_psi*t005 + sin_psi*t006;
-    const T t021 = cos_psi*t018;
-    const T t022 = sin_psi*t019;
-    const T t023 = t021 + t022;
-    const T t024 = (S(18)/S(11)*t002 - S(6)/S(11)*t018)*cos_psi - (S(6)/S(11)*t019 - S(18)/S(11)*t002)*sin_psi - S(6)/S(11)*(t002*t020 + t015*t023)*t015;
-    const T t025 = cos_psi*t012 + sin_psi*t010;
-    const T t026 = cos_psi*t014 + sin_psi*t013;
-    const T t027 = ((S(6)/S(11)*t016 - S(18)/S(11))*sin_psi + (S(6)/S(11)*t017 - S(18)/S(11))*cos_psi)*t015 + S(30)/S(11);
-    const T t028 = p.L*p.M*p.g;
-    const T t029 = (cos_psi + sin_psi)*sin_theta;
-    const T t030 = (p.p_phi - S(2)*cos_theta*t002)*t007*t023 - t002*t002*t020;
-    const T t031 = (sin_psi - cos_psi)*cos_theta*t028;
-    const T t032 = (S(1) + cos_theta*cos_theta*t000)*t023 + (cos_psi*t017 + sin_psi*t016)*t002;
-    const T t033 = sin_psi*t018;
-    const T t034 = cos_psi*t019;
-    const T t035 = (t009*t017 + t011*t016 - (t033 - t034)*t015)*t003;
-    J[0] = S(6)/S(11)*(cos_psi*t006 - sin_psi*t005)*t004;
-    J[1] = (sin_psi*t012 - cos_psi*t010)*t003;
-    J[2] = S(6)/S(11)*(sin_psi*t014 - cos_psi*t013)*t003;
-    J[3] = S(6)/S(11)*(sin_psi*t017 - cos_psi*t016)*t003;
-    J[4] = t003*t024;
-    J[5] = (t015*t025 - S(18)/S(11)*t009 - S(18)/S(11)*t011)*t003;
-    J[6] = (S(18)/S(11)*cos_psi + S(6)/S(11)*t015*t026 - S(18)/S(11)*sin_psi)*t003;
-    J[7] = t003*t027;
-    J[8] = S(1)/S(2)*(cos_theta + t029)*t028 + S(6)/S(11)*t003*t030;
-    J[9] = S(1)/S(2)*t031 + t004*t025;
-    J[10] = S(6)/S(11)*t004*t026;
-    J[11] = S(6)/S(11)*t003*t032;
-    J[12] = S(1)/S(2)*t031 - S(6)/S(11)*(t033 - t005*t009 - t006*t011 - t034)*t004;
-    J[13] = S(1)/S(2)*t028*t029 - (t009*t012 + t010*t011)*t003;
-    J[14] = S(6)/S(11)*(-t009*t014 - t011*t013 - t021 - t022)*t003;
-    J[15] = -S(6)/S(11)*t035;
+    const T t003 = p.c000*t002;
+    const T t004 = S(3)*sin_psi + S(5)*cos_psi;
+    const T t005 = S(3)*cos_psi + S(5)*sin_psi;
+    const T t006 = S(1)/sin_theta;
+    const T t007 = t001*t006;
+    const T t008 = cos_psi*p_theta - sin_psi*t007;
+    const T t009 = S(18)/S(11)*p_psi + S(36)/S(11)*t008;
+    const T t010 = cos_psi*t007 + p_theta*sin_psi;
+    const T t011 = S(36)/S(11)*t010 - S(18)/S(11)*p_psi;
+    const T t012 = S(3)*sin_psi - S(5)*cos_psi;
+    const T t013 = S(5)*sin_psi - S(3)*cos_psi;
+    const T t014 = cos_theta*t006;
+    const T t015 = t005*t014 - S(3);
+    const T t016 = t004*t014 - S(3);
+    const T t017 = S(5)*t010 - S(3)*p_psi - S(3)*t008;
+    const T t018 = S(3)*t010 - S(3)*p_psi - S(5)*t008;
+    const T t019 = cos_psi*t004 + sin_psi*t005;
+    const T t020 = cos_psi*t017;
+    const T t021 = sin_psi*t018;
+    const T t022 = t020 + t021;
+    const T t023 = (S(18)/S(11)*t002 - S(6)/S(11)*t017)*cos_psi - (S(6)/S(11)*t018 - S(18)/S(11)*t002)*sin_psi - S(6)/S(11)*(t002*t019 + t014*t022)*t014;
+    const T t024 = cos_psi*t011 + sin_psi*t009;
+    const T t025 = cos_psi*t013 + sin_psi*t012;
+    const T t026 = ((S(6)/S(11)*t015 - S(18)/S(11))*sin_psi + (S(6)/S(11)*t016 - S(18)/S(11))*cos_psi)*t014 + S(30)/S(11);
+    const T t027 = (cos_psi + sin_psi)*sin_theta;
+    const T t028 = (p.p_phi - S(2)*cos_theta*t002)*t006*t022 - t002*t002*t019;
+    const T t029 = (sin_psi - cos_psi)*cos_theta*p.c001;
+    const T t030 = (S(1) + cos_theta*cos_theta*t000)*t022 + (cos_psi*t016 + sin_psi*t015)*t002;
+    const T t031 = sin_psi*t017;
+    const T t032 = cos_psi*t018;
+    const T t033 = (t008*t016 + t010*t015 - (t031 - t032)*t014)*p.c000;
+    J[0] = S(6)/S(11)*(cos_psi*t005 - sin_psi*t004)*t003;
+    J[1] = (sin_psi*t011 - cos_psi*t009)*p.c000;
+    J[2] = S(6)/S(11)*(sin_psi*t013 - cos_psi*t012)*p.c000;
+    J[3] = S(6)/S(11)*(sin_psi*t016 - cos_psi*t015)*p.c000;
+    J[4] = p.c000*t023;
+    J[5] = (t014*t024 - S(18)/S(11)*t008 - S(18)/S(11)*t010)*p.c000;
+    J[6] = (S(18)/S(11)*cos_psi + S(6)/S(11)*t014*t025 - S(18)/S(11)*sin_psi)*p.c000;
+    J[7] = p.c000*t026;
+    J[8] = S(1)/S(2)*(cos_theta + t027)*p.c001 + S(6)/S(11)*p.c000*t028;
+    J[9] = S(1)/S(2)*t029 + t003*t024;
+    J[10] = S(6)/S(11)*t003*t025;
+    J[11] = S(6)/S(11)*p.c000*t030;
+    J[12] = S(1)/S(2)*t029 - S(6)/S(11)*(t031 - t004*t008 - t005*t010 - t032)*t003;
+    J[13] = S(1)/S(2)*p.c001*t027 - (t008*t011 + t009*t010)*p.c000;
+    J[14] = S(6)/S(11)*(-t008*t013 - t010*t012 - t020 - t021)*p.c000;
+    J[15] = -S(6)/S(11)*t033;
+}
+
+// jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void jacobian(T t, const T* y, T* J, const params<T>& p) {
+    jacobian(t, y, J, prepare(p));
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -212,10 +244,10 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   y     state, dim 4: (theta, psi, p_theta, p_psi)
 //   dydt  output, dim 4: theta_dot, psi_dot, p_theta_dot, p_psi_dot
 //   J     output, dim 4 x 4 (row-major)
-//   p     parameters
-// Operations (+ - * / and calls): 3265 before lowering, 222 after (67 +-, 148 *, 3 /, 4 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 3265 before lowering, 217 after (67 +-, 144 *, 2 /, 4 calls).
 template <class T>
-void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -238,55 +270,60 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T t007 = S(3)*t003 - S(3)*p_psi - S(5)*t004;
     const T t008 = cos_psi*t007;
     const T t009 = t006 - t008;
-    const T t010 = S(1)/(p.L*p.L*p.M);
-    const T t011 = cos_theta*t001;
-    const T t012 = cos_psi*t005;
-    const T t013 = sin_psi*t007;
-    const T t014 = t012 + t013;
-    const T t015 = t011*t014;
-    const T t016 = p.L*p.M*p.g;
-    const T t017 = cos_psi + sin_psi;
-    const T t018 = S(1)/(sin_theta*sin_theta);
-    const T t019 = cos_theta*t000*t018 + p_psi;
-    const T t020 = t010*t019;
-    const T t021 = (sin_psi - cos_psi)*t016;
-    const T t022 = S(3)*sin_psi + S(5)*cos_psi;
-    const T t023 = S(3)*cos_psi + S(5)*sin_psi;
-    const T t024 = S(18)/S(11)*p_psi + S(36)/S(11)*t004;
-    const T t025 = S(36)/S(11)*t003 - S(18)/S(11)*p_psi;
-    const T t026 = S(3)*sin_psi - S(5)*cos_psi;
-    const T t027 = S(5)*sin_psi - S(3)*cos_psi;
-    const T t028 = t011*t023 - S(3);
-    const T t029 = t011*t022 - S(3);
-    const T t030 = cos_psi*t022 + sin_psi*t023;
-    const T t031 = (S(18)/S(11)*t019 - S(6)/S(11)*t005)*cos_psi - (S(6)/S(11)*t007 - S(18)/S(11)*t019)*sin_psi - S(6)/S(11)*(t015 + t019*t030)*t011;
-    const T t032 = cos_psi*t025 + sin_psi*t024;
-    const T t033 = cos_psi*t027 + sin_psi*t026;
-    const T t034 = ((S(6)/S(11)*t028 - S(18)/S(11))*sin_psi + (S(6)/S(11)*t029 - S(18)/S(11))*cos_psi)*t011 + S(30)/S(11);
-    const T t035 = sin_theta*t017;
-    const T t036 = (p.p_phi - S(2)*cos_theta*t019)*t001*t014 - t019*t019*t030;
-    const T t037 = cos_theta*t021;
-    const T t038 = (S(1) + cos_theta*cos_theta*t018)*t014 + (cos_psi*t029 + sin_psi*t028)*t019;
-    dydt[0] = S(6)/S(11)*t009*t010;
-    dydt[1] = (S(18)/S(11)*t004 + S(30)/S(11)*p_psi + S(6)/S(11)*t015 - S(18)/S(11)*t003)*t010;
-    dydt[2] = S(1)/S(2)*(sin_theta - cos_theta*t017)*t016 + S(6)/S(11)*t014*t020;
-    dydt[3] = S(1)/S(2)*sin_theta*t021 - S(6)/S(11)*(t003*t007 + t004*t005)*t010;
-    J[0] = S(6)/S(11)*(cos_psi*t023 - sin_psi*t022)*t020;
-    J[1] = (sin_psi*t025 - cos_psi*t024)*t010;
-    J[2] = S(6)/S(11)*(sin_psi*t027 - cos_psi*t026)*t010;
-    J[3] = S(6)/S(11)*(sin_psi*t029 - cos_psi*t028)*t010;
-    J[4] = t010*t031;
-    J[5] = (t011*t032 - S(18)/S(11)*t003 - S(18)/S(11)*t004)*t010;
-    J[6] = (S(18)/S(11)*cos_psi + S(6)/S(11)*t011*t033 - S(18)/S(11)*sin_psi)*t010;
-    J[7] = t010*t034;
-    J[8] = S(1)/S(2)*(cos_theta + t035)*t016 + S(6)/S(11)*t010*t036;
-    J[9] = S(1)/S(2)*t037 + t020*t032;
-    J[10] = S(6)/S(11)*t020*t033;
-    J[11] = S(6)/S(11)*t010*t038;
-    J[12] = S(1)/S(2)*t037 - S(6)/S(11)*(t006 - t003*t023 - t004*t022 - t008)*t020;
-    J[13] = S(1)/S(2)*t016*t035 - (t003*t024 + t004*t025)*t010;
-    J[14] = S(6)/S(11)*(-t003*t026 - t004*t027 - t012 - t013)*t010;
-    J[15] = S(6)/S(11)*(t009*t011 - t003*t028 - t004*t029)*t010;
+    const T t010 = cos_theta*t001;
+    const T t011 = cos_psi*t005;
+    const T t012 = sin_psi*t007;
+    const T t013 = t011 + t012;
+    const T t014 = t010*t013;
+    const T t015 = cos_psi + sin_psi;
+    const T t016 = S(1)/(sin_theta*sin_theta);
+    const T t017 = cos_theta*t000*t016 + p_psi;
+    const T t018 = p.c000*t017;
+    const T t019 = (sin_psi - cos_psi)*p.c001;
+    const T t020 = S(3)*sin_psi + S(5)*cos_psi;
+    const T t021 = S(3)*cos_psi + S(5)*sin_psi;
+    const T t022 = S(18)/S(11)*p_psi + S(36)/S(11)*t004;
+    const T t023 = S(36)/S(11)*t003 - S(18)/S(11)*p_psi;
+    const T t024 = S(3)*sin_psi - S(5)*cos_psi;
+    const T t025 = S(5)*sin_psi - S(3)*cos_psi;
+    const T t026 = t010*t021 - S(3);
+    const T t027 = t010*t020 - S(3);
+    const T t028 = cos_psi*t020 + sin_psi*t021;
+    const T t029 = (S(18)/S(11)*t017 - S(6)/S(11)*t005)*cos_psi - (S(6)/S(11)*t007 - S(18)/S(11)*t017)*sin_psi - S(6)/S(11)*(t014 + t017*t028)*t010;
+    const T t030 = cos_psi*t023 + sin_psi*t022;
+    const T t031 = cos_psi*t025 + sin_psi*t024;
+    const T t032 = ((S(6)/S(11)*t026 - S(18)/S(11))*sin_psi + (S(6)/S(11)*t027 - S(18)/S(11))*cos_psi)*t010 + S(30)/S(11);
+    const T t033 = sin_theta*t015;
+    const T t034 = (p.p_phi - S(2)*cos_theta*t017)*t001*t013 - t017*t017*t028;
+    const T t035 = cos_theta*t019;
+    const T t036 = (S(1) + cos_theta*cos_theta*t016)*t013 + (cos_psi*t027 + sin_psi*t026)*t017;
+    dydt[0] = S(6)/S(11)*p.c000*t009;
+    dydt[1] = (S(18)/S(11)*t004 + S(30)/S(11)*p_psi + S(6)/S(11)*t014 - S(18)/S(11)*t003)*p.c000;
+    dydt[2] = S(1)/S(2)*(sin_theta - cos_theta*t015)*p.c001 + S(6)/S(11)*t013*t018;
+    dydt[3] = S(1)/S(2)*sin_theta*t019 - S(6)/S(11)*(t003*t007 + t004*t005)*p.c000;
+    J[0] = S(6)/S(11)*(cos_psi*t021 - sin_psi*t020)*t018;
+    J[1] = (sin_psi*t023 - cos_psi*t022)*p.c000;
+    J[2] = S(6)/S(11)*(sin_psi*t025 - cos_psi*t024)*p.c000;
+    J[3] = S(6)/S(11)*(sin_psi*t027 - cos_psi*t026)*p.c000;
+    J[4] = p.c000*t029;
+    J[5] = (t010*t030 - S(18)/S(11)*t003 - S(18)/S(11)*t004)*p.c000;
+    J[6] = (S(18)/S(11)*cos_psi + S(6)/S(11)*t010*t031 - S(18)/S(11)*sin_psi)*p.c000;
+    J[7] = p.c000*t032;
+    J[8] = S(1)/S(2)*(cos_theta + t033)*p.c001 + S(6)/S(11)*p.c000*t034;
+    J[9] = S(1)/S(2)*t035 + t018*t030;
+    J[10] = S(6)/S(11)*t018*t031;
+    J[11] = S(6)/S(11)*p.c000*t036;
+    J[12] = S(1)/S(2)*t035 - S(6)/S(11)*(t006 - t003*t021 - t004*t020 - t008)*t018;
+    J[13] = S(1)/S(2)*p.c001*t033 - (t003*t022 + t004*t023)*p.c000;
+    J[14] = S(6)/S(11)*(-t003*t024 - t004*t025 - t011 - t012)*p.c000;
+    J[15] = S(6)/S(11)*(t009*t010 - t003*t026 - t004*t027)*p.c000;
+}
+
+// rhs_and_jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+    rhs_and_jacobian(t, y, dydt, J, prepare(p));
 }
 
 // The energy, the Hamiltonian H = T + V (conserved without damping and driving torques).

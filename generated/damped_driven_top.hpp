@@ -20,9 +20,9 @@
 // 0.1, c = 0.05, A = 0.2, w = 3.0.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 129 -> 47 (11 temporaries)
-//   jacobian: 483 -> 118 (31 temporaries)
-//   rhs_and_jacobian: 612 -> 127 (33 temporaries)
+//   rhs: 129 -> 42 (11 temporaries), and 5 once in prepare()
+//   jacobian: 483 -> 109 (30 temporaries), and 10 once in prepare()
+//   rhs_and_jacobian: 612 -> 118 (32 temporaries), and 10 once in prepare()
 //   energy: 31 -> 23 (4 temporaries)
 //   momenta: 19 -> 11 (3 temporaries)
 //   mass_matrix: 11 -> 8 (3 temporaries)
@@ -77,6 +77,38 @@ struct params {
     T w = T(rg_scalar(3)); // drive angular frequency
 };
 
+// The parameters and, computed from them once, the 7 subexpressions of parameters alone that
+// rhs, jacobian and rhs_and_jacobian use (10 operations: products and quotients of
+// parameters, reciprocals; a division by a parameter becomes a multiplication). Make one per
+// parameter set with prepare(p) and pass it where params<T> goes: those functions then skip that
+// work at every call. Given params<T>, they prepare it themselves. Changed a parameter: prepare
+// again.
+template <class T>
+struct prepared : params<T> {
+    T c000{};
+    T c001{};
+    T c002{};
+    T c003{};
+    T c004{};
+    T c005{};
+    T c006{};
+};
+
+template <class T>
+prepared<T> prepare(const params<T>& parameters) {
+    using S = typename detail::scalar_of<T>::type;
+    prepared<T> p;
+    static_cast<params<T>&>(p) = parameters;
+    p.c000 = p.I3 - p.I1;
+    p.c001 = S(1)/p.I1;
+    p.c002 = p.M*p.g*p.h;
+    p.c003 = S(1)/p.I3;
+    p.c004 = p.I3 - S(2)*p.I1;
+    p.c005 = -p.c*p.c001;
+    p.c006 = p.I3/p.I1;
+    return p;
+}
+
 // The model and the form this header implements.
 constexpr const char* model_name = "damped_driven_top";
 constexpr const char* form_name = "lagrangian";
@@ -105,10 +137,10 @@ constexpr std::array<unsigned char, 36> jacobian_pattern{{
 //   t     time
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, phi_ddot, theta_ddot, psi_ddot
-//   p     parameters
-// Operations (+ - * / and calls): 129 before lowering, 47 after (14 +-, 27 *, 3 /, 3 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 129 before lowering, 42 after (13 +-, 25 *, 1 /, 3 calls).
 template <class T>
-void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+void rhs(T t, const T* y, T* dydt, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -122,27 +154,34 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     const T t001 = p.A*sin(p.w*t);
     const T t002 = p.c*psi_dot - p.I3*phi_dot*t000 - t001;
     const T t003 = p.I3*psi_dot;
-    const T t004 = (p.I3 - p.I1)*cos_theta*phi_dot;
+    const T t004 = cos_theta*p.c000*phi_dot;
     const T t005 = (S(2)*t004 + t003)*t000 + cos_theta*t001 - p.c*phi_dot;
-    const T t006 = S(1)/(p.I1*sin_theta*sin_theta);
-    const T t007 = ((t003 + t004)*phi_dot - p.M*p.g*p.h)*sin_theta + p.c*theta_dot;
-    const T t008 = (S(1)/p.I3 + cos_theta*cos_theta*t006)*t002 + cos_theta*t005*t006;
+    const T t006 = p.c001/(sin_theta*sin_theta);
+    const T t007 = (((t003 + t004)*phi_dot - p.c002)*sin_theta + p.c*theta_dot)*p.c001;
+    const T t008 = (cos_theta*cos_theta*t006 + p.c003)*t002 + cos_theta*t005*t006;
     dydt[0] = phi_dot;
     dydt[1] = theta_dot;
     dydt[2] = psi_dot;
     dydt[3] = (cos_theta*t002 + t005)*t006;
-    dydt[4] = -t007/p.I1;
+    dydt[4] = -t007;
     dydt[5] = -t008;
+}
+
+// rhs with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+    rhs(t, y, dydt, prepare(p));
 }
 
 // The analytic Jacobian J = d(dy/dt)/dy, dense, row-major: J[i * state_size + k] = d dydt[i] / d y[k].
 //   t     time
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   J     output, dim 6 x 6 (row-major); structural zeros in jacobian_pattern
-//   p     parameters
-// Operations (+ - * / and calls): 483 before lowering, 118 after (36 +-, 72 *, 7 /, 3 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 483 before lowering, 109 after (33 +-, 71 *, 2 /, 3 calls).
 template <class T>
-void jacobian(T t, const T* y, T* J, const params<T>& p) {
+void jacobian(T t, const T* y, T* J, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -152,35 +191,34 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T psi_dot = y[5];
     const T sin_theta = sin(theta);
     const T cos_theta = cos(theta);
-    const T t000 = S(1)/(p.I1*sin_theta);
-    const T t001 = p.I3*theta_dot;
-    const T t002 = cos_theta*t001;
-    const T t003 = phi_dot*t002;
-    const T t004 = S(1)/sin_theta;
-    const T t005 = phi_dot*sin_theta;
-    const T t006 = p.A*sin(p.w*t);
-    const T t007 = p.c*psi_dot - t001*t005 - t006;
-    const T t008 = sin_theta*theta_dot;
-    const T t009 = p.I3*psi_dot;
-    const T t010 = p.I3 - p.I1;
-    const T t011 = cos_theta*t010;
-    const T t012 = phi_dot*t011;
-    const T t013 = S(2)*t012 + t009;
-    const T t014 = cos_theta*t006 + t008*t013 - p.c*phi_dot;
-    const T t015 = cos_theta*t013;
-    const T t016 = sin_theta*sin_theta;
-    const T t017 = t010*t016;
-    const T t018 = sin_theta*t006 - (t015 - S(2)*phi_dot*t017)*theta_dot;
-    const T t019 = ((S(2)*(cos_theta*t007 + t014)*t004 + t003)*cos_theta + t018)*t004;
-    const T t020 = S(2)*t008*t011 - p.c;
-    const T t021 = cos_theta*t004;
-    const T t022 = S(1)/p.I1;
-    const T t023 = ((t009 + t012)*phi_dot - p.M*p.g*p.h)*cos_theta - phi_dot*phi_dot*t017;
-    const T t024 = cos_theta*cos_theta;
-    const T t025 = S(1)/(p.I1*t016);
-    const T t026 = S(1)/p.I3 + t024*t025;
-    const T t027 = (S(2)*t014*t021 + t018)*t004 + S(2)*(S(1) + t024/t016)*t007;
-    const T t028 = p.I3*t000*t024 + sin_theta;
+    const T t000 = cos_theta*theta_dot;
+    const T t001 = p.I3*phi_dot;
+    const T t002 = t000*t001;
+    const T t003 = S(1)/sin_theta;
+    const T t004 = sin_theta*theta_dot;
+    const T t005 = p.A*sin(p.w*t);
+    const T t006 = p.c*psi_dot - t001*t004 - t005;
+    const T t007 = p.I3*psi_dot;
+    const T t008 = cos_theta*phi_dot;
+    const T t009 = p.c000*t008;
+    const T t010 = S(2)*t009 + t007;
+    const T t011 = cos_theta*t005 + t004*t010 - p.c*phi_dot;
+    const T t012 = cos_theta*t010;
+    const T t013 = sin_theta*sin_theta;
+    const T t014 = p.c000*t013;
+    const T t015 = sin_theta*t005 - (t012 - S(2)*phi_dot*t014)*theta_dot;
+    const T t016 = ((S(2)*(cos_theta*t006 + t011)*t003 + t002)*cos_theta + t015)*t003;
+    const T t017 = p.c001*t003;
+    const T t018 = S(2)*p.c000*sin_theta*t000 - p.c;
+    const T t019 = cos_theta*t003;
+    const T t020 = ((t007 + t009)*phi_dot - p.c002)*cos_theta - phi_dot*phi_dot*t014;
+    const T t021 = S(1)/t013;
+    const T t022 = cos_theta*cos_theta;
+    const T t023 = t021*t022;
+    const T t024 = p.c001*t023 + p.c003;
+    const T t025 = ((S(2)*t011*t019 + t015)*t003 + S(2)*(S(1) + t023)*t006)*cos_theta;
+    const T t026 = p.c006*t003;
+    const T t027 = sin_theta + t022*t026;
     J[0] = T(S(0));
     J[1] = T(S(0));
     J[2] = T(S(0));
@@ -200,23 +238,30 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     J[16] = T(S(0));
     J[17] = T(S(1));
     J[18] = T(S(0));
-    J[19] = (-t007 - t019)*t000;
+    J[19] = (-t006 - t016)*t017;
     J[20] = T(S(0));
-    J[21] = (t004*t020 - t002)*t000;
-    J[22] = ((p.I3 - S(2)*p.I1)*cos_theta*phi_dot + t009)*t000;
-    J[23] = (p.c*t021 + t001)*t000;
+    J[21] = (t003*t018 - p.I3*t000)*t017;
+    J[22] = (p.c004*t008 + t007)*t017;
+    J[23] = (p.I3*theta_dot + p.c*t019)*t017;
     J[24] = T(S(0));
-    J[25] = -t022*t023;
+    J[25] = -p.c001*t020;
     J[26] = T(S(0));
-    J[27] = -sin_theta*t013*t022;
-    J[28] = -p.c*t022;
-    J[29] = -(p.I3/p.I1)*t005;
+    J[27] = -p.c001*sin_theta*t010;
+    J[28] = p.c005;
+    J[29] = -p.c006*phi_dot*sin_theta;
     J[30] = T(S(0));
-    J[31] = (cos_theta*t027 + t014)*t000 + t003*t026;
+    J[31] = (t011 + t025)*t017 + t002*t024;
     J[32] = T(S(0));
-    J[33] = t028*theta_dot - cos_theta*t020*t025;
-    J[34] = phi_dot*t028 - t000*t015;
-    J[35] = -p.c*t026 - t000*t002;
+    J[33] = t027*theta_dot - cos_theta*p.c001*t018*t021;
+    J[34] = phi_dot*t027 - t012*t017;
+    J[35] = -p.c*t024 - t000*t026;
+}
+
+// jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void jacobian(T t, const T* y, T* J, const params<T>& p) {
+    jacobian(t, y, J, prepare(p));
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -224,10 +269,10 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, phi_ddot, theta_ddot, psi_ddot
 //   J     output, dim 6 x 6 (row-major)
-//   p     parameters
-// Operations (+ - * / and calls): 612 before lowering, 127 after (39 +-, 78 *, 7 /, 3 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 612 before lowering, 118 after (36 +-, 77 *, 2 /, 3 calls).
 template <class T>
-void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -237,43 +282,42 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T psi_dot = y[5];
     const T sin_theta = sin(theta);
     const T cos_theta = cos(theta);
-    const T t000 = p.I3*theta_dot;
-    const T t001 = phi_dot*sin_theta;
+    const T t000 = sin_theta*theta_dot;
+    const T t001 = p.I3*phi_dot;
     const T t002 = p.A*sin(p.w*t);
     const T t003 = p.c*psi_dot - t000*t001 - t002;
-    const T t004 = sin_theta*theta_dot;
-    const T t005 = p.I3*psi_dot;
-    const T t006 = p.I3 - p.I1;
-    const T t007 = cos_theta*t006;
-    const T t008 = phi_dot*t007;
-    const T t009 = S(2)*t008 + t005;
-    const T t010 = cos_theta*t002 + t004*t009 - p.c*phi_dot;
-    const T t011 = cos_theta*t003 + t010;
-    const T t012 = sin_theta*sin_theta;
-    const T t013 = S(1)/(p.I1*t012);
-    const T t014 = S(1)/p.I1;
-    const T t015 = (t005 + t008)*phi_dot - p.M*p.g*p.h;
-    const T t016 = cos_theta*cos_theta;
-    const T t017 = S(1)/p.I3 + t013*t016;
-    const T t018 = cos_theta*t013;
-    const T t019 = S(1)/(p.I1*sin_theta);
-    const T t020 = cos_theta*t000;
-    const T t021 = phi_dot*t020;
-    const T t022 = S(1)/sin_theta;
-    const T t023 = cos_theta*t009;
-    const T t024 = t006*t012;
-    const T t025 = sin_theta*t002 - (t023 - S(2)*phi_dot*t024)*theta_dot;
-    const T t026 = (((S(2)*t011*t022 + t021)*cos_theta + t025)*t022 + t003)*t019;
-    const T t027 = S(2)*t004*t007 - p.c;
-    const T t028 = cos_theta*t022;
-    const T t029 = (S(2)*t010*t028 + t025)*t022 + S(2)*(S(1) + t016/t012)*t003;
-    const T t030 = p.I3*t016*t019 + sin_theta;
+    const T t004 = p.I3*psi_dot;
+    const T t005 = cos_theta*phi_dot;
+    const T t006 = p.c000*t005;
+    const T t007 = S(2)*t006 + t004;
+    const T t008 = cos_theta*t002 + t000*t007 - p.c*phi_dot;
+    const T t009 = cos_theta*t003 + t008;
+    const T t010 = sin_theta*sin_theta;
+    const T t011 = S(1)/t010;
+    const T t012 = p.c001*t011;
+    const T t013 = (t004 + t006)*phi_dot - p.c002;
+    const T t014 = cos_theta*cos_theta;
+    const T t015 = p.c003 + t012*t014;
+    const T t016 = cos_theta*t012;
+    const T t017 = cos_theta*theta_dot;
+    const T t018 = t001*t017;
+    const T t019 = S(1)/sin_theta;
+    const T t020 = cos_theta*t007;
+    const T t021 = p.c000*t010;
+    const T t022 = sin_theta*t002 - (t020 - S(2)*phi_dot*t021)*theta_dot;
+    const T t023 = p.c001*t019;
+    const T t024 = (((S(2)*t009*t019 + t018)*cos_theta + t022)*t019 + t003)*t023;
+    const T t025 = S(2)*p.c000*sin_theta*t017 - p.c;
+    const T t026 = cos_theta*t019;
+    const T t027 = (S(2)*t008*t026 + t022)*t019 + S(2)*(S(1) + t011*t014)*t003;
+    const T t028 = p.c006*t019;
+    const T t029 = sin_theta + t014*t028;
     dydt[0] = phi_dot;
     dydt[1] = theta_dot;
     dydt[2] = psi_dot;
-    dydt[3] = t011*t013;
-    dydt[4] = (-p.c*theta_dot - sin_theta*t015)*t014;
-    dydt[5] = -t003*t017 - t010*t018;
+    dydt[3] = t009*t012;
+    dydt[4] = (-p.c*theta_dot - sin_theta*t013)*p.c001;
+    dydt[5] = -t003*t015 - t008*t016;
     J[0] = T(S(0));
     J[1] = T(S(0));
     J[2] = T(S(0));
@@ -293,23 +337,30 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     J[16] = T(S(0));
     J[17] = T(S(1));
     J[18] = T(S(0));
-    J[19] = -t026;
+    J[19] = -t024;
     J[20] = T(S(0));
-    J[21] = (t022*t027 - t020)*t019;
-    J[22] = ((p.I3 - S(2)*p.I1)*cos_theta*phi_dot + t005)*t019;
-    J[23] = (p.c*t028 + t000)*t019;
+    J[21] = (t019*t025 - p.I3*t017)*t023;
+    J[22] = (p.c004*t005 + t004)*t023;
+    J[23] = (p.I3*theta_dot + p.c*t026)*t023;
     J[24] = T(S(0));
-    J[25] = (phi_dot*phi_dot*t024 - cos_theta*t015)*t014;
+    J[25] = (phi_dot*phi_dot*t021 - cos_theta*t013)*p.c001;
     J[26] = T(S(0));
-    J[27] = -sin_theta*t009*t014;
-    J[28] = -p.c*t014;
-    J[29] = -(p.I3/p.I1)*t001;
+    J[27] = -p.c001*sin_theta*t007;
+    J[28] = p.c005;
+    J[29] = -p.c006*phi_dot*sin_theta;
     J[30] = T(S(0));
-    J[31] = (cos_theta*t029 + t010)*t019 + t017*t021;
+    J[31] = (cos_theta*t027 + t008)*t023 + t015*t018;
     J[32] = T(S(0));
-    J[33] = t030*theta_dot - t018*t027;
-    J[34] = phi_dot*t030 - t019*t023;
-    J[35] = -p.c*t017 - t019*t020;
+    J[33] = t029*theta_dot - t016*t025;
+    J[34] = phi_dot*t029 - t020*t023;
+    J[35] = -p.c*t015 - t017*t028;
+}
+
+// rhs_and_jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+    rhs_and_jacobian(t, y, dydt, J, prepare(p));
 }
 
 // The energy T + V (conserved without damping and driving torques).

@@ -24,9 +24,9 @@
 // 0.1, c = 0.05, A = 0.2, w = 3.0.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 1007 -> 107 (22 temporaries)
-//   jacobian: 26975 -> 546 (121 temporaries)
-//   rhs_and_jacobian: 27982 -> 602 (127 temporaries)
+//   rhs: 1007 -> 102 (20 temporaries), and 5 once in prepare()
+//   jacobian: 26975 -> 538 (119 temporaries), and 8 once in prepare()
+//   rhs_and_jacobian: 27982 -> 592 (124 temporaries), and 9 once in prepare()
 //   energy: 30 -> 25 (6 temporaries)
 //   momenta: 3 -> 3 (0 temporaries)
 //   mass_matrix: 0 -> 0 (0 temporaries)
@@ -81,6 +81,38 @@ struct params {
     T w = T(rg_scalar(3)); // drive angular frequency
 };
 
+// The parameters and, computed from them once, the 7 subexpressions of parameters alone that
+// rhs, jacobian and rhs_and_jacobian use (9 operations: products and quotients of
+// parameters, reciprocals; a division by a parameter becomes a multiplication). Make one per
+// parameter set with prepare(p) and pass it where params<T> goes: those functions then skip that
+// work at every call. Given params<T>, they prepare it themselves. Changed a parameter: prepare
+// again.
+template <class T>
+struct prepared : params<T> {
+    T c000{};
+    T c001{};
+    T c002{};
+    T c003{};
+    T c004{};
+    T c005{};
+    T c006{};
+};
+
+template <class T>
+prepared<T> prepare(const params<T>& parameters) {
+    using S = typename detail::scalar_of<T>::type;
+    prepared<T> p;
+    static_cast<params<T>&>(p) = parameters;
+    p.c000 = S(1)/p.I1;
+    p.c001 = p.M*p.g*p.h;
+    p.c002 = p.I3 - p.I1;
+    p.c003 = S(1)/p.I3;
+    p.c004 = p.c/p.I1;
+    p.c005 = p.c/p.I3;
+    p.c006 = -p.c/p.I3;
+    return p;
+}
+
 // The model and the form this header implements.
 constexpr const char* model_name = "damped_driven_top";
 constexpr const char* form_name = "body";
@@ -110,10 +142,10 @@ constexpr std::array<unsigned char, 49> jacobian_pattern{{
 //   t     time
 //   y     state, dim 7: (qw, qx, qy, qz, omega1, omega2, omega3)
 //   dydt  output, dim 7: qw_dot, qx_dot, qy_dot, qz_dot, omega1_dot, omega2_dot, omega3_dot
-//   p     parameters
-// Operations (+ - * / and calls): 1007 before lowering, 107 after (31 +-, 68 *, 6 /, 2 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 1007 before lowering, 102 after (29 +-, 67 *, 4 /, 2 calls).
 template <class T>
-void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+void rhs(T t, const T* y, T* dydt, const prepared<T>& p) {
     using std::sin;
     using std::sqrt;
     using S = typename detail::scalar_of<T>::type;
@@ -124,45 +156,50 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     const T omega1 = y[4];
     const T omega2 = y[5];
     const T omega3 = y[6];
-    const T t000 = S(1)/p.I1;
-    const T t001 = qx*qx;
-    const T t002 = qz*qz;
-    const T t003 = qy*qy;
-    const T t004 = qw*qw;
-    const T t005 = t001 + t002 + t003 + t004;
-    const T t006 = p.M*p.g*p.h/t005;
-    const T t007 = qw*qx + qy*qz;
-    const T t008 = t005*t005;
-    const T t009 = qw*qy - qx*qz;
-    const T t010 = t007*t007 + t009*t009;
-    const T t011 = sqrt(S(4)*t010/t008);
-    const T t012 = (omega1*t007 + omega2*t009)/(t008*t011*t011);
-    const T t013 = t001 + t003 - t002 - t004;
-    const T t014 = S(1)/t010;
-    const T t015 = (omega1*t009 - omega2*t007)*t014;
-    const T t016 = S(2)*omega3 - t013*t015;
-    const T t017 = (t013*t016 - t008*t015)*t014;
-    const T t018 = (p.I3 - p.I1)*omega3;
-    const T t019 = S(8)*t006*t007 - (S(16)*t007*t012 - t009*t017)*p.c - S(4)*omega2*t018;
-    const T t020 = (S(16)*t009*t012 + t007*t017)*p.c - S(4)*omega1*t018 - S(8)*t006*t009;
-    const T t021 = S(1)/S(2)*(S(2)*p.A*sin(p.w*t) - p.c*t016)/p.I3;
+    const T t000 = qx*qx;
+    const T t001 = qz*qz;
+    const T t002 = qy*qy;
+    const T t003 = qw*qw;
+    const T t004 = t000 + t001 + t002 + t003;
+    const T t005 = p.c001/t004;
+    const T t006 = qw*qx + qy*qz;
+    const T t007 = t004*t004;
+    const T t008 = qw*qy - qx*qz;
+    const T t009 = t006*t006 + t008*t008;
+    const T t010 = sqrt(S(4)*t009/t007);
+    const T t011 = (omega1*t006 + omega2*t008)/(t007*t010*t010);
+    const T t012 = t000 + t002 - t001 - t003;
+    const T t013 = S(1)/t009;
+    const T t014 = (omega1*t008 - omega2*t006)*t013;
+    const T t015 = S(2)*omega3 - t012*t014;
+    const T t016 = (t012*t015 - t007*t014)*t013;
+    const T t017 = omega3*p.c002;
+    const T t018 = S(8)*t005*t006 - (S(16)*t006*t011 - t008*t016)*p.c - S(4)*omega2*t017;
+    const T t019 = S(4)*omega1*t017 + S(8)*t005*t008 - (S(16)*t008*t011 + t006*t016)*p.c;
     dydt[0] = -S(1)/S(2)*(omega1*qx + omega2*qy + omega3*qz);
     dydt[1] = S(1)/S(2)*(omega1*qw + omega3*qy - omega2*qz);
     dydt[2] = S(1)/S(2)*(omega1*qz + omega2*qw - omega3*qx);
     dydt[3] = S(1)/S(2)*(omega2*qx + omega3*qw - omega1*qy);
-    dydt[4] = S(1)/S(4)*t000*t019;
-    dydt[5] = -S(1)/S(4)*t000*t020;
-    dydt[6] = t021;
+    dydt[4] = S(1)/S(4)*p.c000*t018;
+    dydt[5] = S(1)/S(4)*p.c000*t019;
+    dydt[6] = S(1)/S(2)*(S(2)*p.A*sin(p.w*t) - p.c*t015)*p.c003;
+}
+
+// rhs with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+    rhs(t, y, dydt, prepare(p));
 }
 
 // The analytic Jacobian J = d(dy/dt)/dy, dense, row-major: J[i * state_size + k] = d dydt[i] / d y[k].
 //   t     time
 //   y     state, dim 7: (qw, qx, qy, qz, omega1, omega2, omega3)
 //   J     output, dim 7 x 7 (row-major); structural zeros in jacobian_pattern
-//   p     parameters
-// Operations (+ - * / and calls): 26975 before lowering, 546 after (164 +-, 372 *, 9 /, 1 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 26975 before lowering, 538 after (162 +-, 370 *, 5 /, 1 calls).
 template <class T>
-void jacobian(T t, const T* y, T* J, const params<T>& p) {
+void jacobian(T t, const T* y, T* J, const prepared<T>& p) {
     using std::sqrt;
     using S = typename detail::scalar_of<T>::type;
     (void)t;
@@ -183,117 +220,115 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T t007 = S(1)/S(2)*omega3;
     const T t008 = S(1)/S(2)*qw;
     const T t009 = S(1)/S(2)*omega2;
-    const T t010 = S(1)/p.I1;
-    const T t011 = qx*qx;
-    const T t012 = qz*qz;
-    const T t013 = qy*qy;
-    const T t014 = qw*qw;
-    const T t015 = t011 + t013 - t012 - t014;
-    const T t016 = qw*qx + qy*qz;
-    const T t017 = t016*t016;
-    const T t018 = qw*qy - qx*qz;
-    const T t019 = t018*t018;
-    const T t020 = t017 + t019;
-    const T t021 = S(1)/t020;
-    const T t022 = omega1*t018 - omega2*t016;
-    const T t023 = t021*t022;
-    const T t024 = S(2)*omega3 - t015*t023;
-    const T t025 = t011 + t012 + t013 + t014;
-    const T t026 = t025*t025;
-    const T t027 = t015*t024 - t023*t026;
-    const T t028 = qy*t027;
-    const T t029 = S(1)/t025;
-    const T t030 = t020*t029;
-    const T t031 = qx*t016 + qy*t018 - S(2)*qw*t030;
-    const T t032 = qw*t022;
-    const T t033 = t021*t031;
-    const T t034 = S(2)*t033 + S(4)*qw*t029;
-    const T t035 = (t016*t034 - qx)*omega2 - (t018*t034 - qy)*omega1;
-    const T t036 = S(2)*t032 - t015*t035;
-    const T t037 = omega1*qy;
-    const T t038 = omega2*qx;
-    const T t039 = S(2)*(qw + t025*t033)*t022 + S(2)*t032 - (t037 - S(2)*t023*t031 - t038)*t025;
-    const T t040 = t015*t029;
-    const T t041 = (S(2) + S(4)*t040)*t024;
-    const T t042 = ((S(2)*t024*t031 - t036)*t015 - t025*t039)*t021 + qw*t041;
-    const T t043 = omega1*t016 + omega2*t018;
-    const T t044 = t029*t043;
-    const T t045 = S(4)*t020/t026;
-    const T t046 = S(1)/(t025*t045);
-    const T t047 = t031*t046;
-    const T t048 = omega1*qx + omega2*qy - (S(2)*qw + S(4)*t047)*t044;
-    const T t049 = t016*t029;
-    const T t050 = S(32)*qw + S(64)*t047;
-    const T t051 = sqrt(t045);
-    const T t052 = S(1)/(t026*t051*t051);
-    const T t053 = (t028 - t018*t042)*t021 - ((S(16)*qx - t049*t050)*t043 + S(16)*t016*t048)*t052;
-    const T t054 = p.M*p.g*p.h*t029;
-    const T t055 = S(1)/S(4)*((S(8)*qx - S(16)*qw*t049)*t054 + p.c*t053)*t010;
-    const T t056 = qz*t027;
-    const T t057 = qw*t016 - S(2)*qx*t030 - qz*t018;
-    const T t058 = t021*t057;
-    const T t059 = (S(2)*t018*t058 + qz)*omega1 + (qw - S(2)*t016*t058)*omega2;
-    const T t060 = qx*t022;
-    const T t061 = (S(2)*(qx + t025*t058)*t022 + S(2)*t060 + t025*t059)*t025;
-    const T t062 = S(2)*t058 + S(4)*qx*t029;
-    const T t063 = (t016*t062 - qw)*omega2 - (qz + t018*t062)*omega1;
-    const T t064 = S(2)*t060 + t015*t063;
-    const T t065 = (S(4)*t040 - S(2))*t024;
-    const T t066 = (t061 - (S(2)*t024*t057 + t064)*t015)*t021 - qx*t065;
-    const T t067 = t046*t057;
-    const T t068 = omega2*qz;
-    const T t069 = omega1*qw;
-    const T t070 = (S(2)*qx + S(4)*t067)*t044 + t068 - t069;
-    const T t071 = S(32)*qx + S(64)*t067;
-    const T t072 = (t056 - t018*t066)*t021 - (S(16)*t016*t070 - (S(16)*qw - t049*t071)*t043)*t052;
-    const T t073 = S(1)/S(4)*(-(S(16)*qx*t049 - S(8)*qw)*t054 - p.c*t072)*t010;
-    const T t074 = qy*t022;
-    const T t075 = qw*t018 + qz*t016 - S(2)*qy*t030;
-    const T t076 = t021*t075;
-    const T t077 = (S(2)*t023*t075 + t068 - t069)*t025 + S(2)*(qy + t025*t076)*t022 + S(2)*t074;
-    const T t078 = S(2)*t076 + S(4)*qy*t029;
-    const T t079 = (qz - t016*t078)*omega2 + (t018*t078 - qw)*omega1;
-    const T t080 = S(2)*t074 - t015*t079;
-    const T t081 = (t025*t077 - (S(2)*t024*t075 + t080)*t015)*t021 - qy*t065;
-    const T t082 = qw*t027;
-    const T t083 = t046*t075;
-    const T t084 = S(32)*qy + S(64)*t083;
-    const T t085 = omega1*qz + omega2*qw - (S(2)*qy + S(4)*t083)*t044;
-    const T t086 = (t018*t081 + t082)*t021 - ((S(16)*qz - t049*t084)*t043 + S(16)*t016*t085)*t052;
-    const T t087 = S(1)/S(4)*((S(8)*qz - S(16)*qy*t049)*t054 + p.c*t086)*t010;
-    const T t088 = qx*t027;
-    const T t089 = qy*t016 - S(2)*qz*t030 - qx*t018;
-    const T t090 = t021*t089;
-    const T t091 = S(2)*t090 + S(4)*qz*t029;
-    const T t092 = (qx + t018*t091)*omega1 + (qy - t016*t091)*omega2;
-    const T t093 = qz*t022;
-    const T t094 = S(2)*t093 + t015*t092;
-    const T t095 = (S(2)*t018*t090 + qx)*omega1 + (qy - S(2)*t016*t090)*omega2;
-    const T t096 = (S(2)*(qz + t025*t090)*t022 + S(2)*t093 + t025*t095)*t025;
-    const T t097 = ((t094 - S(2)*t024*t089)*t015 + t096)*t021 - qz*t041;
-    const T t098 = t046*t089;
-    const T t099 = S(32)*qz + S(64)*t098;
-    const T t100 = t037 - (S(2)*qz + S(4)*t098)*t044 - t038;
-    const T t101 = ((S(16)*qy - t049*t099)*t043 + S(16)*t016*t100)*t052 + (t088 - t018*t097)*t021;
-    const T t102 = S(1)/S(4)*((S(8)*qy - S(16)*qz*t049)*t054 - p.c*t101)*t010;
-    const T t103 = (t015*t015 + t026)*t021;
-    const T t104 = p.c/(p.I1*t020);
-    const T t105 = p.I3 - p.I1;
-    const T t106 = omega3*t105;
-    const T t107 = p.c*t021;
-    const T t108 = (t103 - S(4))*t016*t018*t107;
-    const T t109 = t015*t107;
-    const T t110 = t018*t029;
-    const T t111 = ((S(16)*qy - t050*t110)*t043 + S(16)*t018*t048)*t052 + (t088 - t016*t042)*t021;
-    const T t112 = S(1)/S(4)*((S(8)*qy - S(16)*qw*t110)*t054 - p.c*t111)*t010;
-    const T t113 = (t016*t066 + t082)*t021 - ((S(16)*qz + t071*t110)*t043 + S(16)*t018*t070)*t052;
-    const T t114 = S(1)/S(4)*(-(S(16)*qx*t110 + S(8)*qz)*t054 - p.c*t113)*t010;
-    const T t115 = ((t084*t110 - S(16)*qw)*t043 - S(16)*t018*t085)*t052 - (t016*t081 + t056)*t021;
-    const T t116 = S(1)/S(4)*((S(8)*qw - S(16)*qy*t110)*t054 + p.c*t115)*t010;
-    const T t117 = ((S(16)*qx + t099*t110)*t043 - S(16)*t018*t100)*t052 - (t016*t097 + t028)*t021;
-    const T t118 = S(1)/S(4)*(p.c*t117 - (S(16)*qz*t110 + S(8)*qx)*t054)*t010;
-    const T t119 = p.c/(p.I3*t020);
-    const T t120 = t015*t119;
+    const T t010 = qx*qx;
+    const T t011 = qz*qz;
+    const T t012 = qy*qy;
+    const T t013 = qw*qw;
+    const T t014 = t010 + t012 - t011 - t013;
+    const T t015 = qw*qx + qy*qz;
+    const T t016 = t015*t015;
+    const T t017 = qw*qy - qx*qz;
+    const T t018 = t017*t017;
+    const T t019 = t016 + t018;
+    const T t020 = S(1)/t019;
+    const T t021 = omega1*t017 - omega2*t015;
+    const T t022 = t020*t021;
+    const T t023 = S(2)*omega3 - t014*t022;
+    const T t024 = t010 + t011 + t012 + t013;
+    const T t025 = t024*t024;
+    const T t026 = t014*t023 - t022*t025;
+    const T t027 = qy*t026;
+    const T t028 = S(1)/t024;
+    const T t029 = t019*t028;
+    const T t030 = qx*t015 + qy*t017 - S(2)*qw*t029;
+    const T t031 = qw*t021;
+    const T t032 = t020*t030;
+    const T t033 = S(2)*t032 + S(4)*qw*t028;
+    const T t034 = (t015*t033 - qx)*omega2 - (t017*t033 - qy)*omega1;
+    const T t035 = S(2)*t031 - t014*t034;
+    const T t036 = omega1*qy;
+    const T t037 = omega2*qx;
+    const T t038 = S(2)*(qw + t024*t032)*t021 + S(2)*t031 - (t036 - S(2)*t022*t030 - t037)*t024;
+    const T t039 = t014*t028;
+    const T t040 = (S(2) + S(4)*t039)*t023;
+    const T t041 = ((S(2)*t023*t030 - t035)*t014 - t024*t038)*t020 + qw*t040;
+    const T t042 = omega1*t015 + omega2*t017;
+    const T t043 = t028*t042;
+    const T t044 = S(4)*t019/t025;
+    const T t045 = S(1)/(t024*t044);
+    const T t046 = t030*t045;
+    const T t047 = omega1*qx + omega2*qy - (S(2)*qw + S(4)*t046)*t043;
+    const T t048 = t015*t028;
+    const T t049 = S(32)*qw + S(64)*t046;
+    const T t050 = sqrt(t044);
+    const T t051 = S(1)/(t025*t050*t050);
+    const T t052 = (t027 - t017*t041)*t020 - ((S(16)*qx - t048*t049)*t042 + S(16)*t015*t047)*t051;
+    const T t053 = p.c001*t028;
+    const T t054 = S(1)/S(4)*((S(8)*qx - S(16)*qw*t048)*t053 + p.c*t052)*p.c000;
+    const T t055 = qz*t026;
+    const T t056 = qw*t015 - S(2)*qx*t029 - qz*t017;
+    const T t057 = t020*t056;
+    const T t058 = (S(2)*t017*t057 + qz)*omega1 + (qw - S(2)*t015*t057)*omega2;
+    const T t059 = qx*t021;
+    const T t060 = (S(2)*(qx + t024*t057)*t021 + S(2)*t059 + t024*t058)*t024;
+    const T t061 = S(2)*t057 + S(4)*qx*t028;
+    const T t062 = (t015*t061 - qw)*omega2 - (qz + t017*t061)*omega1;
+    const T t063 = S(2)*t059 + t014*t062;
+    const T t064 = (S(4)*t039 - S(2))*t023;
+    const T t065 = (t060 - (S(2)*t023*t056 + t063)*t014)*t020 - qx*t064;
+    const T t066 = t045*t056;
+    const T t067 = omega2*qz;
+    const T t068 = omega1*qw;
+    const T t069 = (S(2)*qx + S(4)*t066)*t043 + t067 - t068;
+    const T t070 = S(32)*qx + S(64)*t066;
+    const T t071 = (t055 - t017*t065)*t020 - (S(16)*t015*t069 - (S(16)*qw - t048*t070)*t042)*t051;
+    const T t072 = S(1)/S(4)*(-(S(16)*qx*t048 - S(8)*qw)*t053 - p.c*t071)*p.c000;
+    const T t073 = qy*t021;
+    const T t074 = qw*t017 + qz*t015 - S(2)*qy*t029;
+    const T t075 = t020*t074;
+    const T t076 = (S(2)*t022*t074 + t067 - t068)*t024 + S(2)*(qy + t024*t075)*t021 + S(2)*t073;
+    const T t077 = S(2)*t075 + S(4)*qy*t028;
+    const T t078 = (qz - t015*t077)*omega2 + (t017*t077 - qw)*omega1;
+    const T t079 = S(2)*t073 - t014*t078;
+    const T t080 = (t024*t076 - (S(2)*t023*t074 + t079)*t014)*t020 - qy*t064;
+    const T t081 = qw*t026;
+    const T t082 = t045*t074;
+    const T t083 = S(32)*qy + S(64)*t082;
+    const T t084 = omega1*qz + omega2*qw - (S(2)*qy + S(4)*t082)*t043;
+    const T t085 = (t017*t080 + t081)*t020 - ((S(16)*qz - t048*t083)*t042 + S(16)*t015*t084)*t051;
+    const T t086 = S(1)/S(4)*((S(8)*qz - S(16)*qy*t048)*t053 + p.c*t085)*p.c000;
+    const T t087 = qx*t026;
+    const T t088 = qy*t015 - S(2)*qz*t029 - qx*t017;
+    const T t089 = t020*t088;
+    const T t090 = S(2)*t089 + S(4)*qz*t028;
+    const T t091 = (qx + t017*t090)*omega1 + (qy - t015*t090)*omega2;
+    const T t092 = qz*t021;
+    const T t093 = S(2)*t092 + t014*t091;
+    const T t094 = (S(2)*t017*t089 + qx)*omega1 + (qy - S(2)*t015*t089)*omega2;
+    const T t095 = (S(2)*(qz + t024*t089)*t021 + S(2)*t092 + t024*t094)*t024;
+    const T t096 = ((t093 - S(2)*t023*t088)*t014 + t095)*t020 - qz*t040;
+    const T t097 = t045*t088;
+    const T t098 = S(32)*qz + S(64)*t097;
+    const T t099 = t036 - (S(2)*qz + S(4)*t097)*t043 - t037;
+    const T t100 = ((S(16)*qy - t048*t098)*t042 + S(16)*t015*t099)*t051 + (t087 - t017*t096)*t020;
+    const T t101 = S(1)/S(4)*((S(8)*qy - S(16)*qz*t048)*t053 - p.c*t100)*p.c000;
+    const T t102 = p.c004*t020;
+    const T t103 = (t014*t014 + t025)*t020;
+    const T t104 = omega3*p.c002;
+    const T t105 = p.c*t020;
+    const T t106 = (t103 - S(4))*t015*t017*t105;
+    const T t107 = t014*t105;
+    const T t108 = t017*t028;
+    const T t109 = ((S(16)*qy - t049*t108)*t042 + S(16)*t017*t047)*t051 + (t087 - t015*t041)*t020;
+    const T t110 = S(1)/S(4)*((S(8)*qy - S(16)*qw*t108)*t053 - p.c*t109)*p.c000;
+    const T t111 = (t015*t065 + t081)*t020 - ((S(16)*qz + t070*t108)*t042 + S(16)*t017*t069)*t051;
+    const T t112 = S(1)/S(4)*(-(S(16)*qx*t108 + S(8)*qz)*t053 - p.c*t111)*p.c000;
+    const T t113 = ((t083*t108 - S(16)*qw)*t042 - S(16)*t017*t084)*t051 - (t015*t080 + t055)*t020;
+    const T t114 = S(1)/S(4)*((S(8)*qw - S(16)*qy*t108)*t053 + p.c*t113)*p.c000;
+    const T t115 = ((S(16)*qx + t098*t108)*t042 - S(16)*t017*t099)*t051 - (t015*t096 + t027)*t020;
+    const T t116 = S(1)/S(4)*(p.c*t115 - (S(16)*qz*t108 + S(8)*qx)*t053)*p.c000;
+    const T t117 = p.c005*t020;
+    const T t118 = t014*t117;
     J[0] = T(S(0));
     J[1] = t000;
     J[2] = t001;
@@ -322,27 +357,34 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     J[25] = t004;
     J[26] = S(1)/S(2)*qx;
     J[27] = t008;
-    J[28] = t055;
-    J[29] = t073;
-    J[30] = t087;
-    J[31] = t102;
-    J[32] = S(1)/S(4)*(-S(4)*t017 - t019*t103)*t104;
-    J[33] = S(1)/S(4)*(t108 - S(4)*t106)*t010;
-    J[34] = S(1)/S(2)*(t018*t109 - S(2)*omega2*t105)*t010;
-    J[35] = t112;
-    J[36] = t114;
-    J[37] = t116;
-    J[38] = t118;
-    J[39] = S(1)/S(4)*(S(4)*t106 + t108)*t010;
-    J[40] = S(1)/S(4)*(-S(4)*t019 - t017*t103)*t104;
-    J[41] = S(1)/S(2)*(S(2)*omega1*t105 - t016*t109)*t010;
-    J[42] = -S(1)/S(2)*t036*t119;
-    J[43] = S(1)/S(2)*t064*t119;
-    J[44] = S(1)/S(2)*t080*t119;
-    J[45] = -S(1)/S(2)*t094*t119;
-    J[46] = S(1)/S(2)*t018*t120;
-    J[47] = -S(1)/S(2)*t016*t120;
-    J[48] = -p.c/p.I3;
+    J[28] = t054;
+    J[29] = t072;
+    J[30] = t086;
+    J[31] = t101;
+    J[32] = S(1)/S(4)*(-S(4)*t016 - t018*t103)*t102;
+    J[33] = S(1)/S(4)*(t106 - S(4)*t104)*p.c000;
+    J[34] = S(1)/S(2)*(t017*t107 - S(2)*omega2*p.c002)*p.c000;
+    J[35] = t110;
+    J[36] = t112;
+    J[37] = t114;
+    J[38] = t116;
+    J[39] = S(1)/S(4)*(S(4)*t104 + t106)*p.c000;
+    J[40] = S(1)/S(4)*(-S(4)*t018 - t016*t103)*t102;
+    J[41] = S(1)/S(2)*(S(2)*omega1*p.c002 - t015*t107)*p.c000;
+    J[42] = -S(1)/S(2)*t035*t117;
+    J[43] = S(1)/S(2)*t063*t117;
+    J[44] = S(1)/S(2)*t079*t117;
+    J[45] = -S(1)/S(2)*t093*t117;
+    J[46] = S(1)/S(2)*t017*t118;
+    J[47] = -S(1)/S(2)*t015*t118;
+    J[48] = p.c006;
+}
+
+// jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void jacobian(T t, const T* y, T* J, const params<T>& p) {
+    jacobian(t, y, J, prepare(p));
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -350,10 +392,10 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   y     state, dim 7: (qw, qx, qy, qz, omega1, omega2, omega3)
 //   dydt  output, dim 7: qw_dot, qx_dot, qy_dot, qz_dot, omega1_dot, omega2_dot, omega3_dot
 //   J     output, dim 7 x 7 (row-major)
-//   p     parameters
-// Operations (+ - * / and calls): 27982 before lowering, 602 after (181 +-, 410 *, 9 /, 2 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 27982 before lowering, 592 after (178 +-, 407 *, 5 /, 2 calls).
 template <class T>
-void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const prepared<T>& p) {
     using std::sin;
     using std::sqrt;
     using S = typename detail::scalar_of<T>::type;
@@ -372,181 +414,185 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T t005 = omega2*qw;
     const T t006 = omega1*qy;
     const T t007 = omega2*qx;
-    const T t008 = S(1)/p.I1;
-    const T t009 = qx*qx;
-    const T t010 = qz*qz;
-    const T t011 = qy*qy;
-    const T t012 = qw*qw;
-    const T t013 = t009 + t010 + t011 + t012;
-    const T t014 = S(1)/t013;
-    const T t015 = p.M*p.g*p.h*t014;
-    const T t016 = qw*qx + qy*qz;
-    const T t017 = t013*t013;
-    const T t018 = t016*t016;
-    const T t019 = qw*qy - qx*qz;
-    const T t020 = t019*t019;
-    const T t021 = t018 + t020;
-    const T t022 = S(4)*t021/t017;
-    const T t023 = sqrt(t022);
-    const T t024 = S(1)/(t017*t023*t023);
-    const T t025 = omega1*t016 + omega2*t019;
-    const T t026 = t024*t025;
-    const T t027 = t009 + t011 - t010 - t012;
-    const T t028 = S(1)/t021;
-    const T t029 = omega1*t019 - omega2*t016;
-    const T t030 = t028*t029;
-    const T t031 = S(2)*omega3 - t027*t030;
-    const T t032 = t027*t031 - t017*t030;
-    const T t033 = t019*t028;
-    const T t034 = p.I3 - p.I1;
-    const T t035 = omega3*t034;
-    const T t036 = S(8)*t015*t016 - (S(16)*t016*t026 - t032*t033)*p.c - S(4)*omega2*t035;
-    const T t037 = t016*t028;
-    const T t038 = (S(16)*t019*t026 + t032*t037)*p.c - S(4)*omega1*t035 - S(8)*t015*t019;
-    const T t039 = S(1)/p.I3;
-    const T t040 = -S(1)/S(2)*omega1;
-    const T t041 = -S(1)/S(2)*omega2;
-    const T t042 = -S(1)/S(2)*omega3;
-    const T t043 = -S(1)/S(2)*qx;
-    const T t044 = -S(1)/S(2)*qy;
-    const T t045 = -S(1)/S(2)*qz;
-    const T t046 = S(1)/S(2)*omega1;
-    const T t047 = S(1)/S(2)*omega3;
-    const T t048 = S(1)/S(2)*qw;
-    const T t049 = S(1)/S(2)*omega2;
-    const T t050 = qy*t032;
-    const T t051 = t014*t021;
-    const T t052 = qx*t016 + qy*t019 - S(2)*qw*t051;
-    const T t053 = qw*t029;
-    const T t054 = S(2)*t028*t052 + S(4)*qw*t014;
-    const T t055 = (t016*t054 - qx)*omega2 - (t019*t054 - qy)*omega1;
-    const T t056 = S(2)*t053 - t027*t055;
-    const T t057 = t013*t028;
-    const T t058 = S(2)*(qw + t052*t057)*t029 + S(2)*t053 - (t006 - S(2)*t030*t052 - t007)*t013;
-    const T t059 = t014*t027;
-    const T t060 = (S(2) + S(4)*t059)*t031;
-    const T t061 = ((S(2)*t031*t052 - t056)*t027 - t013*t058)*t028 + qw*t060;
-    const T t062 = t014*t025;
-    const T t063 = S(1)/(t013*t022);
-    const T t064 = t052*t063;
-    const T t065 = t000 + t001 - (S(2)*qw + S(4)*t064)*t062;
-    const T t066 = t014*t016;
-    const T t067 = S(32)*qw + S(64)*t064;
-    const T t068 = (t050 - t019*t061)*t028 - ((S(16)*qx - t066*t067)*t025 + S(16)*t016*t065)*t024;
-    const T t069 = S(1)/S(4)*((S(8)*qx - S(16)*qw*t066)*t015 + p.c*t068)*t008;
-    const T t070 = qz*t032;
-    const T t071 = qw*t016 - S(2)*qx*t051 - qz*t019;
-    const T t072 = (S(2)*t033*t071 + qz)*omega1 + (qw - S(2)*t037*t071)*omega2;
-    const T t073 = qx*t029;
-    const T t074 = (S(2)*(qx + t057*t071)*t029 + S(2)*t073 + t013*t072)*t013;
-    const T t075 = S(2)*t028*t071 + S(4)*qx*t014;
-    const T t076 = (t016*t075 - qw)*omega2 - (qz + t019*t075)*omega1;
-    const T t077 = S(2)*t073 + t027*t076;
-    const T t078 = (S(4)*t059 - S(2))*t031;
-    const T t079 = (t074 - (S(2)*t031*t071 + t077)*t027)*t028 - qx*t078;
-    const T t080 = t063*t071;
-    const T t081 = (S(2)*qx + S(4)*t080)*t062 + t002 - t003;
-    const T t082 = S(32)*qx + S(64)*t080;
-    const T t083 = (t070 - t019*t079)*t028 - (S(16)*t016*t081 - (S(16)*qw - t066*t082)*t025)*t024;
-    const T t084 = S(1)/S(4)*(-(S(16)*qx*t066 - S(8)*qw)*t015 - p.c*t083)*t008;
-    const T t085 = qy*t029;
-    const T t086 = qw*t019 + qz*t016 - S(2)*qy*t051;
-    const T t087 = (S(2)*t030*t086 + t002 - t003)*t013 + S(2)*(qy + t057*t086)*t029 + S(2)*t085;
-    const T t088 = S(2)*t028*t086 + S(4)*qy*t014;
-    const T t089 = (qz - t016*t088)*omega2 + (t019*t088 - qw)*omega1;
-    const T t090 = S(2)*t085 - t027*t089;
-    const T t091 = (t013*t087 - (S(2)*t031*t086 + t090)*t027)*t028 - qy*t078;
-    const T t092 = qw*t032;
-    const T t093 = t063*t086;
-    const T t094 = S(32)*qy + S(64)*t093;
-    const T t095 = t004 + t005 - (S(2)*qy + S(4)*t093)*t062;
-    const T t096 = (t019*t091 + t092)*t028 - ((S(16)*qz - t066*t094)*t025 + S(16)*t016*t095)*t024;
-    const T t097 = S(1)/S(4)*((S(8)*qz - S(16)*qy*t066)*t015 + p.c*t096)*t008;
-    const T t098 = qx*t032;
-    const T t099 = qy*t016 - S(2)*qz*t051 - qx*t019;
-    const T t100 = S(2)*t028*t099 + S(4)*qz*t014;
-    const T t101 = (qx + t019*t100)*omega1 + (qy - t016*t100)*omega2;
-    const T t102 = qz*t029;
-    const T t103 = S(2)*t102 + t027*t101;
-    const T t104 = (S(2)*t033*t099 + qx)*omega1 + (qy - S(2)*t037*t099)*omega2;
-    const T t105 = (S(2)*(qz + t057*t099)*t029 + S(2)*t102 + t013*t104)*t013;
-    const T t106 = ((t103 - S(2)*t031*t099)*t027 + t105)*t028 - qz*t060;
-    const T t107 = t063*t099;
-    const T t108 = S(32)*qz + S(64)*t107;
-    const T t109 = t006 - (S(2)*qz + S(4)*t107)*t062 - t007;
-    const T t110 = ((S(16)*qy - t066*t108)*t025 + S(16)*t016*t109)*t024 + (t098 - t019*t106)*t028;
-    const T t111 = S(1)/S(4)*((S(8)*qy - S(16)*qz*t066)*t015 - p.c*t110)*t008;
-    const T t112 = (t017 + t027*t027)*t028;
-    const T t113 = p.c/(p.I1*t021);
-    const T t114 = p.c*t037;
-    const T t115 = (t112 - S(4))*t019*t114;
-    const T t116 = t014*t019;
-    const T t117 = ((S(16)*qy - t067*t116)*t025 + S(16)*t019*t065)*t024 + (t098 - t016*t061)*t028;
-    const T t118 = S(1)/S(4)*((S(8)*qy - S(16)*qw*t116)*t015 - p.c*t117)*t008;
-    const T t119 = (t016*t079 + t092)*t028 - ((S(16)*qz + t082*t116)*t025 + S(16)*t019*t081)*t024;
-    const T t120 = S(1)/S(4)*(-(S(16)*qx*t116 + S(8)*qz)*t015 - p.c*t119)*t008;
-    const T t121 = ((t094*t116 - S(16)*qw)*t025 - S(16)*t019*t095)*t024 - (t016*t091 + t070)*t028;
-    const T t122 = S(1)/S(4)*((S(8)*qw - S(16)*qy*t116)*t015 + p.c*t121)*t008;
-    const T t123 = ((S(16)*qx + t108*t116)*t025 - S(16)*t019*t109)*t024 - (t016*t106 + t050)*t028;
-    const T t124 = S(1)/S(4)*(p.c*t123 - (S(16)*qz*t116 + S(8)*qx)*t015)*t008;
-    const T t125 = p.c/(p.I3*t021);
-    const T t126 = t027*t125;
+    const T t008 = qx*qx;
+    const T t009 = qz*qz;
+    const T t010 = qy*qy;
+    const T t011 = qw*qw;
+    const T t012 = t008 + t009 + t010 + t011;
+    const T t013 = S(1)/t012;
+    const T t014 = p.c001*t013;
+    const T t015 = qw*qx + qy*qz;
+    const T t016 = t012*t012;
+    const T t017 = t015*t015;
+    const T t018 = qw*qy - qx*qz;
+    const T t019 = t018*t018;
+    const T t020 = t017 + t019;
+    const T t021 = S(4)*t020/t016;
+    const T t022 = sqrt(t021);
+    const T t023 = S(1)/(t016*t022*t022);
+    const T t024 = omega1*t015 + omega2*t018;
+    const T t025 = t023*t024;
+    const T t026 = t008 + t010 - t009 - t011;
+    const T t027 = S(1)/t020;
+    const T t028 = omega1*t018 - omega2*t015;
+    const T t029 = t027*t028;
+    const T t030 = S(2)*omega3 - t026*t029;
+    const T t031 = t026*t030 - t016*t029;
+    const T t032 = t018*t027;
+    const T t033 = omega3*p.c002;
+    const T t034 = S(8)*t014*t015 - (S(16)*t015*t025 - t031*t032)*p.c - S(4)*omega2*t033;
+    const T t035 = t015*t027;
+    const T t036 = S(4)*omega1*t033 + S(8)*t014*t018 - (S(16)*t018*t025 + t031*t035)*p.c;
+    const T t037 = -S(1)/S(2)*omega1;
+    const T t038 = -S(1)/S(2)*omega2;
+    const T t039 = -S(1)/S(2)*omega3;
+    const T t040 = -S(1)/S(2)*qx;
+    const T t041 = -S(1)/S(2)*qy;
+    const T t042 = -S(1)/S(2)*qz;
+    const T t043 = S(1)/S(2)*omega1;
+    const T t044 = S(1)/S(2)*omega3;
+    const T t045 = S(1)/S(2)*qw;
+    const T t046 = S(1)/S(2)*omega2;
+    const T t047 = qy*t031;
+    const T t048 = t013*t020;
+    const T t049 = qx*t015 + qy*t018 - S(2)*qw*t048;
+    const T t050 = qw*t028;
+    const T t051 = S(2)*t027*t049 + S(4)*qw*t013;
+    const T t052 = (t015*t051 - qx)*omega2 - (t018*t051 - qy)*omega1;
+    const T t053 = S(2)*t050 - t026*t052;
+    const T t054 = t012*t027;
+    const T t055 = S(2)*(qw + t049*t054)*t028 + S(2)*t050 - (t006 - S(2)*t029*t049 - t007)*t012;
+    const T t056 = t013*t026;
+    const T t057 = (S(2) + S(4)*t056)*t030;
+    const T t058 = ((S(2)*t030*t049 - t053)*t026 - t012*t055)*t027 + qw*t057;
+    const T t059 = t013*t024;
+    const T t060 = S(1)/(t012*t021);
+    const T t061 = t049*t060;
+    const T t062 = t000 + t001 - (S(2)*qw + S(4)*t061)*t059;
+    const T t063 = t013*t015;
+    const T t064 = S(32)*qw + S(64)*t061;
+    const T t065 = (t047 - t018*t058)*t027 - ((S(16)*qx - t063*t064)*t024 + S(16)*t015*t062)*t023;
+    const T t066 = S(1)/S(4)*((S(8)*qx - S(16)*qw*t063)*t014 + p.c*t065)*p.c000;
+    const T t067 = qz*t031;
+    const T t068 = qw*t015 - S(2)*qx*t048 - qz*t018;
+    const T t069 = (S(2)*t032*t068 + qz)*omega1 + (qw - S(2)*t035*t068)*omega2;
+    const T t070 = qx*t028;
+    const T t071 = (S(2)*(qx + t054*t068)*t028 + S(2)*t070 + t012*t069)*t012;
+    const T t072 = S(2)*t027*t068 + S(4)*qx*t013;
+    const T t073 = (t015*t072 - qw)*omega2 - (qz + t018*t072)*omega1;
+    const T t074 = S(2)*t070 + t026*t073;
+    const T t075 = (S(4)*t056 - S(2))*t030;
+    const T t076 = (t071 - (S(2)*t030*t068 + t074)*t026)*t027 - qx*t075;
+    const T t077 = t060*t068;
+    const T t078 = (S(2)*qx + S(4)*t077)*t059 + t002 - t003;
+    const T t079 = S(32)*qx + S(64)*t077;
+    const T t080 = (t067 - t018*t076)*t027 - (S(16)*t015*t078 - (S(16)*qw - t063*t079)*t024)*t023;
+    const T t081 = S(1)/S(4)*(-(S(16)*qx*t063 - S(8)*qw)*t014 - p.c*t080)*p.c000;
+    const T t082 = qy*t028;
+    const T t083 = qw*t018 + qz*t015 - S(2)*qy*t048;
+    const T t084 = (S(2)*t029*t083 + t002 - t003)*t012 + S(2)*(qy + t054*t083)*t028 + S(2)*t082;
+    const T t085 = S(2)*t027*t083 + S(4)*qy*t013;
+    const T t086 = (qz - t015*t085)*omega2 + (t018*t085 - qw)*omega1;
+    const T t087 = S(2)*t082 - t026*t086;
+    const T t088 = (t012*t084 - (S(2)*t030*t083 + t087)*t026)*t027 - qy*t075;
+    const T t089 = qw*t031;
+    const T t090 = t060*t083;
+    const T t091 = S(32)*qy + S(64)*t090;
+    const T t092 = t004 + t005 - (S(2)*qy + S(4)*t090)*t059;
+    const T t093 = (t018*t088 + t089)*t027 - ((S(16)*qz - t063*t091)*t024 + S(16)*t015*t092)*t023;
+    const T t094 = S(1)/S(4)*((S(8)*qz - S(16)*qy*t063)*t014 + p.c*t093)*p.c000;
+    const T t095 = qx*t031;
+    const T t096 = qy*t015 - S(2)*qz*t048 - qx*t018;
+    const T t097 = S(2)*t027*t096 + S(4)*qz*t013;
+    const T t098 = (qx + t018*t097)*omega1 + (qy - t015*t097)*omega2;
+    const T t099 = qz*t028;
+    const T t100 = S(2)*t099 + t026*t098;
+    const T t101 = (S(2)*t032*t096 + qx)*omega1 + (qy - S(2)*t035*t096)*omega2;
+    const T t102 = (S(2)*(qz + t054*t096)*t028 + S(2)*t099 + t012*t101)*t012;
+    const T t103 = ((t100 - S(2)*t030*t096)*t026 + t102)*t027 - qz*t057;
+    const T t104 = t060*t096;
+    const T t105 = S(32)*qz + S(64)*t104;
+    const T t106 = t006 - (S(2)*qz + S(4)*t104)*t059 - t007;
+    const T t107 = ((S(16)*qy - t063*t105)*t024 + S(16)*t015*t106)*t023 + (t095 - t018*t103)*t027;
+    const T t108 = S(1)/S(4)*((S(8)*qy - S(16)*qz*t063)*t014 - p.c*t107)*p.c000;
+    const T t109 = p.c004*t027;
+    const T t110 = (t016 + t026*t026)*t027;
+    const T t111 = p.c*t035;
+    const T t112 = (t110 - S(4))*t018*t111;
+    const T t113 = t013*t018;
+    const T t114 = ((S(16)*qy - t064*t113)*t024 + S(16)*t018*t062)*t023 + (t095 - t015*t058)*t027;
+    const T t115 = S(1)/S(4)*((S(8)*qy - S(16)*qw*t113)*t014 - p.c*t114)*p.c000;
+    const T t116 = (t015*t076 + t089)*t027 - ((S(16)*qz + t079*t113)*t024 + S(16)*t018*t078)*t023;
+    const T t117 = S(1)/S(4)*(-(S(16)*qx*t113 + S(8)*qz)*t014 - p.c*t116)*p.c000;
+    const T t118 = ((t091*t113 - S(16)*qw)*t024 - S(16)*t018*t092)*t023 - (t015*t088 + t067)*t027;
+    const T t119 = S(1)/S(4)*((S(8)*qw - S(16)*qy*t113)*t014 + p.c*t118)*p.c000;
+    const T t120 = ((S(16)*qx + t105*t113)*t024 - S(16)*t018*t106)*t023 - (t015*t103 + t047)*t027;
+    const T t121 = S(1)/S(4)*(p.c*t120 - (S(16)*qz*t113 + S(8)*qx)*t014)*p.c000;
+    const T t122 = p.c005*t027;
+    const T t123 = t026*t122;
     dydt[0] = -S(1)/S(2)*(omega3*qz + t000 + t001);
     dydt[1] = S(1)/S(2)*(omega3*qy + t003 - t002);
     dydt[2] = S(1)/S(2)*(t004 + t005 - omega3*qx);
     dydt[3] = S(1)/S(2)*(omega3*qw + t007 - t006);
-    dydt[4] = S(1)/S(4)*t008*t036;
-    dydt[5] = -S(1)/S(4)*t008*t038;
-    dydt[6] = S(1)/S(2)*(S(2)*p.A*sin(p.w*t) - p.c*t031)*t039;
+    dydt[4] = S(1)/S(4)*p.c000*t034;
+    dydt[5] = S(1)/S(4)*p.c000*t036;
+    dydt[6] = S(1)/S(2)*(S(2)*p.A*sin(p.w*t) - p.c*t030)*p.c003;
     J[0] = T(S(0));
-    J[1] = t040;
-    J[2] = t041;
-    J[3] = t042;
-    J[4] = t043;
-    J[5] = t044;
-    J[6] = t045;
-    J[7] = t046;
+    J[1] = t037;
+    J[2] = t038;
+    J[3] = t039;
+    J[4] = t040;
+    J[5] = t041;
+    J[6] = t042;
+    J[7] = t043;
     J[8] = T(S(0));
-    J[9] = t047;
-    J[10] = t041;
-    J[11] = t048;
-    J[12] = t045;
+    J[9] = t044;
+    J[10] = t038;
+    J[11] = t045;
+    J[12] = t042;
     J[13] = S(1)/S(2)*qy;
-    J[14] = t049;
-    J[15] = t042;
+    J[14] = t046;
+    J[15] = t039;
     J[16] = T(S(0));
-    J[17] = t046;
+    J[17] = t043;
     J[18] = S(1)/S(2)*qz;
-    J[19] = t048;
-    J[20] = t043;
-    J[21] = t047;
-    J[22] = t049;
-    J[23] = t040;
+    J[19] = t045;
+    J[20] = t040;
+    J[21] = t044;
+    J[22] = t046;
+    J[23] = t037;
     J[24] = T(S(0));
-    J[25] = t044;
+    J[25] = t041;
     J[26] = S(1)/S(2)*qx;
-    J[27] = t048;
-    J[28] = t069;
-    J[29] = t084;
-    J[30] = t097;
-    J[31] = t111;
-    J[32] = S(1)/S(4)*(-S(4)*t018 - t020*t112)*t113;
-    J[33] = S(1)/S(4)*(t115 - S(4)*t035)*t008;
-    J[34] = S(1)/S(2)*(p.c*t027*t033 - S(2)*omega2*t034)*t008;
-    J[35] = t118;
-    J[36] = t120;
-    J[37] = t122;
-    J[38] = t124;
-    J[39] = S(1)/S(4)*(S(4)*t035 + t115)*t008;
-    J[40] = S(1)/S(4)*(-S(4)*t020 - t018*t112)*t113;
-    J[41] = S(1)/S(2)*(S(2)*omega1*t034 - t027*t114)*t008;
-    J[42] = -S(1)/S(2)*t056*t125;
-    J[43] = S(1)/S(2)*t077*t125;
-    J[44] = S(1)/S(2)*t090*t125;
-    J[45] = -S(1)/S(2)*t103*t125;
-    J[46] = S(1)/S(2)*t019*t126;
-    J[47] = -S(1)/S(2)*t016*t126;
-    J[48] = -p.c*t039;
+    J[27] = t045;
+    J[28] = t066;
+    J[29] = t081;
+    J[30] = t094;
+    J[31] = t108;
+    J[32] = S(1)/S(4)*(-S(4)*t017 - t019*t110)*t109;
+    J[33] = S(1)/S(4)*(t112 - S(4)*t033)*p.c000;
+    J[34] = S(1)/S(2)*(p.c*t026*t032 - S(2)*omega2*p.c002)*p.c000;
+    J[35] = t115;
+    J[36] = t117;
+    J[37] = t119;
+    J[38] = t121;
+    J[39] = S(1)/S(4)*(S(4)*t033 + t112)*p.c000;
+    J[40] = S(1)/S(4)*(-S(4)*t019 - t017*t110)*t109;
+    J[41] = S(1)/S(2)*(S(2)*omega1*p.c002 - t026*t111)*p.c000;
+    J[42] = -S(1)/S(2)*t053*t122;
+    J[43] = S(1)/S(2)*t074*t122;
+    J[44] = S(1)/S(2)*t087*t122;
+    J[45] = -S(1)/S(2)*t100*t122;
+    J[46] = S(1)/S(2)*t018*t123;
+    J[47] = -S(1)/S(2)*t015*t123;
+    J[48] = p.c006;
+}
+
+// rhs_and_jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+    rhs_and_jacobian(t, y, dydt, J, prepare(p));
 }
 
 // The energy T + V (conserved without damping and driving torques).

@@ -20,9 +20,9 @@
 // 0.1, c = 0.05, A = 0.2, w = 3.0.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 120 -> 40 (10 temporaries)
-//   jacobian: 292 -> 70 (22 temporaries)
-//   rhs_and_jacobian: 412 -> 95 (31 temporaries)
+//   rhs: 120 -> 38 (10 temporaries), and 5 once in prepare()
+//   jacobian: 292 -> 63 (21 temporaries), and 7 once in prepare()
+//   rhs_and_jacobian: 412 -> 88 (27 temporaries), and 7 once in prepare()
 //   energy: 37 -> 23 (5 temporaries)
 //   momenta: 0 -> 0 (0 temporaries)
 //   mass_matrix: 11 -> 8 (3 temporaries)
@@ -77,6 +77,34 @@ struct params {
     T w = T(rg_scalar(3)); // drive angular frequency
 };
 
+// The parameters and, computed from them once, the 5 subexpressions of parameters alone that
+// rhs, jacobian and rhs_and_jacobian use (7 operations: products and quotients of
+// parameters, reciprocals; a division by a parameter becomes a multiplication). Make one per
+// parameter set with prepare(p) and pass it where params<T> goes: those functions then skip that
+// work at every call. Given params<T>, they prepare it themselves. Changed a parameter: prepare
+// again.
+template <class T>
+struct prepared : params<T> {
+    T c000{};
+    T c001{};
+    T c002{};
+    T c003{};
+    T c004{};
+};
+
+template <class T>
+prepared<T> prepare(const params<T>& parameters) {
+    using S = typename detail::scalar_of<T>::type;
+    prepared<T> p;
+    static_cast<params<T>&>(p) = parameters;
+    p.c000 = S(1)/p.I1;
+    p.c001 = S(1)/p.I3;
+    p.c002 = p.c/p.I1;
+    p.c003 = p.M*p.g*p.h;
+    p.c004 = -p.c*p.c000;
+    return p;
+}
+
 // The model and the form this header implements.
 constexpr const char* model_name = "damped_driven_top";
 constexpr const char* form_name = "hamiltonian";
@@ -105,10 +133,10 @@ constexpr std::array<unsigned char, 36> jacobian_pattern{{
 //   t     time
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, p_phi_dot, p_theta_dot, p_psi_dot
-//   p     parameters
-// Operations (+ - * / and calls): 120 before lowering, 40 after (11 +-, 21 *, 5 /, 3 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 120 before lowering, 38 after (11 +-, 22 *, 2 /, 3 calls).
 template <class T>
-void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+void rhs(T t, const T* y, T* dydt, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -118,30 +146,37 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     const T p_psi = y[5];
     const T sin_theta = sin(theta);
     const T cos_theta = cos(theta);
-    const T t000 = sin_theta*sin_theta;
+    const T t000 = S(1)/(sin_theta*sin_theta);
     const T t001 = cos_theta*p_psi;
-    const T t002 = (t001 - p_phi)/(p.I1*t000);
-    const T t003 = S(1)/p.I1;
-    const T t004 = cos_theta*t002 + p_psi/p.I3;
+    const T t002 = (t001 - p_phi)*t000;
+    const T t003 = p.c000*t002;
+    const T t004 = cos_theta*t003 + p.c001*p_psi;
     const T t005 = p.A*sin(p.w*t);
-    const T t006 = ((t001 - S(2)*p_phi)*t001 + p_phi*p_phi)/t000 + p_psi*p_psi;
+    const T t006 = ((t001 - S(2)*p_phi)*t001 + p_phi*p_phi)*t000 + p_psi*p_psi;
     const T t007 = (cos_theta*t006 - p_phi*p_psi)/sin_theta - p.c*p_theta;
-    dydt[0] = -t002;
-    dydt[1] = p_theta*t003;
+    dydt[0] = -t003;
+    dydt[1] = p.c000*p_theta;
     dydt[2] = t004;
-    dydt[3] = cos_theta*t005 + p.c*t002;
-    dydt[4] = p.M*p.g*p.h*sin_theta + t003*t007;
+    dydt[3] = cos_theta*t005 + p.c002*t002;
+    dydt[4] = p.c000*t007 + p.c003*sin_theta;
     dydt[5] = t005 - p.c*t004;
+}
+
+// rhs with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+    rhs(t, y, dydt, prepare(p));
 }
 
 // The analytic Jacobian J = d(dy/dt)/dy, dense, row-major: J[i * state_size + k] = d dydt[i] / d y[k].
 //   t     time
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   J     output, dim 6 x 6 (row-major); structural zeros in jacobian_pattern
-//   p     parameters
-// Operations (+ - * / and calls): 292 before lowering, 70 after (21 +-, 41 *, 5 /, 3 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 292 before lowering, 63 after (20 +-, 38 *, 2 /, 3 calls).
 template <class T>
-void jacobian(T t, const T* y, T* J, const params<T>& p) {
+void jacobian(T t, const T* y, T* J, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -150,62 +185,68 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T p_psi = y[5];
     const T sin_theta = sin(theta);
     const T cos_theta = cos(theta);
-    const T t000 = S(1)/(p.I1*sin_theta);
-    const T t001 = sin_theta*sin_theta;
-    const T t002 = S(1)/t001;
-    const T t003 = cos_theta*p_psi;
-    const T t004 = (t003 - p_phi)*cos_theta*t002;
-    const T t005 = S(2)*t004 + p_psi;
-    const T t006 = t000*t005;
-    const T t007 = S(1)/(p.I1*t001);
-    const T t008 = -cos_theta*t007;
-    const T t009 = S(1)/p.I1;
-    const T t010 = S(2)*(p_psi + t004)*cos_theta - p_phi;
-    const T t011 = t000*t010;
-    const T t012 = S(1)/p.I3 + cos_theta*cos_theta*t007;
-    const T t013 = p.c*t000;
-    const T t014 = p.c*t007;
-    const T t015 = cos_theta*t014;
-    const T t016 = p_phi*p_phi;
-    const T t017 = p_psi*p_psi;
-    const T t018 = (((S(3)*t003 - S(6)*p_phi)*t003 + S(3)*t016)*t002 + S(4)*t017)*cos_theta - S(5)*p_phi*p_psi;
-    const T t019 = ((cos_theta*t018 + t016)*t002 + t017)*t009 - cos_theta*p.M*p.g*p.h;
+    const T t000 = S(1)/sin_theta;
+    const T t001 = p.c000*t000;
+    const T t002 = S(1)/(sin_theta*sin_theta);
+    const T t003 = cos_theta*t002;
+    const T t004 = cos_theta*p_psi;
+    const T t005 = (t004 - p_phi)*t003;
+    const T t006 = S(2)*t005 + p_psi;
+    const T t007 = t001*t006;
+    const T t008 = p.c000*t002;
+    const T t009 = -p.c000*t003;
+    const T t010 = S(2)*(p_psi + t005)*cos_theta - p_phi;
+    const T t011 = t001*t010;
+    const T t012 = cos_theta*cos_theta*t008 + p.c001;
+    const T t013 = p.c002*t000;
+    const T t014 = p.c002*t003;
+    const T t015 = p_phi*p_phi;
+    const T t016 = p_psi*p_psi;
+    const T t017 = (((S(3)*t004 - S(6)*p_phi)*t004 + S(3)*t015)*t002 + S(4)*t016)*cos_theta - S(5)*p_phi*p_psi;
+    const T t018 = ((cos_theta*t017 + t015)*t002 + t016)*p.c000 - cos_theta*p.c003;
     J[0] = T(S(0));
-    J[1] = t006;
+    J[1] = t007;
     J[2] = T(S(0));
-    J[3] = t007;
+    J[3] = t008;
     J[4] = T(S(0));
-    J[5] = t008;
+    J[5] = t009;
     J[6] = T(S(0));
     J[7] = T(S(0));
     J[8] = T(S(0));
     J[9] = T(S(0));
-    J[10] = t009;
+    J[10] = p.c000;
     J[11] = T(S(0));
     J[12] = T(S(0));
     J[13] = -t011;
     J[14] = T(S(0));
-    J[15] = t008;
+    J[15] = t009;
     J[16] = T(S(0));
     J[17] = t012;
     J[18] = T(S(0));
-    J[19] = -p.A*sin(p.w*t)*sin_theta - t005*t013;
+    J[19] = -p.A*sin(p.w*t)*sin_theta - t006*t013;
     J[20] = T(S(0));
-    J[21] = -t014;
+    J[21] = -p.c002*t002;
     J[22] = T(S(0));
-    J[23] = t015;
+    J[23] = t014;
     J[24] = T(S(0));
-    J[25] = -t019;
+    J[25] = -t018;
     J[26] = T(S(0));
-    J[27] = -t006;
-    J[28] = -p.c*t009;
+    J[27] = -t007;
+    J[28] = p.c004;
     J[29] = t011;
     J[30] = T(S(0));
     J[31] = t010*t013;
     J[32] = T(S(0));
-    J[33] = t015;
+    J[33] = t014;
     J[34] = T(S(0));
     J[35] = -p.c*t012;
+}
+
+// jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void jacobian(T t, const T* y, T* J, const params<T>& p) {
+    jacobian(t, y, J, prepare(p));
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -213,10 +254,10 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, p_phi_dot, p_theta_dot, p_psi_dot
 //   J     output, dim 6 x 6 (row-major)
-//   p     parameters
-// Operations (+ - * / and calls): 412 before lowering, 95 after (31 +-, 55 *, 6 /, 3 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 412 before lowering, 88 after (30 +-, 53 *, 2 /, 3 calls).
 template <class T>
-void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -226,77 +267,80 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T p_psi = y[5];
     const T sin_theta = sin(theta);
     const T cos_theta = cos(theta);
-    const T t000 = sin_theta*sin_theta;
-    const T t001 = S(1)/(p.I1*t000);
+    const T t000 = S(1)/(sin_theta*sin_theta);
+    const T t001 = p.c000*t000;
     const T t002 = cos_theta*p_psi;
     const T t003 = t002 - p_phi;
-    const T t004 = S(1)/p.I1;
-    const T t005 = S(1)/p.I3;
-    const T t006 = cos_theta*t001;
-    const T t007 = p_psi*t005 + t003*t006;
-    const T t008 = p.A*sin(p.w*t);
-    const T t009 = p.c*t001;
-    const T t010 = S(1)/t000;
-    const T t011 = p_phi*p_phi;
-    const T t012 = p_psi*p_psi;
-    const T t013 = p_phi*p_psi;
-    const T t014 = (((t002 - S(2)*p_phi)*t002 + t011)*t010 + t012)*cos_theta - t013;
-    const T t015 = p.M*p.g*p.h;
-    const T t016 = (t014/sin_theta - p.c*p_theta)*t004 + sin_theta*t015;
-    const T t017 = S(1)/(p.I1*sin_theta);
-    const T t018 = cos_theta*t003*t010;
-    const T t019 = S(2)*t018 + p_psi;
-    const T t020 = t017*t019;
-    const T t021 = -t006;
-    const T t022 = S(2)*(p_psi + t018)*cos_theta - p_phi;
-    const T t023 = t017*t022;
-    const T t024 = cos_theta*cos_theta*t001 + t005;
-    const T t025 = p.c*t017;
-    const T t026 = cos_theta*t009;
-    const T t027 = (((S(3)*t002 - S(6)*p_phi)*t002 + S(3)*t011)*t010 + S(4)*t012)*cos_theta - S(5)*t013;
-    const T t028 = ((cos_theta*t027 + t011)*t010 + t012)*t004 - cos_theta*t015;
+    const T t004 = cos_theta*t001;
+    const T t005 = p.c001*p_psi + t003*t004;
+    const T t006 = p.A*sin(p.w*t);
+    const T t007 = p.c002*t000;
+    const T t008 = S(1)/sin_theta;
+    const T t009 = p_phi*p_phi;
+    const T t010 = p_psi*p_psi;
+    const T t011 = p_phi*p_psi;
+    const T t012 = (((t002 - S(2)*p_phi)*t002 + t009)*t000 + t010)*cos_theta - t011;
+    const T t013 = p.c000*t008;
+    const T t014 = cos_theta*t000*t003;
+    const T t015 = S(2)*t014 + p_psi;
+    const T t016 = t013*t015;
+    const T t017 = -t004;
+    const T t018 = S(2)*(p_psi + t014)*cos_theta - p_phi;
+    const T t019 = t013*t018;
+    const T t020 = cos_theta*cos_theta*t001 + p.c001;
+    const T t021 = p.c002*t008;
+    const T t022 = cos_theta*t007;
+    const T t023 = (((S(3)*t002 - S(6)*p_phi)*t002 + S(3)*t009)*t000 + S(4)*t010)*cos_theta - S(5)*t011;
+    const T t024 = ((cos_theta*t023 + t009)*t000 + t010)*p.c000 - cos_theta*p.c003;
     dydt[0] = -t001*t003;
-    dydt[1] = p_theta*t004;
-    dydt[2] = t007;
-    dydt[3] = cos_theta*t008 + t003*t009;
-    dydt[4] = t016;
-    dydt[5] = t008 - p.c*t007;
+    dydt[1] = p.c000*p_theta;
+    dydt[2] = t005;
+    dydt[3] = cos_theta*t006 + t003*t007;
+    dydt[4] = (t008*t012 - p.c*p_theta)*p.c000 + p.c003*sin_theta;
+    dydt[5] = t006 - p.c*t005;
     J[0] = T(S(0));
-    J[1] = t020;
+    J[1] = t016;
     J[2] = T(S(0));
     J[3] = t001;
     J[4] = T(S(0));
-    J[5] = t021;
+    J[5] = t017;
     J[6] = T(S(0));
     J[7] = T(S(0));
     J[8] = T(S(0));
     J[9] = T(S(0));
-    J[10] = t004;
+    J[10] = p.c000;
     J[11] = T(S(0));
     J[12] = T(S(0));
-    J[13] = -t023;
+    J[13] = -t019;
     J[14] = T(S(0));
-    J[15] = t021;
+    J[15] = t017;
     J[16] = T(S(0));
-    J[17] = t024;
+    J[17] = t020;
     J[18] = T(S(0));
-    J[19] = -sin_theta*t008 - t019*t025;
+    J[19] = -sin_theta*t006 - t015*t021;
     J[20] = T(S(0));
-    J[21] = -t009;
+    J[21] = -t007;
     J[22] = T(S(0));
-    J[23] = t026;
+    J[23] = t022;
     J[24] = T(S(0));
-    J[25] = -t028;
+    J[25] = -t024;
     J[26] = T(S(0));
-    J[27] = -t020;
-    J[28] = -p.c*t004;
-    J[29] = t023;
+    J[27] = -t016;
+    J[28] = p.c004;
+    J[29] = t019;
     J[30] = T(S(0));
-    J[31] = t022*t025;
+    J[31] = t018*t021;
     J[32] = T(S(0));
-    J[33] = t026;
+    J[33] = t022;
     J[34] = T(S(0));
-    J[35] = -p.c*t024;
+    J[35] = -p.c*t020;
+}
+
+// rhs_and_jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+    rhs_and_jacobian(t, y, dydt, J, prepare(p));
 }
 
 // The energy, the Hamiltonian H = T + V (conserved without damping and driving torques).

@@ -19,9 +19,9 @@
 // Parameters (params<T>, defaults from the model file): I1 = 1.0, I2 = 2.0, I3 = 3.0.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 318 -> 48 (16 temporaries)
-//   jacobian: 2091 -> 164 (44 temporaries)
-//   rhs_and_jacobian: 2409 -> 174 (48 temporaries)
+//   rhs: 318 -> 41 (15 temporaries), and 6 once in prepare()
+//   jacobian: 2091 -> 149 (39 temporaries), and 13 once in prepare()
+//   rhs_and_jacobian: 2409 -> 158 (43 temporaries), and 13 once in prepare()
 //   energy: 28 -> 22 (9 temporaries)
 //   momenta: 77 -> 24 (10 temporaries)
 //   mass_matrix: 59 -> 19 (8 temporaries)
@@ -71,6 +71,33 @@ struct params {
     T I3 = T(rg_scalar(3));
 };
 
+// The parameters and, computed from them once, the 5 subexpressions of parameters alone that
+// rhs, jacobian and rhs_and_jacobian use (14 operations: products and quotients of
+// parameters, reciprocals; a division by a parameter becomes a multiplication). Make one per
+// parameter set with prepare(p) and pass it where params<T> goes: those functions then skip that
+// work at every call. Given params<T>, they prepare it themselves. Changed a parameter: prepare
+// again.
+template <class T>
+struct prepared : params<T> {
+    T c000{};
+    T c001{};
+    T c002{};
+    T c003{};
+    T c004{};
+};
+
+template <class T>
+prepared<T> prepare(const params<T>& parameters) {
+    prepared<T> p;
+    static_cast<params<T>&>(p) = parameters;
+    p.c000 = (p.I3 - p.I1)/p.I2;
+    p.c001 = (p.I3 - p.I2)/p.I1;
+    p.c002 = (p.I2 - p.I1)/p.I3;
+    p.c003 = p.I2 - p.I1;
+    p.c004 = (p.I2*p.I2 - p.I1*p.I1 - p.I3*p.c003)/(p.I1*p.I2);
+    return p;
+}
+
 // The model and the form this header implements.
 constexpr const char* model_name = "free_asymmetric_top";
 constexpr const char* form_name = "lagrangian";
@@ -99,10 +126,10 @@ constexpr std::array<unsigned char, 36> jacobian_pattern{{
 //   t     time
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, phi_ddot, theta_ddot, psi_ddot
-//   p     parameters
-// Operations (+ - * / and calls): 318 before lowering, 48 after (17 +-, 23 *, 4 /, 4 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 318 before lowering, 41 after (13 +-, 23 *, 1 /, 4 calls).
 template <class T>
-void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+void rhs(T t, const T* y, T* dydt, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     (void)t;
@@ -121,28 +148,34 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     const T t003 = sin_psi*t002;
     const T t004 = cos_psi*theta_dot + t003;
     const T t005 = (t000 - psi_dot)*theta_dot;
-    const T t006 = ((p.I3 - p.I1)/p.I2)*t001*t004 + psi_dot*t003 - cos_psi*t005;
+    const T t006 = p.c000*t001*t004 + psi_dot*t003 - cos_psi*t005;
     const T t007 = cos_psi*t002;
     const T t008 = t007 - sin_psi*theta_dot;
-    const T t009 = ((p.I3 - p.I2)/p.I1)*t001*t008 + psi_dot*t007 + sin_psi*t005;
+    const T t009 = p.c001*t001*t008 + psi_dot*t007 + sin_psi*t005;
     const T t010 = (cos_psi*t006 - sin_psi*t009)/sin_theta;
-    const T t011 = ((p.I2 - p.I1)/p.I3)*t004*t008 + cos_theta*t010 - t002*theta_dot;
     dydt[0] = phi_dot;
     dydt[1] = theta_dot;
     dydt[2] = psi_dot;
     dydt[3] = t010;
     dydt[4] = -cos_psi*t009 - sin_psi*t006;
-    dydt[5] = -t011;
+    dydt[5] = t002*theta_dot - cos_theta*t010 - p.c002*t004*t008;
+}
+
+// rhs with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+    rhs(t, y, dydt, prepare(p));
 }
 
 // The analytic Jacobian J = d(dy/dt)/dy, dense, row-major: J[i * state_size + k] = d dydt[i] / d y[k].
 //   t     time
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   J     output, dim 6 x 6 (row-major); structural zeros in jacobian_pattern
-//   p     parameters
-// Operations (+ - * / and calls): 2091 before lowering, 164 after (60 +-, 94 *, 6 /, 4 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 2091 before lowering, 149 after (55 +-, 89 *, 1 /, 4 calls).
 template <class T>
-void jacobian(T t, const T* y, T* J, const params<T>& p) {
+void jacobian(T t, const T* y, T* J, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -157,45 +190,40 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
     const T t000 = sin_psi*sin_theta;
-    const T t001 = (p.I3 - p.I2)/p.I1;
-    const T t002 = cos_psi*sin_theta;
-    const T t003 = phi_dot*t002;
-    const T t004 = sin_psi*theta_dot;
-    const T t005 = t003 - t004;
-    const T t006 = cos_theta*phi_dot;
-    const T t007 = psi_dot + t006;
-    const T t008 = cos_theta*t007;
-    const T t009 = cos_theta*psi_dot;
-    const T t010 = (sin_theta*t005 - cos_psi*t008)*t001 + t000*theta_dot - cos_psi*t009;
-    const T t011 = phi_dot*t000;
-    const T t012 = cos_psi*theta_dot;
-    const T t013 = t011 + t012;
-    const T t014 = (p.I3 - p.I1)/p.I2;
-    const T t015 = sin_psi*t009 + t002*theta_dot - (sin_theta*t013 - sin_psi*t008)*t014;
-    const T t016 = S(1)/sin_theta;
-    const T t017 = cos_theta*t016;
-    const T t018 = t007*t014;
-    const T t019 = t006 - psi_dot;
-    const T t020 = (psi_dot*t011 + t013*t018 - t012*t019)*cos_psi;
-    const T t021 = t001*t007;
-    const T t022 = (psi_dot*t003 + t004*t019 + t005*t021)*sin_psi;
-    const T t023 = (cos_psi*t015 + sin_psi*t010)*phi_dot - (t020 - t022)*t017;
-    const T t024 = t016*t023;
-    const T t025 = sin_psi*t013 - cos_psi*t005;
-    const T t026 = p.I2 - p.I1;
-    const T t027 = p.I2*p.I2 - p.I1*p.I1 - p.I3*t026;
-    const T t028 = t025*t027/(p.I1*p.I2*sin_theta);
-    const T t029 = (cos_theta*t013 + t000*t007)*t014 + psi_dot*t000 - cos_theta*t012;
-    const T t030 = (cos_theta*t005 + t002*t007)*t001 + cos_theta*t004 + psi_dot*t002;
-    const T t031 = cos_psi*t029 - sin_psi*t030;
-    const T t032 = (t006 - psi_dot - t018)*cos_psi*cos_psi + (t006 - psi_dot - t021)*sin_psi*sin_psi;
-    const T t033 = t001*t005 + t003 - t004;
-    const T t034 = t011 + t012 + t013*t014;
-    const T t035 = sin_psi*t033 - cos_psi*t034;
-    const T t036 = (t027/(p.I1*p.I2))*t007;
-    const T t037 = cos_psi*t013 + sin_psi*t005;
-    const T t038 = t026/p.I3;
-    const T t039 = theta_dot - t037*t038;
+    const T t001 = cos_psi*sin_theta;
+    const T t002 = phi_dot*t001;
+    const T t003 = sin_psi*theta_dot;
+    const T t004 = t002 - t003;
+    const T t005 = cos_theta*phi_dot;
+    const T t006 = psi_dot + t005;
+    const T t007 = cos_psi*cos_theta;
+    const T t008 = (sin_theta*t004 - t006*t007)*p.c001 + t000*theta_dot - psi_dot*t007;
+    const T t009 = cos_theta*sin_psi;
+    const T t010 = phi_dot*t000;
+    const T t011 = cos_psi*theta_dot;
+    const T t012 = t010 + t011;
+    const T t013 = psi_dot*t009 + t001*theta_dot - (sin_theta*t012 - t006*t009)*p.c000;
+    const T t014 = S(1)/sin_theta;
+    const T t015 = cos_theta*t014;
+    const T t016 = p.c000*t006;
+    const T t017 = (t005 - psi_dot)*theta_dot;
+    const T t018 = (psi_dot*t010 + t012*t016 - cos_psi*t017)*cos_psi;
+    const T t019 = p.c001*t006;
+    const T t020 = (psi_dot*t002 + sin_psi*t017 + t004*t019)*sin_psi;
+    const T t021 = (cos_psi*t013 + sin_psi*t008)*phi_dot - (t018 - t020)*t015;
+    const T t022 = t014*t021;
+    const T t023 = p.c004*t006;
+    const T t024 = sin_psi*t012 - cos_psi*t004;
+    const T t025 = t023*t024;
+    const T t026 = (cos_theta*t012 + t000*t006)*p.c000 + psi_dot*t000 - t007*theta_dot;
+    const T t027 = (cos_theta*t004 + t001*t006)*p.c001 + psi_dot*t001 + t009*theta_dot;
+    const T t028 = cos_psi*t026 - sin_psi*t027;
+    const T t029 = (t005 - psi_dot - t016)*cos_psi*cos_psi + (t005 - psi_dot - t019)*sin_psi*sin_psi;
+    const T t030 = p.c001*t004 + t002 - t003;
+    const T t031 = p.c000*t012 + t010 + t011;
+    const T t032 = sin_psi*t030 - cos_psi*t031;
+    const T t033 = cos_psi*t012 + sin_psi*t004;
+    const T t034 = theta_dot - p.c002*t033;
     J[0] = T(S(0));
     J[1] = T(S(0));
     J[2] = T(S(0));
@@ -215,23 +243,30 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     J[16] = T(S(0));
     J[17] = T(S(1));
     J[18] = T(S(0));
-    J[19] = t024;
-    J[20] = -t007*t028;
-    J[21] = t016*t031;
-    J[22] = -t016*t032;
-    J[23] = -t016*t035;
+    J[19] = t022;
+    J[20] = -t014*t025;
+    J[21] = t014*t028;
+    J[22] = -t014*t029;
+    J[23] = -t014*t032;
     J[24] = T(S(0));
-    J[25] = (cos_psi*t010 - sin_psi*t015)*phi_dot;
-    J[26] = -t036*t037;
-    J[27] = -cos_psi*t030 - sin_psi*t029;
-    J[28] = -cos_psi*sin_psi*t036;
-    J[29] = -cos_psi*t033 - sin_psi*t034;
+    J[25] = (cos_psi*t008 - sin_psi*t013)*phi_dot;
+    J[26] = -t023*t033;
+    J[27] = -cos_psi*t027 - sin_psi*t026;
+    J[28] = -cos_psi*sin_psi*t023;
+    J[29] = -cos_psi*t030 - sin_psi*t031;
     J[30] = T(S(0));
-    J[31] = (phi_dot*t039 - t024)*cos_theta + t020 - t022;
-    J[32] = (t013*t013 - t005*t005)*t038 + t008*t028;
-    J[33] = sin_theta*t039 - t017*t031;
-    J[34] = phi_dot*sin_theta + t017*t032 + t025*t038;
-    J[35] = t017*t035;
+    J[31] = (phi_dot*t034 - t022)*cos_theta + t018 - t020;
+    J[32] = (t012*t012 - t004*t004)*p.c002 + t015*t025;
+    J[33] = sin_theta*t034 - t015*t028;
+    J[34] = p.c002*t024 + phi_dot*sin_theta + t015*t029;
+    J[35] = t015*t032;
+}
+
+// jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void jacobian(T t, const T* y, T* J, const params<T>& p) {
+    jacobian(t, y, J, prepare(p));
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -239,10 +274,10 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, phi_ddot, theta_ddot, psi_ddot
 //   J     output, dim 6 x 6 (row-major)
-//   p     parameters
-// Operations (+ - * / and calls): 2409 before lowering, 174 after (64 +-, 100 *, 6 /, 4 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 2409 before lowering, 158 after (59 +-, 94 *, 1 /, 4 calls).
 template <class T>
-void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -263,49 +298,44 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T t004 = t002 + t003;
     const T t005 = cos_theta*phi_dot;
     const T t006 = psi_dot + t005;
-    const T t007 = (p.I3 - p.I1)/p.I2;
-    const T t008 = t006*t007;
-    const T t009 = t005 - psi_dot;
-    const T t010 = psi_dot*sin_psi;
-    const T t011 = t001*t010 + t004*t008 - t003*t009;
-    const T t012 = cos_psi*t011;
-    const T t013 = cos_psi*t001;
-    const T t014 = sin_psi*theta_dot;
-    const T t015 = t013 - t014;
-    const T t016 = (p.I3 - p.I2)/p.I1;
-    const T t017 = t006*t016;
-    const T t018 = cos_psi*psi_dot;
-    const T t019 = t001*t018 + t009*t014 + t015*t017;
-    const T t020 = sin_psi*t019;
-    const T t021 = t012 - t020;
-    const T t022 = cos_theta*t000;
-    const T t023 = t021*t022;
-    const T t024 = p.I2 - p.I1;
-    const T t025 = t024/p.I3;
-    const T t026 = cos_theta*t006;
-    const T t027 = (sin_theta*t015 - cos_psi*t026)*t016 + sin_theta*t014 - cos_theta*t018;
-    const T t028 = cos_theta*t010 + sin_theta*t003 - (sin_theta*t004 - sin_psi*t026)*t007;
-    const T t029 = ((cos_psi*t028 + sin_psi*t027)*phi_dot - t023)*t000;
-    const T t030 = sin_psi*t004 - cos_psi*t015;
-    const T t031 = p.I2*p.I2 - p.I1*p.I1 - p.I3*t024;
-    const T t032 = t030*t031/(p.I1*p.I2*sin_theta);
-    const T t033 = sin_theta*t006;
-    const T t034 = (cos_theta*t004 + sin_psi*t033)*t007 + sin_theta*t010 - cos_theta*t003;
-    const T t035 = (cos_psi*t033 + cos_theta*t015)*t016 + cos_theta*t014 + sin_theta*t018;
-    const T t036 = cos_psi*t034 - sin_psi*t035;
-    const T t037 = (t005 - psi_dot - t008)*cos_psi*cos_psi + (t005 - psi_dot - t017)*sin_psi*sin_psi;
-    const T t038 = t013 + t015*t016 - t014;
-    const T t039 = t002 + t003 + t004*t007;
-    const T t040 = sin_psi*t038 - cos_psi*t039;
-    const T t041 = (t031/(p.I1*p.I2))*t006;
-    const T t042 = cos_psi*t004 + sin_psi*t015;
-    const T t043 = theta_dot - t025*t042;
+    const T t007 = p.c000*t006;
+    const T t008 = t005 - psi_dot;
+    const T t009 = psi_dot*sin_psi;
+    const T t010 = t001*t009 + t004*t007 - t003*t008;
+    const T t011 = cos_psi*t010;
+    const T t012 = cos_psi*t001;
+    const T t013 = sin_psi*theta_dot;
+    const T t014 = t012 - t013;
+    const T t015 = p.c001*t006;
+    const T t016 = cos_psi*psi_dot;
+    const T t017 = t001*t016 + t008*t013 + t014*t015;
+    const T t018 = sin_psi*t017;
+    const T t019 = t011 - t018;
+    const T t020 = cos_theta*t000;
+    const T t021 = t019*t020;
+    const T t022 = cos_theta*t006;
+    const T t023 = (sin_theta*t014 - cos_psi*t022)*p.c001 + sin_theta*t013 - cos_theta*t016;
+    const T t024 = cos_theta*t009 + sin_theta*t003 - (sin_theta*t004 - sin_psi*t022)*p.c000;
+    const T t025 = ((cos_psi*t024 + sin_psi*t023)*phi_dot - t021)*t000;
+    const T t026 = p.c004*t006;
+    const T t027 = sin_psi*t004 - cos_psi*t014;
+    const T t028 = t026*t027;
+    const T t029 = sin_theta*t006;
+    const T t030 = (cos_theta*t004 + sin_psi*t029)*p.c000 + sin_theta*t009 - cos_theta*t003;
+    const T t031 = (cos_psi*t029 + cos_theta*t014)*p.c001 + cos_theta*t013 + sin_theta*t016;
+    const T t032 = cos_psi*t030 - sin_psi*t031;
+    const T t033 = (t005 - psi_dot - t007)*cos_psi*cos_psi + (t005 - psi_dot - t015)*sin_psi*sin_psi;
+    const T t034 = p.c001*t014 + t012 - t013;
+    const T t035 = p.c000*t004 + t002 + t003;
+    const T t036 = sin_psi*t034 - cos_psi*t035;
+    const T t037 = cos_psi*t004 + sin_psi*t014;
+    const T t038 = theta_dot - p.c002*t037;
     dydt[0] = phi_dot;
     dydt[1] = theta_dot;
     dydt[2] = psi_dot;
-    dydt[3] = t000*t021;
-    dydt[4] = -cos_psi*t019 - sin_psi*t011;
-    dydt[5] = t001*theta_dot - t004*t015*t025 - t023;
+    dydt[3] = t000*t019;
+    dydt[4] = -cos_psi*t017 - sin_psi*t010;
+    dydt[5] = t001*theta_dot - p.c002*t004*t014 - t021;
     J[0] = T(S(0));
     J[1] = T(S(0));
     J[2] = T(S(0));
@@ -325,23 +355,30 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     J[16] = T(S(0));
     J[17] = T(S(1));
     J[18] = T(S(0));
-    J[19] = t029;
-    J[20] = -t006*t032;
-    J[21] = t000*t036;
-    J[22] = -t000*t037;
-    J[23] = -t000*t040;
+    J[19] = t025;
+    J[20] = -t000*t028;
+    J[21] = t000*t032;
+    J[22] = -t000*t033;
+    J[23] = -t000*t036;
     J[24] = T(S(0));
-    J[25] = (cos_psi*t027 - sin_psi*t028)*phi_dot;
-    J[26] = -t041*t042;
-    J[27] = -cos_psi*t035 - sin_psi*t034;
-    J[28] = -cos_psi*sin_psi*t041;
-    J[29] = -cos_psi*t038 - sin_psi*t039;
+    J[25] = (cos_psi*t023 - sin_psi*t024)*phi_dot;
+    J[26] = -t026*t037;
+    J[27] = -cos_psi*t031 - sin_psi*t030;
+    J[28] = -cos_psi*sin_psi*t026;
+    J[29] = -cos_psi*t034 - sin_psi*t035;
     J[30] = T(S(0));
-    J[31] = (phi_dot*t043 - t029)*cos_theta + t012 - t020;
-    J[32] = (t004*t004 - t015*t015)*t025 + t026*t032;
-    J[33] = sin_theta*t043 - t022*t036;
-    J[34] = t001 + t022*t037 + t025*t030;
-    J[35] = t022*t040;
+    J[31] = (phi_dot*t038 - t025)*cos_theta + t011 - t018;
+    J[32] = (t004*t004 - t014*t014)*p.c002 + t020*t028;
+    J[33] = sin_theta*t038 - t020*t032;
+    J[34] = p.c002*t027 + t001 + t020*t033;
+    J[35] = t020*t036;
+}
+
+// rhs_and_jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+    rhs_and_jacobian(t, y, dydt, J, prepare(p));
 }
 
 // The energy T + V (conserved without damping and driving torques).

@@ -14,9 +14,9 @@
 // Parameters (params<T>, defaults from the model file): I1 = 1.0, I2 = 2.0, I3 = 3.0.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 18 -> 12 (0 temporaries)
-//   jacobian: 24 -> 16 (3 temporaries)
-//   rhs_and_jacobian: 42 -> 21 (6 temporaries)
+//   rhs: 18 -> 8 (0 temporaries), and 6 once in prepare()
+//   jacobian: 24 -> 10 (0 temporaries), and 6 once in prepare()
+//   rhs_and_jacobian: 42 -> 15 (3 temporaries), and 6 once in prepare()
 //   energy: 11 -> 9 (1 temporaries)
 //   momenta: 3 -> 3 (0 temporaries)
 //   mass_matrix: 0 -> 0 (0 temporaries)
@@ -65,6 +65,29 @@ struct params {
     T I3 = T(rg_scalar(3));
 };
 
+// The parameters and, computed from them once, the 3 subexpressions of parameters alone that
+// rhs, jacobian and rhs_and_jacobian use (6 operations: products and quotients of
+// parameters, reciprocals; a division by a parameter becomes a multiplication). Make one per
+// parameter set with prepare(p) and pass it where params<T> goes: those functions then skip that
+// work at every call. Given params<T>, they prepare it themselves. Changed a parameter: prepare
+// again.
+template <class T>
+struct prepared : params<T> {
+    T c000{};
+    T c001{};
+    T c002{};
+};
+
+template <class T>
+prepared<T> prepare(const params<T>& parameters) {
+    prepared<T> p;
+    static_cast<params<T>&>(p) = parameters;
+    p.c000 = (p.I3 - p.I2)/p.I1;
+    p.c001 = (p.I3 - p.I1)/p.I2;
+    p.c002 = (p.I2 - p.I1)/p.I3;
+    return p;
+}
+
 // The model and the form this header implements.
 constexpr const char* model_name = "free_asymmetric_top";
 constexpr const char* form_name = "body";
@@ -90,44 +113,55 @@ constexpr std::array<unsigned char, 9> jacobian_pattern{{
 //   t     time
 //   y     state, dim 3: (omega1, omega2, omega3)
 //   dydt  output, dim 3: omega1_dot, omega2_dot, omega3_dot
-//   p     parameters
-// Operations (+ - * / and calls): 18 before lowering, 12 after (3 +-, 6 *, 3 /, 0 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 18 before lowering, 8 after (2 +-, 6 *, 0 /, 0 calls).
 template <class T>
-void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+void rhs(T t, const T* y, T* dydt, const prepared<T>& p) {
     (void)t;
     const T omega1 = y[0];
     const T omega2 = y[1];
     const T omega3 = y[2];
-    dydt[0] = ((p.I2 - p.I3)/p.I1)*omega2*omega3;
-    dydt[1] = ((p.I3 - p.I1)/p.I2)*omega1*omega3;
-    dydt[2] = ((p.I1 - p.I2)/p.I3)*omega1*omega2;
+    dydt[0] = -omega2*omega3*p.c000;
+    dydt[1] = omega1*omega3*p.c001;
+    dydt[2] = -omega1*omega2*p.c002;
+}
+
+// rhs with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+    rhs(t, y, dydt, prepare(p));
 }
 
 // The analytic Jacobian J = d(dy/dt)/dy, dense, row-major: J[i * state_size + k] = d dydt[i] / d y[k].
 //   t     time
 //   y     state, dim 3: (omega1, omega2, omega3)
 //   J     output, dim 3 x 3 (row-major); structural zeros in jacobian_pattern
-//   p     parameters
-// Operations (+ - * / and calls): 24 before lowering, 16 after (7 +-, 6 *, 3 /, 0 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 24 before lowering, 10 after (4 +-, 6 *, 0 /, 0 calls).
 template <class T>
-void jacobian(T t, const T* y, T* J, const params<T>& p) {
+void jacobian(T t, const T* y, T* J, const prepared<T>& p) {
     using S = typename detail::scalar_of<T>::type;
     (void)t;
     const T omega1 = y[0];
     const T omega2 = y[1];
     const T omega3 = y[2];
-    const T t000 = (p.I3 - p.I2)/p.I1;
-    const T t001 = (p.I3 - p.I1)/p.I2;
-    const T t002 = (p.I2 - p.I1)/p.I3;
     J[0] = T(S(0));
-    J[1] = -omega3*t000;
-    J[2] = -omega2*t000;
-    J[3] = omega3*t001;
+    J[1] = -omega3*p.c000;
+    J[2] = -omega2*p.c000;
+    J[3] = omega3*p.c001;
     J[4] = T(S(0));
-    J[5] = omega1*t001;
-    J[6] = -omega2*t002;
-    J[7] = -omega1*t002;
+    J[5] = omega1*p.c001;
+    J[6] = -omega2*p.c002;
+    J[7] = -omega1*p.c002;
     J[8] = T(S(0));
+}
+
+// jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void jacobian(T t, const T* y, T* J, const params<T>& p) {
+    jacobian(t, y, J, prepare(p));
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -135,33 +169,37 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   y     state, dim 3: (omega1, omega2, omega3)
 //   dydt  output, dim 3: omega1_dot, omega2_dot, omega3_dot
 //   J     output, dim 3 x 3 (row-major)
-//   p     parameters
-// Operations (+ - * / and calls): 42 before lowering, 21 after (9 +-, 9 *, 3 /, 0 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 42 before lowering, 15 after (6 +-, 9 *, 0 /, 0 calls).
 template <class T>
-void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const prepared<T>& p) {
     using S = typename detail::scalar_of<T>::type;
     (void)t;
     const T omega1 = y[0];
     const T omega2 = y[1];
     const T omega3 = y[2];
-    const T t000 = (p.I3 - p.I2)/p.I1;
-    const T t001 = omega3*t000;
-    const T t002 = (p.I3 - p.I1)/p.I2;
-    const T t003 = omega1*t002;
-    const T t004 = (p.I2 - p.I1)/p.I3;
-    const T t005 = omega1*t004;
-    dydt[0] = -omega2*t001;
-    dydt[1] = omega3*t003;
-    dydt[2] = -omega2*t005;
+    const T t000 = omega3*p.c000;
+    const T t001 = omega1*p.c001;
+    const T t002 = omega1*p.c002;
+    dydt[0] = -omega2*t000;
+    dydt[1] = omega3*t001;
+    dydt[2] = -omega2*t002;
     J[0] = T(S(0));
-    J[1] = -t001;
-    J[2] = -omega2*t000;
-    J[3] = omega3*t002;
+    J[1] = -t000;
+    J[2] = -omega2*p.c000;
+    J[3] = omega3*p.c001;
     J[4] = T(S(0));
-    J[5] = t003;
-    J[6] = -omega2*t004;
-    J[7] = -t005;
+    J[5] = t001;
+    J[6] = -omega2*p.c002;
+    J[7] = -t002;
     J[8] = T(S(0));
+}
+
+// rhs_and_jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+    rhs_and_jacobian(t, y, dydt, J, prepare(p));
 }
 
 // The energy T + V (conserved without damping and driving torques).

@@ -19,9 +19,9 @@
 // Parameters (params<T>, defaults from the model file): I1 = 1.0, I2 = 2.0, I3 = 3.0.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 251 -> 37 (13 temporaries)
-//   jacobian: 1631 -> 93 (42 temporaries)
-//   rhs_and_jacobian: 1882 -> 104 (45 temporaries)
+//   rhs: 251 -> 34 (13 temporaries), and 6 once in prepare()
+//   jacobian: 1631 -> 85 (36 temporaries), and 6 once in prepare()
+//   rhs_and_jacobian: 1882 -> 96 (38 temporaries), and 6 once in prepare()
 //   energy: 39 -> 22 (8 temporaries)
 //   momenta: 0 -> 0 (0 temporaries)
 //   mass_matrix: 59 -> 19 (8 temporaries)
@@ -71,6 +71,32 @@ struct params {
     T I3 = T(rg_scalar(3));
 };
 
+// The parameters and, computed from them once, the 4 subexpressions of parameters alone that
+// rhs, jacobian and rhs_and_jacobian use (6 operations: products and quotients of
+// parameters, reciprocals; a division by a parameter becomes a multiplication). Make one per
+// parameter set with prepare(p) and pass it where params<T> goes: those functions then skip that
+// work at every call. Given params<T>, they prepare it themselves. Changed a parameter: prepare
+// again.
+template <class T>
+struct prepared : params<T> {
+    T c000{};
+    T c001{};
+    T c002{};
+    T c003{};
+};
+
+template <class T>
+prepared<T> prepare(const params<T>& parameters) {
+    using S = typename detail::scalar_of<T>::type;
+    prepared<T> p;
+    static_cast<params<T>&>(p) = parameters;
+    p.c000 = S(1)/p.I2;
+    p.c001 = S(1)/p.I1;
+    p.c002 = S(1)/p.I3;
+    p.c003 = (p.I2 - p.I1)/(p.I1*p.I2);
+    return p;
+}
+
 // The model and the form this header implements.
 constexpr const char* model_name = "free_asymmetric_top";
 constexpr const char* form_name = "hamiltonian";
@@ -99,10 +125,10 @@ constexpr std::array<unsigned char, 36> jacobian_pattern{{
 //   t     time
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, p_phi_dot, p_theta_dot, p_psi_dot
-//   p     parameters
-// Operations (+ - * / and calls): 251 before lowering, 37 after (9 +-, 18 *, 6 /, 4 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 251 before lowering, 34 after (8 +-, 20 *, 2 /, 4 calls).
 template <class T>
-void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+void rhs(T t, const T* y, T* dydt, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -120,27 +146,34 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     const T t001 = cos_theta*p_psi - p_phi;
     const T t002 = t000*t001;
     const T t003 = cos_psi*t002 + p_theta*sin_psi;
-    const T t004 = t003/p.I2;
+    const T t004 = p.c000*t003;
     const T t005 = cos_psi*p_theta - sin_psi*t002;
-    const T t006 = t005/p.I1;
+    const T t006 = p.c001*t005;
     const T t007 = cos_psi*t004 - sin_psi*t006;
     const T t008 = t000*t007;
     dydt[0] = -t008;
     dydt[1] = cos_psi*t006 + sin_psi*t004;
-    dydt[2] = cos_theta*t008 + p_psi/p.I3;
+    dydt[2] = cos_theta*t008 + p.c002*p_psi;
     dydt[3] = T(S(0));
     dydt[4] = (cos_theta*t001/(sin_theta*sin_theta) + p_psi)*t007;
-    dydt[5] = ((p.I2 - p.I1)/(p.I1*p.I2))*t003*t005;
+    dydt[5] = p.c003*t003*t005;
+}
+
+// rhs with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+    rhs(t, y, dydt, prepare(p));
 }
 
 // The analytic Jacobian J = d(dy/dt)/dy, dense, row-major: J[i * state_size + k] = d dydt[i] / d y[k].
 //   t     time
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   J     output, dim 6 x 6 (row-major); structural zeros in jacobian_pattern
-//   p     parameters
-// Operations (+ - * / and calls): 1631 before lowering, 93 after (28 +-, 54 *, 7 /, 4 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 1631 before lowering, 85 after (27 +-, 52 *, 2 /, 4 calls).
 template <class T>
-void jacobian(T t, const T* y, T* J, const params<T>& p) {
+void jacobian(T t, const T* y, T* J, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -156,60 +189,54 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T cos_psi = cos(psi);
     const T t000 = S(1)/sin_theta;
     const T t001 = cos_theta*t000;
-    const T t002 = S(1)/p.I2;
-    const T t003 = cos_theta*p_psi - p_phi;
-    const T t004 = t000*t003;
-    const T t005 = cos_psi*t004 + p_theta*sin_psi;
-    const T t006 = cos_psi*t005;
-    const T t007 = t002*t006;
-    const T t008 = cos_psi*p_theta - sin_psi*t004;
-    const T t009 = sin_psi*t008;
-    const T t010 = S(1)/p.I1;
-    const T t011 = t009*t010;
-    const T t012 = t007 - t011;
-    const T t013 = sin_psi*sin_psi;
-    const T t014 = cos_psi*cos_psi;
-    const T t015 = t002*t014 + t010*t013;
-    const T t016 = S(1)/(sin_theta*sin_theta);
-    const T t017 = cos_theta*t003*t016 + p_psi;
-    const T t018 = t015*t017;
-    const T t019 = t001*t012 + t018;
+    const T t002 = cos_theta*p_psi - p_phi;
+    const T t003 = t000*t002;
+    const T t004 = cos_psi*t003 + p_theta*sin_psi;
+    const T t005 = cos_psi*t004;
+    const T t006 = p.c000*t005;
+    const T t007 = cos_psi*p_theta - sin_psi*t003;
+    const T t008 = sin_psi*t007;
+    const T t009 = p.c001*t008;
+    const T t010 = t006 - t009;
+    const T t011 = sin_psi*sin_psi;
+    const T t012 = cos_psi*cos_psi;
+    const T t013 = p.c000*t012 + p.c001*t011;
+    const T t014 = S(1)/(sin_theta*sin_theta);
+    const T t015 = cos_theta*t002*t014 + p_psi;
+    const T t016 = t013*t015;
+    const T t017 = t001*t010 + t016;
+    const T t018 = t000*t017;
+    const T t019 = (cos_psi*t007 - sin_psi*t004)*p.c003;
     const T t020 = t000*t019;
-    const T t021 = cos_psi*t008 - sin_psi*t005;
-    const T t022 = p.I2 - p.I1;
-    const T t023 = t022/(p.I1*p.I2*sin_theta);
-    const T t024 = t021*t023;
-    const T t025 = t015*t016;
-    const T t026 = cos_psi*sin_psi;
-    const T t027 = t023*t026;
-    const T t028 = -cos_theta*t025;
-    const T t029 = t022/(p.I1*p.I2);
-    const T t030 = t017*t029;
-    const T t031 = t026*t030;
-    const T t032 = (t006 + t009)*t029;
-    const T t033 = -cos_theta*t027;
-    const T t034 = cos_theta*t024;
-    const T t035 = cos_theta*cos_theta;
-    const T t036 = (S(2)*cos_theta*t017 - p_phi)*t000*t012 + t015*t017*t017;
-    const T t037 = -t021*t030;
+    const T t021 = t013*t014;
+    const T t022 = cos_psi*p.c003*sin_psi;
+    const T t023 = t000*t022;
+    const T t024 = -cos_theta*t021;
+    const T t025 = t015*t022;
+    const T t026 = (t005 + t008)*p.c003;
+    const T t027 = -t001*t022;
+    const T t028 = t001*t019;
+    const T t029 = cos_theta*cos_theta;
+    const T t030 = (S(2)*cos_theta*t015 - p_phi)*t000*t010 + t013*t015*t015;
+    const T t031 = -t015*t019;
     J[0] = T(S(0));
-    J[1] = t020;
-    J[2] = t024;
-    J[3] = t025;
-    J[4] = t027;
-    J[5] = t028;
+    J[1] = t018;
+    J[2] = t020;
+    J[3] = t021;
+    J[4] = t023;
+    J[5] = t024;
     J[6] = T(S(0));
-    J[7] = t031;
-    J[8] = -t032;
-    J[9] = t027;
-    J[10] = t002*t013 + t010*t014;
-    J[11] = t033;
+    J[7] = t025;
+    J[8] = -t026;
+    J[9] = t023;
+    J[10] = p.c000*t011 + p.c001*t012;
+    J[11] = t027;
     J[12] = T(S(0));
-    J[13] = t011 - t001*t019 - t007;
-    J[14] = -t034;
-    J[15] = t028;
-    J[16] = t033;
-    J[17] = S(1)/p.I3 + t025*t035;
+    J[13] = t009 - t001*t017 - t006;
+    J[14] = -t028;
+    J[15] = t024;
+    J[16] = t027;
+    J[17] = p.c002 + t021*t029;
     J[18] = T(S(0));
     J[19] = T(S(0));
     J[20] = T(S(0));
@@ -217,17 +244,24 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     J[22] = T(S(0));
     J[23] = T(S(0));
     J[24] = T(S(0));
-    J[25] = -t036;
-    J[26] = t037;
-    J[27] = -t020;
-    J[28] = -t031;
-    J[29] = (S(1) + t016*t035)*t012 + t001*t018;
+    J[25] = -t030;
+    J[26] = t031;
+    J[27] = -t018;
+    J[28] = -t025;
+    J[29] = (S(1) + t014*t029)*t010 + t001*t016;
     J[30] = T(S(0));
-    J[31] = t037;
-    J[32] = (t008*t008 - t005*t005)*t029;
-    J[33] = -t024;
-    J[34] = t032;
-    J[35] = t034;
+    J[31] = t031;
+    J[32] = (t007*t007 - t004*t004)*p.c003;
+    J[33] = -t020;
+    J[34] = t026;
+    J[35] = t028;
+}
+
+// jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void jacobian(T t, const T* y, T* J, const params<T>& p) {
+    jacobian(t, y, J, prepare(p));
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -235,10 +269,10 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, p_phi_dot, p_theta_dot, p_psi_dot
 //   J     output, dim 6 x 6 (row-major)
-//   p     parameters
-// Operations (+ - * / and calls): 1882 before lowering, 104 after (31 +-, 62 *, 7 /, 4 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 1882 before lowering, 96 after (30 +-, 60 *, 2 /, 4 calls).
 template <class T>
-void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -253,70 +287,63 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
     const T t000 = S(1)/sin_theta;
-    const T t001 = S(1)/p.I2;
-    const T t002 = cos_theta*p_psi - p_phi;
-    const T t003 = t000*t002;
-    const T t004 = cos_psi*t003 + p_theta*sin_psi;
-    const T t005 = t001*t004;
-    const T t006 = cos_psi*t005;
-    const T t007 = S(1)/p.I1;
-    const T t008 = cos_psi*p_theta - sin_psi*t003;
-    const T t009 = t007*t008;
-    const T t010 = sin_psi*t009;
-    const T t011 = t006 - t010;
-    const T t012 = t000*t011;
-    const T t013 = S(1)/p.I3;
-    const T t014 = cos_theta*t000;
-    const T t015 = t011*t014;
-    const T t016 = S(1)/(sin_theta*sin_theta);
-    const T t017 = cos_theta*t002*t016 + p_psi;
-    const T t018 = p.I2 - p.I1;
-    const T t019 = t018/(p.I1*p.I2);
-    const T t020 = sin_psi*sin_psi;
-    const T t021 = cos_psi*cos_psi;
-    const T t022 = t001*t021 + t007*t020;
-    const T t023 = t017*t022;
-    const T t024 = t015 + t023;
+    const T t001 = cos_theta*p_psi - p_phi;
+    const T t002 = t000*t001;
+    const T t003 = cos_psi*t002 + p_theta*sin_psi;
+    const T t004 = p.c000*t003;
+    const T t005 = cos_psi*t004;
+    const T t006 = cos_psi*p_theta - sin_psi*t002;
+    const T t007 = p.c001*t006;
+    const T t008 = sin_psi*t007;
+    const T t009 = t005 - t008;
+    const T t010 = t000*t009;
+    const T t011 = cos_theta*t000;
+    const T t012 = t009*t011;
+    const T t013 = S(1)/(sin_theta*sin_theta);
+    const T t014 = cos_theta*t001*t013 + p_psi;
+    const T t015 = sin_psi*sin_psi;
+    const T t016 = cos_psi*cos_psi;
+    const T t017 = p.c000*t016 + p.c001*t015;
+    const T t018 = t014*t017;
+    const T t019 = t012 + t018;
+    const T t020 = t000*t019;
+    const T t021 = (cos_psi*t006 - sin_psi*t003)*p.c003;
+    const T t022 = t000*t021;
+    const T t023 = t013*t017;
+    const T t024 = cos_psi*p.c003*sin_psi;
     const T t025 = t000*t024;
-    const T t026 = cos_psi*t008 - sin_psi*t004;
-    const T t027 = t018/(p.I1*p.I2*sin_theta);
-    const T t028 = t026*t027;
-    const T t029 = t016*t022;
-    const T t030 = cos_psi*sin_psi;
-    const T t031 = t027*t030;
-    const T t032 = -cos_theta*t029;
-    const T t033 = t017*t019;
-    const T t034 = t030*t033;
-    const T t035 = (cos_psi*t004 + sin_psi*t008)*t019;
-    const T t036 = -cos_theta*t031;
-    const T t037 = cos_theta*t028;
-    const T t038 = cos_theta*cos_theta;
-    const T t039 = -(S(2)*cos_theta*t017 - p_phi)*t012 - t017*t017*t022;
-    const T t040 = -t026*t033;
-    dydt[0] = -t012;
-    dydt[1] = cos_psi*t009 + sin_psi*t005;
-    dydt[2] = p_psi*t013 + t015;
+    const T t026 = -cos_theta*t023;
+    const T t027 = t014*t024;
+    const T t028 = (cos_psi*t003 + sin_psi*t006)*p.c003;
+    const T t029 = -t011*t024;
+    const T t030 = t011*t021;
+    const T t031 = cos_theta*cos_theta;
+    const T t032 = -(S(2)*cos_theta*t014 - p_phi)*t010 - t014*t014*t017;
+    const T t033 = -t014*t021;
+    dydt[0] = -t010;
+    dydt[1] = cos_psi*t007 + sin_psi*t004;
+    dydt[2] = p.c002*p_psi + t012;
     dydt[3] = T(S(0));
-    dydt[4] = t011*t017;
-    dydt[5] = t004*t008*t019;
+    dydt[4] = t009*t014;
+    dydt[5] = p.c003*t003*t006;
     J[0] = T(S(0));
-    J[1] = t025;
-    J[2] = t028;
-    J[3] = t029;
-    J[4] = t031;
-    J[5] = t032;
+    J[1] = t020;
+    J[2] = t022;
+    J[3] = t023;
+    J[4] = t025;
+    J[5] = t026;
     J[6] = T(S(0));
-    J[7] = t034;
-    J[8] = -t035;
-    J[9] = t031;
-    J[10] = t001*t020 + t007*t021;
-    J[11] = t036;
+    J[7] = t027;
+    J[8] = -t028;
+    J[9] = t025;
+    J[10] = p.c000*t015 + p.c001*t016;
+    J[11] = t029;
     J[12] = T(S(0));
-    J[13] = t010 - t006 - t014*t024;
-    J[14] = -t037;
-    J[15] = t032;
-    J[16] = t036;
-    J[17] = t013 + t029*t038;
+    J[13] = t008 - t005 - t011*t019;
+    J[14] = -t030;
+    J[15] = t026;
+    J[16] = t029;
+    J[17] = p.c002 + t023*t031;
     J[18] = T(S(0));
     J[19] = T(S(0));
     J[20] = T(S(0));
@@ -324,17 +351,24 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     J[22] = T(S(0));
     J[23] = T(S(0));
     J[24] = T(S(0));
-    J[25] = t039;
-    J[26] = t040;
-    J[27] = -t025;
-    J[28] = -t034;
-    J[29] = (S(1) + t016*t038)*t011 + t014*t023;
+    J[25] = t032;
+    J[26] = t033;
+    J[27] = -t020;
+    J[28] = -t027;
+    J[29] = (S(1) + t013*t031)*t009 + t011*t018;
     J[30] = T(S(0));
-    J[31] = t040;
-    J[32] = (t008*t008 - t004*t004)*t019;
-    J[33] = -t028;
-    J[34] = t035;
-    J[35] = t037;
+    J[31] = t033;
+    J[32] = (t006*t006 - t003*t003)*p.c003;
+    J[33] = -t022;
+    J[34] = t028;
+    J[35] = t030;
+}
+
+// rhs_and_jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+    rhs_and_jacobian(t, y, dydt, J, prepare(p));
 }
 
 // The energy, the Hamiltonian H = T + V (conserved without damping and driving torques).

@@ -20,9 +20,9 @@
 // Parameters (params<T>, defaults from the model file): I1 = 1.0, I2 = 2.0, I3 = 3.0, p_phi = 0.0.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 212 -> 36 (12 temporaries)
-//   jacobian: 1210 -> 85 (36 temporaries)
-//   rhs_and_jacobian: 1422 -> 95 (38 temporaries)
+//   rhs: 212 -> 33 (12 temporaries), and 6 once in prepare()
+//   jacobian: 1210 -> 76 (32 temporaries), and 6 once in prepare()
+//   rhs_and_jacobian: 1422 -> 86 (33 temporaries), and 6 once in prepare()
 //   energy: 39 -> 22 (8 temporaries)
 //   momenta: 0 -> 0 (0 temporaries)
 //   mass_matrix: 59 -> 19 (8 temporaries)
@@ -73,6 +73,32 @@ struct params {
     T p_phi = T(rg_scalar(0)); // conserved momentum of the ignored coordinate phi
 };
 
+// The parameters and, computed from them once, the 4 subexpressions of parameters alone that
+// rhs, jacobian and rhs_and_jacobian use (6 operations: products and quotients of
+// parameters, reciprocals; a division by a parameter becomes a multiplication). Make one per
+// parameter set with prepare(p) and pass it where params<T> goes: those functions then skip that
+// work at every call. Given params<T>, they prepare it themselves. Changed a parameter: prepare
+// again.
+template <class T>
+struct prepared : params<T> {
+    T c000{};
+    T c001{};
+    T c002{};
+    T c003{};
+};
+
+template <class T>
+prepared<T> prepare(const params<T>& parameters) {
+    using S = typename detail::scalar_of<T>::type;
+    prepared<T> p;
+    static_cast<params<T>&>(p) = parameters;
+    p.c000 = S(1)/p.I2;
+    p.c001 = S(1)/p.I1;
+    p.c002 = S(1)/p.I3;
+    p.c003 = (p.I2 - p.I1)/(p.I1*p.I2);
+    return p;
+}
+
 // The model and the form this header implements.
 constexpr const char* model_name = "free_asymmetric_top";
 constexpr const char* form_name = "reduced";
@@ -99,10 +125,10 @@ constexpr std::array<unsigned char, 16> jacobian_pattern{{
 //   t     time
 //   y     state, dim 4: (theta, psi, p_theta, p_psi)
 //   dydt  output, dim 4: theta_dot, psi_dot, p_theta_dot, p_psi_dot
-//   p     parameters
-// Operations (+ - * / and calls): 212 before lowering, 36 after (8 +-, 18 *, 6 /, 4 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 212 before lowering, 33 after (7 +-, 20 *, 2 /, 4 calls).
 template <class T>
-void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+void rhs(T t, const T* y, T* dydt, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -119,24 +145,31 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     const T t001 = S(1)/sin_theta;
     const T t002 = t000*t001;
     const T t003 = cos_psi*t002 + p_theta*sin_psi;
-    const T t004 = t003/p.I2;
+    const T t004 = p.c000*t003;
     const T t005 = cos_psi*p_theta - sin_psi*t002;
-    const T t006 = t005/p.I1;
+    const T t006 = p.c001*t005;
     const T t007 = cos_psi*t004 - sin_psi*t006;
     dydt[0] = cos_psi*t006 + sin_psi*t004;
-    dydt[1] = cos_theta*t001*t007 + p_psi/p.I3;
+    dydt[1] = cos_theta*t001*t007 + p.c002*p_psi;
     dydt[2] = (cos_theta*t000/(sin_theta*sin_theta) + p_psi)*t007;
-    dydt[3] = ((p.I2 - p.I1)/(p.I1*p.I2))*t003*t005;
+    dydt[3] = p.c003*t003*t005;
+}
+
+// rhs with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+    rhs(t, y, dydt, prepare(p));
 }
 
 // The analytic Jacobian J = d(dy/dt)/dy, dense, row-major: J[i * state_size + k] = d dydt[i] / d y[k].
 //   t     time
 //   y     state, dim 4: (theta, psi, p_theta, p_psi)
 //   J     output, dim 4 x 4 (row-major); structural zeros in jacobian_pattern
-//   p     parameters
-// Operations (+ - * / and calls): 1210 before lowering, 85 after (24 +-, 50 *, 7 /, 4 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 1210 before lowering, 76 after (23 +-, 47 *, 2 /, 4 calls).
 template <class T>
-void jacobian(T t, const T* y, T* J, const params<T>& p) {
+void jacobian(T t, const T* y, T* J, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -153,50 +186,53 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T t001 = S(1)/(sin_theta*sin_theta);
     const T t002 = cos_theta*p_psi - p.p_phi;
     const T t003 = cos_theta*t001*t002 + p_psi;
-    const T t004 = p.I2 - p.I1;
-    const T t005 = t004/(p.I1*p.I2);
-    const T t006 = t003*t005;
-    const T t007 = t000*t006;
-    const T t008 = S(1)/sin_theta;
-    const T t009 = t002*t008;
-    const T t010 = cos_psi*p_theta - sin_psi*t009;
-    const T t011 = sin_psi*t010;
-    const T t012 = cos_psi*t009 + p_theta*sin_psi;
-    const T t013 = cos_psi*t012;
-    const T t014 = (t011 + t013)*t005;
-    const T t015 = S(1)/p.I1;
-    const T t016 = cos_psi*cos_psi;
-    const T t017 = sin_psi*sin_psi;
-    const T t018 = S(1)/p.I2;
-    const T t019 = cos_theta*t004/(p.I1*p.I2*sin_theta);
-    const T t020 = -t000*t019;
-    const T t021 = cos_theta*t008;
-    const T t022 = t013*t018;
-    const T t023 = t011*t015;
-    const T t024 = t022 - t023;
-    const T t025 = t015*t017 + t016*t018;
-    const T t026 = t003*t025;
-    const T t027 = cos_psi*t010 - sin_psi*t012;
-    const T t028 = t019*t027;
-    const T t029 = cos_theta*cos_theta*t001;
-    const T t030 = (p.p_phi - S(2)*cos_theta*t003)*t008*t024 - t003*t003*t025;
-    const T t031 = -t006*t027;
-    J[0] = t007;
-    J[1] = -t014;
-    J[2] = t015*t016 + t017*t018;
-    J[3] = t020;
-    J[4] = t023 - (t021*t024 + t026)*t021 - t022;
-    J[5] = -t028;
-    J[6] = t020;
-    J[7] = S(1)/p.I3 + t025*t029;
-    J[8] = t030;
-    J[9] = t031;
-    J[10] = -t007;
-    J[11] = (S(1) + t029)*t024 + t021*t026;
-    J[12] = t031;
-    J[13] = (t010*t010 - t012*t012)*t005;
-    J[14] = t014;
-    J[15] = t028;
+    const T t004 = p.c003*t003;
+    const T t005 = t000*t004;
+    const T t006 = S(1)/sin_theta;
+    const T t007 = t002*t006;
+    const T t008 = cos_psi*p_theta - sin_psi*t007;
+    const T t009 = sin_psi*t008;
+    const T t010 = cos_psi*t007 + p_theta*sin_psi;
+    const T t011 = cos_psi*t010;
+    const T t012 = (t009 + t011)*p.c003;
+    const T t013 = cos_psi*cos_psi;
+    const T t014 = sin_psi*sin_psi;
+    const T t015 = cos_theta*t006;
+    const T t016 = p.c003*t015;
+    const T t017 = -t000*t016;
+    const T t018 = p.c000*t011;
+    const T t019 = p.c001*t009;
+    const T t020 = t018 - t019;
+    const T t021 = p.c000*t013 + p.c001*t014;
+    const T t022 = t003*t021;
+    const T t023 = cos_psi*t008 - sin_psi*t010;
+    const T t024 = t016*t023;
+    const T t025 = cos_theta*cos_theta*t001;
+    const T t026 = (p.p_phi - S(2)*cos_theta*t003)*t006*t020 - t003*t003*t021;
+    const T t027 = -t004*t023;
+    J[0] = t005;
+    J[1] = -t012;
+    J[2] = p.c000*t014 + p.c001*t013;
+    J[3] = t017;
+    J[4] = t019 - (t015*t020 + t022)*t015 - t018;
+    J[5] = -t024;
+    J[6] = t017;
+    J[7] = p.c002 + t021*t025;
+    J[8] = t026;
+    J[9] = t027;
+    J[10] = -t005;
+    J[11] = (S(1) + t025)*t020 + t015*t022;
+    J[12] = t027;
+    J[13] = (t008*t008 - t010*t010)*p.c003;
+    J[14] = t012;
+    J[15] = t024;
+}
+
+// jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void jacobian(T t, const T* y, T* J, const params<T>& p) {
+    jacobian(t, y, J, prepare(p));
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -204,10 +240,10 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   y     state, dim 4: (theta, psi, p_theta, p_psi)
 //   dydt  output, dim 4: theta_dot, psi_dot, p_theta_dot, p_psi_dot
 //   J     output, dim 4 x 4 (row-major)
-//   p     parameters
-// Operations (+ - * / and calls): 1422 before lowering, 95 after (26 +-, 58 *, 7 /, 4 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 1422 before lowering, 86 after (25 +-, 55 *, 2 /, 4 calls).
 template <class T>
-void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -224,56 +260,58 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T t001 = S(1)/sin_theta;
     const T t002 = t000*t001;
     const T t003 = cos_psi*t002 + p_theta*sin_psi;
-    const T t004 = S(1)/p.I2;
-    const T t005 = t003*t004;
-    const T t006 = S(1)/p.I1;
-    const T t007 = cos_psi*p_theta - sin_psi*t002;
-    const T t008 = t006*t007;
-    const T t009 = cos_theta*t001;
-    const T t010 = cos_psi*t005;
-    const T t011 = sin_psi*t008;
-    const T t012 = t010 - t011;
-    const T t013 = t009*t012;
-    const T t014 = S(1)/p.I3;
-    const T t015 = S(1)/(sin_theta*sin_theta);
-    const T t016 = cos_theta*t000*t015 + p_psi;
-    const T t017 = p.I2 - p.I1;
-    const T t018 = t017/(p.I1*p.I2);
-    const T t019 = cos_psi*sin_psi;
-    const T t020 = t016*t018;
-    const T t021 = t019*t020;
-    const T t022 = (cos_psi*t003 + sin_psi*t007)*t018;
-    const T t023 = cos_psi*cos_psi;
-    const T t024 = sin_psi*sin_psi;
-    const T t025 = cos_theta*t017/(p.I1*p.I2*sin_theta);
-    const T t026 = -t019*t025;
-    const T t027 = t004*t023 + t006*t024;
-    const T t028 = t016*t027;
-    const T t029 = cos_psi*t007 - sin_psi*t003;
-    const T t030 = t025*t029;
-    const T t031 = cos_theta*cos_theta*t015;
-    const T t032 = (p.p_phi - S(2)*cos_theta*t016)*t001*t012 - t016*t016*t027;
-    const T t033 = -t020*t029;
-    dydt[0] = cos_psi*t008 + sin_psi*t005;
-    dydt[1] = p_psi*t014 + t013;
-    dydt[2] = t012*t016;
-    dydt[3] = t003*t007*t018;
-    J[0] = t021;
-    J[1] = -t022;
-    J[2] = t004*t024 + t006*t023;
-    J[3] = t026;
-    J[4] = t011 - (t013 + t028)*t009 - t010;
-    J[5] = -t030;
-    J[6] = t026;
-    J[7] = t014 + t027*t031;
-    J[8] = t032;
-    J[9] = t033;
-    J[10] = -t021;
-    J[11] = (S(1) + t031)*t012 + t009*t028;
-    J[12] = t033;
-    J[13] = (t007*t007 - t003*t003)*t018;
-    J[14] = t022;
-    J[15] = t030;
+    const T t004 = p.c000*t003;
+    const T t005 = cos_psi*p_theta - sin_psi*t002;
+    const T t006 = p.c001*t005;
+    const T t007 = cos_theta*t001;
+    const T t008 = cos_psi*t004;
+    const T t009 = sin_psi*t006;
+    const T t010 = t008 - t009;
+    const T t011 = t007*t010;
+    const T t012 = S(1)/(sin_theta*sin_theta);
+    const T t013 = cos_theta*t000*t012 + p_psi;
+    const T t014 = cos_psi*sin_psi;
+    const T t015 = p.c003*t013;
+    const T t016 = t014*t015;
+    const T t017 = (cos_psi*t003 + sin_psi*t005)*p.c003;
+    const T t018 = cos_psi*cos_psi;
+    const T t019 = sin_psi*sin_psi;
+    const T t020 = p.c003*t007;
+    const T t021 = -t014*t020;
+    const T t022 = p.c000*t018 + p.c001*t019;
+    const T t023 = t013*t022;
+    const T t024 = cos_psi*t005 - sin_psi*t003;
+    const T t025 = t020*t024;
+    const T t026 = cos_theta*cos_theta*t012;
+    const T t027 = (p.p_phi - S(2)*cos_theta*t013)*t001*t010 - t013*t013*t022;
+    const T t028 = -t015*t024;
+    dydt[0] = cos_psi*t006 + sin_psi*t004;
+    dydt[1] = p.c002*p_psi + t011;
+    dydt[2] = t010*t013;
+    dydt[3] = p.c003*t003*t005;
+    J[0] = t016;
+    J[1] = -t017;
+    J[2] = p.c000*t019 + p.c001*t018;
+    J[3] = t021;
+    J[4] = t009 - (t011 + t023)*t007 - t008;
+    J[5] = -t025;
+    J[6] = t021;
+    J[7] = p.c002 + t022*t026;
+    J[8] = t027;
+    J[9] = t028;
+    J[10] = -t016;
+    J[11] = (S(1) + t026)*t010 + t007*t023;
+    J[12] = t028;
+    J[13] = (t005*t005 - t003*t003)*p.c003;
+    J[14] = t017;
+    J[15] = t025;
+}
+
+// rhs_and_jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+    rhs_and_jacobian(t, y, dydt, J, prepare(p));
 }
 
 // The energy, the Hamiltonian H = T + V (conserved without damping and driving torques).

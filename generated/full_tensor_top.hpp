@@ -20,9 +20,9 @@
 // -0.3, Ixz = 0.2, Iyz = -0.1, M = 1.2, g = 9.81, cx = 0.05, cy = -0.02, cz = 0.15.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 2053 -> 121 (34 temporaries)
-//   jacobian: 14319 -> 443 (105 temporaries)
-//   rhs_and_jacobian: 16372 -> 457 (111 temporaries)
+//   rhs: 2053 -> 95 (23 temporaries), and 27 once in prepare()
+//   jacobian: 14319 -> 414 (90 temporaries), and 31 once in prepare()
+//   rhs_and_jacobian: 16372 -> 429 (96 temporaries), and 31 once in prepare()
 //   energy: 110 -> 44 (10 temporaries)
 //   momenta: 149 -> 37 (11 temporaries)
 //   mass_matrix: 160 -> 40 (13 temporaries)
@@ -80,6 +80,54 @@ struct params {
     T cz = T(rg_scalar(3)/rg_scalar(20));
 };
 
+// The parameters and, computed from them once, the 15 subexpressions of parameters alone that
+// rhs, jacobian and rhs_and_jacobian use (31 operations: products and quotients of
+// parameters, reciprocals; a division by a parameter becomes a multiplication). Make one per
+// parameter set with prepare(p) and pass it where params<T> goes: those functions then skip that
+// work at every call. Given params<T>, they prepare it themselves. Changed a parameter: prepare
+// again.
+template <class T>
+struct prepared : params<T> {
+    T c000{};
+    T c001{};
+    T c002{};
+    T c003{};
+    T c004{};
+    T c005{};
+    T c006{};
+    T c007{};
+    T c008{};
+    T c009{};
+    T c010{};
+    T c011{};
+    T c012{};
+    T c013{};
+    T c014{};
+};
+
+template <class T>
+prepared<T> prepare(const params<T>& parameters) {
+    using S = typename detail::scalar_of<T>::type;
+    prepared<T> p;
+    static_cast<params<T>&>(p) = parameters;
+    p.c000 = p.Ixy*p.Ixy - p.Ixx*p.Iyy;
+    p.c001 = p.Ixx*p.Iyz;
+    p.c002 = p.Ixy*p.Ixz;
+    p.c003 = p.Ixz*p.Ixz;
+    p.c004 = S(1)/((p.c001 - S(2)*p.c002)*p.Iyz + p.Iyy*p.c003 + p.Izz*p.c000);
+    p.c005 = p.c003 - p.Ixx*p.Izz;
+    p.c006 = p.M*p.g;
+    p.c007 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
+    p.c008 = p.c001 - p.c002;
+    p.c009 = p.Iyy*p.Izz - p.Iyz*p.Iyz;
+    p.c010 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
+    p.c011 = p.c006*p.cz;
+    p.c012 = p.Iyy - p.Ixx;
+    p.c013 = p.Izz - p.Iyy;
+    p.c014 = p.Izz - p.Ixx;
+    return p;
+}
+
 // The model and the form this header implements.
 constexpr const char* model_name = "full_tensor_top";
 constexpr const char* form_name = "lagrangian";
@@ -108,13 +156,12 @@ constexpr std::array<unsigned char, 36> jacobian_pattern{{
 //   t     time
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, phi_ddot, theta_ddot, psi_ddot
-//   p     parameters
-// Operations (+ - * / and calls): 2053 before lowering, 121 after (43 +-, 72 *, 2 /, 4 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 2053 before lowering, 95 after (35 +-, 55 *, 1 /, 4 calls).
 template <class T>
-void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+void rhs(T t, const T* y, T* dydt, const prepared<T>& p) {
     using std::cos;
     using std::sin;
-    using S = typename detail::scalar_of<T>::type;
     (void)t;
     const T theta = y[1];
     const T psi = y[2];
@@ -125,52 +172,48 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    const T t000 = cos_theta*phi_dot;
-    const T t001 = (t000 - psi_dot)*theta_dot;
-    const T t002 = p.Ixy*p.Ixy - p.Ixx*p.Iyy;
-    const T t003 = p.Ixx*p.Iyz;
-    const T t004 = p.Ixy*p.Ixz;
-    const T t005 = p.Ixz*p.Ixz;
-    const T t006 = S(1)/((t003 - S(2)*t004)*p.Iyz + p.Iyy*t005 + p.Izz*t002);
-    const T t007 = phi_dot*sin_theta;
-    const T t008 = sin_psi*t007;
-    const T t009 = cos_psi*theta_dot + t008;
-    const T t010 = psi_dot + t000;
-    const T t011 = cos_psi*t007;
-    const T t012 = t011 - sin_psi*theta_dot;
-    const T t013 = p.Ixz*t009 + p.Iyz*t012 + p.Izz*t010;
-    const T t014 = p.M*p.g;
-    const T t015 = p.cz*sin_theta;
-    const T t016 = p.Ixx*t009 + p.Ixy*t012 + p.Ixz*t010;
-    const T t017 = (cos_theta*p.cx - sin_psi*t015)*t014 + t009*t013 - t010*t016;
-    const T t018 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
-    const T t019 = p.Ixy*t009 + p.Iyy*t012 + p.Iyz*t010;
-    const T t020 = (cos_psi*t015 - cos_theta*p.cy)*t014 + t010*t019 - t012*t013;
-    const T t021 = t003 - t004;
-    const T t022 = t009*t019 - (p.cy*sin_psi - cos_psi*p.cx)*sin_theta*t014 - t012*t016;
-    const T t023 = (t005 - p.Ixx*p.Izz)*t017 - t018*t020 - t021*t022;
-    const T t024 = cos_psi*t001 - psi_dot*t008 - t006*t023;
-    const T t025 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
-    const T t026 = (p.Iyy*p.Izz - p.Iyz*p.Iyz)*t020 + t017*t018 - t022*t025;
-    const T t027 = psi_dot*t011 + sin_psi*t001 + t006*t026;
-    const T t028 = (cos_psi*t024 + sin_psi*t027)/sin_theta;
-    const T t029 = (t017*t021 - t002*t022 - t020*t025)*t006 + cos_theta*t028 + t007*theta_dot;
+    const T t000 = phi_dot*sin_theta;
+    const T t001 = sin_psi*t000;
+    const T t002 = cos_psi*theta_dot + t001;
+    const T t003 = cos_theta*phi_dot;
+    const T t004 = psi_dot + t003;
+    const T t005 = cos_psi*t000;
+    const T t006 = t005 - sin_psi*theta_dot;
+    const T t007 = p.Ixz*t002 + p.Iyz*t006 + p.Izz*t004;
+    const T t008 = p.cz*sin_theta;
+    const T t009 = p.Ixx*t002 + p.Ixy*t006 + p.Ixz*t004;
+    const T t010 = (cos_theta*p.cx - sin_psi*t008)*p.c006 + t002*t007 - t004*t009;
+    const T t011 = p.Ixy*t002 + p.Iyy*t006 + p.Iyz*t004;
+    const T t012 = (cos_psi*t008 - cos_theta*p.cy)*p.c006 + t004*t011 - t006*t007;
+    const T t013 = t002*t011 - (p.cy*sin_psi - cos_psi*p.cx)*p.c006*sin_theta - t006*t009;
+    const T t014 = (t003 - psi_dot)*theta_dot;
+    const T t015 = (p.c005*t010 - p.c007*t012 - p.c008*t013)*p.c004 + psi_dot*t001 - cos_psi*t014;
+    const T t016 = (p.c007*t010 + p.c009*t012 - p.c010*t013)*p.c004 + psi_dot*t005 + sin_psi*t014;
+    const T t017 = (cos_psi*t015 - sin_psi*t016)/sin_theta;
+    const T t018 = (p.c000*t013 + p.c010*t012 - p.c008*t010)*p.c004 + cos_theta*t017 - t000*theta_dot;
     dydt[0] = phi_dot;
     dydt[1] = theta_dot;
     dydt[2] = psi_dot;
-    dydt[3] = -t028;
-    dydt[4] = sin_psi*t024 - cos_psi*t027;
-    dydt[5] = t029;
+    dydt[3] = t017;
+    dydt[4] = -cos_psi*t016 - sin_psi*t015;
+    dydt[5] = -t018;
+}
+
+// rhs with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+    rhs(t, y, dydt, prepare(p));
 }
 
 // The analytic Jacobian J = d(dy/dt)/dy, dense, row-major: J[i * state_size + k] = d dydt[i] / d y[k].
 //   t     time
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   J     output, dim 6 x 6 (row-major); structural zeros in jacobian_pattern
-//   p     parameters
-// Operations (+ - * / and calls): 14319 before lowering, 443 after (174 +-, 262 *, 3 /, 4 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 14319 before lowering, 414 after (163 +-, 246 *, 1 /, 4 calls).
 template <class T>
-void jacobian(T t, const T* y, T* J, const params<T>& p) {
+void jacobian(T t, const T* y, T* J, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -185,106 +228,91 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
     const T t000 = S(1)/sin_theta;
-    const T t001 = cos_theta*sin_psi;
-    const T t002 = cos_psi*sin_theta;
-    const T t003 = p.Ixy*p.Ixy - p.Ixx*p.Iyy;
-    const T t004 = p.Ixx*p.Iyz;
-    const T t005 = p.Ixy*p.Ixz;
-    const T t006 = p.Ixz*p.Ixz;
-    const T t007 = (t004 - S(2)*t005)*p.Iyz + p.Iyy*t006 + p.Izz*t003;
-    const T t008 = S(1)/t007;
-    const T t009 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
-    const T t010 = p.M*p.g;
-    const T t011 = cos_psi*cos_theta;
-    const T t012 = sin_psi*sin_theta;
-    const T t013 = phi_dot*t012;
-    const T t014 = cos_psi*theta_dot;
-    const T t015 = t013 + t014;
-    const T t016 = p.Ixy*t015;
-    const T t017 = cos_theta*phi_dot;
-    const T t018 = psi_dot + t017;
-    const T t019 = p.Iyz*t018;
-    const T t020 = phi_dot*t002;
-    const T t021 = sin_psi*theta_dot;
-    const T t022 = t020 - t021;
-    const T t023 = p.Iyy*t022 + t016 + t019;
-    const T t024 = p.Ixz*t015 + p.Iyz*t022 + p.Izz*t018;
-    const T t025 = p.Ixy*sin_psi;
-    const T t026 = cos_psi*p.Iyy + t025;
-    const T t027 = p.Iyz*sin_theta - cos_theta*t026;
-    const T t028 = cos_psi*p.Iyz + p.Ixz*sin_psi;
-    const T t029 = cos_theta*t028 - p.Izz*sin_theta;
-    const T t030 = (sin_theta*t023 + t011*t024 + t018*t027 + t022*t029)*phi_dot;
-    const T t031 = (p.cy*sin_theta + p.cz*t011)*t010 - t030;
-    const T t032 = t006 - p.Ixx*p.Izz;
-    const T t033 = cos_psi*p.Ixy;
-    const T t034 = p.Ixx*sin_psi + t033;
-    const T t035 = cos_theta*t034 - p.Ixz*sin_theta;
-    const T t036 = p.Ixy*t022;
-    const T t037 = p.Ixz*t018;
-    const T t038 = p.Ixx*t015 + t036 + t037;
-    const T t039 = (t018*t035 - sin_theta*t038 - t001*t024 - t015*t029)*phi_dot;
-    const T t040 = (p.cx*sin_theta + p.cz*t001)*t010 + t039;
-    const T t041 = t004 - t005;
-    const T t042 = p.cy*sin_psi - cos_psi*p.cx;
-    const T t043 = cos_psi*t038 - sin_psi*t023;
-    const T t044 = (phi_dot*t043 + t010*t042)*cos_theta + (t015*t027 + t022*t035)*phi_dot;
-    const T t045 = (psi_dot*t001 + t002*theta_dot)*phi_dot - (t009*t031 + t032*t040 - t041*t044)*t008;
-    const T t046 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
-    const T t047 = p.Iyy*p.Izz - p.Iyz*p.Iyz;
-    const T t048 = (t012*theta_dot - psi_dot*t011)*phi_dot - (t031*t047 + t044*t046 - t009*t040)*t008;
-    const T t049 = cos_theta*t000;
-    const T t050 = t017 - psi_dot;
-    const T t051 = t050*theta_dot;
-    const T t052 = t015*t024;
-    const T t053 = p.cz*t012;
-    const T t054 = (cos_theta*p.cx - t053)*t010 + t052 - t018*t038;
-    const T t055 = p.cz*t002;
-    const T t056 = t022*t024;
-    const T t057 = (t055 - cos_theta*p.cy)*t010 + t018*t023 - t056;
-    const T t058 = sin_theta*t010;
-    const T t059 = t015*t023 - t022*t038 - t042*t058;
-    const T t060 = t032*t054 - t009*t057 - t041*t059;
-    const T t061 = (cos_psi*t051 - psi_dot*t013 - t008*t060)*cos_psi;
-    const T t062 = t009*t054 + t047*t057 - t046*t059;
-    const T t063 = (psi_dot*t020 + sin_psi*t051 + t008*t062)*sin_psi;
-    const T t064 = ((t061 + t063)*t049 + cos_psi*t045 + sin_psi*t048)*t000;
-    const T t065 = p.Iyy - p.Ixx;
-    const T t066 = (S(2)*t016 + t019 + t022*t065)*t022 + (S(2)*t036 + t037 - t015*t065)*t015 - (cos_psi*p.cy + p.cx*sin_psi)*t058;
-    const T t067 = p.Iyz*t015 - p.Ixz*t022;
-    const T t068 = (p.Ixx*t022 - t016)*t018 + t010*t055 + t015*t067 - t056;
-    const T t069 = (t036 - p.Iyy*t015)*t018 + t022*t067 + t052 - t010*t053;
-    const T t070 = t009*t069 + t032*t068 + t041*t066 + t062;
-    const T t071 = t047*t069 + t060 - t009*t068 - t046*t066;
-    const T t072 = cos_psi*t070 + sin_psi*t071;
-    const T t073 = cos_theta*p.Ixz + sin_theta*t034;
-    const T t074 = cos_theta*p.Izz + sin_theta*t028;
-    const T t075 = cos_theta*t038 + t018*t073 - t012*t024 - t015*t074;
-    const T t076 = cos_theta*p.Iyz + sin_theta*t026;
-    const T t077 = t015*t076 - sin_theta*t043 - t022*t073;
-    const T t078 = cos_theta*t023 + t018*t076 - t002*t024 - t022*t074;
-    const T t079 = psi_dot*t012 - (t009*t078 + t032*t075 + t041*t077)*t008 - t011*theta_dot;
-    const T t080 = psi_dot*t002 + t001*theta_dot - (t009*t075 + t046*t077 - t047*t078)*t008;
-    const T t081 = cos_psi*t079 - sin_psi*t080;
-    const T t082 = t025 - cos_psi*p.Ixx;
-    const T t083 = p.Iyz*sin_psi - cos_psi*p.Ixz;
-    const T t084 = cos_psi*t024 + t018*t082 - t015*t083;
-    const T t085 = t033 - p.Iyy*sin_psi;
-    const T t086 = sin_psi*t024 + t018*t085 + t022*t083;
-    const T t087 = cos_psi*t023 + sin_psi*t038 + t015*t085 + t022*t082;
-    const T t088 = (t009*t084 + t047*t086 - t046*t087)*t008 + sin_psi*t050;
-    const T t089 = (t009*t086 + t041*t087 - t032*t084)*t008 + cos_psi*t050;
-    const T t090 = cos_psi*t089 + sin_psi*t088;
-    const T t091 = S(2)*t019 + t016 - (p.Izz - p.Iyy)*t022;
-    const T t092 = S(2)*t037 + t036 - (p.Izz - p.Ixx)*t015;
-    const T t093 = t013 + t014 - (t009*t091 + t032*t092 + t041*t067)*t008;
-    const T t094 = t020 - (t009*t092 + t046*t067 - t047*t091)*t008 - t021;
-    const T t095 = cos_psi*t093 - sin_psi*t094;
-    const T t096 = (phi_dot*theta_dot - t064)*cos_theta + (t003*t044 - t031*t046 - t040*t041)*t008 - t061 - t063;
-    const T t097 = (t003*t066 + t041*t068 + t046*t069 - t049*t072)*t008;
-    const T t098 = sin_theta*theta_dot - (t003*t077 + t041*t075 + t046*t078)*t008 - t049*t081;
-    const T t099 = phi_dot*sin_theta + t049*t090 - (t003*t087 + t046*t086 - t041*t084)*t008;
-    const T t100 = (t003*t067 + t041*t092 + t046*t091)*t008 + t049*t095;
+    const T t001 = cos_theta*t000;
+    const T t002 = sin_psi*sin_theta;
+    const T t003 = phi_dot*t002;
+    const T t004 = cos_psi*theta_dot;
+    const T t005 = t003 + t004;
+    const T t006 = cos_theta*phi_dot;
+    const T t007 = psi_dot + t006;
+    const T t008 = cos_psi*sin_theta;
+    const T t009 = phi_dot*t008;
+    const T t010 = sin_psi*theta_dot;
+    const T t011 = t009 - t010;
+    const T t012 = p.Ixz*t005 + p.Iyz*t011 + p.Izz*t007;
+    const T t013 = t005*t012;
+    const T t014 = p.Ixy*t011;
+    const T t015 = p.Ixz*t007;
+    const T t016 = p.Ixx*t005 + t014 + t015;
+    const T t017 = (cos_theta*p.cx - p.cz*t002)*p.c006 + t013 - t007*t016;
+    const T t018 = t011*t012;
+    const T t019 = p.Ixy*t005;
+    const T t020 = p.Iyz*t007;
+    const T t021 = p.Iyy*t011 + t019 + t020;
+    const T t022 = (p.cz*t008 - cos_theta*p.cy)*p.c006 + t007*t021 - t018;
+    const T t023 = p.c006*sin_theta;
+    const T t024 = p.cy*sin_psi - cos_psi*p.cx;
+    const T t025 = t005*t021 - t011*t016 - t023*t024;
+    const T t026 = p.c005*t017 - p.c007*t022 - p.c008*t025;
+    const T t027 = t006 - psi_dot;
+    const T t028 = t027*theta_dot;
+    const T t029 = (p.c004*t026 + psi_dot*t003 - cos_psi*t028)*cos_psi;
+    const T t030 = p.c007*t017 + p.c009*t022 - p.c010*t025;
+    const T t031 = (p.c004*t030 + psi_dot*t009 + sin_psi*t028)*sin_psi;
+    const T t032 = cos_psi*p.Ixy;
+    const T t033 = p.Ixx*sin_psi + t032;
+    const T t034 = cos_theta*t033 - p.Ixz*sin_theta;
+    const T t035 = cos_theta*sin_psi;
+    const T t036 = cos_psi*p.Iyz + p.Ixz*sin_psi;
+    const T t037 = cos_theta*t036 - p.Izz*sin_theta;
+    const T t038 = (t007*t034 - sin_theta*t016 - t005*t037 - t012*t035)*phi_dot;
+    const T t039 = (p.cx*sin_theta + p.cz*t035)*p.c006 + t038;
+    const T t040 = p.Ixy*sin_psi;
+    const T t041 = cos_psi*p.Iyy + t040;
+    const T t042 = p.Iyz*sin_theta - cos_theta*t041;
+    const T t043 = cos_psi*t016 - sin_psi*t021;
+    const T t044 = (p.c006*t024 + phi_dot*t043)*cos_theta + (t005*t042 + t011*t034)*phi_dot;
+    const T t045 = cos_psi*cos_theta;
+    const T t046 = (sin_theta*t021 + t007*t042 + t011*t037 + t012*t045)*phi_dot;
+    const T t047 = t046 - (p.cy*sin_theta + p.cz*t045)*p.c006;
+    const T t048 = (p.c005*t039 - p.c007*t047 - p.c008*t044)*p.c004 - (psi_dot*t035 + t008*theta_dot)*phi_dot;
+    const T t049 = (p.c007*t039 + p.c009*t047 - p.c010*t044)*p.c004 + (t002*theta_dot - psi_dot*t045)*phi_dot;
+    const T t050 = ((t029 - t031)*t001 + cos_psi*t048 - sin_psi*t049)*t000;
+    const T t051 = p.Iyz*t005 - p.Ixz*t011;
+    const T t052 = (p.Ixx*t011 - t019)*t007 + p.c011*t008 + t005*t051 - t018;
+    const T t053 = (S(2)*t014 + t015 - p.c012*t005)*t005 + (S(2)*t019 + p.c012*t011 + t020)*t011 - (cos_psi*p.cy + p.cx*sin_psi)*t023;
+    const T t054 = (t014 - p.Iyy*t005)*t007 + t011*t051 + t013 - p.c011*t002;
+    const T t055 = p.c009*t054 + t026 - p.c007*t052 - p.c010*t053;
+    const T t056 = p.c005*t052 + p.c007*t054 + p.c008*t053 + t030;
+    const T t057 = cos_psi*t056 + sin_psi*t055;
+    const T t058 = cos_theta*p.Ixz + sin_theta*t033;
+    const T t059 = cos_theta*p.Izz + sin_theta*t036;
+    const T t060 = cos_theta*t016 + t007*t058 - t002*t012 - t005*t059;
+    const T t061 = cos_theta*p.Iyz + sin_theta*t041;
+    const T t062 = t005*t061 - sin_theta*t043 - t011*t058;
+    const T t063 = cos_theta*t021 + t007*t061 - t008*t012 - t011*t059;
+    const T t064 = psi_dot*t002 - (p.c005*t060 + p.c007*t063 + p.c008*t062)*p.c004 - t045*theta_dot;
+    const T t065 = psi_dot*t008 + t035*theta_dot - (p.c007*t060 + p.c010*t062 - p.c009*t063)*p.c004;
+    const T t066 = cos_psi*t064 - sin_psi*t065;
+    const T t067 = t040 - cos_psi*p.Ixx;
+    const T t068 = p.Iyz*sin_psi - cos_psi*p.Ixz;
+    const T t069 = cos_psi*t012 + t007*t067 - t005*t068;
+    const T t070 = t032 - p.Iyy*sin_psi;
+    const T t071 = sin_psi*t012 + t007*t070 + t011*t068;
+    const T t072 = cos_psi*t021 + sin_psi*t016 + t005*t070 + t011*t067;
+    const T t073 = (p.c007*t069 + p.c009*t071 - p.c010*t072)*p.c004 + sin_psi*t027;
+    const T t074 = (p.c007*t071 + p.c008*t072 - p.c005*t069)*p.c004 + cos_psi*t027;
+    const T t075 = cos_psi*t074 + sin_psi*t073;
+    const T t076 = S(2)*t020 + t019 - p.c013*t011;
+    const T t077 = S(2)*t015 + t014 - p.c014*t005;
+    const T t078 = t003 + t004 - (p.c005*t077 + p.c007*t076 + p.c008*t051)*p.c004;
+    const T t079 = t009 - (p.c007*t077 + p.c010*t051 - p.c009*t076)*p.c004 - t010;
+    const T t080 = cos_psi*t078 - sin_psi*t079;
+    const T t081 = (p.c000*t044 + p.c010*t047 - p.c008*t039)*p.c004 + (phi_dot*theta_dot + t050)*cos_theta + t029 - t031;
+    const T t082 = (p.c000*t053 + p.c008*t052 + p.c010*t054 - t001*t057)*p.c004;
+    const T t083 = sin_theta*theta_dot - (p.c000*t062 + p.c008*t060 + p.c010*t063)*p.c004 - t001*t066;
+    const T t084 = phi_dot*sin_theta + t001*t075 - (p.c000*t072 + p.c010*t071 - p.c008*t069)*p.c004;
+    const T t085 = (p.c000*t051 + p.c008*t077 + p.c010*t076)*p.c004 + t001*t080;
     J[0] = T(S(0));
     J[1] = T(S(0));
     J[2] = T(S(0));
@@ -304,23 +332,30 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     J[16] = T(S(0));
     J[17] = T(S(1));
     J[18] = T(S(0));
-    J[19] = t064;
-    J[20] = -t072/(sin_theta*t007);
-    J[21] = t000*t081;
-    J[22] = -t000*t090;
-    J[23] = t000*t095;
+    J[19] = -t050;
+    J[20] = -p.c004*t000*t057;
+    J[21] = t000*t066;
+    J[22] = -t000*t075;
+    J[23] = t000*t080;
     J[24] = T(S(0));
-    J[25] = cos_psi*t048 - sin_psi*t045;
-    J[26] = (sin_psi*t070 - cos_psi*t071)*t008;
-    J[27] = -cos_psi*t080 - sin_psi*t079;
-    J[28] = sin_psi*t089 - cos_psi*t088;
-    J[29] = -cos_psi*t094 - sin_psi*t093;
+    J[25] = cos_psi*t049 + sin_psi*t048;
+    J[26] = (sin_psi*t056 - cos_psi*t055)*p.c004;
+    J[27] = -cos_psi*t065 - sin_psi*t064;
+    J[28] = sin_psi*t074 - cos_psi*t073;
+    J[29] = -cos_psi*t079 - sin_psi*t078;
     J[30] = T(S(0));
-    J[31] = t096;
-    J[32] = -t097;
-    J[33] = t098;
-    J[34] = t099;
-    J[35] = -t100;
+    J[31] = t081;
+    J[32] = -t082;
+    J[33] = t083;
+    J[34] = t084;
+    J[35] = -t085;
+}
+
+// jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void jacobian(T t, const T* y, T* J, const params<T>& p) {
+    jacobian(t, y, J, prepare(p));
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -328,10 +363,10 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, phi_ddot, theta_ddot, psi_ddot
 //   J     output, dim 6 x 6 (row-major)
-//   p     parameters
-// Operations (+ - * / and calls): 16372 before lowering, 457 after (180 +-, 270 *, 3 /, 4 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 16372 before lowering, 429 after (170 +-, 254 *, 1 /, 4 calls).
 template <class T>
-void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -346,118 +381,103 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
     const T t000 = S(1)/sin_theta;
-    const T t001 = cos_theta*phi_dot;
-    const T t002 = t001 - psi_dot;
-    const T t003 = t002*theta_dot;
-    const T t004 = p.Ixy*p.Ixy - p.Ixx*p.Iyy;
-    const T t005 = p.Ixx*p.Iyz;
-    const T t006 = p.Ixy*p.Ixz;
-    const T t007 = p.Ixz*p.Ixz;
-    const T t008 = (t005 - S(2)*t006)*p.Iyz + p.Iyy*t007 + p.Izz*t004;
-    const T t009 = S(1)/t008;
-    const T t010 = t007 - p.Ixx*p.Izz;
-    const T t011 = sin_psi*sin_theta;
-    const T t012 = phi_dot*t011;
-    const T t013 = cos_psi*theta_dot;
-    const T t014 = t012 + t013;
-    const T t015 = psi_dot + t001;
-    const T t016 = cos_psi*sin_theta;
-    const T t017 = phi_dot*t016;
-    const T t018 = sin_psi*theta_dot;
-    const T t019 = t017 - t018;
-    const T t020 = p.Ixz*t014 + p.Iyz*t019 + p.Izz*t015;
-    const T t021 = t014*t020;
-    const T t022 = p.M*p.g;
-    const T t023 = p.cz*t011;
-    const T t024 = p.Ixy*t019;
-    const T t025 = p.Ixz*t015;
-    const T t026 = p.Ixx*t014 + t024 + t025;
-    const T t027 = (cos_theta*p.cx - t023)*t022 + t021 - t015*t026;
-    const T t028 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
-    const T t029 = p.cz*t016;
-    const T t030 = t019*t020;
-    const T t031 = p.Ixy*t014;
-    const T t032 = p.Iyz*t015;
-    const T t033 = p.Iyy*t019 + t031 + t032;
-    const T t034 = (t029 - cos_theta*p.cy)*t022 + t015*t033 - t030;
-    const T t035 = t005 - t006;
-    const T t036 = sin_theta*t022;
-    const T t037 = p.cy*sin_psi - cos_psi*p.cx;
-    const T t038 = t014*t033 - t019*t026 - t036*t037;
-    const T t039 = t010*t027 - t028*t034 - t035*t038;
-    const T t040 = cos_psi*t003 - psi_dot*t012 - t009*t039;
-    const T t041 = cos_psi*t040;
-    const T t042 = p.Iyy*p.Izz - p.Iyz*p.Iyz;
-    const T t043 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
-    const T t044 = t027*t028 + t034*t042 - t038*t043;
-    const T t045 = psi_dot*t017 + sin_psi*t003 + t009*t044;
-    const T t046 = sin_psi*t045;
-    const T t047 = t041 + t046;
-    const T t048 = cos_theta*t000;
-    const T t049 = t047*t048;
-    const T t050 = sin_theta*theta_dot;
-    const T t051 = (t027*t035 - t004*t038 - t034*t043)*t009 + phi_dot*t050 + t049;
-    const T t052 = cos_theta*sin_psi;
-    const T t053 = cos_psi*cos_theta;
-    const T t054 = p.Ixy*sin_psi;
-    const T t055 = cos_psi*p.Iyy + t054;
-    const T t056 = p.Iyz*sin_theta - cos_theta*t055;
-    const T t057 = cos_psi*p.Iyz + p.Ixz*sin_psi;
-    const T t058 = cos_theta*t057 - p.Izz*sin_theta;
-    const T t059 = (sin_theta*t033 + t015*t056 + t019*t058 + t020*t053)*phi_dot;
-    const T t060 = (p.cy*sin_theta + p.cz*t053)*t022 - t059;
-    const T t061 = cos_psi*p.Ixy;
-    const T t062 = p.Ixx*sin_psi + t061;
-    const T t063 = cos_theta*t062 - p.Ixz*sin_theta;
-    const T t064 = (t015*t063 - sin_theta*t026 - t014*t058 - t020*t052)*phi_dot;
-    const T t065 = (p.cx*sin_theta + p.cz*t052)*t022 + t064;
-    const T t066 = cos_psi*t026 - sin_psi*t033;
-    const T t067 = (phi_dot*t066 + t022*t037)*cos_theta + (t014*t056 + t019*t063)*phi_dot;
-    const T t068 = (psi_dot*t052 + t016*theta_dot)*phi_dot - (t010*t065 + t028*t060 - t035*t067)*t009;
-    const T t069 = (t011*theta_dot - psi_dot*t053)*phi_dot - (t042*t060 + t043*t067 - t028*t065)*t009;
-    const T t070 = (cos_psi*t068 + sin_psi*t069 + t049)*t000;
-    const T t071 = p.Iyy - p.Ixx;
-    const T t072 = (S(2)*t024 + t025 - t014*t071)*t014 + (S(2)*t031 + t019*t071 + t032)*t019 - (cos_psi*p.cy + p.cx*sin_psi)*t036;
-    const T t073 = p.Iyz*t014 - p.Ixz*t019;
-    const T t074 = (p.Ixx*t019 - t031)*t015 + t014*t073 + t022*t029 - t030;
-    const T t075 = (t024 - p.Iyy*t014)*t015 + t019*t073 + t021 - t022*t023;
-    const T t076 = t010*t074 + t028*t075 + t035*t072 + t044;
-    const T t077 = t039 + t042*t075 - t028*t074 - t043*t072;
-    const T t078 = cos_psi*t076 + sin_psi*t077;
-    const T t079 = cos_theta*p.Ixz + sin_theta*t062;
-    const T t080 = cos_theta*p.Izz + sin_theta*t057;
-    const T t081 = cos_theta*t026 + t015*t079 - t011*t020 - t014*t080;
-    const T t082 = cos_theta*p.Iyz + sin_theta*t055;
-    const T t083 = t014*t082 - sin_theta*t066 - t019*t079;
-    const T t084 = cos_theta*t033 + t015*t082 - t016*t020 - t019*t080;
-    const T t085 = psi_dot*t011 - (t010*t081 + t028*t084 + t035*t083)*t009 - t053*theta_dot;
-    const T t086 = psi_dot*t016 + t052*theta_dot - (t028*t081 + t043*t083 - t042*t084)*t009;
-    const T t087 = cos_psi*t085 - sin_psi*t086;
-    const T t088 = t054 - cos_psi*p.Ixx;
-    const T t089 = p.Iyz*sin_psi - cos_psi*p.Ixz;
-    const T t090 = cos_psi*t020 + t015*t088 - t014*t089;
-    const T t091 = t061 - p.Iyy*sin_psi;
-    const T t092 = sin_psi*t020 + t015*t091 + t019*t089;
-    const T t093 = cos_psi*t033 + sin_psi*t026 + t014*t091 + t019*t088;
-    const T t094 = (t028*t090 + t042*t092 - t043*t093)*t009 + sin_psi*t002;
-    const T t095 = (t028*t092 + t035*t093 - t010*t090)*t009 + cos_psi*t002;
-    const T t096 = cos_psi*t095 + sin_psi*t094;
-    const T t097 = S(2)*t032 + t031 - (p.Izz - p.Iyy)*t019;
-    const T t098 = S(2)*t025 + t024 - (p.Izz - p.Ixx)*t014;
-    const T t099 = t012 + t013 - (t010*t098 + t028*t097 + t035*t073)*t009;
-    const T t100 = t017 - (t028*t098 + t043*t073 - t042*t097)*t009 - t018;
-    const T t101 = cos_psi*t099 - sin_psi*t100;
-    const T t102 = (phi_dot*theta_dot - t070)*cos_theta + (t004*t067 - t035*t065 - t043*t060)*t009 - t041 - t046;
-    const T t103 = (t004*t072 + t035*t074 + t043*t075 - t048*t078)*t009;
-    const T t104 = t050 - (t004*t083 + t035*t081 + t043*t084)*t009 - t048*t087;
-    const T t105 = phi_dot*sin_theta + t048*t096 - (t004*t093 + t043*t092 - t035*t090)*t009;
-    const T t106 = (t004*t073 + t035*t098 + t043*t097)*t009 + t048*t101;
+    const T t001 = sin_psi*sin_theta;
+    const T t002 = phi_dot*t001;
+    const T t003 = cos_psi*theta_dot;
+    const T t004 = t002 + t003;
+    const T t005 = cos_theta*phi_dot;
+    const T t006 = psi_dot + t005;
+    const T t007 = cos_psi*sin_theta;
+    const T t008 = phi_dot*t007;
+    const T t009 = sin_psi*theta_dot;
+    const T t010 = t008 - t009;
+    const T t011 = p.Ixz*t004 + p.Iyz*t010 + p.Izz*t006;
+    const T t012 = t004*t011;
+    const T t013 = p.Ixy*t010;
+    const T t014 = p.Ixz*t006;
+    const T t015 = p.Ixx*t004 + t013 + t014;
+    const T t016 = (cos_theta*p.cx - p.cz*t001)*p.c006 + t012 - t006*t015;
+    const T t017 = t010*t011;
+    const T t018 = p.Ixy*t004;
+    const T t019 = p.Iyz*t006;
+    const T t020 = p.Iyy*t010 + t018 + t019;
+    const T t021 = (p.cz*t007 - cos_theta*p.cy)*p.c006 + t006*t020 - t017;
+    const T t022 = p.c006*sin_theta;
+    const T t023 = p.cy*sin_psi - cos_psi*p.cx;
+    const T t024 = t004*t020 - t010*t015 - t022*t023;
+    const T t025 = p.c005*t016 - p.c007*t021 - p.c008*t024;
+    const T t026 = t005 - psi_dot;
+    const T t027 = t026*theta_dot;
+    const T t028 = p.c004*t025 + psi_dot*t002 - cos_psi*t027;
+    const T t029 = cos_psi*t028;
+    const T t030 = p.c007*t016 + p.c009*t021 - p.c010*t024;
+    const T t031 = p.c004*t030 + psi_dot*t008 + sin_psi*t027;
+    const T t032 = sin_psi*t031;
+    const T t033 = t029 - t032;
+    const T t034 = cos_theta*t000;
+    const T t035 = t033*t034;
+    const T t036 = sin_theta*theta_dot;
+    const T t037 = (p.c000*t024 + p.c010*t021 - p.c008*t016)*p.c004 + t035 - phi_dot*t036;
+    const T t038 = cos_psi*p.Ixy;
+    const T t039 = p.Ixx*sin_psi + t038;
+    const T t040 = cos_theta*t039 - p.Ixz*sin_theta;
+    const T t041 = cos_theta*sin_psi;
+    const T t042 = cos_psi*p.Iyz + p.Ixz*sin_psi;
+    const T t043 = cos_theta*t042 - p.Izz*sin_theta;
+    const T t044 = (t006*t040 - sin_theta*t015 - t004*t043 - t011*t041)*phi_dot;
+    const T t045 = (p.cx*sin_theta + p.cz*t041)*p.c006 + t044;
+    const T t046 = p.Ixy*sin_psi;
+    const T t047 = cos_psi*p.Iyy + t046;
+    const T t048 = p.Iyz*sin_theta - cos_theta*t047;
+    const T t049 = cos_psi*t015 - sin_psi*t020;
+    const T t050 = (p.c006*t023 + phi_dot*t049)*cos_theta + (t004*t048 + t010*t040)*phi_dot;
+    const T t051 = cos_psi*cos_theta;
+    const T t052 = (sin_theta*t020 + t006*t048 + t010*t043 + t011*t051)*phi_dot;
+    const T t053 = t052 - (p.cy*sin_theta + p.cz*t051)*p.c006;
+    const T t054 = (p.c005*t045 - p.c007*t053 - p.c008*t050)*p.c004 - (psi_dot*t041 + t007*theta_dot)*phi_dot;
+    const T t055 = (p.c007*t045 + p.c009*t053 - p.c010*t050)*p.c004 + (t001*theta_dot - psi_dot*t051)*phi_dot;
+    const T t056 = (cos_psi*t054 + t035 - sin_psi*t055)*t000;
+    const T t057 = p.Iyz*t004 - p.Ixz*t010;
+    const T t058 = (p.Ixx*t010 - t018)*t006 + p.c011*t007 + t004*t057 - t017;
+    const T t059 = (S(2)*t013 + t014 - p.c012*t004)*t004 + (S(2)*t018 + p.c012*t010 + t019)*t010 - (cos_psi*p.cy + p.cx*sin_psi)*t022;
+    const T t060 = (t013 - p.Iyy*t004)*t006 + t010*t057 + t012 - p.c011*t001;
+    const T t061 = p.c009*t060 + t025 - p.c007*t058 - p.c010*t059;
+    const T t062 = p.c005*t058 + p.c007*t060 + p.c008*t059 + t030;
+    const T t063 = cos_psi*t062 + sin_psi*t061;
+    const T t064 = cos_theta*p.Ixz + sin_theta*t039;
+    const T t065 = cos_theta*p.Izz + sin_theta*t042;
+    const T t066 = cos_theta*t015 + t006*t064 - t001*t011 - t004*t065;
+    const T t067 = cos_theta*p.Iyz + sin_theta*t047;
+    const T t068 = t004*t067 - sin_theta*t049 - t010*t064;
+    const T t069 = cos_theta*t020 + t006*t067 - t007*t011 - t010*t065;
+    const T t070 = psi_dot*t001 - (p.c005*t066 + p.c007*t069 + p.c008*t068)*p.c004 - t051*theta_dot;
+    const T t071 = psi_dot*t007 + t041*theta_dot - (p.c007*t066 + p.c010*t068 - p.c009*t069)*p.c004;
+    const T t072 = cos_psi*t070 - sin_psi*t071;
+    const T t073 = t046 - cos_psi*p.Ixx;
+    const T t074 = p.Iyz*sin_psi - cos_psi*p.Ixz;
+    const T t075 = cos_psi*t011 + t006*t073 - t004*t074;
+    const T t076 = t038 - p.Iyy*sin_psi;
+    const T t077 = sin_psi*t011 + t006*t076 + t010*t074;
+    const T t078 = cos_psi*t020 + sin_psi*t015 + t004*t076 + t010*t073;
+    const T t079 = (p.c007*t075 + p.c009*t077 - p.c010*t078)*p.c004 + sin_psi*t026;
+    const T t080 = (p.c007*t077 + p.c008*t078 - p.c005*t075)*p.c004 + cos_psi*t026;
+    const T t081 = cos_psi*t080 + sin_psi*t079;
+    const T t082 = S(2)*t019 + t018 - p.c013*t010;
+    const T t083 = S(2)*t014 + t013 - p.c014*t004;
+    const T t084 = t002 + t003 - (p.c005*t083 + p.c007*t082 + p.c008*t057)*p.c004;
+    const T t085 = t008 - (p.c007*t083 + p.c010*t057 - p.c009*t082)*p.c004 - t009;
+    const T t086 = cos_psi*t084 - sin_psi*t085;
+    const T t087 = (p.c000*t050 + p.c010*t053 - p.c008*t045)*p.c004 + (phi_dot*theta_dot + t056)*cos_theta + t029 - t032;
+    const T t088 = (p.c000*t059 + p.c008*t058 + p.c010*t060 - t034*t063)*p.c004;
+    const T t089 = t036 - (p.c000*t068 + p.c008*t066 + p.c010*t069)*p.c004 - t034*t072;
+    const T t090 = phi_dot*sin_theta + t034*t081 - (p.c000*t078 + p.c010*t077 - p.c008*t075)*p.c004;
+    const T t091 = (p.c000*t057 + p.c008*t083 + p.c010*t082)*p.c004 + t034*t086;
     dydt[0] = phi_dot;
     dydt[1] = theta_dot;
     dydt[2] = psi_dot;
-    dydt[3] = -t000*t047;
-    dydt[4] = sin_psi*t040 - cos_psi*t045;
-    dydt[5] = t051;
+    dydt[3] = t000*t033;
+    dydt[4] = -cos_psi*t031 - sin_psi*t028;
+    dydt[5] = -t037;
     J[0] = T(S(0));
     J[1] = T(S(0));
     J[2] = T(S(0));
@@ -477,23 +497,30 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     J[16] = T(S(0));
     J[17] = T(S(1));
     J[18] = T(S(0));
-    J[19] = t070;
-    J[20] = -t078/(sin_theta*t008);
-    J[21] = t000*t087;
-    J[22] = -t000*t096;
-    J[23] = t000*t101;
+    J[19] = -t056;
+    J[20] = -p.c004*t000*t063;
+    J[21] = t000*t072;
+    J[22] = -t000*t081;
+    J[23] = t000*t086;
     J[24] = T(S(0));
-    J[25] = cos_psi*t069 - sin_psi*t068;
-    J[26] = (sin_psi*t076 - cos_psi*t077)*t009;
-    J[27] = -cos_psi*t086 - sin_psi*t085;
-    J[28] = sin_psi*t095 - cos_psi*t094;
-    J[29] = -cos_psi*t100 - sin_psi*t099;
+    J[25] = cos_psi*t055 + sin_psi*t054;
+    J[26] = (sin_psi*t062 - cos_psi*t061)*p.c004;
+    J[27] = -cos_psi*t071 - sin_psi*t070;
+    J[28] = sin_psi*t080 - cos_psi*t079;
+    J[29] = -cos_psi*t085 - sin_psi*t084;
     J[30] = T(S(0));
-    J[31] = t102;
-    J[32] = -t103;
-    J[33] = t104;
-    J[34] = t105;
-    J[35] = -t106;
+    J[31] = t087;
+    J[32] = -t088;
+    J[33] = t089;
+    J[34] = t090;
+    J[35] = -t091;
+}
+
+// rhs_and_jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+    rhs_and_jacobian(t, y, dydt, J, prepare(p));
 }
 
 // The energy T + V (conserved without damping and driving torques).

@@ -22,9 +22,9 @@
 // -0.3, Ixz = 0.2, Iyz = -0.1, M = 1.2, g = 9.81, cx = 0.05, cy = -0.02, cz = 0.15.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 620 -> 129 (24 temporaries)
-//   jacobian: 3513 -> 317 (76 temporaries)
-//   rhs_and_jacobian: 4133 -> 397 (87 temporaries)
+//   rhs: 620 -> 102 (14 temporaries), and 27 once in prepare()
+//   jacobian: 3513 -> 286 (61 temporaries), and 31 once in prepare()
+//   rhs_and_jacobian: 4133 -> 366 (71 temporaries), and 31 once in prepare()
 //   energy: 70 -> 50 (6 temporaries)
 //   momenta: 15 -> 15 (0 temporaries)
 //   mass_matrix: 0 -> 0 (0 temporaries)
@@ -82,6 +82,56 @@ struct params {
     T cz = T(rg_scalar(3)/rg_scalar(20));
 };
 
+// The parameters and, computed from them once, the 16 subexpressions of parameters alone that
+// rhs, jacobian and rhs_and_jacobian use (39 operations: products and quotients of
+// parameters, reciprocals; a division by a parameter becomes a multiplication). Make one per
+// parameter set with prepare(p) and pass it where params<T> goes: those functions then skip that
+// work at every call. Given params<T>, they prepare it themselves. Changed a parameter: prepare
+// again.
+template <class T>
+struct prepared : params<T> {
+    T c000{};
+    T c001{};
+    T c002{};
+    T c003{};
+    T c004{};
+    T c005{};
+    T c006{};
+    T c007{};
+    T c008{};
+    T c009{};
+    T c010{};
+    T c011{};
+    T c012{};
+    T c013{};
+    T c014{};
+    T c015{};
+};
+
+template <class T>
+prepared<T> prepare(const params<T>& parameters) {
+    using S = typename detail::scalar_of<T>::type;
+    prepared<T> p;
+    static_cast<params<T>&>(p) = parameters;
+    p.c000 = p.Ixy*p.Ixy - p.Ixx*p.Iyy;
+    p.c001 = p.Ixx*p.Iyz;
+    p.c002 = p.Ixy*p.Ixz;
+    p.c003 = p.Ixz*p.Ixz;
+    p.c004 = S(1)/((p.c001 - S(2)*p.c002)*p.Iyz + p.Iyy*p.c003 + p.Izz*p.c000);
+    p.c005 = p.M*p.g;
+    p.c006 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
+    p.c007 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
+    p.c008 = p.Iyy*p.Izz - p.Iyz*p.Iyz;
+    p.c009 = p.c001 - p.c002;
+    p.c010 = p.c003 - p.Ixx*p.Izz;
+    p.c011 = (p.c001 - S(2)*p.c002)*p.Iyz + p.Iyy*p.c003 + p.Izz*p.c000;
+    p.c012 = p.M*p.g/p.c011;
+    p.c013 = p.Izz - p.Ixx;
+    p.c014 = p.Iyy - p.Ixx;
+    p.c015 = p.Izz - p.Iyy;
+    return p;
+}
+
 // The model and the form this header implements.
 constexpr const char* model_name = "full_tensor_top";
 constexpr const char* form_name = "body";
@@ -111,10 +161,10 @@ constexpr std::array<unsigned char, 49> jacobian_pattern{{
 //   t     time
 //   y     state, dim 7: (qw, qx, qy, qz, omega1, omega2, omega3)
 //   dydt  output, dim 7: qw_dot, qx_dot, qy_dot, qz_dot, omega1_dot, omega2_dot, omega3_dot
-//   p     parameters
-// Operations (+ - * / and calls): 620 before lowering, 129 after (47 +-, 80 *, 2 /, 0 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 620 before lowering, 102 after (38 +-, 63 *, 1 /, 0 calls).
 template <class T>
-void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+void rhs(T t, const T* y, T* dydt, const prepared<T>& p) {
     using S = typename detail::scalar_of<T>::type;
     (void)t;
     const T qw = y[0];
@@ -124,47 +174,44 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     const T omega1 = y[4];
     const T omega2 = y[5];
     const T omega3 = y[6];
-    const T t000 = p.Ixy*p.Ixy - p.Ixx*p.Iyy;
-    const T t001 = p.Ixx*p.Iyz;
-    const T t002 = p.Ixy*p.Ixz;
-    const T t003 = p.Ixz*p.Ixz;
-    const T t004 = S(1)/((t001 - S(2)*t002)*p.Iyz + p.Iyy*t003 + p.Izz*t000);
-    const T t005 = omega1*p.Ixz + omega2*p.Iyz + omega3*p.Izz;
-    const T t006 = omega1*p.Ixy + omega2*p.Iyy + omega3*p.Iyz;
-    const T t007 = qx*qx;
-    const T t008 = qz*qz;
-    const T t009 = qy*qy;
-    const T t010 = qw*qw;
-    const T t011 = t007 + t009 - t008 - t010;
-    const T t012 = qw*qx + qy*qz;
-    const T t013 = p.M*p.g/(t007 + t008 + t009 + t010);
-    const T t014 = omega2*t005 - (S(2)*p.cz*t012 + p.cy*t011)*t013 - omega3*t006;
-    const T t015 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
-    const T t016 = qw*qy - qx*qz;
-    const T t017 = omega1*p.Ixx + omega2*p.Ixy + omega3*p.Ixz;
-    const T t018 = S(2)*(p.cx*t012 + p.cy*t016)*t013 + omega1*t006 - omega2*t017;
-    const T t019 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
-    const T t020 = omega1*t005 - (p.cx*t011 - S(2)*p.cz*t016)*t013 - omega3*t017;
-    const T t021 = (p.Iyy*p.Izz - p.Iyz*p.Iyz)*t014 + t015*t018 - t019*t020;
-    const T t022 = t001 - t002;
-    const T t023 = (t003 - p.Ixx*p.Izz)*t020 + t014*t019 - t018*t022;
+    const T t000 = omega1*p.Ixy + omega2*p.Iyy + omega3*p.Iyz;
+    const T t001 = omega1*p.Ixx + omega2*p.Ixy + omega3*p.Ixz;
+    const T t002 = qw*qx + qy*qz;
+    const T t003 = qw*qy - qx*qz;
+    const T t004 = qx*qx;
+    const T t005 = qz*qz;
+    const T t006 = qy*qy;
+    const T t007 = qw*qw;
+    const T t008 = p.c005/(t004 + t005 + t006 + t007);
+    const T t009 = S(2)*(p.cx*t002 + p.cy*t003)*t008 + omega1*t000 - omega2*t001;
+    const T t010 = omega1*p.Ixz + omega2*p.Iyz + omega3*p.Izz;
+    const T t011 = t004 + t006 - t005 - t007;
+    const T t012 = omega1*t010 - (p.cx*t011 - S(2)*p.cz*t003)*t008 - omega3*t001;
+    const T t013 = (S(2)*p.cz*t002 + p.cy*t011)*t008 + omega3*t000 - omega2*t010;
     dydt[0] = -S(1)/S(2)*(omega1*qx + omega2*qy + omega3*qz);
     dydt[1] = S(1)/S(2)*(omega1*qw + omega3*qy - omega2*qz);
     dydt[2] = S(1)/S(2)*(omega1*qz + omega2*qw - omega3*qx);
     dydt[3] = S(1)/S(2)*(omega2*qx + omega3*qw - omega1*qy);
-    dydt[4] = t004*t021;
-    dydt[5] = t004*t023;
-    dydt[6] = (t014*t015 + t020*t022 - t000*t018)*t004;
+    dydt[4] = (p.c006*t009 - p.c007*t012 - p.c008*t013)*p.c004;
+    dydt[5] = (p.c010*t012 - p.c007*t013 - p.c009*t009)*p.c004;
+    dydt[6] = (p.c009*t012 - p.c000*t009 - p.c006*t013)*p.c004;
+}
+
+// rhs with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+    rhs(t, y, dydt, prepare(p));
 }
 
 // The analytic Jacobian J = d(dy/dt)/dy, dense, row-major: J[i * state_size + k] = d dydt[i] / d y[k].
 //   t     time
 //   y     state, dim 7: (qw, qx, qy, qz, omega1, omega2, omega3)
 //   J     output, dim 7 x 7 (row-major); structural zeros in jacobian_pattern
-//   p     parameters
-// Operations (+ - * / and calls): 3513 before lowering, 317 after (109 +-, 205 *, 3 /, 0 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 3513 before lowering, 286 after (97 +-, 188 *, 1 /, 0 calls).
 template <class T>
-void jacobian(T t, const T* y, T* J, const params<T>& p) {
+void jacobian(T t, const T* y, T* J, const prepared<T>& p) {
     using S = typename detail::scalar_of<T>::type;
     (void)t;
     const T qw = y[0];
@@ -184,72 +231,57 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T t007 = S(1)/S(2)*omega3;
     const T t008 = S(1)/S(2)*qw;
     const T t009 = S(1)/S(2)*omega2;
-    const T t010 = p.Ixy*p.Ixy - p.Ixx*p.Iyy;
-    const T t011 = p.Ixx*p.Iyz;
-    const T t012 = p.Ixy*p.Ixz;
-    const T t013 = p.Ixz*p.Ixz;
-    const T t014 = (t011 - S(2)*t012)*p.Iyz + p.Iyy*t013 + p.Izz*t010;
-    const T t015 = qx*qx;
-    const T t016 = qz*qz;
-    const T t017 = qy*qy;
-    const T t018 = qw*qw;
-    const T t019 = t015 + t016 + t017 + t018;
-    const T t020 = p.M*p.g/(t014*t019);
-    const T t021 = S(1)/t019;
-    const T t022 = (qw*qy - qx*qz)*t021;
-    const T t023 = (qw*qx + qy*qz)*t021;
-    const T t024 = (qx - S(2)*qw*t023)*p.cx + (qy - S(2)*qw*t022)*p.cy;
-    const T t025 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
-    const T t026 = p.Iyy*p.Izz - p.Iyz*p.Iyz;
-    const T t027 = p.cz*t023;
-    const T t028 = (t015 + t017 - t016 - t018)*t021;
-    const T t029 = S(1) + t028;
-    const T t030 = S(2)*t027 + p.cy*t029;
-    const T t031 = p.cz*qx;
-    const T t032 = qw*t030 - t031;
-    const T t033 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
-    const T t034 = p.cz*qy;
-    const T t035 = p.cz*t022;
-    const T t036 = p.cx*t029 - S(2)*t035;
-    const T t037 = qw*t036 + t034;
-    const T t038 = t028 - S(1);
-    const T t039 = S(2)*t027 + p.cy*t038;
-    const T t040 = p.cz*qw;
-    const T t041 = qx*t039 - t040;
-    const T t042 = p.cz*qz;
-    const T t043 = p.cx*t038 - S(2)*t035;
-    const T t044 = t042 - qx*t043;
-    const T t045 = (S(2)*qx*t022 + qz)*p.cy + (S(2)*qx*t023 - qw)*p.cx;
-    const T t046 = (qw - S(2)*qy*t022)*p.cy + (qz - S(2)*qy*t023)*p.cx;
-    const T t047 = qy*t039 - t042;
-    const T t048 = qy*t043 + t040;
-    const T t049 = qz*t030 - t034;
-    const T t050 = qz*t036 - t031;
-    const T t051 = (qy - S(2)*qz*t023)*p.cx - (S(2)*qz*t022 + qx)*p.cy;
-    const T t052 = S(1)/t014;
-    const T t053 = omega1*p.Ixz;
-    const T t054 = omega2*p.Iyz;
-    const T t055 = p.Izz - p.Ixx;
-    const T t056 = S(2)*t053 + omega3*t055 + t054;
-    const T t057 = omega1*p.Ixy;
-    const T t058 = omega3*p.Iyz;
-    const T t059 = p.Iyy - p.Ixx;
-    const T t060 = S(2)*t057 + omega2*t059 + t058;
-    const T t061 = omega3*p.Ixy;
-    const T t062 = omega2*p.Ixz;
-    const T t063 = t061 - t062;
-    const T t064 = omega3*p.Ixz;
-    const T t065 = omega2*p.Ixy;
-    const T t066 = omega1*t059 - S(2)*t065 - t064;
-    const T t067 = omega1*p.Iyz;
-    const T t068 = t067 - t061;
-    const T t069 = p.Izz - p.Iyy;
-    const T t070 = S(2)*t054 + omega3*t069 + t053;
-    const T t071 = S(2)*t058 + t057 - omega2*t069;
-    const T t072 = omega1*t055 - S(2)*t064 - t065;
-    const T t073 = t067 - t062;
-    const T t074 = t011 - t012;
-    const T t075 = t013 - p.Ixx*p.Izz;
+    const T t010 = qx*qx;
+    const T t011 = qz*qz;
+    const T t012 = qy*qy;
+    const T t013 = qw*qw;
+    const T t014 = S(1)/(t010 + t011 + t012 + t013);
+    const T t015 = (qw*qy - qx*qz)*t014;
+    const T t016 = (qw*qx + qy*qz)*t014;
+    const T t017 = (qx - S(2)*qw*t016)*p.cx + (qy - S(2)*qw*t015)*p.cy;
+    const T t018 = p.cz*t016;
+    const T t019 = (t010 + t012 - t011 - t013)*t014;
+    const T t020 = S(1) + t019;
+    const T t021 = S(2)*t018 + p.cy*t020;
+    const T t022 = p.cz*qx;
+    const T t023 = qw*t021 - t022;
+    const T t024 = p.cz*qy;
+    const T t025 = p.cz*t015;
+    const T t026 = p.cx*t020 - S(2)*t025;
+    const T t027 = qw*t026 + t024;
+    const T t028 = p.c012*t014;
+    const T t029 = t019 - S(1);
+    const T t030 = S(2)*t018 + p.cy*t029;
+    const T t031 = p.cz*qw;
+    const T t032 = qx*t030 - t031;
+    const T t033 = p.cz*qz;
+    const T t034 = p.cx*t029 - S(2)*t025;
+    const T t035 = t033 - qx*t034;
+    const T t036 = (S(2)*qx*t015 + qz)*p.cy + (S(2)*qx*t016 - qw)*p.cx;
+    const T t037 = (qw - S(2)*qy*t015)*p.cy + (qz - S(2)*qy*t016)*p.cx;
+    const T t038 = qy*t030 - t033;
+    const T t039 = qy*t034 + t031;
+    const T t040 = qz*t021 - t024;
+    const T t041 = qz*t026 - t022;
+    const T t042 = (qy - S(2)*qz*t016)*p.cx - (S(2)*qz*t015 + qx)*p.cy;
+    const T t043 = omega1*p.Ixz;
+    const T t044 = omega2*p.Iyz;
+    const T t045 = S(2)*t043 + omega3*p.c013 + t044;
+    const T t046 = omega1*p.Ixy;
+    const T t047 = omega3*p.Iyz;
+    const T t048 = S(2)*t046 + omega2*p.c014 + t047;
+    const T t049 = omega3*p.Ixy;
+    const T t050 = omega2*p.Ixz;
+    const T t051 = t049 - t050;
+    const T t052 = omega3*p.Ixz;
+    const T t053 = omega2*p.Ixy;
+    const T t054 = omega1*p.c014 - S(2)*t053 - t052;
+    const T t055 = omega1*p.Iyz;
+    const T t056 = t055 - t049;
+    const T t057 = S(2)*t044 + omega3*p.c015 + t043;
+    const T t058 = S(2)*t047 + t046 - omega2*p.c015;
+    const T t059 = omega1*p.c013 - S(2)*t052 - t053;
+    const T t060 = t055 - t050;
     J[0] = T(S(0));
     J[1] = t000;
     J[2] = t001;
@@ -278,27 +310,34 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     J[25] = t004;
     J[26] = S(1)/S(2)*qx;
     J[27] = t008;
-    J[28] = S(2)*(t024*t025 + t026*t032 - t033*t037)*t020;
-    J[29] = S(2)*(t026*t041 + t033*t044 - t025*t045)*t020;
-    J[30] = S(2)*(t025*t046 + t026*t047 - t033*t048)*t020;
-    J[31] = S(2)*(t025*t051 + t026*t049 - t033*t050)*t020;
-    J[32] = (t025*t060 - t026*t063 - t033*t056)*t052;
-    J[33] = (t025*t066 + t026*t070 - t033*t068)*t052;
-    J[34] = (t025*t073 - t026*t071 - t033*t072)*t052;
-    J[35] = S(2)*(t032*t033 + t037*t075 - t024*t074)*t020;
-    J[36] = S(2)*(t033*t041 + t045*t074 - t044*t075)*t020;
-    J[37] = S(2)*(t033*t047 + t048*t075 - t046*t074)*t020;
-    J[38] = S(2)*(t033*t049 + t050*t075 - t051*t074)*t020;
-    J[39] = (t056*t075 - t033*t063 - t060*t074)*t052;
-    J[40] = (t033*t070 + t068*t075 - t066*t074)*t052;
-    J[41] = (t072*t075 - t033*t071 - t073*t074)*t052;
-    J[42] = S(2)*(t025*t032 + t037*t074 - t010*t024)*t020;
-    J[43] = S(2)*(t010*t045 + t025*t041 - t044*t074)*t020;
-    J[44] = S(2)*(t025*t047 + t048*t074 - t010*t046)*t020;
-    J[45] = S(2)*(t025*t049 + t050*t074 - t010*t051)*t020;
-    J[46] = (t056*t074 - t010*t060 - t025*t063)*t052;
-    J[47] = (t025*t070 + t068*t074 - t010*t066)*t052;
-    J[48] = (t072*t074 - t010*t073 - t025*t071)*t052;
+    J[28] = S(2)*(p.c006*t017 + p.c008*t023 - p.c007*t027)*t028;
+    J[29] = S(2)*(p.c007*t035 + p.c008*t032 - p.c006*t036)*t028;
+    J[30] = S(2)*(p.c006*t037 + p.c008*t038 - p.c007*t039)*t028;
+    J[31] = S(2)*(p.c006*t042 + p.c008*t040 - p.c007*t041)*t028;
+    J[32] = (p.c006*t048 - p.c007*t045 - p.c008*t051)*p.c004;
+    J[33] = (p.c006*t054 + p.c008*t057 - p.c007*t056)*p.c004;
+    J[34] = (p.c006*t060 - p.c007*t059 - p.c008*t058)*p.c004;
+    J[35] = S(2)*(p.c007*t023 + p.c010*t027 - p.c009*t017)*t028;
+    J[36] = S(2)*(p.c007*t032 + p.c009*t036 - p.c010*t035)*t028;
+    J[37] = S(2)*(p.c007*t038 + p.c010*t039 - p.c009*t037)*t028;
+    J[38] = S(2)*(p.c007*t040 + p.c010*t041 - p.c009*t042)*t028;
+    J[39] = (p.c010*t045 - p.c007*t051 - p.c009*t048)*p.c004;
+    J[40] = (p.c007*t057 + p.c010*t056 - p.c009*t054)*p.c004;
+    J[41] = (p.c010*t059 - p.c007*t058 - p.c009*t060)*p.c004;
+    J[42] = S(2)*(p.c006*t023 + p.c009*t027 - p.c000*t017)*t028;
+    J[43] = S(2)*(p.c000*t036 + p.c006*t032 - p.c009*t035)*t028;
+    J[44] = S(2)*(p.c006*t038 + p.c009*t039 - p.c000*t037)*t028;
+    J[45] = S(2)*(p.c006*t040 + p.c009*t041 - p.c000*t042)*t028;
+    J[46] = (p.c009*t045 - p.c000*t048 - p.c006*t051)*p.c004;
+    J[47] = (p.c006*t057 + p.c009*t056 - p.c000*t054)*p.c004;
+    J[48] = (p.c009*t059 - p.c000*t060 - p.c006*t058)*p.c004;
+}
+
+// jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void jacobian(T t, const T* y, T* J, const params<T>& p) {
+    jacobian(t, y, J, prepare(p));
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -306,10 +345,10 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   y     state, dim 7: (qw, qx, qy, qz, omega1, omega2, omega3)
 //   dydt  output, dim 7: qw_dot, qx_dot, qy_dot, qz_dot, omega1_dot, omega2_dot, omega3_dot
 //   J     output, dim 7 x 7 (row-major)
-//   p     parameters
-// Operations (+ - * / and calls): 4133 before lowering, 397 after (139 +-, 255 *, 3 /, 0 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 4133 before lowering, 366 after (127 +-, 238 *, 1 /, 0 calls).
 template <class T>
-void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const prepared<T>& p) {
     using S = typename detail::scalar_of<T>::type;
     (void)t;
     const T qw = y[0];
@@ -319,149 +358,140 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T omega1 = y[4];
     const T omega2 = y[5];
     const T omega3 = y[6];
-    const T t000 = p.Ixy*p.Ixy - p.Ixx*p.Iyy;
-    const T t001 = p.Ixx*p.Iyz;
-    const T t002 = p.Ixy*p.Ixz;
-    const T t003 = p.Ixz*p.Ixz;
-    const T t004 = (t001 - S(2)*t002)*p.Iyz + p.Iyy*t003 + p.Izz*t000;
-    const T t005 = S(1)/t004;
-    const T t006 = p.Iyy*p.Izz - p.Iyz*p.Iyz;
-    const T t007 = omega1*p.Ixz;
-    const T t008 = omega2*p.Iyz;
-    const T t009 = omega3*p.Izz + t007 + t008;
-    const T t010 = omega1*p.Ixy;
-    const T t011 = omega3*p.Iyz;
-    const T t012 = omega2*p.Iyy + t010 + t011;
-    const T t013 = qx*qx;
-    const T t014 = qz*qz;
-    const T t015 = qy*qy;
-    const T t016 = qw*qw;
-    const T t017 = t013 + t015 - t014 - t016;
-    const T t018 = qw*qx + qy*qz;
-    const T t019 = t013 + t014 + t015 + t016;
-    const T t020 = S(1)/t019;
-    const T t021 = p.M*p.g;
-    const T t022 = t020*t021;
-    const T t023 = omega2*t009 - (S(2)*p.cz*t018 + p.cy*t017)*t022 - omega3*t012;
-    const T t024 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
-    const T t025 = qw*qy - qx*qz;
-    const T t026 = omega3*p.Ixz;
-    const T t027 = omega2*p.Ixy;
-    const T t028 = omega1*p.Ixx + t026 + t027;
-    const T t029 = S(2)*(p.cx*t018 + p.cy*t025)*t022 + omega1*t012 - omega2*t028;
-    const T t030 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
-    const T t031 = omega1*t009 - (p.cx*t017 - S(2)*p.cz*t025)*t022 - omega3*t028;
-    const T t032 = t001 - t002;
-    const T t033 = t003 - p.Ixx*p.Izz;
-    const T t034 = -S(1)/S(2)*omega1;
-    const T t035 = -S(1)/S(2)*omega2;
-    const T t036 = -S(1)/S(2)*omega3;
-    const T t037 = -S(1)/S(2)*qx;
-    const T t038 = -S(1)/S(2)*qy;
-    const T t039 = -S(1)/S(2)*qz;
-    const T t040 = S(1)/S(2)*omega1;
-    const T t041 = S(1)/S(2)*omega3;
-    const T t042 = S(1)/S(2)*qw;
-    const T t043 = S(1)/S(2)*omega2;
-    const T t044 = t021/(t004*t019);
-    const T t045 = t020*t025;
-    const T t046 = t018*t020;
-    const T t047 = (qx - S(2)*qw*t046)*p.cx + (qy - S(2)*qw*t045)*p.cy;
-    const T t048 = p.cz*t046;
-    const T t049 = t017*t020;
-    const T t050 = S(1) + t049;
-    const T t051 = S(2)*t048 + p.cy*t050;
-    const T t052 = p.cz*qx;
-    const T t053 = qw*t051 - t052;
-    const T t054 = p.cz*qy;
-    const T t055 = p.cz*t045;
-    const T t056 = p.cx*t050 - S(2)*t055;
-    const T t057 = qw*t056 + t054;
-    const T t058 = t049 - S(1);
-    const T t059 = S(2)*t048 + p.cy*t058;
-    const T t060 = p.cz*qw;
-    const T t061 = qx*t059 - t060;
-    const T t062 = p.cz*qz;
-    const T t063 = p.cx*t058 - S(2)*t055;
-    const T t064 = t062 - qx*t063;
-    const T t065 = (S(2)*qx*t045 + qz)*p.cy + (S(2)*qx*t046 - qw)*p.cx;
-    const T t066 = (qw - S(2)*qy*t045)*p.cy + (qz - S(2)*qy*t046)*p.cx;
-    const T t067 = qy*t059 - t062;
-    const T t068 = qy*t063 + t060;
-    const T t069 = qz*t051 - t054;
-    const T t070 = qz*t056 - t052;
-    const T t071 = (qy - S(2)*qz*t046)*p.cx - (S(2)*qz*t045 + qx)*p.cy;
-    const T t072 = p.Izz - p.Ixx;
-    const T t073 = S(2)*t007 + omega3*t072 + t008;
-    const T t074 = p.Iyy - p.Ixx;
-    const T t075 = S(2)*t010 + omega2*t074 + t011;
-    const T t076 = omega3*p.Ixy;
-    const T t077 = omega2*p.Ixz;
-    const T t078 = t076 - t077;
-    const T t079 = omega1*t074 - S(2)*t027 - t026;
-    const T t080 = omega1*p.Iyz;
-    const T t081 = t080 - t076;
-    const T t082 = p.Izz - p.Iyy;
-    const T t083 = S(2)*t008 + omega3*t082 + t007;
-    const T t084 = S(2)*t011 + t010 - omega2*t082;
-    const T t085 = omega1*t072 - S(2)*t026 - t027;
-    const T t086 = t080 - t077;
+    const T t000 = omega1*p.Ixy;
+    const T t001 = omega3*p.Iyz;
+    const T t002 = omega2*p.Iyy + t000 + t001;
+    const T t003 = omega3*p.Ixz;
+    const T t004 = omega2*p.Ixy;
+    const T t005 = omega1*p.Ixx + t003 + t004;
+    const T t006 = qw*qx + qy*qz;
+    const T t007 = qw*qy - qx*qz;
+    const T t008 = qx*qx;
+    const T t009 = qz*qz;
+    const T t010 = qy*qy;
+    const T t011 = qw*qw;
+    const T t012 = S(1)/(t008 + t009 + t010 + t011);
+    const T t013 = p.c005*t012;
+    const T t014 = S(2)*(p.cx*t006 + p.cy*t007)*t013 + omega1*t002 - omega2*t005;
+    const T t015 = omega1*p.Ixz;
+    const T t016 = omega2*p.Iyz;
+    const T t017 = omega3*p.Izz + t015 + t016;
+    const T t018 = t008 + t010 - t009 - t011;
+    const T t019 = omega1*t017 - (p.cx*t018 - S(2)*p.cz*t007)*t013 - omega3*t005;
+    const T t020 = (S(2)*p.cz*t006 + p.cy*t018)*t013 + omega3*t002 - omega2*t017;
+    const T t021 = -S(1)/S(2)*omega1;
+    const T t022 = -S(1)/S(2)*omega2;
+    const T t023 = -S(1)/S(2)*omega3;
+    const T t024 = -S(1)/S(2)*qx;
+    const T t025 = -S(1)/S(2)*qy;
+    const T t026 = -S(1)/S(2)*qz;
+    const T t027 = S(1)/S(2)*omega1;
+    const T t028 = S(1)/S(2)*omega3;
+    const T t029 = S(1)/S(2)*qw;
+    const T t030 = S(1)/S(2)*omega2;
+    const T t031 = t007*t012;
+    const T t032 = t006*t012;
+    const T t033 = (qx - S(2)*qw*t032)*p.cx + (qy - S(2)*qw*t031)*p.cy;
+    const T t034 = p.cz*t032;
+    const T t035 = t012*t018;
+    const T t036 = S(1) + t035;
+    const T t037 = S(2)*t034 + p.cy*t036;
+    const T t038 = p.cz*qx;
+    const T t039 = qw*t037 - t038;
+    const T t040 = p.cz*qy;
+    const T t041 = p.cz*t031;
+    const T t042 = p.cx*t036 - S(2)*t041;
+    const T t043 = qw*t042 + t040;
+    const T t044 = p.c012*t012;
+    const T t045 = t035 - S(1);
+    const T t046 = S(2)*t034 + p.cy*t045;
+    const T t047 = p.cz*qw;
+    const T t048 = qx*t046 - t047;
+    const T t049 = p.cz*qz;
+    const T t050 = p.cx*t045 - S(2)*t041;
+    const T t051 = t049 - qx*t050;
+    const T t052 = (S(2)*qx*t031 + qz)*p.cy + (S(2)*qx*t032 - qw)*p.cx;
+    const T t053 = (qw - S(2)*qy*t031)*p.cy + (qz - S(2)*qy*t032)*p.cx;
+    const T t054 = qy*t046 - t049;
+    const T t055 = qy*t050 + t047;
+    const T t056 = qz*t037 - t040;
+    const T t057 = qz*t042 - t038;
+    const T t058 = (qy - S(2)*qz*t032)*p.cx - (S(2)*qz*t031 + qx)*p.cy;
+    const T t059 = S(2)*t015 + omega3*p.c013 + t016;
+    const T t060 = S(2)*t000 + omega2*p.c014 + t001;
+    const T t061 = omega3*p.Ixy;
+    const T t062 = omega2*p.Ixz;
+    const T t063 = t061 - t062;
+    const T t064 = omega1*p.c014 - S(2)*t004 - t003;
+    const T t065 = omega1*p.Iyz;
+    const T t066 = t065 - t061;
+    const T t067 = S(2)*t016 + omega3*p.c015 + t015;
+    const T t068 = S(2)*t001 + t000 - omega2*p.c015;
+    const T t069 = omega1*p.c013 - S(2)*t003 - t004;
+    const T t070 = t065 - t062;
     dydt[0] = -S(1)/S(2)*(omega1*qx + omega2*qy + omega3*qz);
     dydt[1] = S(1)/S(2)*(omega1*qw + omega3*qy - omega2*qz);
     dydt[2] = S(1)/S(2)*(omega1*qz + omega2*qw - omega3*qx);
     dydt[3] = S(1)/S(2)*(omega2*qx + omega3*qw - omega1*qy);
-    dydt[4] = (t006*t023 + t024*t029 - t030*t031)*t005;
-    dydt[5] = (t023*t030 + t031*t033 - t029*t032)*t005;
-    dydt[6] = (t023*t024 + t031*t032 - t000*t029)*t005;
+    dydt[4] = (p.c006*t014 - p.c007*t019 - p.c008*t020)*p.c004;
+    dydt[5] = (p.c010*t019 - p.c007*t020 - p.c009*t014)*p.c004;
+    dydt[6] = (p.c009*t019 - p.c000*t014 - p.c006*t020)*p.c004;
     J[0] = T(S(0));
-    J[1] = t034;
-    J[2] = t035;
-    J[3] = t036;
-    J[4] = t037;
-    J[5] = t038;
-    J[6] = t039;
-    J[7] = t040;
+    J[1] = t021;
+    J[2] = t022;
+    J[3] = t023;
+    J[4] = t024;
+    J[5] = t025;
+    J[6] = t026;
+    J[7] = t027;
     J[8] = T(S(0));
-    J[9] = t041;
-    J[10] = t035;
-    J[11] = t042;
-    J[12] = t039;
+    J[9] = t028;
+    J[10] = t022;
+    J[11] = t029;
+    J[12] = t026;
     J[13] = S(1)/S(2)*qy;
-    J[14] = t043;
-    J[15] = t036;
+    J[14] = t030;
+    J[15] = t023;
     J[16] = T(S(0));
-    J[17] = t040;
+    J[17] = t027;
     J[18] = S(1)/S(2)*qz;
-    J[19] = t042;
-    J[20] = t037;
-    J[21] = t041;
-    J[22] = t043;
-    J[23] = t034;
+    J[19] = t029;
+    J[20] = t024;
+    J[21] = t028;
+    J[22] = t030;
+    J[23] = t021;
     J[24] = T(S(0));
-    J[25] = t038;
+    J[25] = t025;
     J[26] = S(1)/S(2)*qx;
-    J[27] = t042;
-    J[28] = S(2)*(t006*t053 + t024*t047 - t030*t057)*t044;
-    J[29] = S(2)*(t006*t061 + t030*t064 - t024*t065)*t044;
-    J[30] = S(2)*(t006*t067 + t024*t066 - t030*t068)*t044;
-    J[31] = S(2)*(t006*t069 + t024*t071 - t030*t070)*t044;
-    J[32] = (t024*t075 - t006*t078 - t030*t073)*t005;
-    J[33] = (t006*t083 + t024*t079 - t030*t081)*t005;
-    J[34] = (t024*t086 - t006*t084 - t030*t085)*t005;
-    J[35] = S(2)*(t030*t053 + t033*t057 - t032*t047)*t044;
-    J[36] = S(2)*(t030*t061 + t032*t065 - t033*t064)*t044;
-    J[37] = S(2)*(t030*t067 + t033*t068 - t032*t066)*t044;
-    J[38] = S(2)*(t030*t069 + t033*t070 - t032*t071)*t044;
-    J[39] = (t033*t073 - t030*t078 - t032*t075)*t005;
-    J[40] = (t030*t083 + t033*t081 - t032*t079)*t005;
-    J[41] = (t033*t085 - t030*t084 - t032*t086)*t005;
-    J[42] = S(2)*(t024*t053 + t032*t057 - t000*t047)*t044;
-    J[43] = S(2)*(t000*t065 + t024*t061 - t032*t064)*t044;
-    J[44] = S(2)*(t024*t067 + t032*t068 - t000*t066)*t044;
-    J[45] = S(2)*(t024*t069 + t032*t070 - t000*t071)*t044;
-    J[46] = (t032*t073 - t000*t075 - t024*t078)*t005;
-    J[47] = (t024*t083 + t032*t081 - t000*t079)*t005;
-    J[48] = (t032*t085 - t000*t086 - t024*t084)*t005;
+    J[27] = t029;
+    J[28] = S(2)*(p.c006*t033 + p.c008*t039 - p.c007*t043)*t044;
+    J[29] = S(2)*(p.c007*t051 + p.c008*t048 - p.c006*t052)*t044;
+    J[30] = S(2)*(p.c006*t053 + p.c008*t054 - p.c007*t055)*t044;
+    J[31] = S(2)*(p.c006*t058 + p.c008*t056 - p.c007*t057)*t044;
+    J[32] = (p.c006*t060 - p.c007*t059 - p.c008*t063)*p.c004;
+    J[33] = (p.c006*t064 + p.c008*t067 - p.c007*t066)*p.c004;
+    J[34] = (p.c006*t070 - p.c007*t069 - p.c008*t068)*p.c004;
+    J[35] = S(2)*(p.c007*t039 + p.c010*t043 - p.c009*t033)*t044;
+    J[36] = S(2)*(p.c007*t048 + p.c009*t052 - p.c010*t051)*t044;
+    J[37] = S(2)*(p.c007*t054 + p.c010*t055 - p.c009*t053)*t044;
+    J[38] = S(2)*(p.c007*t056 + p.c010*t057 - p.c009*t058)*t044;
+    J[39] = (p.c010*t059 - p.c007*t063 - p.c009*t060)*p.c004;
+    J[40] = (p.c007*t067 + p.c010*t066 - p.c009*t064)*p.c004;
+    J[41] = (p.c010*t069 - p.c007*t068 - p.c009*t070)*p.c004;
+    J[42] = S(2)*(p.c006*t039 + p.c009*t043 - p.c000*t033)*t044;
+    J[43] = S(2)*(p.c000*t052 + p.c006*t048 - p.c009*t051)*t044;
+    J[44] = S(2)*(p.c006*t054 + p.c009*t055 - p.c000*t053)*t044;
+    J[45] = S(2)*(p.c006*t056 + p.c009*t057 - p.c000*t058)*t044;
+    J[46] = (p.c009*t059 - p.c000*t060 - p.c006*t063)*p.c004;
+    J[47] = (p.c006*t067 + p.c009*t066 - p.c000*t064)*p.c004;
+    J[48] = (p.c009*t069 - p.c000*t070 - p.c006*t068)*p.c004;
+}
+
+// rhs_and_jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+    rhs_and_jacobian(t, y, dydt, J, prepare(p));
 }
 
 // The energy T + V (conserved without damping and driving torques).

@@ -20,9 +20,9 @@
 // -0.3, Ixz = 0.2, Iyz = -0.1, M = 1.2, g = 9.81, cx = 0.05, cy = -0.02, cz = 0.15.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 1123 -> 96 (26 temporaries)
-//   jacobian: 6988 -> 234 (68 temporaries)
-//   rhs_and_jacobian: 8111 -> 256 (72 temporaries)
+//   rhs: 1123 -> 67 (17 temporaries), and 27 once in prepare()
+//   jacobian: 6988 -> 202 (53 temporaries), and 31 once in prepare()
+//   rhs_and_jacobian: 8111 -> 224 (57 temporaries), and 31 once in prepare()
 //   energy: 325 -> 69 (19 temporaries)
 //   momenta: 0 -> 0 (0 temporaries)
 //   mass_matrix: 160 -> 40 (13 temporaries)
@@ -80,6 +80,50 @@ struct params {
     T cz = T(rg_scalar(3)/rg_scalar(20));
 };
 
+// The parameters and, computed from them once, the 13 subexpressions of parameters alone that
+// rhs, jacobian and rhs_and_jacobian use (32 operations: products and quotients of
+// parameters, reciprocals; a division by a parameter becomes a multiplication). Make one per
+// parameter set with prepare(p) and pass it where params<T> goes: those functions then skip that
+// work at every call. Given params<T>, they prepare it themselves. Changed a parameter: prepare
+// again.
+template <class T>
+struct prepared : params<T> {
+    T c000{};
+    T c001{};
+    T c002{};
+    T c003{};
+    T c004{};
+    T c005{};
+    T c006{};
+    T c007{};
+    T c008{};
+    T c009{};
+    T c010{};
+    T c011{};
+    T c012{};
+};
+
+template <class T>
+prepared<T> prepare(const params<T>& parameters) {
+    using S = typename detail::scalar_of<T>::type;
+    prepared<T> p;
+    static_cast<params<T>&>(p) = parameters;
+    p.c000 = p.Ixy*p.Ixy - p.Ixx*p.Iyy;
+    p.c001 = p.Ixx*p.Iyz;
+    p.c002 = p.Ixy*p.Ixz;
+    p.c003 = p.Ixz*p.Ixz;
+    p.c004 = S(1)/((p.c001 - S(2)*p.c002)*p.Iyz + p.Iyy*p.c003 + p.Izz*p.c000);
+    p.c005 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
+    p.c006 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
+    p.c007 = p.Iyy*p.Izz - p.Iyz*p.Iyz;
+    p.c008 = p.c001 - p.c002;
+    p.c009 = p.c003 - p.Ixx*p.Izz;
+    p.c010 = p.M*p.g;
+    p.c011 = p.Iyz*p.Iyz;
+    p.c012 = (p.Iyy - p.Ixx)*p.Izz + p.c003 - p.c011;
+    return p;
+}
+
 // The model and the form this header implements.
 constexpr const char* model_name = "full_tensor_top";
 constexpr const char* form_name = "hamiltonian";
@@ -108,10 +152,10 @@ constexpr std::array<unsigned char, 36> jacobian_pattern{{
 //   t     time
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, p_phi_dot, p_theta_dot, p_psi_dot
-//   p     parameters
-// Operations (+ - * / and calls): 1123 before lowering, 96 after (31 +-, 57 *, 4 /, 4 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 1123 before lowering, 67 after (21 +-, 40 *, 2 /, 4 calls).
 template <class T>
-void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+void rhs(T t, const T* y, T* dydt, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -125,44 +169,42 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    const T t000 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
-    const T t001 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
-    const T t002 = S(1)/sin_theta;
-    const T t003 = cos_theta*p_psi - p_phi;
-    const T t004 = t002*t003;
-    const T t005 = cos_psi*t004 + p_theta*sin_psi;
-    const T t006 = cos_psi*p_theta - sin_psi*t004;
-    const T t007 = (p.Iyy*p.Izz - p.Iyz*p.Iyz)*t006 + p_psi*t000 - t001*t005;
-    const T t008 = p.Ixx*p.Iyz;
-    const T t009 = p.Ixy*p.Ixz;
-    const T t010 = t008 - t009;
-    const T t011 = p.Ixz*p.Ixz;
-    const T t012 = p_psi*t010 - (t011 - p.Ixx*p.Izz)*t005 - t001*t006;
-    const T t013 = sin_psi*t007 - cos_psi*t012;
-    const T t014 = p.Ixy*p.Ixy - p.Ixx*p.Iyy;
-    const T t015 = (t008 - S(2)*t009)*p.Iyz + p.Iyy*t011 + p.Izz*t014;
-    const T t016 = S(1)/t015;
-    const T t017 = cos_theta*t002*t013 + p_psi*t014 - t000*t006 - t005*t010;
-    const T t018 = p.M*p.g;
-    const T t019 = ((cos_psi*p.cy + p.cx*sin_psi)*cos_theta - p.cz*sin_theta)*t018;
-    const T t020 = t019 - (cos_theta*t003/(sin_theta*sin_theta) + p_psi)*t013*t016;
-    const T t021 = (p.cy*sin_psi - cos_psi*p.cx)*sin_theta*t018 + (t006*t012 - t005*t007)*t016;
-    dydt[0] = -t013/(sin_theta*t015);
-    dydt[1] = (-cos_psi*t007 - sin_psi*t012)*t016;
-    dydt[2] = t016*t017;
+    const T t000 = S(1)/sin_theta;
+    const T t001 = cos_theta*p_psi - p_phi;
+    const T t002 = t000*t001;
+    const T t003 = cos_psi*t002 + p_theta*sin_psi;
+    const T t004 = cos_psi*p_theta - sin_psi*t002;
+    const T t005 = p.c005*p_psi + p.c007*t004 - p.c006*t003;
+    const T t006 = p.c008*p_psi - p.c006*t004 - p.c009*t003;
+    const T t007 = sin_psi*t005 - cos_psi*t006;
+    const T t008 = p.c004*t007;
+    const T t009 = cos_theta*t000*t007 + p.c000*p_psi - p.c005*t004 - p.c008*t003;
+    const T t010 = ((cos_psi*p.cy + p.cx*sin_psi)*cos_theta - p.cz*sin_theta)*p.c010;
+    const T t011 = (cos_theta*t001/(sin_theta*sin_theta) + p_psi)*t008 - t010;
+    const T t012 = (p.cy*sin_psi - cos_psi*p.cx)*p.c010*sin_theta + (t004*t006 - t003*t005)*p.c004;
+    dydt[0] = -t000*t008;
+    dydt[1] = (-cos_psi*t005 - sin_psi*t006)*p.c004;
+    dydt[2] = p.c004*t009;
     dydt[3] = T(S(0));
-    dydt[4] = -t020;
-    dydt[5] = t021;
+    dydt[4] = t011;
+    dydt[5] = t012;
+}
+
+// rhs with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+    rhs(t, y, dydt, prepare(p));
 }
 
 // The analytic Jacobian J = d(dy/dt)/dy, dense, row-major: J[i * state_size + k] = d dydt[i] / d y[k].
 //   t     time
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   J     output, dim 6 x 6 (row-major); structural zeros in jacobian_pattern
-//   p     parameters
-// Operations (+ - * / and calls): 6988 before lowering, 234 after (83 +-, 142 *, 5 /, 4 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 6988 before lowering, 202 after (71 +-, 125 *, 2 /, 4 calls).
 template <class T>
-void jacobian(T t, const T* y, T* J, const params<T>& p) {
+void jacobian(T t, const T* y, T* J, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -176,88 +218,73 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    const T t000 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
-    const T t001 = sin_psi*t000;
-    const T t002 = p.Ixz*p.Ixz;
-    const T t003 = t002 - p.Ixx*p.Izz;
-    const T t004 = t001 - cos_psi*t003;
-    const T t005 = p.Iyz*p.Iyz;
-    const T t006 = p.Iyy*p.Izz - t005;
-    const T t007 = cos_psi*t000;
-    const T t008 = sin_psi*t006 + t007;
-    const T t009 = cos_psi*t004 + sin_psi*t008;
-    const T t010 = sin_theta*sin_theta;
-    const T t011 = S(1)/t010;
-    const T t012 = cos_theta*p_psi - p_phi;
-    const T t013 = cos_theta*t011*t012 + p_psi;
-    const T t014 = S(1)/sin_theta;
-    const T t015 = cos_theta*t014;
-    const T t016 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
-    const T t017 = p_psi*t016;
-    const T t018 = t012*t014;
-    const T t019 = cos_psi*t018 + p_theta*sin_psi;
-    const T t020 = t000*t019;
-    const T t021 = cos_psi*p_theta - sin_psi*t018;
-    const T t022 = t006*t021 + t017 - t020;
-    const T t023 = sin_psi*t022;
-    const T t024 = p.Ixx*p.Iyz;
-    const T t025 = p.Ixy*p.Ixz;
-    const T t026 = t024 - t025;
-    const T t027 = p_psi*t026;
-    const T t028 = t000*t021;
-    const T t029 = t027 - t003*t019 - t028;
-    const T t030 = cos_psi*t029;
-    const T t031 = t023 - t030;
-    const T t032 = t009*t013 - t015*t031;
-    const T t033 = p.Ixy*p.Ixy - p.Ixx*p.Iyy;
-    const T t034 = (t024 - S(2)*t025)*p.Iyz + p.Iyy*t002 + p.Izz*t033;
-    const T t035 = S(1)/(sin_theta*t034);
-    const T t036 = t032*t035;
-    const T t037 = (p.Iyy - p.Ixx)*p.Izz + t002 - t005;
-    const T t038 = t017 + t021*t037 - S(2)*t020;
-    const T t039 = S(2)*t028 + t019*t037 - t027;
-    const T t040 = cos_psi*t038 - sin_psi*t039;
-    const T t041 = sin_psi*t003 + t007;
-    const T t042 = t001 - cos_psi*t006;
-    const T t043 = cos_psi*t041 - sin_psi*t042;
-    const T t044 = t004*t015;
-    const T t045 = t026 + t044;
-    const T t046 = t008*t015;
-    const T t047 = t046 - t016;
-    const T t048 = cos_psi*t045 + sin_psi*t047;
-    const T t049 = S(1)/t034;
-    const T t050 = t013*t049;
-    const T t051 = cos_psi*t008 - sin_psi*t004;
-    const T t052 = (t013*t026 + t029)*cos_psi + t015*t032 - (t013*t016 + t022)*sin_psi;
-    const T t053 = t033 - ((S(2)*t026 + t044)*cos_psi + (t046 - S(2)*t016)*sin_psi)*t015;
-    const T t054 = (cos_psi*p.cy + p.cx*sin_psi)*sin_theta;
-    const T t055 = p.M*p.g;
-    const T t056 = (S(2)*cos_theta*t013 - p_phi)*t014*t031 - t009*t013*t013;
-    const T t057 = (p.cy*sin_psi - cos_psi*p.cx)*cos_theta*t055;
-    const T t058 = ((S(1) + cos_theta*cos_theta*t011)*t031 - t013*t048)*t049;
-    const T t059 = cos_psi*t022;
-    const T t060 = sin_psi*t029;
-    const T t061 = t004*t021 + t008*t019 - t059 - t060;
-    const T t062 = t054*t055 - (t021*t038 - t019*t039)*t049;
-    const T t063 = ((t059 + t060)*t015 - t019*t047 - t021*t045)*t049;
+    const T t000 = p.c006*sin_psi;
+    const T t001 = t000 - cos_psi*p.c009;
+    const T t002 = cos_psi*p.c006;
+    const T t003 = p.c007*sin_psi + t002;
+    const T t004 = cos_psi*t001 + sin_psi*t003;
+    const T t005 = S(1)/(sin_theta*sin_theta);
+    const T t006 = cos_theta*p_psi - p_phi;
+    const T t007 = cos_theta*t005*t006 + p_psi;
+    const T t008 = S(1)/sin_theta;
+    const T t009 = cos_theta*t008;
+    const T t010 = p.c005*p_psi;
+    const T t011 = t006*t008;
+    const T t012 = cos_psi*t011 + p_theta*sin_psi;
+    const T t013 = p.c006*t012;
+    const T t014 = cos_psi*p_theta - sin_psi*t011;
+    const T t015 = p.c007*t014 + t010 - t013;
+    const T t016 = sin_psi*t015;
+    const T t017 = p.c008*p_psi;
+    const T t018 = p.c006*t014;
+    const T t019 = t017 - p.c009*t012 - t018;
+    const T t020 = cos_psi*t019;
+    const T t021 = t016 - t020;
+    const T t022 = t004*t007 - t009*t021;
+    const T t023 = p.c004*t008;
+    const T t024 = t022*t023;
+    const T t025 = p.c012*t014 + t010 - S(2)*t013;
+    const T t026 = S(2)*t018 + p.c012*t012 - t017;
+    const T t027 = cos_psi*t025 - sin_psi*t026;
+    const T t028 = p.c009*sin_psi + t002;
+    const T t029 = t000 - cos_psi*p.c007;
+    const T t030 = cos_psi*t028 - sin_psi*t029;
+    const T t031 = t001*t009;
+    const T t032 = p.c008 + t031;
+    const T t033 = t003*t009;
+    const T t034 = t033 - p.c005;
+    const T t035 = cos_psi*t032 + sin_psi*t034;
+    const T t036 = p.c004*t007;
+    const T t037 = cos_psi*t003 - sin_psi*t001;
+    const T t038 = (p.c008*t007 + t019)*cos_psi + t009*t022 - (p.c005*t007 + t015)*sin_psi;
+    const T t039 = p.c000 - ((S(2)*p.c008 + t031)*cos_psi + (t033 - S(2)*p.c005)*sin_psi)*t009;
+    const T t040 = (cos_psi*p.cy + p.cx*sin_psi)*sin_theta;
+    const T t041 = (S(2)*cos_theta*t007 - p_phi)*t008*t021 - t004*t007*t007;
+    const T t042 = (p.cy*sin_psi - cos_psi*p.cx)*cos_theta*p.c010;
+    const T t043 = ((S(1) + cos_theta*cos_theta*t005)*t021 - t007*t035)*p.c004;
+    const T t044 = cos_psi*t015;
+    const T t045 = sin_psi*t019;
+    const T t046 = t001*t014 + t003*t012 - t044 - t045;
+    const T t047 = p.c010*t040 - (t014*t025 - t012*t026)*p.c004;
+    const T t048 = ((t044 + t045)*t009 - t012*t034 - t014*t032)*p.c004;
     J[0] = T(S(0));
-    J[1] = -t036;
-    J[2] = -t035*t040;
-    J[3] = -t009/(t010*t034);
-    J[4] = -t035*t043;
-    J[5] = t035*t048;
+    J[1] = -t024;
+    J[2] = -t023*t027;
+    J[3] = -p.c004*t004*t005;
+    J[4] = -t023*t030;
+    J[5] = t023*t035;
     J[6] = T(S(0));
-    J[7] = -t050*t051;
-    J[8] = (cos_psi*t039 + sin_psi*t038)*t049;
-    J[9] = -t035*t051;
-    J[10] = (cos_psi*t042 + sin_psi*t041)*t049;
-    J[11] = (cos_psi*t047 - sin_psi*t045)*t049;
+    J[7] = -t036*t037;
+    J[8] = (cos_psi*t026 + sin_psi*t025)*p.c004;
+    J[9] = -t023*t037;
+    J[10] = (cos_psi*t029 + sin_psi*t028)*p.c004;
+    J[11] = (cos_psi*t034 - sin_psi*t032)*p.c004;
     J[12] = T(S(0));
-    J[13] = t049*t052;
-    J[14] = (t015*t040 + t016*t019 - t021*t026)*t049;
-    J[15] = (cos_psi*t026 + t009*t015 - sin_psi*t016)*t035;
-    J[16] = (t015*t043 - cos_psi*t016 - sin_psi*t026)*t049;
-    J[17] = t049*t053;
+    J[13] = p.c004*t038;
+    J[14] = (p.c005*t012 + t009*t027 - p.c008*t014)*p.c004;
+    J[15] = (cos_psi*p.c008 + t004*t009 - p.c005*sin_psi)*t023;
+    J[16] = (t009*t030 - cos_psi*p.c005 - p.c008*sin_psi)*p.c004;
+    J[17] = p.c004*t039;
     J[18] = T(S(0));
     J[19] = T(S(0));
     J[20] = T(S(0));
@@ -265,17 +292,24 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     J[22] = T(S(0));
     J[23] = T(S(0));
     J[24] = T(S(0));
-    J[25] = (cos_theta*p.cz + t054)*t055 - t049*t056;
-    J[26] = t040*t050 + t057;
-    J[27] = t036;
-    J[28] = t043*t050;
-    J[29] = t058;
+    J[25] = (cos_theta*p.cz + t040)*p.c010 - p.c004*t041;
+    J[26] = t027*t036 + t042;
+    J[27] = t024;
+    J[28] = t030*t036;
+    J[29] = t043;
     J[30] = T(S(0));
-    J[31] = t057 - t050*t061;
-    J[32] = t062;
-    J[33] = -t035*t061;
-    J[34] = (t019*t042 + t030 - t021*t041 - t023)*t049;
-    J[35] = -t063;
+    J[31] = t042 - t036*t046;
+    J[32] = t047;
+    J[33] = -t023*t046;
+    J[34] = (t012*t029 + t020 - t014*t028 - t016)*p.c004;
+    J[35] = -t048;
+}
+
+// jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void jacobian(T t, const T* y, T* J, const params<T>& p) {
+    jacobian(t, y, J, prepare(p));
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -283,10 +317,10 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, p_phi_dot, p_theta_dot, p_psi_dot
 //   J     output, dim 6 x 6 (row-major)
-//   p     parameters
-// Operations (+ - * / and calls): 8111 before lowering, 256 after (91 +-, 156 *, 5 /, 4 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 8111 before lowering, 224 after (79 +-, 139 *, 2 /, 4 calls).
 template <class T>
-void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -300,98 +334,83 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    const T t000 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
-    const T t001 = p_psi*t000;
-    const T t002 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
-    const T t003 = S(1)/sin_theta;
-    const T t004 = cos_theta*p_psi - p_phi;
-    const T t005 = t003*t004;
-    const T t006 = cos_psi*t005 + p_theta*sin_psi;
-    const T t007 = t002*t006;
-    const T t008 = p.Iyz*p.Iyz;
-    const T t009 = p.Iyy*p.Izz - t008;
-    const T t010 = cos_psi*p_theta - sin_psi*t005;
-    const T t011 = t001 + t009*t010 - t007;
-    const T t012 = sin_psi*t011;
-    const T t013 = p.Ixx*p.Iyz;
-    const T t014 = p.Ixy*p.Ixz;
-    const T t015 = t013 - t014;
-    const T t016 = p_psi*t015;
-    const T t017 = t002*t010;
-    const T t018 = p.Ixz*p.Ixz;
-    const T t019 = t018 - p.Ixx*p.Izz;
-    const T t020 = t016 - t006*t019 - t017;
-    const T t021 = cos_psi*t020;
-    const T t022 = t012 - t021;
-    const T t023 = p.Ixy*p.Ixy - p.Ixx*p.Iyy;
-    const T t024 = (t013 - S(2)*t014)*p.Iyz + p.Iyy*t018 + p.Izz*t023;
-    const T t025 = S(1)/(sin_theta*t024);
-    const T t026 = S(1)/t024;
-    const T t027 = cos_psi*t011;
-    const T t028 = sin_psi*t020;
-    const T t029 = t027 + t028;
-    const T t030 = cos_theta*t003;
-    const T t031 = t022*t030;
-    const T t032 = p.M*p.g;
-    const T t033 = cos_psi*p.cy + p.cx*sin_psi;
-    const T t034 = sin_theta*sin_theta;
-    const T t035 = S(1)/t034;
-    const T t036 = cos_theta*t004*t035 + p_psi;
-    const T t037 = t026*t036;
-    const T t038 = t022*t037 - (cos_theta*t033 - p.cz*sin_theta)*t032;
-    const T t039 = (p.cy*sin_psi - cos_psi*p.cx)*t032;
-    const T t040 = sin_psi*t002;
-    const T t041 = t040 - cos_psi*t019;
-    const T t042 = cos_psi*t002;
-    const T t043 = sin_psi*t009 + t042;
-    const T t044 = cos_psi*t041 + sin_psi*t043;
-    const T t045 = t036*t044 - t031;
-    const T t046 = t025*t045;
-    const T t047 = (p.Iyy - p.Ixx)*p.Izz + t018 - t008;
-    const T t048 = t001 + t010*t047 - S(2)*t007;
-    const T t049 = S(2)*t017 + t006*t047 - t016;
-    const T t050 = cos_psi*t048 - sin_psi*t049;
-    const T t051 = sin_psi*t019 + t042;
-    const T t052 = t040 - cos_psi*t009;
-    const T t053 = cos_psi*t051 - sin_psi*t052;
-    const T t054 = t030*t041;
-    const T t055 = t015 + t054;
-    const T t056 = t030*t043;
-    const T t057 = t056 - t000;
-    const T t058 = cos_psi*t055 + sin_psi*t057;
-    const T t059 = cos_psi*t043 - sin_psi*t041;
-    const T t060 = (t015*t036 + t020)*cos_psi + t030*t045 - (t000*t036 + t011)*sin_psi;
-    const T t061 = t023 - ((S(2)*t015 + t054)*cos_psi + (t056 - S(2)*t000)*sin_psi)*t030;
-    const T t062 = sin_theta*t033;
-    const T t063 = (S(2)*cos_theta*t036 - p_phi)*t003*t022 - t036*t036*t044;
-    const T t064 = cos_theta*t039;
-    const T t065 = ((S(1) + cos_theta*cos_theta*t035)*t022 - t036*t058)*t026;
-    const T t066 = t006*t043 + t010*t041 - t027 - t028;
-    const T t067 = t032*t062 - (t010*t048 - t006*t049)*t026;
-    dydt[0] = -t022*t025;
-    dydt[1] = -t026*t029;
-    dydt[2] = (p_psi*t023 + t031 - t000*t010 - t006*t015)*t026;
+    const T t000 = p.c005*p_psi;
+    const T t001 = S(1)/sin_theta;
+    const T t002 = cos_theta*p_psi - p_phi;
+    const T t003 = t001*t002;
+    const T t004 = cos_psi*t003 + p_theta*sin_psi;
+    const T t005 = p.c006*t004;
+    const T t006 = cos_psi*p_theta - sin_psi*t003;
+    const T t007 = p.c007*t006 + t000 - t005;
+    const T t008 = sin_psi*t007;
+    const T t009 = p.c008*p_psi;
+    const T t010 = p.c006*t006;
+    const T t011 = t009 - p.c009*t004 - t010;
+    const T t012 = cos_psi*t011;
+    const T t013 = t008 - t012;
+    const T t014 = p.c004*t001;
+    const T t015 = cos_psi*t007;
+    const T t016 = sin_psi*t011;
+    const T t017 = t015 + t016;
+    const T t018 = cos_theta*t001;
+    const T t019 = t013*t018;
+    const T t020 = cos_psi*p.cy + p.cx*sin_psi;
+    const T t021 = S(1)/(sin_theta*sin_theta);
+    const T t022 = cos_theta*t002*t021 + p_psi;
+    const T t023 = p.c004*t022;
+    const T t024 = t013*t023 - (cos_theta*t020 - p.cz*sin_theta)*p.c010;
+    const T t025 = (p.cy*sin_psi - cos_psi*p.cx)*p.c010;
+    const T t026 = p.c006*sin_psi;
+    const T t027 = t026 - cos_psi*p.c009;
+    const T t028 = cos_psi*p.c006;
+    const T t029 = p.c007*sin_psi + t028;
+    const T t030 = cos_psi*t027 + sin_psi*t029;
+    const T t031 = t022*t030 - t019;
+    const T t032 = t014*t031;
+    const T t033 = p.c012*t006 + t000 - S(2)*t005;
+    const T t034 = S(2)*t010 + p.c012*t004 - t009;
+    const T t035 = cos_psi*t033 - sin_psi*t034;
+    const T t036 = p.c009*sin_psi + t028;
+    const T t037 = t026 - cos_psi*p.c007;
+    const T t038 = cos_psi*t036 - sin_psi*t037;
+    const T t039 = t018*t027;
+    const T t040 = p.c008 + t039;
+    const T t041 = t018*t029;
+    const T t042 = t041 - p.c005;
+    const T t043 = cos_psi*t040 + sin_psi*t042;
+    const T t044 = cos_psi*t029 - sin_psi*t027;
+    const T t045 = (p.c008*t022 + t011)*cos_psi + t018*t031 - (p.c005*t022 + t007)*sin_psi;
+    const T t046 = p.c000 - ((S(2)*p.c008 + t039)*cos_psi + (t041 - S(2)*p.c005)*sin_psi)*t018;
+    const T t047 = sin_theta*t020;
+    const T t048 = (S(2)*cos_theta*t022 - p_phi)*t001*t013 - t022*t022*t030;
+    const T t049 = cos_theta*t025;
+    const T t050 = ((S(1) + cos_theta*cos_theta*t021)*t013 - t022*t043)*p.c004;
+    const T t051 = t004*t029 + t006*t027 - t015 - t016;
+    const T t052 = p.c010*t047 - (t006*t033 - t004*t034)*p.c004;
+    dydt[0] = -t013*t014;
+    dydt[1] = -p.c004*t017;
+    dydt[2] = (p.c000*p_psi + t019 - p.c005*t006 - p.c008*t004)*p.c004;
     dydt[3] = T(S(0));
-    dydt[4] = t038;
-    dydt[5] = (t010*t020 - t006*t011)*t026 + sin_theta*t039;
+    dydt[4] = t024;
+    dydt[5] = (t006*t011 - t004*t007)*p.c004 + sin_theta*t025;
     J[0] = T(S(0));
-    J[1] = -t046;
-    J[2] = -t025*t050;
-    J[3] = -t044/(t024*t034);
-    J[4] = -t025*t053;
-    J[5] = t025*t058;
+    J[1] = -t032;
+    J[2] = -t014*t035;
+    J[3] = -p.c004*t021*t030;
+    J[4] = -t014*t038;
+    J[5] = t014*t043;
     J[6] = T(S(0));
-    J[7] = -t037*t059;
-    J[8] = (cos_psi*t049 + sin_psi*t048)*t026;
-    J[9] = -t025*t059;
-    J[10] = (cos_psi*t052 + sin_psi*t051)*t026;
-    J[11] = (cos_psi*t057 - sin_psi*t055)*t026;
+    J[7] = -t023*t044;
+    J[8] = (cos_psi*t034 + sin_psi*t033)*p.c004;
+    J[9] = -t014*t044;
+    J[10] = (cos_psi*t037 + sin_psi*t036)*p.c004;
+    J[11] = (cos_psi*t042 - sin_psi*t040)*p.c004;
     J[12] = T(S(0));
-    J[13] = t026*t060;
-    J[14] = (t000*t006 + t030*t050 - t010*t015)*t026;
-    J[15] = (cos_psi*t015 + t030*t044 - sin_psi*t000)*t025;
-    J[16] = (t030*t053 - cos_psi*t000 - sin_psi*t015)*t026;
-    J[17] = t026*t061;
+    J[13] = p.c004*t045;
+    J[14] = (p.c005*t004 + t018*t035 - p.c008*t006)*p.c004;
+    J[15] = (cos_psi*p.c008 + t018*t030 - p.c005*sin_psi)*t014;
+    J[16] = (t018*t038 - cos_psi*p.c005 - p.c008*sin_psi)*p.c004;
+    J[17] = p.c004*t046;
     J[18] = T(S(0));
     J[19] = T(S(0));
     J[20] = T(S(0));
@@ -399,17 +418,24 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     J[22] = T(S(0));
     J[23] = T(S(0));
     J[24] = T(S(0));
-    J[25] = (cos_theta*p.cz + t062)*t032 - t026*t063;
-    J[26] = t037*t050 + t064;
-    J[27] = t046;
-    J[28] = t037*t053;
-    J[29] = t065;
+    J[25] = (cos_theta*p.cz + t047)*p.c010 - p.c004*t048;
+    J[26] = t023*t035 + t049;
+    J[27] = t032;
+    J[28] = t023*t038;
+    J[29] = t050;
     J[30] = T(S(0));
-    J[31] = t064 - t037*t066;
-    J[32] = t067;
-    J[33] = -t025*t066;
-    J[34] = (t006*t052 + t021 - t010*t051 - t012)*t026;
-    J[35] = (t006*t057 + t010*t055 - t029*t030)*t026;
+    J[31] = t049 - t023*t051;
+    J[32] = t052;
+    J[33] = -t014*t051;
+    J[34] = (t004*t037 + t012 - t006*t036 - t008)*p.c004;
+    J[35] = (t004*t042 + t006*t040 - t017*t018)*p.c004;
+}
+
+// rhs_and_jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+    rhs_and_jacobian(t, y, dydt, J, prepare(p));
 }
 
 // The energy, the Hamiltonian H = T + V (conserved without damping and driving torques).

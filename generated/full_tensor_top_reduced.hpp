@@ -21,9 +21,9 @@
 // -0.3, Ixz = 0.2, Iyz = -0.1, M = 1.2, g = 9.81, cx = 0.05, cy = -0.02, cz = 0.15, p_phi = 0.0.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 934 -> 93 (25 temporaries)
-//   jacobian: 5039 -> 211 (60 temporaries)
-//   rhs_and_jacobian: 5973 -> 232 (64 temporaries)
+//   rhs: 934 -> 66 (16 temporaries), and 27 once in prepare()
+//   jacobian: 5039 -> 180 (48 temporaries), and 31 once in prepare()
+//   rhs_and_jacobian: 5973 -> 201 (52 temporaries), and 31 once in prepare()
 //   energy: 325 -> 69 (19 temporaries)
 //   momenta: 0 -> 0 (0 temporaries)
 //   mass_matrix: 160 -> 40 (13 temporaries)
@@ -82,6 +82,50 @@ struct params {
     T p_phi = T(rg_scalar(0)); // conserved momentum of the ignored coordinate phi
 };
 
+// The parameters and, computed from them once, the 13 subexpressions of parameters alone that
+// rhs, jacobian and rhs_and_jacobian use (32 operations: products and quotients of
+// parameters, reciprocals; a division by a parameter becomes a multiplication). Make one per
+// parameter set with prepare(p) and pass it where params<T> goes: those functions then skip that
+// work at every call. Given params<T>, they prepare it themselves. Changed a parameter: prepare
+// again.
+template <class T>
+struct prepared : params<T> {
+    T c000{};
+    T c001{};
+    T c002{};
+    T c003{};
+    T c004{};
+    T c005{};
+    T c006{};
+    T c007{};
+    T c008{};
+    T c009{};
+    T c010{};
+    T c011{};
+    T c012{};
+};
+
+template <class T>
+prepared<T> prepare(const params<T>& parameters) {
+    using S = typename detail::scalar_of<T>::type;
+    prepared<T> p;
+    static_cast<params<T>&>(p) = parameters;
+    p.c000 = p.Ixy*p.Ixy - p.Ixx*p.Iyy;
+    p.c001 = p.Ixx*p.Iyz;
+    p.c002 = p.Ixy*p.Ixz;
+    p.c003 = p.Ixz*p.Ixz;
+    p.c004 = S(1)/((p.c001 - S(2)*p.c002)*p.Iyz + p.Iyy*p.c003 + p.Izz*p.c000);
+    p.c005 = p.c001 - p.c002;
+    p.c006 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
+    p.c007 = p.c003 - p.Ixx*p.Izz;
+    p.c008 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
+    p.c009 = p.Iyy*p.Izz - p.Iyz*p.Iyz;
+    p.c010 = p.M*p.g;
+    p.c011 = p.Iyz*p.Iyz;
+    p.c012 = (p.Iyy - p.Ixx)*p.Izz + p.c003 - p.c011;
+    return p;
+}
+
 // The model and the form this header implements.
 constexpr const char* model_name = "full_tensor_top";
 constexpr const char* form_name = "reduced";
@@ -108,10 +152,10 @@ constexpr std::array<unsigned char, 16> jacobian_pattern{{
 //   t     time
 //   y     state, dim 4: (theta, psi, p_theta, p_psi)
 //   dydt  output, dim 4: theta_dot, psi_dot, p_theta_dot, p_psi_dot
-//   p     parameters
-// Operations (+ - * / and calls): 934 before lowering, 93 after (30 +-, 56 *, 3 /, 4 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 934 before lowering, 66 after (21 +-, 39 *, 2 /, 4 calls).
 template <class T>
-void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+void rhs(T t, const T* y, T* dydt, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -124,41 +168,39 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    const T t000 = p.Ixy*p.Ixy - p.Ixx*p.Iyy;
-    const T t001 = p.Ixx*p.Iyz;
-    const T t002 = p.Ixy*p.Ixz;
-    const T t003 = p.Ixz*p.Ixz;
-    const T t004 = S(1)/((t001 - S(2)*t002)*p.Iyz + p.Iyy*t003 + p.Izz*t000);
-    const T t005 = t001 - t002;
-    const T t006 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
-    const T t007 = cos_theta*p_psi - p.p_phi;
-    const T t008 = S(1)/sin_theta;
-    const T t009 = t007*t008;
-    const T t010 = cos_psi*p_theta - sin_psi*t009;
-    const T t011 = cos_psi*t009 + p_theta*sin_psi;
-    const T t012 = p_psi*t005 - (t003 - p.Ixx*p.Izz)*t011 - t006*t010;
-    const T t013 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
-    const T t014 = (p.Iyy*p.Izz - p.Iyz*p.Iyz)*t010 + p_psi*t013 - t006*t011;
-    const T t015 = sin_psi*t014 - cos_psi*t012;
-    const T t016 = cos_theta*t008*t015 + p_psi*t000 - t005*t011 - t010*t013;
-    const T t017 = p.M*p.g;
-    const T t018 = ((cos_psi*p.cy + p.cx*sin_psi)*cos_theta - p.cz*sin_theta)*t017;
-    const T t019 = t018 - (cos_theta*t007/(sin_theta*sin_theta) + p_psi)*t004*t015;
-    const T t020 = (p.cy*sin_psi - cos_psi*p.cx)*sin_theta*t017 + (t010*t012 - t011*t014)*t004;
-    dydt[0] = (-cos_psi*t014 - sin_psi*t012)*t004;
-    dydt[1] = t004*t016;
-    dydt[2] = -t019;
-    dydt[3] = t020;
+    const T t000 = cos_theta*p_psi - p.p_phi;
+    const T t001 = S(1)/sin_theta;
+    const T t002 = t000*t001;
+    const T t003 = cos_psi*p_theta - sin_psi*t002;
+    const T t004 = cos_psi*t002 + p_theta*sin_psi;
+    const T t005 = p.c005*p_psi - p.c006*t003 - p.c007*t004;
+    const T t006 = p.c008*p_psi + p.c009*t003 - p.c006*t004;
+    const T t007 = sin_psi*t006 - cos_psi*t005;
+    const T t008 = cos_theta*t001*t007 + p.c000*p_psi - p.c005*t004 - p.c008*t003;
+    const T t009 = ((cos_psi*p.cy + p.cx*sin_psi)*cos_theta - p.cz*sin_theta)*p.c010;
+    const T t010 = t009 - (cos_theta*t000/(sin_theta*sin_theta) + p_psi)*p.c004*t007;
+    const T t011 = (p.cy*sin_psi - cos_psi*p.cx)*p.c010*sin_theta + (t003*t005 - t004*t006)*p.c004;
+    dydt[0] = (-cos_psi*t006 - sin_psi*t005)*p.c004;
+    dydt[1] = p.c004*t008;
+    dydt[2] = -t010;
+    dydt[3] = t011;
+}
+
+// rhs with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+    rhs(t, y, dydt, prepare(p));
 }
 
 // The analytic Jacobian J = d(dy/dt)/dy, dense, row-major: J[i * state_size + k] = d dydt[i] / d y[k].
 //   t     time
 //   y     state, dim 4: (theta, psi, p_theta, p_psi)
 //   J     output, dim 4 x 4 (row-major); structural zeros in jacobian_pattern
-//   p     parameters
-// Operations (+ - * / and calls): 5039 before lowering, 211 after (74 +-, 130 *, 3 /, 4 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 5039 before lowering, 180 after (62 +-, 112 *, 2 /, 4 calls).
 template <class T>
-void jacobian(T t, const T* y, T* J, const params<T>& p) {
+void jacobian(T t, const T* y, T* J, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -171,78 +213,73 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    const T t000 = p.Ixy*p.Ixy - p.Ixx*p.Iyy;
-    const T t001 = p.Ixx*p.Iyz;
-    const T t002 = p.Ixy*p.Ixz;
-    const T t003 = p.Ixz*p.Ixz;
-    const T t004 = S(1)/((t001 - S(2)*t002)*p.Iyz + p.Iyy*t003 + p.Izz*t000);
-    const T t005 = S(1)/(sin_theta*sin_theta);
-    const T t006 = cos_theta*p_psi - p.p_phi;
-    const T t007 = cos_theta*t005*t006 + p_psi;
-    const T t008 = t004*t007;
-    const T t009 = p.Iyz*p.Iyz;
-    const T t010 = p.Iyy*p.Izz - t009;
-    const T t011 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
-    const T t012 = cos_psi*t011;
-    const T t013 = sin_psi*t010 + t012;
-    const T t014 = sin_psi*t011;
-    const T t015 = t003 - p.Ixx*p.Izz;
-    const T t016 = t014 - cos_psi*t015;
-    const T t017 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
-    const T t018 = p_psi*t017;
-    const T t019 = S(1)/sin_theta;
-    const T t020 = t006*t019;
-    const T t021 = cos_psi*t020 + p_theta*sin_psi;
-    const T t022 = t011*t021;
-    const T t023 = cos_psi*p_theta - sin_psi*t020;
-    const T t024 = (p.Iyy - p.Ixx)*p.Izz + t003 - t009;
-    const T t025 = t018 + t023*t024 - S(2)*t022;
-    const T t026 = t001 - t002;
-    const T t027 = p_psi*t026;
-    const T t028 = t011*t023;
-    const T t029 = t027 - S(2)*t028 - t021*t024;
-    const T t030 = sin_psi*t015 + t012;
-    const T t031 = t014 - cos_psi*t010;
-    const T t032 = cos_theta*t019;
-    const T t033 = t016*t032;
-    const T t034 = t026 + t033;
-    const T t035 = t013*t032;
-    const T t036 = t035 - t017;
-    const T t037 = t010*t023 + t018 - t022;
-    const T t038 = sin_psi*t037;
-    const T t039 = t027 - t015*t021 - t028;
-    const T t040 = cos_psi*t039;
-    const T t041 = t038 - t040;
-    const T t042 = cos_psi*t016 + sin_psi*t013;
-    const T t043 = (t007*t017 + t037)*sin_psi + (t032*t041 - t007*t042)*t032 - (t007*t026 + t039)*cos_psi;
-    const T t044 = cos_psi*t025 + sin_psi*t029;
-    const T t045 = cos_psi*t030 - sin_psi*t031;
-    const T t046 = t000 - ((S(2)*t026 + t033)*cos_psi + (t035 - S(2)*t017)*sin_psi)*t032;
-    const T t047 = (cos_psi*p.cy + p.cx*sin_psi)*sin_theta;
-    const T t048 = p.M*p.g;
-    const T t049 = (p.p_phi - S(2)*cos_theta*t007)*t019*t041 + t007*t007*t042;
-    const T t050 = (p.cy*sin_psi - cos_psi*p.cx)*cos_theta*t048;
-    const T t051 = (S(1) + cos_theta*cos_theta*t005)*t041 - (cos_psi*t034 + sin_psi*t036)*t007;
-    const T t052 = sin_psi*t039;
-    const T t053 = cos_psi*t037;
-    const T t054 = t047*t048 - (t021*t029 + t023*t025)*t004;
-    const T t055 = (t021*t036 + t023*t034 - (t052 + t053)*t032)*t004;
-    J[0] = (sin_psi*t016 - cos_psi*t013)*t008;
-    J[1] = (sin_psi*t025 - cos_psi*t029)*t004;
-    J[2] = (cos_psi*t031 + sin_psi*t030)*t004;
-    J[3] = (cos_psi*t036 - sin_psi*t034)*t004;
-    J[4] = -t004*t043;
-    J[5] = (t017*t021 + t032*t044 - t023*t026)*t004;
-    J[6] = (t032*t045 - cos_psi*t017 - sin_psi*t026)*t004;
-    J[7] = t004*t046;
-    J[8] = (cos_theta*p.cz + t047)*t048 + t004*t049;
-    J[9] = t008*t044 + t050;
-    J[10] = t008*t045;
-    J[11] = t004*t051;
-    J[12] = t050 - (t013*t021 + t016*t023 - t052 - t053)*t008;
-    J[13] = t054;
-    J[14] = (t021*t031 + t040 - t023*t030 - t038)*t004;
-    J[15] = t055;
+    const T t000 = S(1)/(sin_theta*sin_theta);
+    const T t001 = cos_theta*p_psi - p.p_phi;
+    const T t002 = cos_theta*t000*t001 + p_psi;
+    const T t003 = p.c004*t002;
+    const T t004 = cos_psi*p.c006;
+    const T t005 = p.c009*sin_psi + t004;
+    const T t006 = p.c006*sin_psi;
+    const T t007 = t006 - cos_psi*p.c007;
+    const T t008 = p.c008*p_psi;
+    const T t009 = S(1)/sin_theta;
+    const T t010 = t001*t009;
+    const T t011 = cos_psi*t010 + p_theta*sin_psi;
+    const T t012 = p.c006*t011;
+    const T t013 = cos_psi*p_theta - sin_psi*t010;
+    const T t014 = p.c012*t013 + t008 - S(2)*t012;
+    const T t015 = p.c005*p_psi;
+    const T t016 = p.c006*t013;
+    const T t017 = t015 - S(2)*t016 - p.c012*t011;
+    const T t018 = p.c007*sin_psi + t004;
+    const T t019 = t006 - cos_psi*p.c009;
+    const T t020 = cos_theta*t009;
+    const T t021 = t007*t020;
+    const T t022 = p.c005 + t021;
+    const T t023 = t005*t020;
+    const T t024 = t023 - p.c008;
+    const T t025 = p.c009*t013 + t008 - t012;
+    const T t026 = sin_psi*t025;
+    const T t027 = t015 - p.c007*t011 - t016;
+    const T t028 = cos_psi*t027;
+    const T t029 = t026 - t028;
+    const T t030 = cos_psi*t007 + sin_psi*t005;
+    const T t031 = (p.c008*t002 + t025)*sin_psi + (t020*t029 - t002*t030)*t020 - (p.c005*t002 + t027)*cos_psi;
+    const T t032 = cos_psi*t014 + sin_psi*t017;
+    const T t033 = cos_psi*t018 - sin_psi*t019;
+    const T t034 = p.c000 - ((S(2)*p.c005 + t021)*cos_psi + (t023 - S(2)*p.c008)*sin_psi)*t020;
+    const T t035 = (cos_psi*p.cy + p.cx*sin_psi)*sin_theta;
+    const T t036 = (p.p_phi - S(2)*cos_theta*t002)*t009*t029 + t002*t002*t030;
+    const T t037 = (p.cy*sin_psi - cos_psi*p.cx)*cos_theta*p.c010;
+    const T t038 = (S(1) + cos_theta*cos_theta*t000)*t029 - (cos_psi*t022 + sin_psi*t024)*t002;
+    const T t039 = sin_psi*t027;
+    const T t040 = cos_psi*t025;
+    const T t041 = t037 - (t005*t011 + t007*t013 - t039 - t040)*t003;
+    const T t042 = p.c010*t035 - (t011*t017 + t013*t014)*p.c004;
+    const T t043 = (t011*t024 + t013*t022 - (t039 + t040)*t020)*p.c004;
+    J[0] = (sin_psi*t007 - cos_psi*t005)*t003;
+    J[1] = (sin_psi*t014 - cos_psi*t017)*p.c004;
+    J[2] = (cos_psi*t019 + sin_psi*t018)*p.c004;
+    J[3] = (cos_psi*t024 - sin_psi*t022)*p.c004;
+    J[4] = -p.c004*t031;
+    J[5] = (p.c008*t011 + t020*t032 - p.c005*t013)*p.c004;
+    J[6] = (t020*t033 - cos_psi*p.c008 - p.c005*sin_psi)*p.c004;
+    J[7] = p.c004*t034;
+    J[8] = (cos_theta*p.cz + t035)*p.c010 + p.c004*t036;
+    J[9] = t003*t032 + t037;
+    J[10] = t003*t033;
+    J[11] = p.c004*t038;
+    J[12] = t041;
+    J[13] = t042;
+    J[14] = (t011*t019 + t028 - t013*t018 - t026)*p.c004;
+    J[15] = t043;
+}
+
+// jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void jacobian(T t, const T* y, T* J, const params<T>& p) {
+    jacobian(t, y, J, prepare(p));
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -250,10 +287,10 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   y     state, dim 4: (theta, psi, p_theta, p_psi)
 //   dydt  output, dim 4: theta_dot, psi_dot, p_theta_dot, p_psi_dot
 //   J     output, dim 4 x 4 (row-major)
-//   p     parameters
-// Operations (+ - * / and calls): 5973 before lowering, 232 after (82 +-, 143 *, 3 /, 4 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 5973 before lowering, 201 after (70 +-, 125 *, 2 /, 4 calls).
 template <class T>
-void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -266,86 +303,81 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T sin_psi = sin(psi);
     const T cos_psi = cos(psi);
-    const T t000 = p.Ixy*p.Ixy - p.Ixx*p.Iyy;
-    const T t001 = p.Ixx*p.Iyz;
-    const T t002 = p.Ixy*p.Ixz;
-    const T t003 = p.Ixz*p.Ixz;
-    const T t004 = S(1)/((t001 - S(2)*t002)*p.Iyz + p.Iyy*t003 + p.Izz*t000);
-    const T t005 = t001 - t002;
-    const T t006 = p_psi*t005;
-    const T t007 = p.Ixz*p.Iyz - p.Ixy*p.Izz;
-    const T t008 = cos_theta*p_psi - p.p_phi;
-    const T t009 = S(1)/sin_theta;
-    const T t010 = t008*t009;
-    const T t011 = cos_psi*p_theta - sin_psi*t010;
-    const T t012 = t007*t011;
-    const T t013 = t003 - p.Ixx*p.Izz;
-    const T t014 = cos_psi*t010 + p_theta*sin_psi;
-    const T t015 = t006 - t012 - t013*t014;
-    const T t016 = sin_psi*t015;
-    const T t017 = p.Ixy*p.Iyz - p.Ixz*p.Iyy;
-    const T t018 = p_psi*t017;
-    const T t019 = t007*t014;
-    const T t020 = p.Iyz*p.Iyz;
-    const T t021 = p.Iyy*p.Izz - t020;
-    const T t022 = t011*t021 + t018 - t019;
-    const T t023 = cos_psi*t022;
-    const T t024 = t016 + t023;
-    const T t025 = sin_psi*t022;
-    const T t026 = cos_psi*t015;
-    const T t027 = t025 - t026;
-    const T t028 = cos_theta*t009;
-    const T t029 = t027*t028;
-    const T t030 = p.M*p.g;
-    const T t031 = cos_psi*p.cy + p.cx*sin_psi;
-    const T t032 = S(1)/(sin_theta*sin_theta);
-    const T t033 = cos_theta*t008*t032 + p_psi;
-    const T t034 = t004*t033;
-    const T t035 = t027*t034 - (cos_theta*t031 - p.cz*sin_theta)*t030;
-    const T t036 = (p.cy*sin_psi - cos_psi*p.cx)*t030;
-    const T t037 = cos_psi*t007;
-    const T t038 = sin_psi*t021 + t037;
-    const T t039 = sin_psi*t007;
-    const T t040 = t039 - cos_psi*t013;
-    const T t041 = (p.Iyy - p.Ixx)*p.Izz + t003 - t020;
-    const T t042 = t011*t041 + t018 - S(2)*t019;
-    const T t043 = t006 - S(2)*t012 - t014*t041;
-    const T t044 = sin_psi*t013 + t037;
-    const T t045 = t039 - cos_psi*t021;
-    const T t046 = t028*t040;
-    const T t047 = t005 + t046;
-    const T t048 = t028*t038;
-    const T t049 = t048 - t017;
-    const T t050 = cos_psi*t040 + sin_psi*t038;
-    const T t051 = (t017*t033 + t022)*sin_psi + (t029 - t033*t050)*t028 - (t005*t033 + t015)*cos_psi;
-    const T t052 = cos_psi*t042 + sin_psi*t043;
-    const T t053 = cos_psi*t044 - sin_psi*t045;
-    const T t054 = t000 - ((S(2)*t005 + t046)*cos_psi + (t048 - S(2)*t017)*sin_psi)*t028;
-    const T t055 = sin_theta*t031;
-    const T t056 = (p.p_phi - S(2)*cos_theta*t033)*t009*t027 + t033*t033*t050;
-    const T t057 = cos_theta*t036;
-    const T t058 = (S(1) + cos_theta*cos_theta*t032)*t027 - (cos_psi*t047 + sin_psi*t049)*t033;
-    const T t059 = t030*t055 - (t011*t042 + t014*t043)*t004;
-    dydt[0] = -t004*t024;
-    dydt[1] = (p_psi*t000 + t029 - t005*t014 - t011*t017)*t004;
-    dydt[2] = t035;
-    dydt[3] = (t011*t015 - t014*t022)*t004 + sin_theta*t036;
-    J[0] = (sin_psi*t040 - cos_psi*t038)*t034;
-    J[1] = (sin_psi*t042 - cos_psi*t043)*t004;
-    J[2] = (cos_psi*t045 + sin_psi*t044)*t004;
-    J[3] = (cos_psi*t049 - sin_psi*t047)*t004;
-    J[4] = -t004*t051;
-    J[5] = (t014*t017 + t028*t052 - t005*t011)*t004;
-    J[6] = (t028*t053 - cos_psi*t017 - sin_psi*t005)*t004;
-    J[7] = t004*t054;
-    J[8] = (cos_theta*p.cz + t055)*t030 + t004*t056;
-    J[9] = t034*t052 + t057;
-    J[10] = t034*t053;
-    J[11] = t004*t058;
-    J[12] = t057 - (t011*t040 + t014*t038 - t016 - t023)*t034;
-    J[13] = t059;
-    J[14] = (t014*t045 + t026 - t011*t044 - t025)*t004;
-    J[15] = (t011*t047 + t014*t049 - t024*t028)*t004;
+    const T t000 = p.c005*p_psi;
+    const T t001 = cos_theta*p_psi - p.p_phi;
+    const T t002 = S(1)/sin_theta;
+    const T t003 = t001*t002;
+    const T t004 = cos_psi*p_theta - sin_psi*t003;
+    const T t005 = p.c006*t004;
+    const T t006 = cos_psi*t003 + p_theta*sin_psi;
+    const T t007 = t000 - p.c007*t006 - t005;
+    const T t008 = sin_psi*t007;
+    const T t009 = p.c008*p_psi;
+    const T t010 = p.c006*t006;
+    const T t011 = p.c009*t004 + t009 - t010;
+    const T t012 = cos_psi*t011;
+    const T t013 = t008 + t012;
+    const T t014 = sin_psi*t011;
+    const T t015 = cos_psi*t007;
+    const T t016 = t014 - t015;
+    const T t017 = cos_theta*t002;
+    const T t018 = t016*t017;
+    const T t019 = cos_psi*p.cy + p.cx*sin_psi;
+    const T t020 = S(1)/(sin_theta*sin_theta);
+    const T t021 = cos_theta*t001*t020 + p_psi;
+    const T t022 = p.c004*t021;
+    const T t023 = t016*t022 - (cos_theta*t019 - p.cz*sin_theta)*p.c010;
+    const T t024 = (p.cy*sin_psi - cos_psi*p.cx)*p.c010;
+    const T t025 = cos_psi*p.c006;
+    const T t026 = p.c009*sin_psi + t025;
+    const T t027 = p.c006*sin_psi;
+    const T t028 = t027 - cos_psi*p.c007;
+    const T t029 = p.c012*t004 + t009 - S(2)*t010;
+    const T t030 = t000 - S(2)*t005 - p.c012*t006;
+    const T t031 = p.c007*sin_psi + t025;
+    const T t032 = t027 - cos_psi*p.c009;
+    const T t033 = t017*t028;
+    const T t034 = p.c005 + t033;
+    const T t035 = t017*t026;
+    const T t036 = t035 - p.c008;
+    const T t037 = cos_psi*t028 + sin_psi*t026;
+    const T t038 = (p.c008*t021 + t011)*sin_psi + (t018 - t021*t037)*t017 - (p.c005*t021 + t007)*cos_psi;
+    const T t039 = cos_psi*t029 + sin_psi*t030;
+    const T t040 = cos_psi*t031 - sin_psi*t032;
+    const T t041 = p.c000 - ((S(2)*p.c005 + t033)*cos_psi + (t035 - S(2)*p.c008)*sin_psi)*t017;
+    const T t042 = sin_theta*t019;
+    const T t043 = (p.p_phi - S(2)*cos_theta*t021)*t002*t016 + t021*t021*t037;
+    const T t044 = cos_theta*t024;
+    const T t045 = (S(1) + cos_theta*cos_theta*t020)*t016 - (cos_psi*t034 + sin_psi*t036)*t021;
+    const T t046 = t044 - (t004*t028 + t006*t026 - t008 - t012)*t022;
+    const T t047 = p.c010*t042 - (t004*t029 + t006*t030)*p.c004;
+    dydt[0] = -p.c004*t013;
+    dydt[1] = (p.c000*p_psi + t018 - p.c005*t006 - p.c008*t004)*p.c004;
+    dydt[2] = t023;
+    dydt[3] = (t004*t007 - t006*t011)*p.c004 + sin_theta*t024;
+    J[0] = (sin_psi*t028 - cos_psi*t026)*t022;
+    J[1] = (sin_psi*t029 - cos_psi*t030)*p.c004;
+    J[2] = (cos_psi*t032 + sin_psi*t031)*p.c004;
+    J[3] = (cos_psi*t036 - sin_psi*t034)*p.c004;
+    J[4] = -p.c004*t038;
+    J[5] = (p.c008*t006 + t017*t039 - p.c005*t004)*p.c004;
+    J[6] = (t017*t040 - cos_psi*p.c008 - p.c005*sin_psi)*p.c004;
+    J[7] = p.c004*t041;
+    J[8] = (cos_theta*p.cz + t042)*p.c010 + p.c004*t043;
+    J[9] = t022*t039 + t044;
+    J[10] = t022*t040;
+    J[11] = p.c004*t045;
+    J[12] = t046;
+    J[13] = t047;
+    J[14] = (t006*t032 + t015 - t004*t031 - t014)*p.c004;
+    J[15] = (t004*t034 + t006*t036 - t013*t017)*p.c004;
+}
+
+// rhs_and_jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+    rhs_and_jacobian(t, y, dydt, J, prepare(p));
 }
 
 // The energy, the Hamiltonian H = T + V (conserved without damping and driving torques).

@@ -20,9 +20,9 @@
 // 0.1.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 96 -> 33 (8 temporaries)
-//   jacobian: 389 -> 89 (25 temporaries)
-//   rhs_and_jacobian: 485 -> 92 (27 temporaries)
+//   rhs: 96 -> 28 (8 temporaries), and 7 once in prepare()
+//   jacobian: 389 -> 77 (22 temporaries), and 12 once in prepare()
+//   rhs_and_jacobian: 485 -> 83 (24 temporaries), and 12 once in prepare()
 //   energy: 31 -> 23 (4 temporaries)
 //   momenta: 19 -> 11 (3 temporaries)
 //   mass_matrix: 11 -> 8 (3 temporaries)
@@ -74,6 +74,40 @@ struct params {
     T h = T(rg_scalar(1)/rg_scalar(10)); // distance from the tip to the centre of mass
 };
 
+// The parameters and, computed from them once, the 8 subexpressions of parameters alone that
+// rhs, jacobian and rhs_and_jacobian use (12 operations: products and quotients of
+// parameters, reciprocals; a division by a parameter becomes a multiplication). Make one per
+// parameter set with prepare(p) and pass it where params<T> goes: those functions then skip that
+// work at every call. Given params<T>, they prepare it themselves. Changed a parameter: prepare
+// again.
+template <class T>
+struct prepared : params<T> {
+    T c000{};
+    T c001{};
+    T c002{};
+    T c003{};
+    T c004{};
+    T c005{};
+    T c006{};
+    T c007{};
+};
+
+template <class T>
+prepared<T> prepare(const params<T>& parameters) {
+    using S = typename detail::scalar_of<T>::type;
+    prepared<T> p;
+    static_cast<params<T>&>(p) = parameters;
+    p.c000 = p.I3 - S(2)*p.I1;
+    p.c001 = S(1)/p.I1;
+    p.c002 = p.I3 - p.I1;
+    p.c003 = p.M*p.g*p.h;
+    p.c004 = p.I3/p.I1;
+    p.c005 = S(3)*p.I3 - S(4)*p.I1;
+    p.c006 = p.c000/p.I1;
+    p.c007 = S(1)/p.I3;
+    return p;
+}
+
 // The model and the form this header implements.
 constexpr const char* model_name = "heavy_top";
 constexpr const char* form_name = "lagrangian";
@@ -102,10 +136,10 @@ constexpr std::array<unsigned char, 36> jacobian_pattern{{
 //   t     time
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, phi_ddot, theta_ddot, psi_ddot
-//   p     parameters
-// Operations (+ - * / and calls): 96 before lowering, 33 after (9 +-, 20 *, 2 /, 2 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 96 before lowering, 28 after (7 +-, 18 *, 1 /, 2 calls).
 template <class T>
-void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+void rhs(T t, const T* y, T* dydt, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -116,28 +150,35 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     const T psi_dot = y[5];
     const T sin_theta = sin(theta);
     const T cos_theta = cos(theta);
-    const T t000 = S(1)/(p.I1*sin_theta);
-    const T t001 = cos_theta*phi_dot;
-    const T t002 = p.I3*psi_dot;
-    const T t003 = (p.I3 - p.I1)*t001;
-    const T t004 = ((t002 + t003)*phi_dot - p.M*p.g*p.h)*sin_theta/p.I1;
-    const T t005 = (cos_theta*cos_theta*p.I3*t000 + sin_theta)*phi_dot - (S(2)*t003 + t002)*cos_theta*t000;
+    const T t000 = cos_theta*phi_dot;
+    const T t001 = p.I3*psi_dot;
+    const T t002 = S(1)/sin_theta;
+    const T t003 = p.c001*t002;
+    const T t004 = p.c002*t000;
+    const T t005 = (S(2)*t004 + t001)*cos_theta*t003 - (cos_theta*cos_theta*p.c004*t002 + sin_theta)*phi_dot;
     dydt[0] = phi_dot;
     dydt[1] = theta_dot;
     dydt[2] = psi_dot;
-    dydt[3] = ((p.I3 - S(2)*p.I1)*t001 + t002)*t000*theta_dot;
-    dydt[4] = -t004;
-    dydt[5] = t005*theta_dot;
+    dydt[3] = (p.c000*t000 + t001)*t003*theta_dot;
+    dydt[4] = (p.c003 - (t001 + t004)*phi_dot)*p.c001*sin_theta;
+    dydt[5] = -t005*theta_dot;
+}
+
+// rhs with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+    rhs(t, y, dydt, prepare(p));
 }
 
 // The analytic Jacobian J = d(dy/dt)/dy, dense, row-major: J[i * state_size + k] = d dydt[i] / d y[k].
 //   t     time
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   J     output, dim 6 x 6 (row-major); structural zeros in jacobian_pattern
-//   p     parameters
-// Operations (+ - * / and calls): 389 before lowering, 89 after (25 +-, 56 *, 6 /, 2 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 389 before lowering, 77 after (22 +-, 51 *, 2 /, 2 calls).
 template <class T>
-void jacobian(T t, const T* y, T* J, const params<T>& p) {
+void jacobian(T t, const T* y, T* J, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -151,26 +192,23 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T t000 = sin_theta*sin_theta;
     const T t001 = S(1)/t000;
     const T t002 = p.I3*psi_dot;
-    const T t003 = p.I3 - p.I1;
-    const T t004 = cos_theta*phi_dot;
-    const T t005 = t003*t004;
-    const T t006 = S(2)*t005 + t002;
-    const T t007 = cos_theta*t006;
-    const T t008 = t000*t003;
-    const T t009 = t007 - S(2)*phi_dot*t008;
-    const T t010 = p.I3*phi_dot;
-    const T t011 = (t009 - ((S(3)*p.I3 - S(4)*p.I1)*t004 + S(2)*t002)*cos_theta)*t001 + t010;
-    const T t012 = S(1)/p.I1;
-    const T t013 = S(1)/(p.I1*sin_theta);
-    const T t014 = cos_theta*t013;
-    const T t015 = t014*theta_dot;
-    const T t016 = p.I3 - S(2)*p.I1;
-    const T t017 = ((t002 + t005)*phi_dot - p.M*p.g*p.h)*cos_theta - phi_dot*phi_dot*t008;
-    const T t018 = t006*t012;
-    const T t019 = cos_theta*cos_theta;
-    const T t020 = ((t009 - S(2)*t007)*t001 + S(2)*(S(1) + t001*t019)*t010)*t012;
-    const T t021 = ((S(1)/p.I3 + t019/(p.I1*t000))*t010 - t020)*cos_theta;
-    const T t022 = t013*t019;
+    const T t003 = cos_theta*phi_dot;
+    const T t004 = p.c002*t003;
+    const T t005 = S(2)*t004 + t002;
+    const T t006 = cos_theta*t005;
+    const T t007 = p.c002*t000;
+    const T t008 = t006 - S(2)*phi_dot*t007;
+    const T t009 = p.I3*phi_dot;
+    const T t010 = ((t008 - (S(2)*t002 + p.c005*t003)*cos_theta)*t001 + t009)*p.c001*theta_dot;
+    const T t011 = S(1)/sin_theta;
+    const T t012 = cos_theta*t011;
+    const T t013 = t012*theta_dot;
+    const T t014 = ((t002 + t004)*phi_dot - p.c003)*cos_theta - phi_dot*phi_dot*t007;
+    const T t015 = p.c001*t005;
+    const T t016 = cos_theta*cos_theta;
+    const T t017 = t001*t016;
+    const T t018 = (p.c001*t017 + p.c007)*t009 - ((t008 - S(2)*t006)*t001 + S(2)*(S(1) + t017)*t009)*p.c001;
+    const T t019 = t011*t016;
     J[0] = T(S(0));
     J[1] = T(S(0));
     J[2] = T(S(0));
@@ -190,23 +228,30 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     J[16] = T(S(0));
     J[17] = T(S(1));
     J[18] = T(S(0));
-    J[19] = t011*t012*theta_dot;
+    J[19] = t010;
     J[20] = T(S(0));
-    J[21] = t015*t016;
-    J[22] = (t002 + t004*t016)*t013;
-    J[23] = p.I3*t013*theta_dot;
+    J[21] = p.c006*t013;
+    J[22] = (p.c000*t003 + t002)*p.c001*t011;
+    J[23] = p.c004*t011*theta_dot;
     J[24] = T(S(0));
-    J[25] = -t012*t017;
+    J[25] = -p.c001*t014;
     J[26] = T(S(0));
-    J[27] = -sin_theta*t018;
+    J[27] = -sin_theta*t015;
     J[28] = T(S(0));
-    J[29] = -(p.I3/p.I1)*phi_dot*sin_theta;
+    J[29] = -p.c004*phi_dot*sin_theta;
     J[30] = T(S(0));
-    J[31] = (t018 + t021)*theta_dot;
+    J[31] = (cos_theta*t018 + t015)*theta_dot;
     J[32] = T(S(0));
-    J[33] = (sin_theta - t016*t022)*theta_dot;
-    J[34] = (p.I3*t022 + sin_theta)*phi_dot - t006*t014;
-    J[35] = -p.I3*t015;
+    J[33] = (sin_theta - p.c006*t019)*theta_dot;
+    J[34] = (p.c004*t019 + sin_theta)*phi_dot - t012*t015;
+    J[35] = -p.c004*t013;
+}
+
+// jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void jacobian(T t, const T* y, T* J, const params<T>& p) {
+    jacobian(t, y, J, prepare(p));
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -214,10 +259,10 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, phi_ddot, theta_ddot, psi_ddot
 //   J     output, dim 6 x 6 (row-major)
-//   p     parameters
-// Operations (+ - * / and calls): 485 before lowering, 92 after (25 +-, 59 *, 6 /, 2 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 485 before lowering, 83 after (24 +-, 55 *, 2 /, 2 calls).
 template <class T>
-void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -228,37 +273,34 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T psi_dot = y[5];
     const T sin_theta = sin(theta);
     const T cos_theta = cos(theta);
-    const T t000 = S(1)/(p.I1*sin_theta);
+    const T t000 = S(1)/sin_theta;
     const T t001 = t000*theta_dot;
     const T t002 = cos_theta*phi_dot;
-    const T t003 = p.I3 - S(2)*p.I1;
-    const T t004 = p.I3*psi_dot;
-    const T t005 = t002*t003 + t004;
-    const T t006 = S(1)/p.I1;
-    const T t007 = sin_theta*t006;
-    const T t008 = p.I3 - p.I1;
-    const T t009 = t002*t008;
-    const T t010 = (t004 + t009)*phi_dot - p.M*p.g*p.h;
-    const T t011 = cos_theta*cos_theta;
-    const T t012 = t000*t011;
-    const T t013 = S(2)*t009 + t004;
-    const T t014 = cos_theta*t013;
-    const T t015 = (p.I3*t012 + sin_theta)*phi_dot - t000*t014;
-    const T t016 = sin_theta*sin_theta;
-    const T t017 = S(1)/t016;
-    const T t018 = t008*t016;
-    const T t019 = t014 - S(2)*phi_dot*t018;
-    const T t020 = p.I3*phi_dot;
-    const T t021 = (t019 - ((S(3)*p.I3 - S(4)*p.I1)*t002 + S(2)*t004)*cos_theta)*t017 + t020;
-    const T t022 = cos_theta*t001;
-    const T t023 = ((t019 - S(2)*t014)*t017 + S(2)*(S(1) + t011*t017)*t020)*t006;
-    const T t024 = ((S(1)/p.I3 + t011/(p.I1*t016))*t020 - t023)*cos_theta;
+    const T t003 = p.I3*psi_dot;
+    const T t004 = (p.c000*t002 + t003)*p.c001;
+    const T t005 = p.c002*t002;
+    const T t006 = (t003 + t005)*phi_dot - p.c003;
+    const T t007 = S(2)*t005 + t003;
+    const T t008 = p.c001*t007;
+    const T t009 = cos_theta*cos_theta;
+    const T t010 = t000*t009;
+    const T t011 = cos_theta*t000*t008 - (p.c004*t010 + sin_theta)*phi_dot;
+    const T t012 = sin_theta*sin_theta;
+    const T t013 = S(1)/t012;
+    const T t014 = cos_theta*t007;
+    const T t015 = p.c002*t012;
+    const T t016 = t014 - S(2)*phi_dot*t015;
+    const T t017 = p.I3*phi_dot;
+    const T t018 = ((t016 - (S(2)*t003 + p.c005*t002)*cos_theta)*t013 + t017)*p.c001*theta_dot;
+    const T t019 = cos_theta*t001;
+    const T t020 = t009*t013;
+    const T t021 = (p.c001*t020 + p.c007)*t017 - ((t016 - S(2)*t014)*t013 + S(2)*(S(1) + t020)*t017)*p.c001;
     dydt[0] = phi_dot;
     dydt[1] = theta_dot;
     dydt[2] = psi_dot;
-    dydt[3] = t001*t005;
-    dydt[4] = -t007*t010;
-    dydt[5] = t015*theta_dot;
+    dydt[3] = t001*t004;
+    dydt[4] = -p.c001*sin_theta*t006;
+    dydt[5] = -t011*theta_dot;
     J[0] = T(S(0));
     J[1] = T(S(0));
     J[2] = T(S(0));
@@ -278,23 +320,30 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     J[16] = T(S(0));
     J[17] = T(S(1));
     J[18] = T(S(0));
-    J[19] = t006*t021*theta_dot;
+    J[19] = t018;
     J[20] = T(S(0));
-    J[21] = t003*t022;
-    J[22] = t000*t005;
-    J[23] = p.I3*t001;
+    J[21] = p.c006*t019;
+    J[22] = t000*t004;
+    J[23] = p.c004*t001;
     J[24] = T(S(0));
-    J[25] = (phi_dot*phi_dot*t018 - cos_theta*t010)*t006;
+    J[25] = (phi_dot*phi_dot*t015 - cos_theta*t006)*p.c001;
     J[26] = T(S(0));
-    J[27] = -t007*t013;
+    J[27] = -sin_theta*t008;
     J[28] = T(S(0));
-    J[29] = -(p.I3/p.I1)*phi_dot*sin_theta;
+    J[29] = -p.c004*phi_dot*sin_theta;
     J[30] = T(S(0));
-    J[31] = (t006*t013 + t024)*theta_dot;
+    J[31] = (cos_theta*t021 + t008)*theta_dot;
     J[32] = T(S(0));
-    J[33] = (sin_theta - t003*t012)*theta_dot;
-    J[34] = t015;
-    J[35] = -p.I3*t022;
+    J[33] = (sin_theta - p.c006*t010)*theta_dot;
+    J[34] = -t011;
+    J[35] = -p.c004*t019;
+}
+
+// rhs_and_jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+    rhs_and_jacobian(t, y, dydt, J, prepare(p));
 }
 
 // The energy T + V (conserved without damping and driving torques).

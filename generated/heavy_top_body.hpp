@@ -22,9 +22,9 @@
 // 0.1.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 76 -> 55 (6 temporaries)
-//   jacobian: 288 -> 88 (17 temporaries)
-//   rhs_and_jacobian: 364 -> 125 (21 temporaries)
+//   rhs: 76 -> 51 (5 temporaries), and 4 once in prepare()
+//   jacobian: 288 -> 83 (15 temporaries), and 5 once in prepare()
+//   rhs_and_jacobian: 364 -> 119 (16 temporaries), and 6 once in prepare()
 //   energy: 30 -> 25 (6 temporaries)
 //   momenta: 3 -> 3 (0 temporaries)
 //   mass_matrix: 0 -> 0 (0 temporaries)
@@ -76,6 +76,34 @@ struct params {
     T h = T(rg_scalar(1)/rg_scalar(10)); // distance from the tip to the centre of mass
 };
 
+// The parameters and, computed from them once, the 5 subexpressions of parameters alone that
+// rhs, jacobian and rhs_and_jacobian use (9 operations: products and quotients of
+// parameters, reciprocals; a division by a parameter becomes a multiplication). Make one per
+// parameter set with prepare(p) and pass it where params<T> goes: those functions then skip that
+// work at every call. Given params<T>, they prepare it themselves. Changed a parameter: prepare
+// again.
+template <class T>
+struct prepared : params<T> {
+    T c000{};
+    T c001{};
+    T c002{};
+    T c003{};
+    T c004{};
+};
+
+template <class T>
+prepared<T> prepare(const params<T>& parameters) {
+    using S = typename detail::scalar_of<T>::type;
+    prepared<T> p;
+    static_cast<params<T>&>(p) = parameters;
+    p.c000 = S(1)/p.I1;
+    p.c001 = p.M*p.g*p.h;
+    p.c002 = p.I3 - p.I1;
+    p.c003 = p.M*p.g*p.h/p.I1;
+    p.c004 = (p.I3 - p.I1)/p.I1;
+    return p;
+}
+
 // The model and the form this header implements.
 constexpr const char* model_name = "heavy_top";
 constexpr const char* form_name = "body";
@@ -105,10 +133,10 @@ constexpr std::array<unsigned char, 49> jacobian_pattern{{
 //   t     time
 //   y     state, dim 7: (qw, qx, qy, qz, omega1, omega2, omega3)
 //   dydt  output, dim 7: qw_dot, qx_dot, qy_dot, qz_dot, omega1_dot, omega2_dot, omega3_dot
-//   p     parameters
-// Operations (+ - * / and calls): 76 before lowering, 55 after (17 +-, 36 *, 2 /, 0 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 76 before lowering, 51 after (16 +-, 34 *, 1 /, 0 calls).
 template <class T>
-void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+void rhs(T t, const T* y, T* dydt, const prepared<T>& p) {
     using S = typename detail::scalar_of<T>::type;
     (void)t;
     const T qw = y[0];
@@ -118,29 +146,35 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     const T omega1 = y[4];
     const T omega2 = y[5];
     const T omega3 = y[6];
-    const T t000 = S(1)/p.I1;
-    const T t001 = S(1)/(qw*qw + qx*qx + qy*qy + qz*qz);
-    const T t002 = p.M*p.g*p.h*t001;
-    const T t003 = (p.I3 - p.I1)*omega3;
-    const T t004 = (S(2)*(qw*qx + qy*qz)*t002 - omega2*t003)*t000;
-    const T t005 = (S(2)*(qw*qy - qx*qz)*t002 + omega1*t003)*t000;
+    const T t000 = S(1)/(qw*qw + qx*qx + qy*qy + qz*qz);
+    const T t001 = p.c001*t000;
+    const T t002 = omega3*p.c002;
+    const T t003 = (S(2)*(qw*qx + qy*qz)*t001 - omega2*t002)*p.c000;
+    const T t004 = (S(2)*(qw*qy - qx*qz)*t001 + omega1*t002)*p.c000;
     dydt[0] = -S(1)/S(2)*(omega1*qx + omega2*qy + omega3*qz);
     dydt[1] = S(1)/S(2)*(omega1*qw + omega3*qy - omega2*qz);
     dydt[2] = S(1)/S(2)*(omega1*qz + omega2*qw - omega3*qx);
     dydt[3] = S(1)/S(2)*(omega2*qx + omega3*qw - omega1*qy);
-    dydt[4] = t004;
-    dydt[5] = t005;
+    dydt[4] = t003;
+    dydt[5] = t004;
     dydt[6] = T(S(0));
+}
+
+// rhs with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+    rhs(t, y, dydt, prepare(p));
 }
 
 // The analytic Jacobian J = d(dy/dt)/dy, dense, row-major: J[i * state_size + k] = d dydt[i] / d y[k].
 //   t     time
 //   y     state, dim 7: (qw, qx, qy, qz, omega1, omega2, omega3)
 //   J     output, dim 7 x 7 (row-major); structural zeros in jacobian_pattern
-//   p     parameters
-// Operations (+ - * / and calls): 288 before lowering, 88 after (24 +-, 61 *, 3 /, 0 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 288 before lowering, 83 after (23 +-, 59 *, 1 /, 0 calls).
 template <class T>
-void jacobian(T t, const T* y, T* J, const params<T>& p) {
+void jacobian(T t, const T* y, T* J, const prepared<T>& p) {
     using S = typename detail::scalar_of<T>::type;
     (void)t;
     const T qw = y[0];
@@ -160,13 +194,11 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T t007 = S(1)/S(2)*omega3;
     const T t008 = S(1)/S(2)*qw;
     const T t009 = S(1)/S(2)*omega2;
-    const T t010 = qw*qw + qx*qx + qy*qy + qz*qz;
-    const T t011 = p.M*p.g*p.h/(p.I1*t010);
-    const T t012 = S(1)/t010;
-    const T t013 = (qw*qx + qy*qz)*t012;
-    const T t014 = (p.I3 - p.I1)/p.I1;
-    const T t015 = omega3*t014;
-    const T t016 = (qw*qy - qx*qz)*t012;
+    const T t010 = S(1)/(qw*qw + qx*qx + qy*qy + qz*qz);
+    const T t011 = p.c003*t010;
+    const T t012 = (qw*qx + qy*qz)*t010;
+    const T t013 = omega3*p.c004;
+    const T t014 = (qw*qy - qx*qz)*t010;
     J[0] = T(S(0));
     J[1] = t000;
     J[2] = t001;
@@ -195,20 +227,20 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     J[25] = t004;
     J[26] = S(1)/S(2)*qx;
     J[27] = t008;
-    J[28] = S(2)*(qx - S(2)*qw*t013)*t011;
-    J[29] = S(2)*(qw - S(2)*qx*t013)*t011;
-    J[30] = S(2)*(qz - S(2)*qy*t013)*t011;
-    J[31] = S(2)*(qy - S(2)*qz*t013)*t011;
+    J[28] = S(2)*(qx - S(2)*qw*t012)*t011;
+    J[29] = S(2)*(qw - S(2)*qx*t012)*t011;
+    J[30] = S(2)*(qz - S(2)*qy*t012)*t011;
+    J[31] = S(2)*(qy - S(2)*qz*t012)*t011;
     J[32] = T(S(0));
-    J[33] = -t015;
-    J[34] = -omega2*t014;
-    J[35] = S(2)*(qy - S(2)*qw*t016)*t011;
-    J[36] = S(2)*(-S(2)*qx*t016 - qz)*t011;
-    J[37] = S(2)*(qw - S(2)*qy*t016)*t011;
-    J[38] = S(2)*(-S(2)*qz*t016 - qx)*t011;
-    J[39] = t015;
+    J[33] = -t013;
+    J[34] = -omega2*p.c004;
+    J[35] = S(2)*(qy - S(2)*qw*t014)*t011;
+    J[36] = S(2)*(-S(2)*qx*t014 - qz)*t011;
+    J[37] = S(2)*(qw - S(2)*qy*t014)*t011;
+    J[38] = S(2)*(-S(2)*qz*t014 - qx)*t011;
+    J[39] = t013;
     J[40] = T(S(0));
-    J[41] = omega1*t014;
+    J[41] = omega1*p.c004;
     J[42] = T(S(0));
     J[43] = T(S(0));
     J[44] = T(S(0));
@@ -218,15 +250,22 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     J[48] = T(S(0));
 }
 
+// jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void jacobian(T t, const T* y, T* J, const params<T>& p) {
+    jacobian(t, y, J, prepare(p));
+}
+
 // rhs and jacobian in one pass, sharing their common subexpressions.
 //   t     time
 //   y     state, dim 7: (qw, qx, qy, qz, omega1, omega2, omega3)
 //   dydt  output, dim 7: qw_dot, qx_dot, qy_dot, qz_dot, omega1_dot, omega2_dot, omega3_dot
 //   J     output, dim 7 x 7 (row-major)
-//   p     parameters
-// Operations (+ - * / and calls): 364 before lowering, 125 after (35 +-, 86 *, 4 /, 0 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 364 before lowering, 119 after (34 +-, 84 *, 1 /, 0 calls).
 template <class T>
-void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const prepared<T>& p) {
     using S = typename detail::scalar_of<T>::type;
     (void)t;
     const T qw = y[0];
@@ -236,76 +275,71 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T omega1 = y[4];
     const T omega2 = y[5];
     const T omega3 = y[6];
-    const T t000 = S(1)/p.I1;
-    const T t001 = p.M*p.g*p.h;
-    const T t002 = qw*qw + qx*qx + qy*qy + qz*qz;
-    const T t003 = S(1)/t002;
-    const T t004 = (qw*qx + qy*qz)*t003;
-    const T t005 = p.I3 - p.I1;
-    const T t006 = omega3*t005;
-    const T t007 = (qw*qy - qx*qz)*t003;
-    const T t008 = -S(1)/S(2)*omega1;
-    const T t009 = -S(1)/S(2)*omega2;
-    const T t010 = -S(1)/S(2)*omega3;
-    const T t011 = -S(1)/S(2)*qx;
-    const T t012 = -S(1)/S(2)*qy;
-    const T t013 = -S(1)/S(2)*qz;
-    const T t014 = S(1)/S(2)*omega1;
-    const T t015 = S(1)/S(2)*omega3;
-    const T t016 = S(1)/S(2)*qw;
-    const T t017 = S(1)/S(2)*omega2;
-    const T t018 = t001/(p.I1*t002);
-    const T t019 = t005/p.I1;
-    const T t020 = omega3*t019;
+    const T t000 = S(1)/(qw*qw + qx*qx + qy*qy + qz*qz);
+    const T t001 = (qw*qx + qy*qz)*t000;
+    const T t002 = omega3*p.c002;
+    const T t003 = (qw*qy - qx*qz)*t000;
+    const T t004 = -S(1)/S(2)*omega1;
+    const T t005 = -S(1)/S(2)*omega2;
+    const T t006 = -S(1)/S(2)*omega3;
+    const T t007 = -S(1)/S(2)*qx;
+    const T t008 = -S(1)/S(2)*qy;
+    const T t009 = -S(1)/S(2)*qz;
+    const T t010 = S(1)/S(2)*omega1;
+    const T t011 = S(1)/S(2)*omega3;
+    const T t012 = S(1)/S(2)*qw;
+    const T t013 = S(1)/S(2)*omega2;
+    const T t014 = p.c003*t000;
+    const T t015 = omega3*p.c004;
     dydt[0] = -S(1)/S(2)*(omega1*qx + omega2*qy + omega3*qz);
     dydt[1] = S(1)/S(2)*(omega1*qw + omega3*qy - omega2*qz);
     dydt[2] = S(1)/S(2)*(omega1*qz + omega2*qw - omega3*qx);
     dydt[3] = S(1)/S(2)*(omega2*qx + omega3*qw - omega1*qy);
-    dydt[4] = (S(2)*t001*t004 - omega2*t006)*t000;
-    dydt[5] = (S(2)*t001*t007 + omega1*t006)*t000;
+    dydt[4] = (S(2)*p.c001*t001 - omega2*t002)*p.c000;
+    dydt[5] = (S(2)*p.c001*t003 + omega1*t002)*p.c000;
     dydt[6] = T(S(0));
     J[0] = T(S(0));
-    J[1] = t008;
-    J[2] = t009;
-    J[3] = t010;
-    J[4] = t011;
-    J[5] = t012;
-    J[6] = t013;
-    J[7] = t014;
+    J[1] = t004;
+    J[2] = t005;
+    J[3] = t006;
+    J[4] = t007;
+    J[5] = t008;
+    J[6] = t009;
+    J[7] = t010;
     J[8] = T(S(0));
-    J[9] = t015;
-    J[10] = t009;
-    J[11] = t016;
-    J[12] = t013;
+    J[9] = t011;
+    J[10] = t005;
+    J[11] = t012;
+    J[12] = t009;
     J[13] = S(1)/S(2)*qy;
-    J[14] = t017;
-    J[15] = t010;
+    J[14] = t013;
+    J[15] = t006;
     J[16] = T(S(0));
-    J[17] = t014;
+    J[17] = t010;
     J[18] = S(1)/S(2)*qz;
-    J[19] = t016;
-    J[20] = t011;
-    J[21] = t015;
-    J[22] = t017;
-    J[23] = t008;
+    J[19] = t012;
+    J[20] = t007;
+    J[21] = t011;
+    J[22] = t013;
+    J[23] = t004;
     J[24] = T(S(0));
-    J[25] = t012;
+    J[25] = t008;
     J[26] = S(1)/S(2)*qx;
-    J[27] = t016;
-    J[28] = S(2)*(qx - S(2)*qw*t004)*t018;
-    J[29] = S(2)*(qw - S(2)*qx*t004)*t018;
-    J[30] = S(2)*(qz - S(2)*qy*t004)*t018;
-    J[31] = S(2)*(qy - S(2)*qz*t004)*t018;
+    J[27] = t012;
+    J[28] = S(2)*(qx - S(2)*qw*t001)*t014;
+    J[29] = S(2)*(qw - S(2)*qx*t001)*t014;
+    J[30] = S(2)*(qz - S(2)*qy*t001)*t014;
+    J[31] = S(2)*(qy - S(2)*qz*t001)*t014;
     J[32] = T(S(0));
-    J[33] = -t020;
-    J[34] = -omega2*t019;
-    J[35] = S(2)*(qy - S(2)*qw*t007)*t018;
-    J[36] = S(2)*(-S(2)*qx*t007 - qz)*t018;
-    J[37] = S(2)*(qw - S(2)*qy*t007)*t018;
-    J[38] = S(2)*(-S(2)*qz*t007 - qx)*t018;
-    J[39] = t020;
+    J[33] = -t015;
+    J[34] = -omega2*p.c004;
+    J[35] = S(2)*(qy - S(2)*qw*t003)*t014;
+    J[36] = S(2)*(-S(2)*qx*t003 - qz)*t014;
+    J[37] = S(2)*(qw - S(2)*qy*t003)*t014;
+    J[38] = S(2)*(-S(2)*qz*t003 - qx)*t014;
+    J[39] = t015;
     J[40] = T(S(0));
-    J[41] = omega1*t019;
+    J[41] = omega1*p.c004;
     J[42] = T(S(0));
     J[43] = T(S(0));
     J[44] = T(S(0));
@@ -313,6 +347,13 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     J[46] = T(S(0));
     J[47] = T(S(0));
     J[48] = T(S(0));
+}
+
+// rhs_and_jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+    rhs_and_jacobian(t, y, dydt, J, prepare(p));
 }
 
 // The energy T + V (conserved without damping and driving torques).

@@ -20,9 +20,9 @@
 // 0.1.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 75 -> 29 (7 temporaries)
-//   jacobian: 200 -> 54 (16 temporaries)
-//   rhs_and_jacobian: 275 -> 71 (22 temporaries)
+//   rhs: 75 -> 28 (7 temporaries), and 4 once in prepare()
+//   jacobian: 200 -> 48 (14 temporaries), and 4 once in prepare()
+//   rhs_and_jacobian: 275 -> 65 (18 temporaries), and 4 once in prepare()
 //   energy: 37 -> 23 (5 temporaries)
 //   momenta: 0 -> 0 (0 temporaries)
 //   mass_matrix: 11 -> 8 (3 temporaries)
@@ -74,6 +74,30 @@ struct params {
     T h = T(rg_scalar(1)/rg_scalar(10)); // distance from the tip to the centre of mass
 };
 
+// The parameters and, computed from them once, the 3 subexpressions of parameters alone that
+// rhs, jacobian and rhs_and_jacobian use (4 operations: products and quotients of
+// parameters, reciprocals; a division by a parameter becomes a multiplication). Make one per
+// parameter set with prepare(p) and pass it where params<T> goes: those functions then skip that
+// work at every call. Given params<T>, they prepare it themselves. Changed a parameter: prepare
+// again.
+template <class T>
+struct prepared : params<T> {
+    T c000{};
+    T c001{};
+    T c002{};
+};
+
+template <class T>
+prepared<T> prepare(const params<T>& parameters) {
+    using S = typename detail::scalar_of<T>::type;
+    prepared<T> p;
+    static_cast<params<T>&>(p) = parameters;
+    p.c000 = S(1)/p.I1;
+    p.c001 = S(1)/p.I3;
+    p.c002 = p.M*p.g*p.h;
+    return p;
+}
+
 // The model and the form this header implements.
 constexpr const char* model_name = "heavy_top";
 constexpr const char* form_name = "hamiltonian";
@@ -102,10 +126,10 @@ constexpr std::array<unsigned char, 36> jacobian_pattern{{
 //   t     time
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, p_phi_dot, p_theta_dot, p_psi_dot
-//   p     parameters
-// Operations (+ - * / and calls): 75 before lowering, 29 after (8 +-, 14 *, 5 /, 2 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 75 before lowering, 28 after (8 +-, 16 *, 2 /, 2 calls).
 template <class T>
-void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+void rhs(T t, const T* y, T* dydt, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -116,27 +140,34 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     const T p_psi = y[5];
     const T sin_theta = sin(theta);
     const T cos_theta = cos(theta);
-    const T t000 = sin_theta*sin_theta;
+    const T t000 = S(1)/(sin_theta*sin_theta);
     const T t001 = cos_theta*p_psi;
-    const T t002 = (t001 - p_phi)/(p.I1*t000);
-    const T t003 = ((t001 - S(2)*p_phi)*t001 + p_phi*p_phi)/t000 + p_psi*p_psi;
-    const T t004 = (cos_theta*t003 - p_phi*p_psi)/(p.I1*sin_theta) + p.M*p.g*p.h*sin_theta;
+    const T t002 = (t001 - p_phi)*p.c000*t000;
+    const T t003 = ((t001 - S(2)*p_phi)*t001 + p_phi*p_phi)*t000 + p_psi*p_psi;
+    const T t004 = (cos_theta*t003 - p_phi*p_psi)*p.c000/sin_theta + p.c002*sin_theta;
     dydt[0] = -t002;
-    dydt[1] = p_theta/p.I1;
-    dydt[2] = cos_theta*t002 + p_psi/p.I3;
+    dydt[1] = p.c000*p_theta;
+    dydt[2] = cos_theta*t002 + p.c001*p_psi;
     dydt[3] = T(S(0));
     dydt[4] = t004;
     dydt[5] = T(S(0));
+}
+
+// rhs with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+    rhs(t, y, dydt, prepare(p));
 }
 
 // The analytic Jacobian J = d(dy/dt)/dy, dense, row-major: J[i * state_size + k] = d dydt[i] / d y[k].
 //   t     time
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   J     output, dim 6 x 6 (row-major); structural zeros in jacobian_pattern
-//   p     parameters
-// Operations (+ - * / and calls): 200 before lowering, 54 after (16 +-, 31 *, 5 /, 2 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 200 before lowering, 48 after (16 +-, 28 *, 2 /, 2 calls).
 template <class T>
-void jacobian(T t, const T* y, T* J, const params<T>& p) {
+void jacobian(T t, const T* y, T* J, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -146,38 +177,36 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T p_psi = y[5];
     const T sin_theta = sin(theta);
     const T cos_theta = cos(theta);
-    const T t000 = S(1)/(p.I1*sin_theta);
-    const T t001 = sin_theta*sin_theta;
-    const T t002 = S(1)/t001;
-    const T t003 = cos_theta*p_psi;
-    const T t004 = (t003 - p_phi)*cos_theta*t002;
-    const T t005 = (S(2)*t004 + p_psi)*t000;
-    const T t006 = S(1)/(p.I1*t001);
-    const T t007 = -cos_theta*t006;
-    const T t008 = S(1)/p.I1;
-    const T t009 = (S(2)*(p_psi + t004)*cos_theta - p_phi)*t000;
-    const T t010 = p_phi*p_phi;
-    const T t011 = p_psi*p_psi;
-    const T t012 = (((S(3)*t003 - S(6)*p_phi)*t003 + S(3)*t010)*t002 + S(4)*t011)*cos_theta - S(5)*p_phi*p_psi;
-    const T t013 = ((cos_theta*t012 + t010)*t002 + t011)*t008 - cos_theta*p.M*p.g*p.h;
+    const T t000 = p.c000/sin_theta;
+    const T t001 = S(1)/(sin_theta*sin_theta);
+    const T t002 = cos_theta*p_psi;
+    const T t003 = (t002 - p_phi)*cos_theta*t001;
+    const T t004 = (S(2)*t003 + p_psi)*t000;
+    const T t005 = p.c000*t001;
+    const T t006 = -cos_theta*t005;
+    const T t007 = (S(2)*(p_psi + t003)*cos_theta - p_phi)*t000;
+    const T t008 = p_phi*p_phi;
+    const T t009 = p_psi*p_psi;
+    const T t010 = (((S(3)*t002 - S(6)*p_phi)*t002 + S(3)*t008)*t001 + S(4)*t009)*cos_theta - S(5)*p_phi*p_psi;
+    const T t011 = ((cos_theta*t010 + t008)*t001 + t009)*p.c000 - cos_theta*p.c002;
     J[0] = T(S(0));
-    J[1] = t005;
+    J[1] = t004;
     J[2] = T(S(0));
-    J[3] = t006;
+    J[3] = t005;
     J[4] = T(S(0));
-    J[5] = t007;
+    J[5] = t006;
     J[6] = T(S(0));
     J[7] = T(S(0));
     J[8] = T(S(0));
     J[9] = T(S(0));
-    J[10] = t008;
+    J[10] = p.c000;
     J[11] = T(S(0));
     J[12] = T(S(0));
-    J[13] = -t009;
+    J[13] = -t007;
     J[14] = T(S(0));
-    J[15] = t007;
+    J[15] = t006;
     J[16] = T(S(0));
-    J[17] = S(1)/p.I3 + cos_theta*cos_theta*t006;
+    J[17] = cos_theta*cos_theta*t005 + p.c001;
     J[18] = T(S(0));
     J[19] = T(S(0));
     J[20] = T(S(0));
@@ -185,17 +214,24 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     J[22] = T(S(0));
     J[23] = T(S(0));
     J[24] = T(S(0));
-    J[25] = -t013;
+    J[25] = -t011;
     J[26] = T(S(0));
-    J[27] = -t005;
+    J[27] = -t004;
     J[28] = T(S(0));
-    J[29] = t009;
+    J[29] = t007;
     J[30] = T(S(0));
     J[31] = T(S(0));
     J[32] = T(S(0));
     J[33] = T(S(0));
     J[34] = T(S(0));
     J[35] = T(S(0));
+}
+
+// jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void jacobian(T t, const T* y, T* J, const params<T>& p) {
+    jacobian(t, y, J, prepare(p));
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -203,10 +239,10 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   y     state, dim 6: (phi, theta, psi, p_phi, p_theta, p_psi)
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, p_phi_dot, p_theta_dot, p_psi_dot
 //   J     output, dim 6 x 6 (row-major)
-//   p     parameters
-// Operations (+ - * / and calls): 275 before lowering, 71 after (23 +-, 41 *, 5 /, 2 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 275 before lowering, 65 after (23 +-, 38 *, 2 /, 2 calls).
 template <class T>
-void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -217,50 +253,46 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T p_psi = y[5];
     const T sin_theta = sin(theta);
     const T cos_theta = cos(theta);
-    const T t000 = sin_theta*sin_theta;
-    const T t001 = S(1)/(p.I1*t000);
+    const T t000 = S(1)/(sin_theta*sin_theta);
+    const T t001 = p.c000*t000;
     const T t002 = cos_theta*p_psi;
     const T t003 = t002 - p_phi;
-    const T t004 = S(1)/p.I1;
-    const T t005 = S(1)/p.I3;
-    const T t006 = cos_theta*t001;
-    const T t007 = p.M*p.g*p.h;
-    const T t008 = S(1)/(p.I1*sin_theta);
-    const T t009 = S(1)/t000;
-    const T t010 = p_phi*p_phi;
-    const T t011 = p_psi*p_psi;
-    const T t012 = p_phi*p_psi;
-    const T t013 = (((t002 - S(2)*p_phi)*t002 + t010)*t009 + t011)*cos_theta - t012;
-    const T t014 = cos_theta*t003*t009;
-    const T t015 = (S(2)*t014 + p_psi)*t008;
-    const T t016 = -t006;
-    const T t017 = (S(2)*(p_psi + t014)*cos_theta - p_phi)*t008;
-    const T t018 = (((S(3)*t002 - S(6)*p_phi)*t002 + S(3)*t010)*t009 + S(4)*t011)*cos_theta - S(5)*t012;
-    const T t019 = ((cos_theta*t018 + t010)*t009 + t011)*t004 - cos_theta*t007;
+    const T t004 = cos_theta*t001;
+    const T t005 = p.c000/sin_theta;
+    const T t006 = p_phi*p_phi;
+    const T t007 = p_psi*p_psi;
+    const T t008 = p_phi*p_psi;
+    const T t009 = (((t002 - S(2)*p_phi)*t002 + t006)*t000 + t007)*cos_theta - t008;
+    const T t010 = cos_theta*t000*t003;
+    const T t011 = (S(2)*t010 + p_psi)*t005;
+    const T t012 = -t004;
+    const T t013 = (S(2)*(p_psi + t010)*cos_theta - p_phi)*t005;
+    const T t014 = (((S(3)*t002 - S(6)*p_phi)*t002 + S(3)*t006)*t000 + S(4)*t007)*cos_theta - S(5)*t008;
+    const T t015 = ((cos_theta*t014 + t006)*t000 + t007)*p.c000 - cos_theta*p.c002;
     dydt[0] = -t001*t003;
-    dydt[1] = p_theta*t004;
-    dydt[2] = p_psi*t005 + t003*t006;
+    dydt[1] = p.c000*p_theta;
+    dydt[2] = p.c001*p_psi + t003*t004;
     dydt[3] = T(S(0));
-    dydt[4] = sin_theta*t007 + t008*t013;
+    dydt[4] = p.c002*sin_theta + t005*t009;
     dydt[5] = T(S(0));
     J[0] = T(S(0));
-    J[1] = t015;
+    J[1] = t011;
     J[2] = T(S(0));
     J[3] = t001;
     J[4] = T(S(0));
-    J[5] = t016;
+    J[5] = t012;
     J[6] = T(S(0));
     J[7] = T(S(0));
     J[8] = T(S(0));
     J[9] = T(S(0));
-    J[10] = t004;
+    J[10] = p.c000;
     J[11] = T(S(0));
     J[12] = T(S(0));
-    J[13] = -t017;
+    J[13] = -t013;
     J[14] = T(S(0));
-    J[15] = t016;
+    J[15] = t012;
     J[16] = T(S(0));
-    J[17] = cos_theta*cos_theta*t001 + t005;
+    J[17] = cos_theta*cos_theta*t001 + p.c001;
     J[18] = T(S(0));
     J[19] = T(S(0));
     J[20] = T(S(0));
@@ -268,17 +300,24 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     J[22] = T(S(0));
     J[23] = T(S(0));
     J[24] = T(S(0));
-    J[25] = -t019;
+    J[25] = -t015;
     J[26] = T(S(0));
-    J[27] = -t015;
+    J[27] = -t011;
     J[28] = T(S(0));
-    J[29] = t017;
+    J[29] = t013;
     J[30] = T(S(0));
     J[31] = T(S(0));
     J[32] = T(S(0));
     J[33] = T(S(0));
     J[34] = T(S(0));
     J[35] = T(S(0));
+}
+
+// rhs_and_jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+    rhs_and_jacobian(t, y, dydt, J, prepare(p));
 }
 
 // The energy, the Hamiltonian H = T + V (conserved without damping and driving torques).

@@ -21,9 +21,9 @@
 // 0.1, p_phi = 0.0, p_psi = 0.0.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 48 -> 22 (5 temporaries)
-//   jacobian: 72 -> 31 (9 temporaries)
-//   rhs_and_jacobian: 120 -> 44 (12 temporaries)
+//   rhs: 48 -> 20 (5 temporaries), and 3 once in prepare()
+//   jacobian: 72 -> 28 (8 temporaries), and 3 once in prepare()
+//   rhs_and_jacobian: 120 -> 41 (10 temporaries), and 3 once in prepare()
 //   energy: 37 -> 23 (5 temporaries)
 //   momenta: 0 -> 0 (0 temporaries)
 //   mass_matrix: 11 -> 8 (3 temporaries)
@@ -76,6 +76,28 @@ struct params {
     T p_psi = T(rg_scalar(0)); // conserved momentum of the ignored coordinate psi
 };
 
+// The parameters and, computed from them once, the 2 subexpressions of parameters alone that
+// rhs, jacobian and rhs_and_jacobian use (3 operations: products and quotients of
+// parameters, reciprocals; a division by a parameter becomes a multiplication). Make one per
+// parameter set with prepare(p) and pass it where params<T> goes: those functions then skip that
+// work at every call. Given params<T>, they prepare it themselves. Changed a parameter: prepare
+// again.
+template <class T>
+struct prepared : params<T> {
+    T c000{};
+    T c001{};
+};
+
+template <class T>
+prepared<T> prepare(const params<T>& parameters) {
+    using S = typename detail::scalar_of<T>::type;
+    prepared<T> p;
+    static_cast<params<T>&>(p) = parameters;
+    p.c000 = S(1)/p.I1;
+    p.c001 = p.M*p.g*p.h;
+    return p;
+}
+
 // The model and the form this header implements.
 constexpr const char* model_name = "heavy_top";
 constexpr const char* form_name = "reduced";
@@ -100,10 +122,10 @@ constexpr std::array<unsigned char, 4> jacobian_pattern{{
 //   t     time
 //   y     state, dim 2: (theta, p_theta)
 //   dydt  output, dim 2: theta_dot, p_theta_dot
-//   p     parameters
-// Operations (+ - * / and calls): 48 before lowering, 22 after (5 +-, 12 *, 3 /, 2 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 48 before lowering, 20 after (5 +-, 11 *, 2 /, 2 calls).
 template <class T>
-void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+void rhs(T t, const T* y, T* dydt, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -114,19 +136,26 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     const T cos_theta = cos(theta);
     const T t000 = cos_theta*p.p_psi;
     const T t001 = ((t000 - S(2)*p.p_phi)*t000 + p.p_phi*p.p_phi)/(sin_theta*sin_theta);
-    const T t002 = ((p.p_psi*p.p_psi + t001)*cos_theta - p.p_phi*p.p_psi)/(p.I1*sin_theta);
-    dydt[0] = p_theta/p.I1;
-    dydt[1] = p.M*p.g*p.h*sin_theta + t002;
+    const T t002 = ((p.p_psi*p.p_psi + t001)*cos_theta - p.p_phi*p.p_psi)*p.c000/sin_theta;
+    dydt[0] = p.c000*p_theta;
+    dydt[1] = p.c001*sin_theta + t002;
+}
+
+// rhs with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+    rhs(t, y, dydt, prepare(p));
 }
 
 // The analytic Jacobian J = d(dy/dt)/dy, dense, row-major: J[i * state_size + k] = d dydt[i] / d y[k].
 //   t     time
 //   y     state, dim 2: (theta, p_theta)
 //   J     output, dim 2 x 2 (row-major); structural zeros in jacobian_pattern
-//   p     parameters
-// Operations (+ - * / and calls): 72 before lowering, 31 after (8 +-, 19 *, 2 /, 2 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 72 before lowering, 28 after (8 +-, 17 *, 1 /, 2 calls).
 template <class T>
-void jacobian(T t, const T* y, T* J, const params<T>& p) {
+void jacobian(T t, const T* y, T* J, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -134,17 +163,23 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T theta = y[0];
     const T sin_theta = sin(theta);
     const T cos_theta = cos(theta);
-    const T t000 = S(1)/p.I1;
-    const T t001 = S(1)/(sin_theta*sin_theta);
-    const T t002 = p.p_psi*p.p_psi;
-    const T t003 = p.p_phi*p.p_phi;
-    const T t004 = cos_theta*p.p_psi;
-    const T t005 = (((S(3)*t004 - S(6)*p.p_phi)*t004 + S(3)*t003)*t001 + S(4)*t002)*cos_theta - S(5)*p.p_phi*p.p_psi;
-    const T t006 = ((cos_theta*t005 + t003)*t001 + t002)*t000 - cos_theta*p.M*p.g*p.h;
+    const T t000 = S(1)/(sin_theta*sin_theta);
+    const T t001 = p.p_psi*p.p_psi;
+    const T t002 = p.p_phi*p.p_phi;
+    const T t003 = cos_theta*p.p_psi;
+    const T t004 = (((S(3)*t003 - S(6)*p.p_phi)*t003 + S(3)*t002)*t000 + S(4)*t001)*cos_theta - S(5)*p.p_phi*p.p_psi;
+    const T t005 = ((cos_theta*t004 + t002)*t000 + t001)*p.c000 - cos_theta*p.c001;
     J[0] = T(S(0));
-    J[1] = t000;
-    J[2] = -t006;
+    J[1] = p.c000;
+    J[2] = -t005;
     J[3] = T(S(0));
+}
+
+// jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void jacobian(T t, const T* y, T* J, const params<T>& p) {
+    jacobian(t, y, J, prepare(p));
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -152,10 +187,10 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   y     state, dim 2: (theta, p_theta)
 //   dydt  output, dim 2: theta_dot, p_theta_dot
 //   J     output, dim 2 x 2 (row-major)
-//   p     parameters
-// Operations (+ - * / and calls): 120 before lowering, 44 after (13 +-, 26 *, 3 /, 2 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 120 before lowering, 41 after (13 +-, 24 *, 2 /, 2 calls).
 template <class T>
-void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -164,22 +199,27 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T p_theta = y[1];
     const T sin_theta = sin(theta);
     const T cos_theta = cos(theta);
-    const T t000 = S(1)/p.I1;
-    const T t001 = p.p_psi*p.p_psi;
-    const T t002 = S(1)/(sin_theta*sin_theta);
-    const T t003 = cos_theta*p.p_psi;
-    const T t004 = p.p_phi*p.p_phi;
-    const T t005 = p.p_phi*p.p_psi;
-    const T t006 = (((t003 - S(2)*p.p_phi)*t003 + t004)*t002 + t001)*cos_theta - t005;
-    const T t007 = p.M*p.g*p.h;
-    const T t008 = (((S(3)*t003 - S(6)*p.p_phi)*t003 + S(3)*t004)*t002 + S(4)*t001)*cos_theta - S(5)*t005;
-    const T t009 = ((cos_theta*t008 + t004)*t002 + t001)*t000 - cos_theta*t007;
-    dydt[0] = p_theta*t000;
-    dydt[1] = sin_theta*t007 + t006/(p.I1*sin_theta);
+    const T t000 = p.p_psi*p.p_psi;
+    const T t001 = S(1)/(sin_theta*sin_theta);
+    const T t002 = cos_theta*p.p_psi;
+    const T t003 = p.p_phi*p.p_phi;
+    const T t004 = p.p_phi*p.p_psi;
+    const T t005 = (((t002 - S(2)*p.p_phi)*t002 + t003)*t001 + t000)*cos_theta - t004;
+    const T t006 = (((S(3)*t002 - S(6)*p.p_phi)*t002 + S(3)*t003)*t001 + S(4)*t000)*cos_theta - S(5)*t004;
+    const T t007 = ((cos_theta*t006 + t003)*t001 + t000)*p.c000 - cos_theta*p.c001;
+    dydt[0] = p.c000*p_theta;
+    dydt[1] = p.c000*t005/sin_theta + p.c001*sin_theta;
     J[0] = T(S(0));
-    J[1] = t000;
-    J[2] = -t009;
+    J[1] = p.c000;
+    J[2] = -t007;
     J[3] = T(S(0));
+}
+
+// rhs_and_jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+    rhs_and_jacobian(t, y, dydt, J, prepare(p));
 }
 
 // The energy, the Hamiltonian H = T + V (conserved without damping and driving torques).

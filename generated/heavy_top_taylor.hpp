@@ -20,7 +20,7 @@
 // 0.1.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 96 -> 33 (8 temporaries)
+//   rhs: 96 -> 28 (8 temporaries), and 7 once in prepare()
 //   energy: 31 -> 23 (4 temporaries)
 //   momenta: 19 -> 11 (3 temporaries)
 //   taylor: 29 series, 22 recurrences per order
@@ -72,6 +72,34 @@ struct params {
     T h = T(rg_scalar(1)/rg_scalar(10)); // distance from the tip to the centre of mass
 };
 
+// The parameters and, computed from them once, the 5 subexpressions of parameters alone that
+// rhs, jacobian and rhs_and_jacobian use (7 operations: products and quotients of
+// parameters, reciprocals; a division by a parameter becomes a multiplication). Make one per
+// parameter set with prepare(p) and pass it where params<T> goes: those functions then skip that
+// work at every call. Given params<T>, they prepare it themselves. Changed a parameter: prepare
+// again.
+template <class T>
+struct prepared : params<T> {
+    T c000{};
+    T c001{};
+    T c002{};
+    T c003{};
+    T c004{};
+};
+
+template <class T>
+prepared<T> prepare(const params<T>& parameters) {
+    using S = typename detail::scalar_of<T>::type;
+    prepared<T> p;
+    static_cast<params<T>&>(p) = parameters;
+    p.c000 = p.I3 - S(2)*p.I1;
+    p.c001 = S(1)/p.I1;
+    p.c002 = p.I3 - p.I1;
+    p.c003 = p.M*p.g*p.h;
+    p.c004 = p.I3/p.I1;
+    return p;
+}
+
 // The model and the form this header implements.
 constexpr const char* model_name = "heavy_top";
 constexpr const char* form_name = "lagrangian";
@@ -89,10 +117,10 @@ constexpr std::array<const char*, 5> parameter_names{{"I1", "I3", "M", "g", "h"}
 //   t     time
 //   y     state, dim 6: (phi, theta, psi, phi_dot, theta_dot, psi_dot)
 //   dydt  output, dim 6: phi_dot, theta_dot, psi_dot, phi_ddot, theta_ddot, psi_ddot
-//   p     parameters
-// Operations (+ - * / and calls): 96 before lowering, 33 after (9 +-, 20 *, 2 /, 2 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 96 before lowering, 28 after (7 +-, 18 *, 1 /, 2 calls).
 template <class T>
-void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+void rhs(T t, const T* y, T* dydt, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -103,18 +131,25 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     const T psi_dot = y[5];
     const T sin_theta = sin(theta);
     const T cos_theta = cos(theta);
-    const T t000 = S(1)/(p.I1*sin_theta);
-    const T t001 = cos_theta*phi_dot;
-    const T t002 = p.I3*psi_dot;
-    const T t003 = (p.I3 - p.I1)*t001;
-    const T t004 = ((t002 + t003)*phi_dot - p.M*p.g*p.h)*sin_theta/p.I1;
-    const T t005 = (cos_theta*cos_theta*p.I3*t000 + sin_theta)*phi_dot - (S(2)*t003 + t002)*cos_theta*t000;
+    const T t000 = cos_theta*phi_dot;
+    const T t001 = p.I3*psi_dot;
+    const T t002 = S(1)/sin_theta;
+    const T t003 = p.c001*t002;
+    const T t004 = p.c002*t000;
+    const T t005 = (S(2)*t004 + t001)*cos_theta*t003 - (cos_theta*cos_theta*p.c004*t002 + sin_theta)*phi_dot;
     dydt[0] = phi_dot;
     dydt[1] = theta_dot;
     dydt[2] = psi_dot;
-    dydt[3] = ((p.I3 - S(2)*p.I1)*t001 + t002)*t000*theta_dot;
-    dydt[4] = -t004;
-    dydt[5] = t005*theta_dot;
+    dydt[3] = (p.c000*t000 + t001)*t003*theta_dot;
+    dydt[4] = (p.c003 - (t001 + t004)*phi_dot)*p.c001*sin_theta;
+    dydt[5] = -t005*theta_dot;
+}
+
+// rhs with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+    rhs(t, y, dydt, prepare(p));
 }
 
 // The energy T + V (conserved without damping and driving torques).

@@ -19,9 +19,9 @@
 // Parameters (params<T>, defaults from the model file): I1 = 1.2, I2 = 1.0, I3 = 0.4, n = 1.0.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 460 -> 65 (20 temporaries)
-//   jacobian: 2731 -> 195 (54 temporaries)
-//   rhs_and_jacobian: 3191 -> 210 (60 temporaries)
+//   rhs: 460 -> 58 (18 temporaries), and 7 once in prepare()
+//   jacobian: 2731 -> 181 (46 temporaries), and 12 once in prepare()
+//   rhs_and_jacobian: 3191 -> 196 (52 temporaries), and 12 once in prepare()
 //   energy: 62 -> 35 (10 temporaries)
 //   momenta: 57 -> 26 (8 temporaries)
 //   mass_matrix: 59 -> 20 (8 temporaries)
@@ -72,6 +72,37 @@ struct params {
     T n = T(rg_scalar(1)); // orbital rate, sqrt(mu / R^3)
 };
 
+// The parameters and, computed from them once, the 7 subexpressions of parameters alone that
+// rhs, jacobian and rhs_and_jacobian use (14 operations: products and quotients of
+// parameters, reciprocals; a division by a parameter becomes a multiplication). Make one per
+// parameter set with prepare(p) and pass it where params<T> goes: those functions then skip that
+// work at every call. Given params<T>, they prepare it themselves. Changed a parameter: prepare
+// again.
+template <class T>
+struct prepared : params<T> {
+    T c000{};
+    T c001{};
+    T c002{};
+    T c003{};
+    T c004{};
+    T c005{};
+    T c006{};
+};
+
+template <class T>
+prepared<T> prepare(const params<T>& parameters) {
+    prepared<T> p;
+    static_cast<params<T>&>(p) = parameters;
+    p.c000 = (p.I2 - p.I1)/p.I3;
+    p.c001 = p.n*p.n;
+    p.c002 = (p.I3 - p.I1)/p.I2;
+    p.c003 = (p.I3 - p.I2)/p.I1;
+    p.c004 = p.I3 - p.I1;
+    p.c005 = p.I2 - p.I1;
+    p.c006 = (p.I2*p.c005 - p.I3*p.c004)/(p.I2*p.I3);
+    return p;
+}
+
 // The model and the form this header implements.
 constexpr const char* model_name = "satellite_zyx";
 constexpr const char* form_name = "lagrangian";
@@ -100,10 +131,10 @@ constexpr std::array<unsigned char, 36> jacobian_pattern{{
 //   t     time
 //   y     state, dim 6: (yaw, pitch, roll, yaw_dot, pitch_dot, roll_dot)
 //   dydt  output, dim 6: yaw_dot, pitch_dot, roll_dot, yaw_ddot, pitch_ddot, roll_ddot
-//   p     parameters
-// Operations (+ - * / and calls): 460 before lowering, 65 after (20 +-, 37 *, 4 /, 4 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 460 before lowering, 58 after (17 +-, 36 *, 1 /, 4 calls).
 template <class T>
-void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+void rhs(T t, const T* y, T* dydt, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -119,36 +150,41 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     const T cos_roll = cos(roll);
     const T t000 = cos_roll*pitch_dot;
     const T t001 = cos_pitch*sin_pitch;
-    const T t002 = p.n*p.n;
-    const T t003 = sin_roll*t002;
-    const T t004 = cos_pitch*yaw_dot;
-    const T t005 = sin_roll*t004 + t000;
-    const T t006 = sin_pitch*yaw_dot;
-    const T t007 = t006 - roll_dot;
-    const T t008 = (cos_pitch*roll_dot*sin_roll + sin_pitch*t000)*yaw_dot + roll_dot*t000 - ((p.I2 - p.I1)/p.I3)*(S(3)*t001*t003 - t005*t007);
-    const T t009 = cos_roll*t004;
-    const T t010 = pitch_dot*sin_roll;
-    const T t011 = t009 - t010;
-    const T t012 = ((p.I3 - p.I1)/p.I2)*(t007*t011 - S(3)*cos_roll*t001*t002);
-    const T t013 = roll_dot*t009 + t012 - (roll_dot + t006)*t010;
-    const T t014 = (cos_roll*t008 - sin_roll*t013)/cos_pitch;
-    const T t015 = ((p.I3 - p.I2)/p.I1)*(t005*t011 - S(3)*cos_pitch*cos_pitch*cos_roll*t003);
+    const T t002 = p.c001*sin_roll;
+    const T t003 = cos_pitch*yaw_dot;
+    const T t004 = sin_roll*t003 + t000;
+    const T t005 = sin_pitch*yaw_dot;
+    const T t006 = t005 - roll_dot;
+    const T t007 = (cos_pitch*roll_dot*sin_roll + sin_pitch*t000)*yaw_dot + roll_dot*t000 - (S(3)*t001*t002 - t004*t006)*p.c000;
+    const T t008 = cos_roll*t003;
+    const T t009 = pitch_dot*sin_roll;
+    const T t010 = t008 - t009;
+    const T t011 = (t006*t010 - S(3)*cos_roll*p.c001*t001)*p.c002 + roll_dot*t008 - (roll_dot + t005)*t009;
+    const T t012 = (cos_roll*t007 - sin_roll*t011)/cos_pitch;
+    const T t013 = pitch_dot*t003 + sin_pitch*t012 - (t004*t010 - S(3)*cos_pitch*cos_pitch*cos_roll*t002)*p.c003;
     dydt[0] = yaw_dot;
     dydt[1] = pitch_dot;
     dydt[2] = roll_dot;
-    dydt[3] = t014;
-    dydt[4] = -cos_roll*t013 - sin_roll*t008;
-    dydt[5] = pitch_dot*t004 + sin_pitch*t014 - t015;
+    dydt[3] = t012;
+    dydt[4] = -cos_roll*t011 - sin_roll*t007;
+    dydt[5] = t013;
+}
+
+// rhs with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+    rhs(t, y, dydt, prepare(p));
 }
 
 // The analytic Jacobian J = d(dy/dt)/dy, dense, row-major: J[i * state_size + k] = d dydt[i] / d y[k].
 //   t     time
 //   y     state, dim 6: (yaw, pitch, roll, yaw_dot, pitch_dot, roll_dot)
 //   J     output, dim 6 x 6 (row-major); structural zeros in jacobian_pattern
-//   p     parameters
-// Operations (+ - * / and calls): 2731 before lowering, 195 after (67 +-, 118 *, 6 /, 4 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 2731 before lowering, 181 after (63 +-, 113 *, 1 /, 4 calls).
 template <class T>
-void jacobian(T t, const T* y, T* J, const params<T>& p) {
+void jacobian(T t, const T* y, T* J, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -170,48 +206,40 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T t005 = t003 - t004;
     const T t006 = sin_pitch*yaw_dot;
     const T t007 = t006 - roll_dot;
-    const T t008 = p.n*p.n;
-    const T t009 = t002*t008;
-    const T t010 = t005*t007 - S(3)*sin_pitch*t009;
-    const T t011 = p.I3 - p.I1;
-    const T t012 = t011/p.I2;
-    const T t013 = roll_dot*t003 + t010*t012 - (roll_dot + t006)*t004;
-    const T t014 = roll_dot*sin_pitch;
-    const T t015 = cos_pitch*sin_roll;
-    const T t016 = cos_pitch*yaw_dot;
-    const T t017 = cos_pitch*cos_pitch;
-    const T t018 = S(3)*(sin_pitch*sin_pitch - t017)*t008 - t006*t007;
-    const T t019 = (cos_roll*t014 + pitch_dot*t015)*yaw_dot - (cos_roll*t018 + t005*t016)*t012;
-    const T t020 = cos_roll*pitch_dot;
-    const T t021 = sin_pitch*t020;
-    const T t022 = roll_dot*t015;
-    const T t023 = p.I2 - p.I1;
-    const T t024 = t023/p.I3;
-    const T t025 = t015*yaw_dot;
-    const T t026 = t020 + t025;
-    const T t027 = S(3)*sin_pitch*t008*t015 - t007*t026;
-    const T t028 = (t021 + t022)*yaw_dot + roll_dot*t020 - t024*t027;
-    const T t029 = (sin_roll*t014 - pitch_dot*t002)*yaw_dot - (sin_roll*t018 + t016*t026)*t024;
-    const T t030 = (t001*t013 - t019)*sin_roll - (t001*t028 - t029)*cos_roll;
-    const T t031 = t000*t030;
-    const T t032 = p.I2*t023 - p.I3*t011;
-    const T t033 = (cos_roll*t010 + sin_roll*t027)*t032/(cos_pitch*p.I2*p.I3);
-    const T t034 = (sin_pitch*t026 + t007*t015)*t024 + t021 + t022;
-    const T t035 = (sin_pitch*t005 + t002*t007)*t012 + roll_dot*t002 - sin_pitch*t004;
-    const T t036 = cos_roll*t034 - sin_roll*t035;
-    const T t037 = sin_roll*sin_roll;
-    const T t038 = cos_roll*cos_roll;
-    const T t039 = (roll_dot + t006 + t007*t012)*t037 + (roll_dot + t006 + t007*t024)*t038;
-    const T t040 = t004 + t005*t012 - t003;
-    const T t041 = t024*t026 - t020 - t025;
-    const T t042 = sin_roll*t040 - cos_roll*t041;
-    const T t043 = t032/(p.I2*p.I3);
-    const T t044 = cos_roll*t026;
-    const T t045 = (p.I3 - p.I2)/p.I1;
-    const T t046 = ((S(6)*t009 - t005*yaw_dot)*sin_roll - t044*yaw_dot)*t045 + pitch_dot*yaw_dot + t031;
-    const T t047 = (t026*t026 - S(3)*(t037 - t038)*t008*t017 - t005*t005)*t045;
-    const T t048 = (pitch_dot - (sin_roll*t005 + t044)*t045)*cos_pitch + t001*t036;
-    const T t049 = t001*t039 + t016 - (cos_roll*t005 - sin_roll*t026)*t045;
+    const T t008 = p.c001*t002;
+    const T t009 = t005*t007 - S(3)*sin_pitch*t008;
+    const T t010 = p.c002*t009 + roll_dot*t003 - (roll_dot + t006)*t004;
+    const T t011 = roll_dot*sin_pitch;
+    const T t012 = cos_pitch*sin_roll;
+    const T t013 = cos_pitch*yaw_dot;
+    const T t014 = cos_pitch*cos_pitch;
+    const T t015 = S(3)*(sin_pitch*sin_pitch - t014)*p.c001 - t006*t007;
+    const T t016 = (cos_roll*t011 + pitch_dot*t012)*yaw_dot - (cos_roll*t015 + t005*t013)*p.c002;
+    const T t017 = cos_roll*pitch_dot;
+    const T t018 = sin_pitch*t017;
+    const T t019 = roll_dot*t012;
+    const T t020 = t012*yaw_dot;
+    const T t021 = t017 + t020;
+    const T t022 = S(3)*p.c001*sin_pitch*t012 - t007*t021;
+    const T t023 = (t018 + t019)*yaw_dot + roll_dot*t017 - p.c000*t022;
+    const T t024 = (sin_roll*t011 - pitch_dot*t002)*yaw_dot - (sin_roll*t015 + t013*t021)*p.c000;
+    const T t025 = (t001*t010 - t016)*sin_roll - (t001*t023 - t024)*cos_roll;
+    const T t026 = t000*t025;
+    const T t027 = (cos_roll*t009 + sin_roll*t022)*p.c006;
+    const T t028 = (sin_pitch*t021 + t007*t012)*p.c000 + t018 + t019;
+    const T t029 = (sin_pitch*t005 + t002*t007)*p.c002 + roll_dot*t002 - sin_pitch*t004;
+    const T t030 = cos_roll*t028 - sin_roll*t029;
+    const T t031 = sin_roll*sin_roll;
+    const T t032 = cos_roll*cos_roll;
+    const T t033 = (p.c000*t007 + roll_dot + t006)*t032 + (p.c002*t007 + roll_dot + t006)*t031;
+    const T t034 = p.c002*t005 + t004 - t003;
+    const T t035 = p.c000*t021 - t017 - t020;
+    const T t036 = sin_roll*t034 - cos_roll*t035;
+    const T t037 = cos_roll*t021;
+    const T t038 = ((S(6)*t008 - t005*yaw_dot)*sin_roll - t037*yaw_dot)*p.c003 + pitch_dot*yaw_dot + t026;
+    const T t039 = (t021*t021 - S(3)*(t031 - t032)*p.c001*t014 - t005*t005)*p.c003;
+    const T t040 = (pitch_dot - (sin_roll*t005 + t037)*p.c003)*cos_pitch + t001*t030;
+    const T t041 = t001*t033 + t013 - (cos_roll*t005 - sin_roll*t021)*p.c003;
     J[0] = T(S(0));
     J[1] = T(S(0));
     J[2] = T(S(0));
@@ -231,23 +259,30 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     J[16] = T(S(0));
     J[17] = T(S(1));
     J[18] = T(S(0));
-    J[19] = -t031;
-    J[20] = t033;
-    J[21] = t000*t036;
-    J[22] = t000*t039;
-    J[23] = t000*t042;
+    J[19] = -t026;
+    J[20] = t000*t027;
+    J[21] = t000*t030;
+    J[22] = t000*t033;
+    J[23] = t000*t036;
     J[24] = T(S(0));
-    J[25] = cos_roll*t019 + sin_roll*t029;
-    J[26] = (cos_roll*t027 - sin_roll*t010)*t043;
-    J[27] = -cos_roll*t035 - sin_roll*t034;
-    J[28] = -cos_roll*sin_roll*t007*t043;
-    J[29] = cos_roll*t040 + sin_roll*t041;
+    J[25] = cos_roll*t016 + sin_roll*t024;
+    J[26] = (cos_roll*t022 - sin_roll*t009)*p.c006;
+    J[27] = -cos_roll*t029 - sin_roll*t028;
+    J[28] = -cos_roll*p.c006*sin_roll*t007;
+    J[29] = cos_roll*t034 + sin_roll*t035;
     J[30] = T(S(0));
-    J[31] = cos_roll*t028 - sin_pitch*t046 - sin_roll*t013;
-    J[32] = sin_pitch*t033 + t047;
-    J[33] = t048;
-    J[34] = t049;
-    J[35] = t001*t042;
+    J[31] = cos_roll*t023 - sin_pitch*t038 - sin_roll*t010;
+    J[32] = t001*t027 + t039;
+    J[33] = t040;
+    J[34] = t041;
+    J[35] = t001*t036;
+}
+
+// jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void jacobian(T t, const T* y, T* J, const params<T>& p) {
+    jacobian(t, y, J, prepare(p));
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -255,10 +290,10 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   y     state, dim 6: (yaw, pitch, roll, yaw_dot, pitch_dot, roll_dot)
 //   dydt  output, dim 6: yaw_dot, pitch_dot, roll_dot, yaw_ddot, pitch_ddot, roll_ddot
 //   J     output, dim 6 x 6 (row-major)
-//   p     parameters
-// Operations (+ - * / and calls): 3191 before lowering, 210 after (73 +-, 127 *, 6 /, 4 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 3191 before lowering, 196 after (69 +-, 122 *, 1 /, 4 calls).
 template <class T>
-void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const prepared<T>& p) {
     using std::cos;
     using std::sin;
     using S = typename detail::scalar_of<T>::type;
@@ -277,63 +312,55 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T t002 = sin_pitch*t001;
     const T t003 = cos_pitch*sin_roll;
     const T t004 = roll_dot*t003;
-    const T t005 = p.I2 - p.I1;
-    const T t006 = t005/p.I3;
-    const T t007 = p.n*p.n;
-    const T t008 = cos_pitch*yaw_dot;
-    const T t009 = sin_roll*t008;
-    const T t010 = t001 + t009;
-    const T t011 = sin_pitch*yaw_dot;
-    const T t012 = t011 - roll_dot;
-    const T t013 = S(3)*sin_pitch*t003*t007 - t010*t012;
-    const T t014 = (t002 + t004)*yaw_dot + roll_dot*t001 - t006*t013;
-    const T t015 = cos_roll*t014;
-    const T t016 = cos_roll*t008;
-    const T t017 = pitch_dot*sin_roll;
-    const T t018 = t016 - t017;
-    const T t019 = cos_pitch*cos_roll;
-    const T t020 = t007*t019;
-    const T t021 = t012*t018 - S(3)*sin_pitch*t020;
-    const T t022 = p.I3 - p.I1;
-    const T t023 = t022/p.I2;
-    const T t024 = roll_dot*t016 + t021*t023 - (roll_dot + t011)*t017;
-    const T t025 = sin_roll*t024;
-    const T t026 = t015 - t025;
-    const T t027 = sin_pitch*t000;
-    const T t028 = (p.I3 - p.I2)/p.I1;
-    const T t029 = cos_roll*sin_roll;
-    const T t030 = cos_pitch*cos_pitch;
-    const T t031 = t007*t030;
-    const T t032 = pitch_dot*t008 + t026*t027 - (t010*t018 - S(3)*t029*t031)*t028;
-    const T t033 = roll_dot*sin_pitch;
-    const T t034 = S(3)*(sin_pitch*sin_pitch - t030)*t007 - t011*t012;
-    const T t035 = (cos_pitch*t017 + cos_roll*t033)*yaw_dot - (cos_roll*t034 + t008*t018)*t023;
-    const T t036 = (sin_roll*t033 - pitch_dot*t019)*yaw_dot - (sin_roll*t034 + t008*t010)*t006;
-    const T t037 = (t024*t027 - t035)*sin_roll - (t014*t027 - t036)*cos_roll;
-    const T t038 = t000*t037;
-    const T t039 = p.I2*t005 - p.I3*t022;
-    const T t040 = (cos_roll*t021 + sin_roll*t013)*t039/(cos_pitch*p.I2*p.I3);
-    const T t041 = (sin_pitch*t010 + t003*t012)*t006 + t002 + t004;
-    const T t042 = (sin_pitch*t018 + t012*t019)*t023 + roll_dot*t019 - sin_pitch*t017;
-    const T t043 = cos_roll*t041 - sin_roll*t042;
-    const T t044 = sin_roll*sin_roll;
-    const T t045 = cos_roll*cos_roll;
-    const T t046 = (roll_dot + t006*t012 + t011)*t045 + (roll_dot + t011 + t012*t023)*t044;
-    const T t047 = t017 + t018*t023 - t016;
-    const T t048 = t006*t010 - t001 - t009;
-    const T t049 = sin_roll*t047 - cos_roll*t048;
-    const T t050 = t039/(p.I2*p.I3);
-    const T t051 = cos_roll*t010;
-    const T t052 = ((S(6)*t020 - t018*yaw_dot)*sin_roll - t051*yaw_dot)*t028 + pitch_dot*yaw_dot + t038;
-    const T t053 = (t010*t010 - S(3)*(t044 - t045)*t031 - t018*t018)*t028;
-    const T t054 = (pitch_dot - (sin_roll*t018 + t051)*t028)*cos_pitch + t027*t043;
-    const T t055 = t008 + t027*t046 - (cos_roll*t018 - sin_roll*t010)*t028;
+    const T t005 = cos_pitch*yaw_dot;
+    const T t006 = sin_roll*t005;
+    const T t007 = t001 + t006;
+    const T t008 = sin_pitch*yaw_dot;
+    const T t009 = t008 - roll_dot;
+    const T t010 = S(3)*p.c001*sin_pitch*t003 - t007*t009;
+    const T t011 = (t002 + t004)*yaw_dot + roll_dot*t001 - p.c000*t010;
+    const T t012 = cos_roll*t011;
+    const T t013 = cos_roll*t005;
+    const T t014 = pitch_dot*sin_roll;
+    const T t015 = t013 - t014;
+    const T t016 = cos_pitch*cos_roll;
+    const T t017 = p.c001*t016;
+    const T t018 = t009*t015 - S(3)*sin_pitch*t017;
+    const T t019 = p.c002*t018 + roll_dot*t013 - (roll_dot + t008)*t014;
+    const T t020 = sin_roll*t019;
+    const T t021 = t012 - t020;
+    const T t022 = sin_pitch*t000;
+    const T t023 = cos_roll*sin_roll;
+    const T t024 = cos_pitch*cos_pitch;
+    const T t025 = p.c001*t024;
+    const T t026 = pitch_dot*t005 + t021*t022 - (t007*t015 - S(3)*t023*t025)*p.c003;
+    const T t027 = roll_dot*sin_pitch;
+    const T t028 = S(3)*(sin_pitch*sin_pitch - t024)*p.c001 - t008*t009;
+    const T t029 = (cos_pitch*t014 + cos_roll*t027)*yaw_dot - (cos_roll*t028 + t005*t015)*p.c002;
+    const T t030 = (sin_roll*t027 - pitch_dot*t016)*yaw_dot - (sin_roll*t028 + t005*t007)*p.c000;
+    const T t031 = (t019*t022 - t029)*sin_roll - (t011*t022 - t030)*cos_roll;
+    const T t032 = t000*t031;
+    const T t033 = (cos_roll*t018 + sin_roll*t010)*p.c006;
+    const T t034 = (sin_pitch*t007 + t003*t009)*p.c000 + t002 + t004;
+    const T t035 = (sin_pitch*t015 + t009*t016)*p.c002 + roll_dot*t016 - sin_pitch*t014;
+    const T t036 = cos_roll*t034 - sin_roll*t035;
+    const T t037 = sin_roll*sin_roll;
+    const T t038 = cos_roll*cos_roll;
+    const T t039 = (p.c000*t009 + roll_dot + t008)*t038 + (p.c002*t009 + roll_dot + t008)*t037;
+    const T t040 = p.c002*t015 + t014 - t013;
+    const T t041 = p.c000*t007 - t001 - t006;
+    const T t042 = sin_roll*t040 - cos_roll*t041;
+    const T t043 = cos_roll*t007;
+    const T t044 = ((S(6)*t017 - t015*yaw_dot)*sin_roll - t043*yaw_dot)*p.c003 + pitch_dot*yaw_dot + t032;
+    const T t045 = (t007*t007 - S(3)*(t037 - t038)*t025 - t015*t015)*p.c003;
+    const T t046 = (pitch_dot - (sin_roll*t015 + t043)*p.c003)*cos_pitch + t022*t036;
+    const T t047 = t005 + t022*t039 - (cos_roll*t015 - sin_roll*t007)*p.c003;
     dydt[0] = yaw_dot;
     dydt[1] = pitch_dot;
     dydt[2] = roll_dot;
-    dydt[3] = t000*t026;
-    dydt[4] = -cos_roll*t024 - sin_roll*t014;
-    dydt[5] = t032;
+    dydt[3] = t000*t021;
+    dydt[4] = -cos_roll*t019 - sin_roll*t011;
+    dydt[5] = t026;
     J[0] = T(S(0));
     J[1] = T(S(0));
     J[2] = T(S(0));
@@ -353,23 +380,30 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     J[16] = T(S(0));
     J[17] = T(S(1));
     J[18] = T(S(0));
-    J[19] = -t038;
-    J[20] = t040;
-    J[21] = t000*t043;
-    J[22] = t000*t046;
-    J[23] = t000*t049;
+    J[19] = -t032;
+    J[20] = t000*t033;
+    J[21] = t000*t036;
+    J[22] = t000*t039;
+    J[23] = t000*t042;
     J[24] = T(S(0));
-    J[25] = cos_roll*t035 + sin_roll*t036;
-    J[26] = (cos_roll*t013 - sin_roll*t021)*t050;
-    J[27] = -cos_roll*t042 - sin_roll*t041;
-    J[28] = -t012*t029*t050;
-    J[29] = cos_roll*t047 + sin_roll*t048;
+    J[25] = cos_roll*t029 + sin_roll*t030;
+    J[26] = (cos_roll*t010 - sin_roll*t018)*p.c006;
+    J[27] = -cos_roll*t035 - sin_roll*t034;
+    J[28] = -p.c006*t009*t023;
+    J[29] = cos_roll*t040 + sin_roll*t041;
     J[30] = T(S(0));
-    J[31] = t015 - sin_pitch*t052 - t025;
-    J[32] = sin_pitch*t040 + t053;
-    J[33] = t054;
-    J[34] = t055;
-    J[35] = t027*t049;
+    J[31] = t012 - sin_pitch*t044 - t020;
+    J[32] = t022*t033 + t045;
+    J[33] = t046;
+    J[34] = t047;
+    J[35] = t022*t042;
+}
+
+// rhs_and_jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+    rhs_and_jacobian(t, y, dydt, J, prepare(p));
 }
 
 // The energy T + V (conserved without damping and driving torques).

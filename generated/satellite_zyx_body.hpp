@@ -22,9 +22,9 @@
 // Parameters (params<T>, defaults from the model file): I1 = 1.2, I2 = 1.0, I3 = 0.4, n = 1.0.
 //
 // Operations (+ - * / and calls), before lowering -> after:
-//   rhs: 732 -> 93 (22 temporaries)
-//   jacobian: 18504 -> 458 (117 temporaries)
-//   rhs_and_jacobian: 19236 -> 514 (125 temporaries)
+//   rhs: 732 -> 88 (21 temporaries), and 7 once in prepare()
+//   jacobian: 18504 -> 448 (113 temporaries), and 11 once in prepare()
+//   rhs_and_jacobian: 19236 -> 503 (118 temporaries), and 13 once in prepare()
 //   energy: 69 -> 42 (10 temporaries)
 //   momenta: 3 -> 3 (0 temporaries)
 //   mass_matrix: 0 -> 0 (0 temporaries)
@@ -75,6 +75,48 @@ struct params {
     T n = T(rg_scalar(1)); // orbital rate, sqrt(mu / R^3)
 };
 
+// The parameters and, computed from them once, the 12 subexpressions of parameters alone that
+// rhs, jacobian and rhs_and_jacobian use (15 operations: products and quotients of
+// parameters, reciprocals; a division by a parameter becomes a multiplication). Make one per
+// parameter set with prepare(p) and pass it where params<T> goes: those functions then skip that
+// work at every call. Given params<T>, they prepare it themselves. Changed a parameter: prepare
+// again.
+template <class T>
+struct prepared : params<T> {
+    T c000{};
+    T c001{};
+    T c002{};
+    T c003{};
+    T c004{};
+    T c005{};
+    T c006{};
+    T c007{};
+    T c008{};
+    T c009{};
+    T c010{};
+    T c011{};
+};
+
+template <class T>
+prepared<T> prepare(const params<T>& parameters) {
+    using S = typename detail::scalar_of<T>::type;
+    prepared<T> p;
+    static_cast<params<T>&>(p) = parameters;
+    p.c000 = p.n*p.n;
+    p.c001 = p.I3 - p.I2;
+    p.c002 = p.c001/p.I1;
+    p.c003 = S(1)/p.I2;
+    p.c004 = p.I3 - p.I1;
+    p.c005 = p.I2 - p.I1;
+    p.c006 = S(1)/p.I3;
+    p.c007 = p.c000*p.c001/p.I1;
+    p.c008 = p.c000/p.I2;
+    p.c009 = (p.I3 - p.I1)/p.I2;
+    p.c010 = p.c000/p.I3;
+    p.c011 = (p.I2 - p.I1)/p.I3;
+    return p;
+}
+
 // The model and the form this header implements.
 constexpr const char* model_name = "satellite_zyx";
 constexpr const char* form_name = "body";
@@ -104,10 +146,10 @@ constexpr std::array<unsigned char, 49> jacobian_pattern{{
 //   t     time
 //   y     state, dim 7: (qw, qx, qy, qz, omega1, omega2, omega3)
 //   dydt  output, dim 7: qw_dot, qx_dot, qy_dot, qz_dot, omega1_dot, omega2_dot, omega3_dot
-//   p     parameters
-// Operations (+ - * / and calls): 732 before lowering, 93 after (30 +-, 55 *, 7 /, 1 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 732 before lowering, 88 after (27 +-, 56 *, 4 /, 1 calls).
 template <class T>
-void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+void rhs(T t, const T* y, T* dydt, const prepared<T>& p) {
     using std::sqrt;
     using S = typename detail::scalar_of<T>::type;
     (void)t;
@@ -126,37 +168,43 @@ void rhs(T t, const T* y, T* dydt, const params<T>& p) {
     const T t005 = t000 + t001 + t002 + t003;
     const T t006 = t005*t005;
     const T t007 = S(1)/t006;
-    const T t008 = p.n*p.n*t007;
+    const T t008 = p.c000*t007;
     const T t009 = t004*t008;
     const T t010 = qw*qx + qy*qz;
-    const T t011 = p.I3 - p.I2;
-    const T t012 = t010*t010;
-    const T t013 = t004*t004;
-    const T t014 = S(4)*t012 + t013;
-    const T t015 = sqrt(t007*t014);
-    const T t016 = p.I1*t015 - (S(4)*p.I2*t012 + p.I3*t013)/(t006*t015);
-    const T t017 = t016/t015;
-    const T t018 = t011/t014;
-    const T t019 = qw*qy - qx*qz;
-    const T t020 = (S(6)*t017 - S(24)*t012*t018)*t009*t019 + (p.I3 - p.I1)*omega1*omega3;
-    const T t021 = (p.I2 - p.I1)*omega1*omega2 - S(12)*(t013*t018 + t017)*t008*t010*t019;
+    const T t011 = t010*t010;
+    const T t012 = t004*t004;
+    const T t013 = S(4)*t011 + t012;
+    const T t014 = sqrt(t007*t013);
+    const T t015 = p.I1*t014 - (S(4)*p.I2*t011 + p.I3*t012)/(t006*t014);
+    const T t016 = t015/t014;
+    const T t017 = p.c001/t013;
+    const T t018 = qw*qy - qx*qz;
+    const T t019 = ((S(6)*t016 - S(24)*t011*t017)*t009*t018 + omega1*omega3*p.c004)*p.c003;
+    const T t020 = omega1*omega2*p.c005 - S(12)*(t012*t017 + t016)*t008*t010*t018;
     dydt[0] = -S(1)/S(2)*(omega1*qx + omega2*qy + omega3*qz);
     dydt[1] = S(1)/S(2)*(omega1*qw + omega3*qy - omega2*qz);
     dydt[2] = S(1)/S(2)*(omega1*qz + omega2*qw - omega3*qx);
     dydt[3] = S(1)/S(2)*(omega2*qx + omega3*qw - omega1*qy);
-    dydt[4] = (-S(6)*t009*t010 - omega2*omega3)*(t011/p.I1);
-    dydt[5] = t020/p.I2;
-    dydt[6] = -t021/p.I3;
+    dydt[4] = (-S(6)*t009*t010 - omega2*omega3)*p.c002;
+    dydt[5] = t019;
+    dydt[6] = -p.c006*t020;
+}
+
+// rhs with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs(T t, const T* y, T* dydt, const params<T>& p) {
+    rhs(t, y, dydt, prepare(p));
 }
 
 // The analytic Jacobian J = d(dy/dt)/dy, dense, row-major: J[i * state_size + k] = d dydt[i] / d y[k].
 //   t     time
 //   y     state, dim 7: (qw, qx, qy, qz, omega1, omega2, omega3)
 //   J     output, dim 7 x 7 (row-major); structural zeros in jacobian_pattern
-//   p     parameters
-// Operations (+ - * / and calls): 18504 before lowering, 458 after (137 +-, 308 *, 12 /, 1 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 18504 before lowering, 448 after (134 +-, 307 *, 6 /, 1 calls).
 template <class T>
-void jacobian(T t, const T* y, T* J, const params<T>& p) {
+void jacobian(T t, const T* y, T* J, const prepared<T>& p) {
     using std::sqrt;
     using S = typename detail::scalar_of<T>::type;
     (void)t;
@@ -177,113 +225,109 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     const T t007 = S(1)/S(2)*omega3;
     const T t008 = S(1)/S(2)*qw;
     const T t009 = S(1)/S(2)*omega2;
-    const T t010 = qw*qx + qy*qz;
-    const T t011 = qw*t010;
-    const T t012 = qx*qx;
-    const T t013 = qz*qz;
-    const T t014 = qy*qy;
-    const T t015 = qw*qw;
-    const T t016 = t012 + t014 - t013 - t015;
-    const T t017 = t012 + t013 + t014 + t015;
-    const T t018 = S(1)/t017;
-    const T t019 = t010*t018;
-    const T t020 = S(2)*t011 - (qx - S(4)*qw*t019)*t016;
-    const T t021 = t017*t017;
-    const T t022 = p.n*p.n;
-    const T t023 = p.I3 - p.I2;
-    const T t024 = t022*t023/(p.I1*t021);
-    const T t025 = qx*t010;
-    const T t026 = S(2)*t025 - (S(4)*qx*t019 - qw)*t016;
-    const T t027 = qy*t010;
-    const T t028 = (qz - S(4)*qy*t019)*t016 + S(2)*t027;
-    const T t029 = qz*t010;
-    const T t030 = S(2)*t029 - (qy - S(4)*qz*t019)*t016;
-    const T t031 = t023/p.I1;
-    const T t032 = t010*t010;
-    const T t033 = t016*t016;
-    const T t034 = S(4)*t032 + t033;
-    const T t035 = sqrt(t034/t021);
-    const T t036 = p.I1*t035;
-    const T t037 = S(4)*p.I2*t032 + p.I3*t033;
-    const T t038 = t036 - t037/(t021*t035);
-    const T t039 = qw*qy - qx*qz;
-    const T t040 = t018*t038*t039;
-    const T t041 = t036*t039;
-    const T t042 = S(1)/(t017*t035);
-    const T t043 = qw*t018;
-    const T t044 = t018*t032;
-    const T t045 = t016*t018;
-    const T t046 = (S(1) + t045)*t016 + S(4)*t044;
-    const T t047 = S(2)*t025 - qw*t046;
-    const T t048 = S(1)/t034;
-    const T t049 = t047*t048;
-    const T t050 = p.I2*t010;
-    const T t051 = p.I3*t016;
-    const T t052 = (S(8)*qx - (S(24)*t043 + S(8)*t049)*t010)*t050 - ((S(2)*t049 + S(6)*t043)*t016 + S(4)*qw)*t051 - S(2)*p.I1*t047;
-    const T t053 = ((qy*t037 + t039*t052)*t042 + S(2)*qw*t041)*t018;
-    const T t054 = S(1)/t035;
-    const T t055 = (S(2)*qw*t040 + t053 - qy*t036)*t054;
-    const T t056 = t038*t054;
-    const T t057 = t039*t056;
-    const T t058 = t047*t057;
-    const T t059 = t010*t023;
-    const T t060 = (t043 + t049)*t039;
-    const T t061 = qx*t039;
-    const T t062 = (((S(4)*qy - S(16)*t060)*t010 + S(4)*t061)*t059 + S(2)*t058)*t048 + t055;
-    const T t063 = qw*t056;
-    const T t064 = t048*t059;
-    const T t065 = t022/(p.I2*t021);
-    const T t066 = S(6)*(-(S(2)*t063 - S(4)*t020*t064)*t039 - t016*t062)*t065;
-    const T t067 = qx*t056;
-    const T t068 = (t045 - S(1))*t016 + S(4)*t044;
-    const T t069 = S(2)*t011 - qx*t068;
-    const T t070 = t048*t069;
-    const T t071 = qx*t018;
-    const T t072 = ((S(2)*t070 + S(6)*t071)*t016 - S(4)*qx)*t051 + S(2)*p.I1*t069 - (S(8)*qw - (S(24)*t071 + S(8)*t070)*t010)*t050;
-    const T t073 = (S(2)*qx*t041 - (qz*t037 + t039*t072)*t042)*t018;
-    const T t074 = (S(2)*qx*t040 + qz*t036 + t073)*t054;
-    const T t075 = qw*t039;
-    const T t076 = (t070 + t071)*t039;
-    const T t077 = t057*t069;
-    const T t078 = ((S(4)*t075 - (S(16)*t076 + S(4)*qz)*t010)*t059 + S(2)*t077)*t048 + t074;
-    const T t079 = S(6)*(-(S(4)*t026*t064 - S(2)*t067)*t039 - t016*t078)*t065;
-    const T t080 = S(2)*t029 - qy*t068;
-    const T t081 = t057*t080;
-    const T t082 = qz*t039;
-    const T t083 = qy*t018;
-    const T t084 = t048*t080;
-    const T t085 = (t083 + t084)*t039;
-    const T t086 = S(2)*p.I1*t080 - (S(4)*qy - (S(2)*t084 + S(6)*t083)*t016)*t051 - (S(8)*qz - (S(24)*t083 + S(8)*t084)*t010)*t050;
-    const T t087 = (S(2)*qy*t041 - (t039*t086 - qw*t037)*t042)*t018;
-    const T t088 = (S(2)*qy*t040 + t087 - qw*t036)*t054;
-    const T t089 = (((S(4)*qw - S(16)*t085)*t010 + S(4)*t082)*t059 + S(2)*t081)*t048 + t088;
-    const T t090 = qy*t056;
-    const T t091 = S(6)*((S(2)*t090 - S(4)*t028*t064)*t039 - t016*t089)*t065;
-    const T t092 = qz*t056;
-    const T t093 = qz*t046 - S(2)*t027;
-    const T t094 = t057*t093;
-    const T t095 = qz*t018;
-    const T t096 = t048*t093;
-    const T t097 = (t095 - t096)*t039;
-    const T t098 = qy*t039;
-    const T t099 = ((S(24)*t095 - S(8)*t096)*t010 - S(8)*qy)*t050 + ((S(6)*t095 - S(2)*t096)*t016 + S(4)*qz)*t051 - S(2)*p.I1*t093;
-    const T t100 = (S(2)*qz*t041 - (qx*t037 + t039*t099)*t042)*t018;
-    const T t101 = (S(2)*qz*t040 + qx*t036 + t100)*t054;
-    const T t102 = (((S(16)*t097 + S(4)*qx)*t010 - S(4)*t098)*t059 + S(2)*t094)*t048 - t101;
-    const T t103 = S(6)*((S(4)*t030*t064 - S(2)*t092)*t039 + t016*t102)*t065;
-    const T t104 = (p.I3 - p.I1)/p.I2;
-    const T t105 = t022/(p.I3*t021);
-    const T t106 = t016*t023;
-    const T t107 = t048*t106;
-    const T t108 = ((S(2)*t075 - (qy - S(4)*t060)*t016)*t106 + S(2)*t058)*t048 + t055;
-    const T t109 = S(12)*(-(t020*t107 - t067)*t039 - t010*t108)*t105;
-    const T t110 = t074 - ((S(2)*t061 - (S(4)*t076 + qz)*t016)*t106 - S(2)*t077)*t048;
-    const T t111 = S(12)*((t026*t107 + t063)*t039 - t010*t110)*t105;
-    const T t112 = (S(2)*t081 - ((qw - S(4)*t085)*t016 + S(2)*t098)*t106)*t048 + t088;
-    const T t113 = S(12)*((t028*t107 + t092)*t039 - t010*t112)*t105;
-    const T t114 = (S(2)*t094 - ((S(4)*t097 + qx)*t016 + S(2)*t082)*t106)*t048 - t101;
-    const T t115 = S(12)*((t090 - t030*t107)*t039 + t010*t114)*t105;
-    const T t116 = (p.I2 - p.I1)/p.I3;
+    const T t010 = qx*qx;
+    const T t011 = qz*qz;
+    const T t012 = qy*qy;
+    const T t013 = qw*qw;
+    const T t014 = t010 + t011 + t012 + t013;
+    const T t015 = t014*t014;
+    const T t016 = S(1)/t015;
+    const T t017 = p.c007*t016;
+    const T t018 = qw*qx + qy*qz;
+    const T t019 = qw*t018;
+    const T t020 = t010 + t012 - t011 - t013;
+    const T t021 = S(1)/t014;
+    const T t022 = t018*t021;
+    const T t023 = S(2)*t019 - (qx - S(4)*qw*t022)*t020;
+    const T t024 = qx*t018;
+    const T t025 = S(2)*t024 - (S(4)*qx*t022 - qw)*t020;
+    const T t026 = qy*t018;
+    const T t027 = (qz - S(4)*qy*t022)*t020 + S(2)*t026;
+    const T t028 = qz*t018;
+    const T t029 = S(2)*t028 - (qy - S(4)*qz*t022)*t020;
+    const T t030 = t018*t018;
+    const T t031 = t020*t020;
+    const T t032 = S(4)*t030 + t031;
+    const T t033 = sqrt(t016*t032);
+    const T t034 = p.I1*t033;
+    const T t035 = S(4)*p.I2*t030 + p.I3*t031;
+    const T t036 = t034 - t035/(t015*t033);
+    const T t037 = qw*qy - qx*qz;
+    const T t038 = t021*t036*t037;
+    const T t039 = t034*t037;
+    const T t040 = S(1)/(t014*t033);
+    const T t041 = qw*t021;
+    const T t042 = t021*t030;
+    const T t043 = t020*t021;
+    const T t044 = (S(1) + t043)*t020 + S(4)*t042;
+    const T t045 = S(2)*t024 - qw*t044;
+    const T t046 = S(1)/t032;
+    const T t047 = t045*t046;
+    const T t048 = p.I2*t018;
+    const T t049 = p.I3*t020;
+    const T t050 = (S(8)*qx - (S(24)*t041 + S(8)*t047)*t018)*t048 - ((S(2)*t047 + S(6)*t041)*t020 + S(4)*qw)*t049 - S(2)*p.I1*t045;
+    const T t051 = ((qy*t035 + t037*t050)*t040 + S(2)*qw*t039)*t021;
+    const T t052 = S(1)/t033;
+    const T t053 = (S(2)*qw*t038 + t051 - qy*t034)*t052;
+    const T t054 = t036*t052;
+    const T t055 = t037*t054;
+    const T t056 = t045*t055;
+    const T t057 = p.c001*t018;
+    const T t058 = (t041 + t047)*t037;
+    const T t059 = qx*t037;
+    const T t060 = (((S(4)*qy - S(16)*t058)*t018 + S(4)*t059)*t057 + S(2)*t056)*t046 + t053;
+    const T t061 = qw*t054;
+    const T t062 = t046*t057;
+    const T t063 = p.c008*t016;
+    const T t064 = S(6)*(-(S(2)*t061 - S(4)*t023*t062)*t037 - t020*t060)*t063;
+    const T t065 = qx*t054;
+    const T t066 = (t043 - S(1))*t020 + S(4)*t042;
+    const T t067 = S(2)*t019 - qx*t066;
+    const T t068 = t046*t067;
+    const T t069 = qx*t021;
+    const T t070 = ((S(2)*t068 + S(6)*t069)*t020 - S(4)*qx)*t049 + S(2)*p.I1*t067 - (S(8)*qw - (S(24)*t069 + S(8)*t068)*t018)*t048;
+    const T t071 = (S(2)*qx*t039 - (qz*t035 + t037*t070)*t040)*t021;
+    const T t072 = (S(2)*qx*t038 + qz*t034 + t071)*t052;
+    const T t073 = qw*t037;
+    const T t074 = (t068 + t069)*t037;
+    const T t075 = t055*t067;
+    const T t076 = ((S(4)*t073 - (S(16)*t074 + S(4)*qz)*t018)*t057 + S(2)*t075)*t046 + t072;
+    const T t077 = S(6)*(-(S(4)*t025*t062 - S(2)*t065)*t037 - t020*t076)*t063;
+    const T t078 = S(2)*t028 - qy*t066;
+    const T t079 = t055*t078;
+    const T t080 = qz*t037;
+    const T t081 = qy*t021;
+    const T t082 = t046*t078;
+    const T t083 = (t081 + t082)*t037;
+    const T t084 = S(2)*p.I1*t078 - (S(4)*qy - (S(2)*t082 + S(6)*t081)*t020)*t049 - (S(8)*qz - (S(24)*t081 + S(8)*t082)*t018)*t048;
+    const T t085 = (S(2)*qy*t039 - (t037*t084 - qw*t035)*t040)*t021;
+    const T t086 = (S(2)*qy*t038 + t085 - qw*t034)*t052;
+    const T t087 = (((S(4)*qw - S(16)*t083)*t018 + S(4)*t080)*t057 + S(2)*t079)*t046 + t086;
+    const T t088 = qy*t054;
+    const T t089 = S(6)*((S(2)*t088 - S(4)*t027*t062)*t037 - t020*t087)*t063;
+    const T t090 = qz*t054;
+    const T t091 = qz*t044 - S(2)*t026;
+    const T t092 = t055*t091;
+    const T t093 = qz*t021;
+    const T t094 = t046*t091;
+    const T t095 = (t093 - t094)*t037;
+    const T t096 = qy*t037;
+    const T t097 = ((S(24)*t093 - S(8)*t094)*t018 - S(8)*qy)*t048 + ((S(6)*t093 - S(2)*t094)*t020 + S(4)*qz)*t049 - S(2)*p.I1*t091;
+    const T t098 = (S(2)*qz*t039 - (qx*t035 + t037*t097)*t040)*t021;
+    const T t099 = (S(2)*qz*t038 + qx*t034 + t098)*t052;
+    const T t100 = (((S(16)*t095 + S(4)*qx)*t018 - S(4)*t096)*t057 + S(2)*t092)*t046 - t099;
+    const T t101 = S(6)*((S(4)*t029*t062 - S(2)*t090)*t037 + t020*t100)*t063;
+    const T t102 = p.c010*t016;
+    const T t103 = p.c001*t020;
+    const T t104 = t046*t103;
+    const T t105 = ((S(2)*t073 - (qy - S(4)*t058)*t020)*t103 + S(2)*t056)*t046 + t053;
+    const T t106 = S(12)*(-(t023*t104 - t065)*t037 - t018*t105)*t102;
+    const T t107 = t072 - ((S(2)*t059 - (S(4)*t074 + qz)*t020)*t103 - S(2)*t075)*t046;
+    const T t108 = S(12)*((t025*t104 + t061)*t037 - t018*t107)*t102;
+    const T t109 = (S(2)*t079 - ((qw - S(4)*t083)*t020 + S(2)*t096)*t103)*t046 + t086;
+    const T t110 = S(12)*((t027*t104 + t090)*t037 - t018*t109)*t102;
+    const T t111 = (S(2)*t092 - ((S(4)*t095 + qx)*t020 + S(2)*t080)*t103)*t046 - t099;
+    const T t112 = S(12)*((t088 - t029*t104)*t037 + t018*t111)*t102;
     J[0] = T(S(0));
     J[1] = t000;
     J[2] = t001;
@@ -312,27 +356,34 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
     J[25] = t004;
     J[26] = S(1)/S(2)*qx;
     J[27] = t008;
-    J[28] = S(6)*t020*t024;
-    J[29] = -S(6)*t024*t026;
-    J[30] = -S(6)*t024*t028;
-    J[31] = S(6)*t024*t030;
+    J[28] = S(6)*t017*t023;
+    J[29] = -S(6)*t017*t025;
+    J[30] = -S(6)*t017*t027;
+    J[31] = S(6)*t017*t029;
     J[32] = T(S(0));
-    J[33] = -omega3*t031;
-    J[34] = -omega2*t031;
-    J[35] = t066;
-    J[36] = t079;
-    J[37] = t091;
-    J[38] = t103;
-    J[39] = omega3*t104;
+    J[33] = -omega3*p.c002;
+    J[34] = -omega2*p.c002;
+    J[35] = t064;
+    J[36] = t077;
+    J[37] = t089;
+    J[38] = t101;
+    J[39] = omega3*p.c009;
     J[40] = T(S(0));
-    J[41] = omega1*t104;
-    J[42] = t109;
-    J[43] = t111;
-    J[44] = t113;
-    J[45] = t115;
-    J[46] = -omega2*t116;
-    J[47] = -omega1*t116;
+    J[41] = omega1*p.c009;
+    J[42] = t106;
+    J[43] = t108;
+    J[44] = t110;
+    J[45] = t112;
+    J[46] = -omega2*p.c011;
+    J[47] = -omega1*p.c011;
     J[48] = T(S(0));
+}
+
+// jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void jacobian(T t, const T* y, T* J, const params<T>& p) {
+    jacobian(t, y, J, prepare(p));
 }
 
 // rhs and jacobian in one pass, sharing their common subexpressions.
@@ -340,10 +391,10 @@ void jacobian(T t, const T* y, T* J, const params<T>& p) {
 //   y     state, dim 7: (qw, qx, qy, qz, omega1, omega2, omega3)
 //   dydt  output, dim 7: qw_dot, qx_dot, qy_dot, qz_dot, omega1_dot, omega2_dot, omega3_dot
 //   J     output, dim 7 x 7 (row-major)
-//   p     parameters
-// Operations (+ - * / and calls): 19236 before lowering, 514 after (153 +-, 346 *, 14 /, 1 calls).
+//   p     parameters, prepared (prepare(params), once per parameter set)
+// Operations (+ - * / and calls): 19236 before lowering, 503 after (150 +-, 346 *, 6 /, 1 calls).
 template <class T>
-void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const prepared<T>& p) {
     using std::sqrt;
     using S = typename detail::scalar_of<T>::type;
     (void)t;
@@ -362,179 +413,179 @@ void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
     const T t005 = t000 + t001 + t002 + t003;
     const T t006 = t005*t005;
     const T t007 = S(1)/t006;
-    const T t008 = p.n*p.n;
-    const T t009 = t007*t008;
-    const T t010 = t004*t009;
-    const T t011 = qw*qx + qy*qz;
-    const T t012 = p.I3 - p.I2;
-    const T t013 = t012/p.I1;
-    const T t014 = t011*t011;
-    const T t015 = t004*t004;
-    const T t016 = S(4)*t014 + t015;
-    const T t017 = sqrt(t007*t016);
-    const T t018 = p.I1*t017;
-    const T t019 = S(4)*p.I2*t014 + p.I3*t015;
-    const T t020 = t018 - t019/(t006*t017);
-    const T t021 = S(1)/t017;
-    const T t022 = t020*t021;
-    const T t023 = S(1)/t016;
-    const T t024 = t012*t023;
-    const T t025 = qw*qy - qx*qz;
-    const T t026 = p.I3 - p.I1;
-    const T t027 = ((S(6)*t022 - S(24)*t014*t024)*t010*t025 + omega1*omega3*t026)/p.I2;
-    const T t028 = p.I2 - p.I1;
-    const T t029 = omega1*omega2*t028 - S(12)*(t015*t024 + t022)*t009*t011*t025;
-    const T t030 = -S(1)/S(2)*omega1;
-    const T t031 = -S(1)/S(2)*omega2;
-    const T t032 = -S(1)/S(2)*omega3;
-    const T t033 = -S(1)/S(2)*qx;
-    const T t034 = -S(1)/S(2)*qy;
-    const T t035 = -S(1)/S(2)*qz;
-    const T t036 = S(1)/S(2)*omega1;
-    const T t037 = S(1)/S(2)*omega3;
-    const T t038 = S(1)/S(2)*qw;
-    const T t039 = S(1)/S(2)*omega2;
-    const T t040 = qw*t011;
-    const T t041 = S(1)/t005;
-    const T t042 = t011*t041;
-    const T t043 = S(2)*t040 - (qx - S(4)*qw*t042)*t004;
-    const T t044 = t008*t012/(p.I1*t006);
-    const T t045 = qx*t011;
-    const T t046 = S(2)*t045 - (S(4)*qx*t042 - qw)*t004;
-    const T t047 = qy*t011;
-    const T t048 = (qz - S(4)*qy*t042)*t004 + S(2)*t047;
-    const T t049 = qz*t011;
-    const T t050 = S(2)*t049 - (qy - S(4)*qz*t042)*t004;
-    const T t051 = t020*t025*t041;
-    const T t052 = t018*t025;
-    const T t053 = S(1)/(t005*t017);
-    const T t054 = qw*t041;
-    const T t055 = t014*t041;
-    const T t056 = t004*t041;
-    const T t057 = (S(1) + t056)*t004 + S(4)*t055;
-    const T t058 = S(2)*t045 - qw*t057;
-    const T t059 = t023*t058;
-    const T t060 = p.I2*t011;
-    const T t061 = p.I3*t004;
-    const T t062 = (S(8)*qx - (S(24)*t054 + S(8)*t059)*t011)*t060 - ((S(2)*t059 + S(6)*t054)*t004 + S(4)*qw)*t061 - S(2)*p.I1*t058;
-    const T t063 = ((qy*t019 + t025*t062)*t053 + S(2)*qw*t052)*t041;
-    const T t064 = (S(2)*qw*t051 + t063 - qy*t018)*t021;
-    const T t065 = t022*t025;
-    const T t066 = t058*t065;
-    const T t067 = t011*t012;
-    const T t068 = (t054 + t059)*t025;
-    const T t069 = qx*t025;
-    const T t070 = (((S(4)*qy - S(16)*t068)*t011 + S(4)*t069)*t067 + S(2)*t066)*t023 + t064;
-    const T t071 = qw*t022;
-    const T t072 = t011*t024;
-    const T t073 = t008/(p.I2*t006);
-    const T t074 = S(6)*(-(S(2)*t071 - S(4)*t043*t072)*t025 - t004*t070)*t073;
-    const T t075 = qx*t022;
-    const T t076 = (t056 - S(1))*t004 + S(4)*t055;
-    const T t077 = S(2)*t040 - qx*t076;
-    const T t078 = t023*t077;
-    const T t079 = qx*t041;
-    const T t080 = ((S(2)*t078 + S(6)*t079)*t004 - S(4)*qx)*t061 + S(2)*p.I1*t077 - (S(8)*qw - (S(24)*t079 + S(8)*t078)*t011)*t060;
-    const T t081 = (S(2)*qx*t052 - (qz*t019 + t025*t080)*t053)*t041;
-    const T t082 = (S(2)*qx*t051 + qz*t018 + t081)*t021;
-    const T t083 = qw*t025;
-    const T t084 = (t078 + t079)*t025;
-    const T t085 = t065*t077;
-    const T t086 = ((S(4)*t083 - (S(16)*t084 + S(4)*qz)*t011)*t067 + S(2)*t085)*t023 + t082;
-    const T t087 = S(6)*(-(S(4)*t046*t072 - S(2)*t075)*t025 - t004*t086)*t073;
-    const T t088 = S(2)*t049 - qy*t076;
-    const T t089 = t065*t088;
-    const T t090 = qz*t025;
-    const T t091 = qy*t041;
-    const T t092 = t023*t088;
-    const T t093 = (t091 + t092)*t025;
-    const T t094 = S(2)*p.I1*t088 - (S(4)*qy - (S(2)*t092 + S(6)*t091)*t004)*t061 - (S(8)*qz - (S(24)*t091 + S(8)*t092)*t011)*t060;
-    const T t095 = (S(2)*qy*t052 - (t025*t094 - qw*t019)*t053)*t041;
-    const T t096 = (S(2)*qy*t051 + t095 - qw*t018)*t021;
-    const T t097 = (((S(4)*qw - S(16)*t093)*t011 + S(4)*t090)*t067 + S(2)*t089)*t023 + t096;
-    const T t098 = qy*t022;
-    const T t099 = S(6)*((S(2)*t098 - S(4)*t048*t072)*t025 - t004*t097)*t073;
-    const T t100 = qz*t022;
-    const T t101 = qz*t057 - S(2)*t047;
-    const T t102 = t065*t101;
-    const T t103 = qz*t041;
-    const T t104 = t023*t101;
-    const T t105 = (t103 - t104)*t025;
-    const T t106 = qy*t025;
-    const T t107 = ((S(24)*t103 - S(8)*t104)*t011 - S(8)*qy)*t060 + ((S(6)*t103 - S(2)*t104)*t004 + S(4)*qz)*t061 - S(2)*p.I1*t101;
-    const T t108 = (S(2)*qz*t052 - (qx*t019 + t025*t107)*t053)*t041;
-    const T t109 = (S(2)*qz*t051 + qx*t018 + t108)*t021;
-    const T t110 = (((S(16)*t105 + S(4)*qx)*t011 - S(4)*t106)*t067 + S(2)*t102)*t023 - t109;
-    const T t111 = S(6)*((S(4)*t050*t072 - S(2)*t100)*t025 + t004*t110)*t073;
-    const T t112 = t026/p.I2;
-    const T t113 = t008/(p.I3*t006);
-    const T t114 = t004*t024;
-    const T t115 = t004*t012;
-    const T t116 = ((S(2)*t083 - (qy - S(4)*t068)*t004)*t115 + S(2)*t066)*t023 + t064;
-    const T t117 = S(12)*(-(t043*t114 - t075)*t025 - t011*t116)*t113;
-    const T t118 = t082 - ((S(2)*t069 - (S(4)*t084 + qz)*t004)*t115 - S(2)*t085)*t023;
-    const T t119 = S(12)*((t046*t114 + t071)*t025 - t011*t118)*t113;
-    const T t120 = (S(2)*t089 - ((qw - S(4)*t093)*t004 + S(2)*t106)*t115)*t023 + t096;
-    const T t121 = S(12)*((t048*t114 + t100)*t025 - t011*t120)*t113;
-    const T t122 = (S(2)*t102 - ((S(4)*t105 + qx)*t004 + S(2)*t090)*t115)*t023 - t109;
-    const T t123 = S(12)*((t098 - t050*t114)*t025 + t011*t122)*t113;
-    const T t124 = t028/p.I3;
+    const T t008 = p.c000*t007;
+    const T t009 = t004*t008;
+    const T t010 = qw*qx + qy*qz;
+    const T t011 = t010*t010;
+    const T t012 = t004*t004;
+    const T t013 = S(4)*t011 + t012;
+    const T t014 = sqrt(t007*t013);
+    const T t015 = p.I1*t014;
+    const T t016 = S(4)*p.I2*t011 + p.I3*t012;
+    const T t017 = t015 - t016/(t006*t014);
+    const T t018 = S(1)/t014;
+    const T t019 = t017*t018;
+    const T t020 = S(1)/t013;
+    const T t021 = p.c001*t020;
+    const T t022 = qw*qy - qx*qz;
+    const T t023 = ((S(6)*t019 - S(24)*t011*t021)*t009*t022 + omega1*omega3*p.c004)*p.c003;
+    const T t024 = omega1*omega2*p.c005 - S(12)*(t012*t021 + t019)*t008*t010*t022;
+    const T t025 = -S(1)/S(2)*omega1;
+    const T t026 = -S(1)/S(2)*omega2;
+    const T t027 = -S(1)/S(2)*omega3;
+    const T t028 = -S(1)/S(2)*qx;
+    const T t029 = -S(1)/S(2)*qy;
+    const T t030 = -S(1)/S(2)*qz;
+    const T t031 = S(1)/S(2)*omega1;
+    const T t032 = S(1)/S(2)*omega3;
+    const T t033 = S(1)/S(2)*qw;
+    const T t034 = S(1)/S(2)*omega2;
+    const T t035 = p.c007*t007;
+    const T t036 = qw*t010;
+    const T t037 = S(1)/t005;
+    const T t038 = t010*t037;
+    const T t039 = S(2)*t036 - (qx - S(4)*qw*t038)*t004;
+    const T t040 = qx*t010;
+    const T t041 = S(2)*t040 - (S(4)*qx*t038 - qw)*t004;
+    const T t042 = qy*t010;
+    const T t043 = (qz - S(4)*qy*t038)*t004 + S(2)*t042;
+    const T t044 = qz*t010;
+    const T t045 = S(2)*t044 - (qy - S(4)*qz*t038)*t004;
+    const T t046 = t017*t022*t037;
+    const T t047 = t015*t022;
+    const T t048 = S(1)/(t005*t014);
+    const T t049 = qw*t037;
+    const T t050 = t011*t037;
+    const T t051 = t004*t037;
+    const T t052 = (S(1) + t051)*t004 + S(4)*t050;
+    const T t053 = S(2)*t040 - qw*t052;
+    const T t054 = t020*t053;
+    const T t055 = p.I2*t010;
+    const T t056 = p.I3*t004;
+    const T t057 = (S(8)*qx - (S(24)*t049 + S(8)*t054)*t010)*t055 - ((S(2)*t054 + S(6)*t049)*t004 + S(4)*qw)*t056 - S(2)*p.I1*t053;
+    const T t058 = ((qy*t016 + t022*t057)*t048 + S(2)*qw*t047)*t037;
+    const T t059 = (S(2)*qw*t046 + t058 - qy*t015)*t018;
+    const T t060 = t019*t022;
+    const T t061 = t053*t060;
+    const T t062 = p.c001*t010;
+    const T t063 = (t049 + t054)*t022;
+    const T t064 = qx*t022;
+    const T t065 = (((S(4)*qy - S(16)*t063)*t010 + S(4)*t064)*t062 + S(2)*t061)*t020 + t059;
+    const T t066 = qw*t019;
+    const T t067 = t010*t021;
+    const T t068 = p.c008*t007;
+    const T t069 = S(6)*(-(S(2)*t066 - S(4)*t039*t067)*t022 - t004*t065)*t068;
+    const T t070 = qx*t019;
+    const T t071 = (t051 - S(1))*t004 + S(4)*t050;
+    const T t072 = S(2)*t036 - qx*t071;
+    const T t073 = t020*t072;
+    const T t074 = qx*t037;
+    const T t075 = ((S(2)*t073 + S(6)*t074)*t004 - S(4)*qx)*t056 + S(2)*p.I1*t072 - (S(8)*qw - (S(24)*t074 + S(8)*t073)*t010)*t055;
+    const T t076 = (S(2)*qx*t047 - (qz*t016 + t022*t075)*t048)*t037;
+    const T t077 = (S(2)*qx*t046 + qz*t015 + t076)*t018;
+    const T t078 = qw*t022;
+    const T t079 = (t073 + t074)*t022;
+    const T t080 = t060*t072;
+    const T t081 = ((S(4)*t078 - (S(16)*t079 + S(4)*qz)*t010)*t062 + S(2)*t080)*t020 + t077;
+    const T t082 = S(6)*(-(S(4)*t041*t067 - S(2)*t070)*t022 - t004*t081)*t068;
+    const T t083 = S(2)*t044 - qy*t071;
+    const T t084 = t060*t083;
+    const T t085 = qz*t022;
+    const T t086 = qy*t037;
+    const T t087 = t020*t083;
+    const T t088 = (t086 + t087)*t022;
+    const T t089 = S(2)*p.I1*t083 - (S(4)*qy - (S(2)*t087 + S(6)*t086)*t004)*t056 - (S(8)*qz - (S(24)*t086 + S(8)*t087)*t010)*t055;
+    const T t090 = (S(2)*qy*t047 - (t022*t089 - qw*t016)*t048)*t037;
+    const T t091 = (S(2)*qy*t046 + t090 - qw*t015)*t018;
+    const T t092 = (((S(4)*qw - S(16)*t088)*t010 + S(4)*t085)*t062 + S(2)*t084)*t020 + t091;
+    const T t093 = qy*t019;
+    const T t094 = S(6)*((S(2)*t093 - S(4)*t043*t067)*t022 - t004*t092)*t068;
+    const T t095 = qz*t019;
+    const T t096 = qz*t052 - S(2)*t042;
+    const T t097 = t060*t096;
+    const T t098 = qz*t037;
+    const T t099 = t020*t096;
+    const T t100 = (t098 - t099)*t022;
+    const T t101 = qy*t022;
+    const T t102 = ((S(24)*t098 - S(8)*t099)*t010 - S(8)*qy)*t055 + ((S(6)*t098 - S(2)*t099)*t004 + S(4)*qz)*t056 - S(2)*p.I1*t096;
+    const T t103 = (S(2)*qz*t047 - (qx*t016 + t022*t102)*t048)*t037;
+    const T t104 = (S(2)*qz*t046 + qx*t015 + t103)*t018;
+    const T t105 = (((S(16)*t100 + S(4)*qx)*t010 - S(4)*t101)*t062 + S(2)*t097)*t020 - t104;
+    const T t106 = S(6)*((S(4)*t045*t067 - S(2)*t095)*t022 + t004*t105)*t068;
+    const T t107 = p.c010*t007;
+    const T t108 = t004*t021;
+    const T t109 = p.c001*t004;
+    const T t110 = ((S(2)*t078 - (qy - S(4)*t063)*t004)*t109 + S(2)*t061)*t020 + t059;
+    const T t111 = S(12)*(-(t039*t108 - t070)*t022 - t010*t110)*t107;
+    const T t112 = t077 - ((S(2)*t064 - (S(4)*t079 + qz)*t004)*t109 - S(2)*t080)*t020;
+    const T t113 = S(12)*((t041*t108 + t066)*t022 - t010*t112)*t107;
+    const T t114 = (S(2)*t084 - ((qw - S(4)*t088)*t004 + S(2)*t101)*t109)*t020 + t091;
+    const T t115 = S(12)*((t043*t108 + t095)*t022 - t010*t114)*t107;
+    const T t116 = (S(2)*t097 - ((S(4)*t100 + qx)*t004 + S(2)*t085)*t109)*t020 - t104;
+    const T t117 = S(12)*((t093 - t045*t108)*t022 + t010*t116)*t107;
     dydt[0] = -S(1)/S(2)*(omega1*qx + omega2*qy + omega3*qz);
     dydt[1] = S(1)/S(2)*(omega1*qw + omega3*qy - omega2*qz);
     dydt[2] = S(1)/S(2)*(omega1*qz + omega2*qw - omega3*qx);
     dydt[3] = S(1)/S(2)*(omega2*qx + omega3*qw - omega1*qy);
-    dydt[4] = (-S(6)*t010*t011 - omega2*omega3)*t013;
-    dydt[5] = t027;
-    dydt[6] = -t029/p.I3;
+    dydt[4] = (-S(6)*t009*t010 - omega2*omega3)*p.c002;
+    dydt[5] = t023;
+    dydt[6] = -p.c006*t024;
     J[0] = T(S(0));
-    J[1] = t030;
-    J[2] = t031;
-    J[3] = t032;
-    J[4] = t033;
-    J[5] = t034;
-    J[6] = t035;
-    J[7] = t036;
+    J[1] = t025;
+    J[2] = t026;
+    J[3] = t027;
+    J[4] = t028;
+    J[5] = t029;
+    J[6] = t030;
+    J[7] = t031;
     J[8] = T(S(0));
-    J[9] = t037;
-    J[10] = t031;
-    J[11] = t038;
-    J[12] = t035;
+    J[9] = t032;
+    J[10] = t026;
+    J[11] = t033;
+    J[12] = t030;
     J[13] = S(1)/S(2)*qy;
-    J[14] = t039;
-    J[15] = t032;
+    J[14] = t034;
+    J[15] = t027;
     J[16] = T(S(0));
-    J[17] = t036;
+    J[17] = t031;
     J[18] = S(1)/S(2)*qz;
-    J[19] = t038;
-    J[20] = t033;
-    J[21] = t037;
-    J[22] = t039;
-    J[23] = t030;
+    J[19] = t033;
+    J[20] = t028;
+    J[21] = t032;
+    J[22] = t034;
+    J[23] = t025;
     J[24] = T(S(0));
-    J[25] = t034;
+    J[25] = t029;
     J[26] = S(1)/S(2)*qx;
-    J[27] = t038;
-    J[28] = S(6)*t043*t044;
-    J[29] = -S(6)*t044*t046;
-    J[30] = -S(6)*t044*t048;
-    J[31] = S(6)*t044*t050;
+    J[27] = t033;
+    J[28] = S(6)*t035*t039;
+    J[29] = -S(6)*t035*t041;
+    J[30] = -S(6)*t035*t043;
+    J[31] = S(6)*t035*t045;
     J[32] = T(S(0));
-    J[33] = -omega3*t013;
-    J[34] = -omega2*t013;
-    J[35] = t074;
-    J[36] = t087;
-    J[37] = t099;
-    J[38] = t111;
-    J[39] = omega3*t112;
+    J[33] = -omega3*p.c002;
+    J[34] = -omega2*p.c002;
+    J[35] = t069;
+    J[36] = t082;
+    J[37] = t094;
+    J[38] = t106;
+    J[39] = omega3*p.c009;
     J[40] = T(S(0));
-    J[41] = omega1*t112;
-    J[42] = t117;
-    J[43] = t119;
-    J[44] = t121;
-    J[45] = t123;
-    J[46] = -omega2*t124;
-    J[47] = -omega1*t124;
+    J[41] = omega1*p.c009;
+    J[42] = t111;
+    J[43] = t113;
+    J[44] = t115;
+    J[45] = t117;
+    J[46] = -omega2*p.c011;
+    J[47] = -omega1*p.c011;
     J[48] = T(S(0));
+}
+
+// rhs_and_jacobian with the parameters as given: prepares them at every call (prepare(p) once, and the
+// function above, does not).
+template <class T>
+void rhs_and_jacobian(T t, const T* y, T* dydt, T* J, const params<T>& p) {
+    rhs_and_jacobian(t, y, dydt, J, prepare(p));
 }
 
 // The energy T + V (conserved without damping and driving torques).

@@ -7,8 +7,10 @@
 //   kernel_bench [PREFIX]     prints Markdown tables; writes PREFIX.md and PREFIX.csv if given
 //
 // Timing: 256 random states (theta in [0.3, pi - 0.3]) evaluated in turn, repeated until a run
-// takes >= 20 ms of this thread's CPU time; the median of 7 runs. Accuracy: relative max-norm error
-// of q_ddot in double against the same kernel in 50-digit arithmetic
+// takes >= 20 ms of this thread's CPU time; the median of 7 runs. rotgen's kernels with run-time
+// parameters are given prepare(params) made once (prepared<T>: their parameter-only
+// subexpressions hoisted), as a caller integrating with one parameter set does. Accuracy: relative
+// max-norm error of q_ddot in double against the same kernel in 50-digit arithmetic
 // (boost::multiprecision::cpp_bin_float_50). Against SymPy: rotgen's default Lagrangian kernel
 // (explicit), SymPy's, and the hand-written ones of each model are timed interleaved (15 rounds,
 // each kernel once per round, the median), so that a change in the machine's load hits them alike.
@@ -297,7 +299,7 @@ bool any_mismatch(const std::vector<check_row>& checks) {
     {                                                                                              \
         namespace ns = rotgen::models::u;                                                          \
         const auto states = random_states(ns::state_names, 256, 42);                               \
-        const ns::params<double> p{};                                                              \
+        const ns::prepared<double> p = ns::prepare(ns::params<double>{});                          \
         const double rhs_ns = time_per_call(                                                       \
             states, ns::state_size, [&p](const double* y, double* f) { ns::rhs(0.5, y, f, p); });  \
         const double jac_ns =                                                                      \
@@ -354,7 +356,7 @@ std::vector<accuracy_row> accuracy_near_poles() {
         namespace rg = rotgen::models::model;                                                      \
         namespace sk = sympy_kernels::u;                                                           \
         const auto states = random_states(rg::state_names, 256, 42);                               \
-        const rg::params<double> rp{};                                                             \
+        const rg::prepared<double> rp = rg::prepare(rg::params<double>{});                         \
         const sk::params sp{};                                                                     \
         std::vector<runner> runners{                                                               \
             make_runner(states, 6, [rp](const double* y, double* f) { rg::rhs(0.5, y, f, rp); }),  \

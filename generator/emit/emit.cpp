@@ -1,6 +1,7 @@
 // clang-format off: clang-format 14 moves this include block to the end of the file
 #include "emit/emit.hpp"
 
+#include "emit/prepared.hpp"
 #include "emit/taylor.hpp"
 #include "expr/angles.hpp"
 #include "expr/print.hpp"
@@ -441,7 +442,11 @@ std::string description(const lowered_form& lf, const std::vector<function_stats
         else
             desc += "//   " + s.function + ": " + std::to_string(s.before.total()) + " -> " +
                     std::to_string(s.after.total()) + " (" + std::to_string(s.temporaries) +
-                    " temporaries)\n";
+                    " temporaries)" +
+                    (s.hoisted.total()
+                         ? ", and " + std::to_string(s.hoisted.total()) + " once in prepare()"
+                         : std::string()) +
+                    "\n";
     if (!desc.empty() && desc.back() == '\n') desc.pop_back();
     return desc;
 }
@@ -471,6 +476,7 @@ std::string taylor_text(const lowered_form& lf, const lowered_function& fn,
                      {},
                      {},
                      b.series,
+                     {},
                      std::to_string(b.series) + " series, " + std::to_string(b.operations) +
                          " recurrences per order"});
     return fill_template("taylor_helpers.hpp.in", {}) +
@@ -498,13 +504,15 @@ emitted_header emit_header(const model_spec& spec, const lowered_form& lf,
             continue;
         }
         const function_body b = write_body(fn);
-        h.stats.push_back({fn.name, b.before, b.after, b.temporaries, ""});
+        h.stats.push_back(
+            {fn.name, b.before, b.after, b.temporaries, constants_op_count(fn.program), ""});
         functions += function_text(lf, fn, b);
     }
     if (lf.form == form_kind::body && lf.state_names.size() == 7)
         functions += quaternion_functions();
-    const std::string params = fill_template(
-        "params.hpp.in", {{"model_file", one_line(spec.file)}, {"members", params_members(lf)}});
+    const std::string params = fill_template("params.hpp.in", {{"model_file", one_line(spec.file)},
+                                                               {"members", params_members(lf)}}) +
+                               "\n" + prepared_text(lf);
     h.text =
         fill_template("header.hpp.in", {{"file_name", h.file_name},
                                         {"model", spec.name},

@@ -13,6 +13,9 @@
 //             translation unit; `--name` chooses another unit (two variants of one form);
 //   namespace rotgen::models::<unit>;
 //   template <class T> struct params { T <parameter> = <default>; ... };  (empty if all folded)
+//   template <class T> struct prepared : params<T> { T c000, ...; };  prepare(params) fills it:
+//     the parameter-only subexpressions of rhs, jacobian and rhs_and_jacobian, computed once
+//     (lowered_form::constants); those three take prepared<T> or params<T> (prepared at the call);
 //   constexpr model_name, form_name, state_size, state_names, parameter_count, parameter_names;
 //   per requested output:
 //     template <class T> void rhs(T t, const T* y, T* dydt, const params<T>& p);
@@ -52,6 +55,7 @@ struct function_stats {
     std::string function;
     op_count before, after;
     std::size_t temporaries = 0;
+    op_count hoisted;    // the operations of the constants it reads from prepared<T>
     std::string summary; // when set, the header's description says this instead of the counts
 };
 

@@ -285,6 +285,17 @@ op_count printed_op_count(const lowered_program& program) {
     return r;
 }
 
+op_count definition_op_count(const lowered_program& program, int node) {
+    return program_printer(program, "S").definition(node).ops;
+}
+
+op_count constants_op_count(const lowered_program& program) {
+    op_count r;
+    for (const auto& c : program.constants)
+        r += definition_op_count(program, c.node);
+    return r;
+}
+
 std::string print_outputs_inline(const lowered_program& program,
                                  const std::vector<std::string>& targets, const std::string& scalar,
                                  const std::string& indent) {

@@ -37,6 +37,13 @@ std::string print_number(const GiNaC::numeric& value, const std::string& scalar 
 // its temporaries plus its outputs. Equal to program.after.
 op_count printed_op_count(const lowered_program& program);
 
+// The operations of one node's definition as print_definition prints it.
+op_count definition_op_count(const lowered_program& program, int node);
+
+// The operations of the program's hoisted constants (lowered_program::constants): what prepare()
+// computes once, and what a call given params<T> computes first.
+op_count constants_op_count(const lowered_program& program);
+
 // The program's outputs with no temporaries: `<indent><targets[i]> = <output i>;` a line, every
 // node printed where it is used (a node used twice is printed twice), sin/cos not hoisted. An
 // output that is a bare number is wrapped as T(...) (inside a function templated on T).

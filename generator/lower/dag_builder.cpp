@@ -69,7 +69,7 @@ std::vector<int> node_children(const lowered_node& node) {
 
 namespace rotgen::lowering {
 
-dag_builder::dag_builder(lowered_program& program) : m_p(program) {
+dag_builder::dag_builder(lowered_program& program, bool hoist) : m_p(program), m_hoist(hoist) {
     for (std::size_t i = 0; i < m_p.inputs.size(); ++i) {
         const program_input& in = m_p.inputs[i];
         if (!is_a<GiNaC::symbol>(in.symbol))

@@ -97,7 +97,8 @@ void renumber(lowered_program& p);
 // Builds the hash-consed DAG.
 class dag_builder {
   public:
-    explicit dag_builder(lowered_program& program);
+    // hoist: lower_options::hoist_parameters (parameters of a product as one factor)
+    explicit dag_builder(lowered_program& program, bool hoist = false);
 
     int materialize(const linear& v);
 
@@ -227,7 +228,12 @@ class dag_builder {
     int intern(lowered_node n, const std::string& key);
 
   private:
+    // The parameters of a monomial with state factors as one factor of their own, when hoisting
+    // and there are two or more of them or one below the bar: nullopt otherwise.
+    std::optional<linear> hoisted_parameters(const numeric& c, const monomial& m);
+
     lowered_program& m_p;
+    bool m_hoist;
     std::map<std::string, int> m_table;
     std::map<ex, linear, GiNaC::ex_is_less> m_memo;
     std::map<ex, int, GiNaC::ex_is_less> m_input_of;

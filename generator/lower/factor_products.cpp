@@ -27,8 +27,42 @@ monomial dag_builder::monomial_of(int node) const {
     return {{node, 1}};
 }
 
+// Hoisting: x y I3/I1 -> x y (I3/I1) and x/(I1 y) -> x (1/I1)/y, the parameters' factor a node
+// of its own (a constant, computed once per parameter set: a division by a parameter becomes a
+// multiplication). One parameter factor above the bar alone, x I3, stays as it is.
+std::optional<linear> dag_builder::hoisted_parameters(const numeric& c, const monomial& m) {
+    long count = 0;
+    bool below = false, state = false;
+    for (const auto& [b, x] : m) {
+        if (!m_parametric[static_cast<std::size_t>(b)]) {
+            state = true;
+            continue;
+        }
+        count += x > 0 ? x : -x;
+        below = below || x < 0;
+    }
+    if (!m_hoist || !state || (count < 2 && !below)) return std::nullopt;
+    monomial parameters;
+    std::vector<int> pnum, pden, num, den;
+    for (const auto& [b, x] : m) {
+        if (!m_parametric[static_cast<std::size_t>(b)])
+            (x > 0 ? num : den).push_back(power(b, x > 0 ? x : -x));
+        else
+            (x > 0 ? pnum : pden).push_back(power(b, x > 0 ? x : -x)), parameters.emplace(b, x);
+    }
+    const int factor =
+        pnum.size() == 1 && pden.empty() ? pnum[0] : product(std::move(pnum), std::move(pden));
+    m_monomial.emplace(factor, parameters);
+    num.push_back(factor);
+    if (!den.empty()) num.push_back(product({}, std::move(den)));
+    const int id = product(std::move(num), {});
+    m_monomial.emplace(id, m);
+    return linear{c, id};
+}
+
 // coefficient * prod factor^exponent as (coefficient, node).
 linear dag_builder::from_monomial(const numeric& c, const monomial& m) {
+    if (const auto hoisted = hoisted_parameters(c, m)) return *hoisted;
     // State factors times parameters over parameters, x y I3/I2: the parameters' quotient is
     // one node, x y (I3/I2), computed apart from the state (off the chain of operations on
     // the state, and shared by the products that have it) with the same operations.

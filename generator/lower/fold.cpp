@@ -81,14 +81,14 @@ std::optional<lowered_program> lower_folded(const std::vector<ex>& outputs,
     lowered_program runtime;
     runtime.inputs = inputs;
     {
-        dag_builder b(runtime);
+        dag_builder b(runtime, options.hoist_parameters);
         for (const ex& e : outputs)
             runtime.outputs.push_back(b.materialize(b.convert(e)));
     }
     lowered_program p;
     for (const program_input& in : inputs)
         if (!values.count(in.symbol)) p.inputs.push_back(in);
-    dag_builder b(p);
+    dag_builder b(p, options.hoist_parameters);
     std::vector<linear> mapped(runtime.nodes.size(), linear{0, -1});
     try {
         for (std::size_t i = 0; i < runtime.nodes.size(); ++i) {

@@ -102,7 +102,12 @@ struct lowered_program {
         int node;
         std::string name; // t000, t001, ... or sin_theta, cos_theta
     };
-    std::vector<step> steps;                   // the temporaries, in order
+    std::vector<step> steps; // the temporaries, in order
+    // With lower_options::hoist_parameters: the subexpressions of parameters alone that the
+    // program reads by name instead of computing them (p.c000, ...; children before parents).
+    // Their definitions are printed once per parameter set, outside the program (emit's
+    // prepare()); they are not among the steps and not counted in `after`.
+    std::vector<step> constants;
     std::map<int, std::string> temporary_name; // node -> its step's name
     std::vector<char> parametric;              // node -> of parameters and numbers alone
     op_count before; // the outputs printed naively, each on its own (no sharing, no hoisting)
@@ -113,6 +118,12 @@ struct lower_options {
     // A subexpression longer than this (roughly, in operations) becomes a temporary even if used
     // once: statements stay short, and array types with expression templates (Eigen) compile fast.
     std::size_t max_inline_ops = 12;
+    // Parameter-only subexpressions are hoisted out of the program (lowered_program::constants):
+    // every product of state factors with two or more parameter factors, or with a parameter
+    // below the bar, takes its parameters as one factor of their own (x y I3/I1 -> x y (I3/I1),
+    // x/I1 -> x (1/I1): a division becomes a multiplication), and each such factor, and each
+    // parameter-only term or argument, is a named constant.
+    bool hoist_parameters = false;
 };
 
 // Lowers `outputs` (in terms of the inputs' symbols; any other symbol is an internal error).

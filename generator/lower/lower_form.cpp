@@ -6,6 +6,7 @@
 #include "support/error.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <random>
 #include <regex>
 #include <stdexcept>
@@ -203,7 +204,11 @@ class chooser {
     const std::vector<program_input>& inputs() const { return m_inputs; }
     bool folding() const { return !m_folded.empty(); }
 
-    lowered_program best(const candidates& substituted, const candidates& runtime) const {
+    // hoist: lower_options::hoist_parameters
+    lowered_program best(const candidates& substituted, const candidates& runtime,
+                         bool hoist = false) const {
+        lower_options options;
+        options.hoist_parameters = hoist;
         const auto cost = [](const op_count& o) { return o.add + o.mul + 4 * o.div + 20 * o.call; };
         const auto better = [&](const op_count& a, const op_count& b) {
             return cost(a) < cost(b) || (cost(a) == cost(b) && a.total() < b.total());
@@ -211,12 +216,13 @@ class chooser {
         std::size_t best = 0;
         std::vector<lowered_program> programs;
         for (const auto& c : substituted) {
-            programs.push_back(lower(c, m_inputs));
+            programs.push_back(lower(c, m_inputs, options));
             if (better(programs.back().after, programs[best].after)) best = programs.size() - 1;
         }
         if (folding())
             for (const auto& c : runtime) {
-                std::optional<lowered_program> p = lower_folded(c, m_runtime_inputs, m_folded);
+                std::optional<lowered_program> p =
+                    lower_folded(c, m_runtime_inputs, m_folded, options);
                 if (!p) continue;
                 programs.push_back(std::move(*p));
                 if (better(programs.back().after, programs[best].after)) best = programs.size() - 1;
@@ -293,6 +299,25 @@ jacobian_candidates jacobians(const form_expressions& f, const form_expressions&
     return r;
 }
 
+// The hoisted constants of all the functions, named once for the form: equal ones (the same
+// digest: the same expression) share a name, p.c000, p.c001, ... in order of first appearance
+// (children before parents, as each program lists them).
+void name_constants(lowered_form& r) {
+    std::map<std::uint64_t, std::string> names;
+    for (std::size_t f = 0; f < r.functions.size(); ++f) {
+        lowered_program& p = r.functions[f].program;
+        for (auto& c : p.constants) {
+            char name[32];
+            std::snprintf(name, sizeof name, "p.c%03zu", names.size());
+            const auto [it, fresh] =
+                names.emplace(p.nodes[static_cast<std::size_t>(c.node)].digest, name);
+            c.name = it->second;
+            p.temporary_name[c.node] = c.name;
+            if (fresh) r.constants.push_back({f, c.node, c.name});
+        }
+    }
+}
+
 } // namespace
 
 form_expressions build_requested_form(const model_spec& spec, const derivation& d, form_kind form,
@@ -329,15 +354,17 @@ lowered_form lower_form(const model_spec& spec, const form_expressions& runtime_
     for (const auto& name : outputs) {
         if (name == "rhs" || name == "taylor") {
             // taylor: the coefficients of the rhs's own program (emit/taylor.hpp)
-            r.functions.push_back(
-                {name, choose.best(rate_candidates_of(f), runtime_rates), dydt, tyt, f.rate_names});
+            r.functions.push_back({name,
+                                   choose.best(rate_candidates_of(f), runtime_rates, name == "rhs"),
+                                   dydt, tyt, f.rate_names});
         } else if (name == "jacobian") {
-            r.functions.push_back({name, choose.best(jac.jac, jac.runtime_jac), J, tyt, {}});
+            r.functions.push_back({name, choose.best(jac.jac, jac.runtime_jac, true), J, tyt, {}});
             if (contains(outputs, "rhs")) {
                 std::vector<std::string> targets = dydt;
                 targets.insert(targets.end(), J.begin(), J.end());
-                r.functions.push_back({"rhs_and_jacobian", choose.best(jac.both, jac.runtime_both),
-                                       targets, tyt, f.rate_names});
+                r.functions.push_back({"rhs_and_jacobian",
+                                       choose.best(jac.both, jac.runtime_both, true), targets, tyt,
+                                       f.rate_names});
             }
         } else {
             const form_output& out = f.outputs.at(name);
@@ -355,6 +382,7 @@ lowered_form lower_form(const model_spec& spec, const form_expressions& runtime_
                 {name, choose.best(candidates_of(out), runtime), targets, {"y", "p"}, out.names});
         }
     }
+    name_constants(r);
     return r;
 }
 

@@ -57,6 +57,15 @@ struct lowered_form {
     // without a Jacobian.
     std::vector<bool> jacobian_zero;
     std::vector<lowered_function> functions; // in output order (rhs_and_jacobian after jacobian)
+    // The parameter-only subexpressions hoisted out of rhs, jacobian and rhs_and_jacobian (of the
+    // run-time parameters), each once for the form: prepare() computes them per parameter set,
+    // the functions read them as p.c000, ... Each is printed with the program it was found in.
+    struct constant {
+        std::size_t function; // index in `functions`
+        int node;             // in that function's program
+        std::string name;     // p.c000
+    };
+    std::vector<constant> constants;
 };
 
 // Checks the names of `request.outputs` (user_error "unknown output ..." with a suggestion), then

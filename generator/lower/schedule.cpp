@@ -64,19 +64,37 @@ std::vector<int> count_uses(const lowered_program& p, std::vector<int>& uses) {
     return order;
 }
 
+// The nodes a non-parametric node or an output uses directly (children of state-dependent
+// parents): where hoisting, the parameter-only ones among them are read by name.
+std::vector<char> used_by_state(const lowered_program& p, const std::vector<int>& order) {
+    std::vector<char> r(p.nodes.size(), 0);
+    for (int id : order)
+        if (!p.parametric[static_cast<std::size_t>(id)])
+            for (int c : children(p.nodes[static_cast<std::size_t>(id)]))
+                r[static_cast<std::size_t>(c)] = 1;
+    for (int o : p.outputs)
+        r[static_cast<std::size_t>(o)] = 1;
+    return r;
+}
+
 // Temporaries: sums, products and calls used more than once; sin/cos of inputs always
 // (`hoisted`); and a subexpression whose inline text would exceed max_inline_ops operations
 // (short statements: readable, and shallow expression templates for array scalar types such as
-// Eigen's). `order` has children before parents.
+// Eigen's). With hoisting, a parameter-only one of these, or one a state-dependent node uses, is
+// a constant instead. `order` has children before parents.
 void choose_temporaries(const lowered_program& p, const std::vector<int>& order,
                         const std::vector<int>& uses, const lower_options& options,
-                        std::vector<int>& hoisted, std::vector<int>& temps) {
+                        std::vector<int>& hoisted, std::vector<int>& temps,
+                        std::vector<int>& constants) {
     std::vector<std::size_t> inline_ops(p.nodes.size(), 0);
+    const std::vector<char> by_state =
+        options.hoist_parameters ? used_by_state(p, order) : std::vector<char>(p.nodes.size(), 0);
     for (int id : order) {
         const auto u = static_cast<std::size_t>(id);
         const lowered_node& n = p.nodes[u];
         const bool compound = n.k == lowered_node::kind::sum ||
                               n.k == lowered_node::kind::product || n.k == lowered_node::kind::call;
+        const bool constant = options.hoist_parameters && compound && p.parametric[u];
         std::size_t cost = 0;
         if (n.k == lowered_node::kind::sum) cost = n.terms.size() + (n.value.is_zero() ? 0 : 1);
         if (n.k == lowered_node::kind::product) cost = n.numerator.size() + n.denominator.size();
@@ -85,11 +103,24 @@ void choose_temporaries(const lowered_program& p, const std::vector<int>& order,
             cost += inline_ops[static_cast<std::size_t>(c)];
         if (is_hoisted_trig(p, n)) {
             hoisted.push_back(id);
+        } else if (constant && (by_state[u] || uses[u] >= 2 || cost > options.max_inline_ops)) {
+            constants.push_back(id);
         } else if (compound && (uses[u] >= 2 || cost > options.max_inline_ops)) {
             temps.push_back(id);
         } else {
             inline_ops[u] = cost;
         }
+    }
+}
+
+// The constants, named p.c000, p.c001, ... in order (lower_form names them again, once for all
+// the functions of a form).
+void name_constants(lowered_program& p, const std::vector<int>& constants) {
+    for (std::size_t i = 0; i < constants.size(); ++i) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "p.c%03zu", i);
+        p.constants.push_back({constants[i], buf});
+        p.temporary_name[constants[i]] = buf;
     }
 }
 
@@ -128,8 +159,9 @@ void lowering::schedule(lowered_program& p, const lower_options& options) {
     mark_parametric(p);
     std::vector<int> uses;
     const std::vector<int> order = count_uses(p, uses);
-    std::vector<int> hoisted, temps;
-    choose_temporaries(p, order, uses, options, hoisted, temps);
+    std::vector<int> hoisted, temps, constants;
+    choose_temporaries(p, order, uses, options, hoisted, temps, constants);
+    name_constants(p, constants);
     name_temporaries(p, hoisted, temps);
     p.after = printed_ops(p);
 }
@@ -177,7 +209,7 @@ lowered_program lower(const std::vector<ex>& outputs, const std::vector<program_
     p.inputs = inputs;
     p.before = naive_ops(outputs);
     {
-        dag_builder b(p);
+        dag_builder b(p, options.hoist_parameters);
         for (const ex& e : outputs)
             p.outputs.push_back(b.materialize(b.convert(e)));
         b.share_products(p.outputs);

@@ -132,20 +132,34 @@ void print_body(std::ostream& shim, const form_expressions& f, const std::vector
 // of an ensemble run its kernels concurrently with their own values.
 std::string entry_points(const form_expressions& f, const std::string& unit,
                          const std::vector<ex>& program, const std::vector<ex>& events,
-                         const std::string& taylor) {
+                         const std::string& taylor, const std::vector<std::string>& constants) {
     std::ostringstream shim;
     shim << "\n// ---- rotgen run: entry points for the runtime ----\n"
-         << "namespace {\nnamespace rg_model = rotgen::models::" << unit << ";\n"
-         << "rg_model::params<double> rg_params(const double* v) {\n"
-         << "    rg_model::params<double> p;\n";
-    for (std::size_t i = 0; i < f.parameters.size(); ++i)
-        shim << "    p." << f.parameters[i].name << " = v[" << i << "];\n";
-    shim << (f.parameters.empty() ? "    (void)v;\n" : "") << "    return p;\n}\n}\n\n"
-         << "extern \"C\" {\n"
-         << "void rotgen_rhs(const double* v, double t, const double* y, double* dydt) {\n"
-         << "    rg_model::rhs(t, y, dydt, rg_params(v));\n}\n"
-         << "void rotgen_jacobian(const double* v, double t, const double* y, double* J) {\n"
-         << "    rg_model::jacobian(t, y, J, rg_params(v));\n}\n";
+         << "namespace {\nnamespace rg_model = rotgen::models::" << unit << ";\n";
+    // params from v; prepared from w = (v, the constants), rotgen_prepare
+    std::vector<std::string> members;
+    for (const auto& p : f.parameters)
+        members.push_back(p.name);
+    members.insert(members.end(), constants.begin(), constants.end());
+    for (const bool prepared : {false, true}) {
+        const std::size_t count = prepared ? members.size() : f.parameters.size();
+        const std::string type = prepared ? "prepared" : "params";
+        shim << "rg_model::" << type << "<double> rg_" << type << "(const double* v) {\n"
+             << "    rg_model::" << type << "<double> p;\n";
+        for (std::size_t i = 0; i < count; ++i)
+            shim << "    p." << members[i] << " = v[" << i << "];\n";
+        shim << (count == 0 ? "    (void)v;\n" : "") << "    return p;\n}\n";
+    }
+    shim << "}\n\nextern \"C\" {\n"
+         << "void rotgen_prepare(const double* v, double* w) {\n"
+         << "    const rg_model::prepared<double> p = rg_model::prepare(rg_params(v));\n";
+    for (std::size_t i = 0; i < members.size(); ++i)
+        shim << "    w[" << i << "] = p." << members[i] << ";\n";
+    shim << (members.empty() ? "    (void)p;\n    (void)w;\n" : "") << "}\n"
+         << "void rotgen_rhs(const double* w, double t, const double* y, double* dydt) {\n"
+         << "    rg_model::rhs(t, y, dydt, rg_prepared(w));\n}\n"
+         << "void rotgen_jacobian(const double* w, double t, const double* y, double* J) {\n"
+         << "    rg_model::jacobian(t, y, J, rg_prepared(w));\n}\n";
     if (!taylor.empty())
         shim << "unsigned long rotgen_taylor_series() { return rg_model::taylor_series; }\n"
              << "void rotgen_taylor(const double* v, double t, double* c, int order) {\n"
@@ -225,14 +239,20 @@ compiled_form compile_form(const scene_spec& scene, form_expressions f, bool ori
     const std::vector<ex> program = record_program(scene, c, orientation, invariants);
     const std::vector<ex> events = event_programs(scene, c.f);
     if (taylor) c.taylor_call = taylor_call(scene.integrator);
+    std::vector<std::string> constants;
+    for (const auto& k : lowered.constants)
+        constants.push_back(k.name.substr(2)); // p.c000 -> c000
     const std::string source =
-        header.text + entry_points(c.f, header.unit, program, events, c.taylor_call);
+        header.text + entry_points(c.f, header.unit, program, events, c.taylor_call, constants);
     c.lib =
         timings.time("compile", header.unit, [&] { return compile_and_load(source, header.unit); });
     c.header = header.text, c.unit = header.unit;
     c.sys.n = c.f.state.size();
     c.sys.f = reinterpret_cast<loaded_system::kernel>(c.lib.symbol("rotgen_rhs"));
     c.sys.jac = reinterpret_cast<loaded_system::kernel>(c.lib.symbol("rotgen_jacobian"));
+    c.prepare = reinterpret_cast<void (*)(const double*, double*)>(c.lib.symbol("rotgen_prepare"));
+    c.prepared_size = c.f.parameters.size() + constants.size();
+    c.constants = constants;
     c.record = reinterpret_cast<loaded_system::kernel>(c.lib.symbol("rotgen_record"));
     for (std::size_t e = 0; e < events.size(); ++e)
         c.events.push_back(reinterpret_cast<loaded_system::kernel>(

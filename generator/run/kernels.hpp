@@ -17,6 +17,7 @@
 
 #include <Eigen/Dense>
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -29,13 +30,17 @@ struct loaded_system {
     using kernel = void (*)(const double* p, double t, const double* y, double* out);
     // taylor(p, t, c, order), emit/taylor.hpp
     using taylor_kernel = void (*)(const double* p, double t, double* c, int order);
+    // f and jac read the prepared values w (the parameters, then the header's hoisted constants:
+    // rotgen_prepare); tay reads the parameter values p
     kernel f = nullptr, jac = nullptr;
     taylor_kernel tay = nullptr; // compiled only for a scene integrated by the Taylor method
     std::size_t n = 0, series = 0;
     const double* p = nullptr;
+    const double* w = nullptr;
+    std::shared_ptr<const std::vector<double>> prepared; // owns w
     std::size_t size() const { return n; }
-    void rhs(double t, const double* y, double* dydt) const { f(p, t, y, dydt); }
-    void jacobian(double t, const double* y, double* J) const { jac(p, t, y, J); }
+    void rhs(double t, const double* y, double* dydt) const { f(w, t, y, dydt); }
+    void jacobian(double t, const double* y, double* J) const { jac(w, t, y, J); }
     std::size_t taylor_series() const { return series; }
     void taylor(double t, double* c, int order) const { tay(p, t, c, order); }
 };
@@ -72,11 +77,19 @@ struct compiled_form {
     std::size_t outputs = 0;                   // of the record program
     std::string header, unit; // the emitted header and its unit (lanes compile it for a batch)
     std::string taylor_call;  // the header's function the Taylor entry points call
+    // prepare(v, w): w = the parameter values v, then the constants computed from them
+    void (*prepare)(const double* v, double* w) = nullptr;
+    std::size_t prepared_size = 0;      // of w
+    std::vector<std::string> constants; // the members of w after the parameters: c000, ...
 
-    // The system with these parameter values (they must outlive it).
+    // The system with these parameter values (they must outlive it), prepared once here.
     loaded_system system(const std::vector<double>& values) const {
         loaded_system s = sys;
         s.p = values.data();
+        auto w = std::make_shared<std::vector<double>>(prepared_size);
+        prepare(values.data(), w->data());
+        s.w = w->data();
+        s.prepared = std::move(w);
         return s;
     }
 };

@@ -29,16 +29,24 @@ std::string lane_source(const compiled_form& cf) {
     for (std::size_t i = 0; i < f.parameters.size(); ++i)
         s << "    p." << f.parameters[i].name << " = rg_batch::load_unaligned(v + " << i
           << " * lanes + l);\n";
+    s << "    return p;\n}\n"
+      << "rg_model::prepared<rg_batch> rg_prepared(const double* w, unsigned long lanes,\n"
+      << "                                         unsigned long l) {\n"
+      << "    rg_model::prepared<rg_batch> p;\n"
+      << "    static_cast<rg_model::params<rg_batch>&>(p) = rg_params(w, lanes, l);\n";
+    for (std::size_t i = 0; i < cf.constants.size(); ++i)
+        s << "    p." << cf.constants[i] << " = rg_batch::load_unaligned(w + "
+          << f.parameters.size() + i << " * lanes + l);\n";
     s << "    return p;\n}\n}\n\n"
       << "extern \"C\" {\n"
       << "unsigned long rotgen_lane_width() { return rg_batch::size; }\n"
-      << "void rotgen_rhs_lanes(const double* v, double t, const double* y, double* dydt,\n"
+      << "void rotgen_rhs_lanes(const double* w, double t, const double* y, double* dydt,\n"
       << "                      unsigned long lanes) {\n"
       << "    for (unsigned long l = 0; l < lanes; l += rg_batch::size) {\n"
       << "        rg_batch yb[" << n << "], db[" << n << "];\n"
       << "        for (unsigned long c = 0; c < " << n << "; ++c)\n"
       << "            yb[c] = rg_batch::load_unaligned(y + c * lanes + l);\n"
-      << "        rg_model::rhs(rg_batch(t), yb, db, rg_params(v, lanes, l));\n"
+      << "        rg_model::rhs(rg_batch(t), yb, db, rg_prepared(w, lanes, l));\n"
       << "        for (unsigned long c = 0; c < " << n << "; ++c)\n"
       << "            db[c].store_unaligned(dydt + c * lanes + l);\n"
       << "    }\n}\n";
@@ -251,8 +259,14 @@ std::vector<lane_run> integrate_lanes(const prepared_scene& prepared, const lane
     const std::size_t members = b.member_of.size(), n = static_cast<std::size_t>(b.y0[0].size());
     const std::size_t lanes = (members + k.width - 1) / k.width * k.width;
     const std::vector<double> p = by_lane(b.parameters, lanes);
-    const auto kernel = [&k, &p, lanes](double t, const double* y, double* dydt) {
-        k.rhs(p.data(), t, y, dydt, lanes);
+    std::vector<std::vector<double>> prepared_values;
+    for (const auto& v : b.parameters) {
+        prepared_values.emplace_back(k.prepared_size);
+        k.prepare(v.data(), prepared_values.back().data());
+    }
+    const std::vector<double> w = by_lane(prepared_values, lanes);
+    const auto kernel = [&k, &w, lanes](double t, const double* y, double* dydt) {
+        k.rhs(w.data(), t, y, dydt, lanes);
     };
     const auto run = [&](auto& sys) {
         for (std::size_t l = members; l < lanes; ++l)
@@ -298,6 +312,7 @@ lane_kernels compile_lanes(const prepared_scene& prepared, stage_timings& timing
     k.rhs = reinterpret_cast<lane_kernels::kernel>(k.lib.symbol("rotgen_rhs_lanes"));
     using width_fn = unsigned long (*)();
     k.width = reinterpret_cast<width_fn>(k.lib.symbol("rotgen_lane_width"))();
+    k.prepare = cf.prepare, k.prepared_size = cf.prepared_size;
     if (cf.sys.tay)
         k.taylor =
             reinterpret_cast<lane_kernels::taylor_kernel>(k.lib.symbol("rotgen_taylor_lanes"));

@@ -33,7 +33,8 @@
 namespace rotgen {
 
 struct lane_kernels {
-    // rhs(p, t, y, dydt, lanes): parameter, state or rate component c of lane l at [c*lanes + l];
+    // rhs(w, t, y, dydt, lanes): prepared value, state or rate component c of lane l at
+    // [c*lanes + l];
     // lanes a multiple of width
     using kernel = void (*)(const double* p, double t, const double* y, double* dydt,
                             unsigned long lanes);
@@ -45,6 +46,9 @@ struct lane_kernels {
     taylor_kernel taylor = nullptr; // with the Taylor method
     std::size_t width = 1;          // doubles per batch
     std::string arch;               // "avx2+fma" or "sse2"
+    // rhs reads the prepared values (compiled_form::prepare) by lane, taylor the parameters
+    void (*prepare)(const double* v, double* w) = nullptr;
+    std::size_t prepared_size = 0;
 };
 
 // Throws user_error (at the scene's integrator) when lanes cannot run the scene: a method other

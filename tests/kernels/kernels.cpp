@@ -38,11 +38,17 @@ P make_params_long(const std::vector<double>& v, std::index_sequence<I...>) {
             k.state_names = strings(ns::state_names);                                              \
             k.parameter_names = strings(ns::parameter_names);                                      \
             k.pattern.assign(ns::jacobian_pattern.begin(), ns::jacobian_pattern.end());            \
-            k.rhs = [p](double t, const double* y, double* f) { ns::rhs(t, y, f, p); };            \
+            /* rhs and jacobian with the prepared parameters (the hoisted constants), the */       \
+            /* long double ones and rhs_and_jacobian given params<T> (prepared at each call) */    \
+            k.rhs = [q = ns::prepare(p)](double t, const double* y, double* f) {                   \
+                ns::rhs(t, y, f, q);                                                               \
+            };                                                                                     \
             k.rhs_long = [pl](long double t, const long double* y, long double* f) {               \
                 ns::rhs(t, y, f, pl);                                                              \
             };                                                                                     \
-            k.jacobian = [p](double t, const double* y, double* J) { ns::jacobian(t, y, J, p); };  \
+            k.jacobian = [q = ns::prepare(p)](double t, const double* y, double* J) {              \
+                ns::jacobian(t, y, J, q);                                                          \
+            };                                                                                     \
             k.jacobian_long = [pl](long double t, const long double* y, long double* J) {          \
                 ns::jacobian(t, y, J, pl);                                                         \
             };                                                                                     \
