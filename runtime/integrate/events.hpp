@@ -318,8 +318,14 @@ template <class T, class State> class event_set {
         }
         const T ta = t + p[a].theta * h, tb = t + p[b].theta * h;
         if (ga != T(0) && sign_of(ga) != -sign_of(gb)) return note_hidden(i, ta, tb);
-        accept_zero(i, ga == T(0) ? ta : refine(i, ta, ga, tb, gb, t, h, interp),
-                    m_dir > T(0) ? s : -s); // the sign as t increases
+        const int rising = m_dir > T(0) ? s : -s; // the sign as t increases
+        if (dropped(m_events[i].direction, rising)) return; // not refined: the filter drops it
+        accept_zero(i, ga == T(0) ? ta : refine(i, ta, ga, tb, gb, t, h, interp), rising);
+    }
+
+    // Whether the direction filter drops a zero where g's sign becomes `s` as t increases.
+    static bool dropped(event_direction d, int s) {
+        return (d == event_direction::rising && s < 0) || (d == event_direction::falling && s > 0);
     }
 
     void note_hidden(std::size_t i, T from, T to) {
@@ -338,11 +344,8 @@ template <class T, class State> class event_set {
     // Keeps a zero unless the direction filter or the chattering guard drops it.
     void accept_zero(std::size_t i, T tz, int s) {
         using std::abs;
-        const event<T, State>& e = m_events[i];
         const track& k = m_track[i];
-        if ((e.direction == event_direction::rising && s < 0) ||
-            (e.direction == event_direction::falling && s > 0))
-            return;
+        if (dropped(m_events[i].direction, s)) return;
         const T guard = T(1e-12) * std::max(abs(k.last_fire), m_span);
         for (const zero& z : m_found) // zeros of this step not yet reported
             if (z.index == i && abs(z.t - tz) <= guard) return;
