@@ -248,23 +248,40 @@ template <class T, class State> class event_set {
 
     T& node(int j, std::size_t i) { return m_nodes[static_cast<std::size_t>(j) * size() + i]; }
 
-    // A sign change over the step in the direction watched, or |g| at both ends within
-    // 4 · |g''| h² / 2 (|g''| the larger of the divided difference's and the last search's bound),
-    // or the last search needed more than one fit. (A change the direction filter drops needs no
-    // search unless more zeros, one of them watched, could hide beside it: the same test.)
+    // A sign change over the step in the direction watched; or a zero g could reach inside the
+    // step if |g''| were as large as K = 16 |g''|, |g''| the larger of the divided difference's and
+    // the last search's bound; or the last search needed more than one fit. Given K: |g| at both
+    // ends within K h² / 8 (a parabola of curvature K through the ends dips that far), and the
+    // lowest point of that parabola inside the step and at or below zero; for a change the
+    // direction filter drops (more zeros, one of them watched, could hide beside it), also g not
+    // proven monotone (|g1 - g0| > K h²: g' keeps its sign).
     bool may_hold_zero(const track& k, T h, event_direction d) const {
         using std::abs;
         using std::isnan;
         if (isnan(k.g1) || isnan(k.g0)) return false;
         const int s1 = sign_of(k.g1);
-        if (s1 != 0 && k.sign != 0 && s1 != k.sign &&
+        const bool change = s1 != 0 && k.sign != 0 && s1 != k.sign;
+        if (change &&
             (d == event_direction::both || (d == event_direction::rising) == (s1 * m_dir > 0)))
             return true;
         if (!k.have_prev || k.unresolved) return true;
         const T hm = k.t0 - k.tm;
         const T g2 = T(2) * ((k.g1 - k.g0) / h - (k.g0 - k.gm) / hm) / (h + hm); // ≈ g''
-        const T curvature = std::max(abs(g2), k.curvature / T(4));
-        return std::min(abs(k.g0), abs(k.g1)) <= T(2) * curvature * h * h;
+        const T K = T(16) * std::max(abs(g2), k.curvature / T(4));
+        const T a0 = abs(k.g0), a1 = abs(k.g1);
+        if (std::min(a0, a1) > K * h * h / T(8)) return false;
+        if (change) return abs(k.g1 - k.g0) <= K * h * h;
+        return parabola_reaches_zero(a0, a1, K, h);
+    }
+
+    // Whether p(x) = a0 + (a1 - a0) x/h - K x (h - x)/2, a0, a1 >= 0 (the lowest g with |g''| <= K
+    // and these end values can be), is <= 0 somewhere in [0, h].
+    static bool parabola_reaches_zero(T a0, T a1, T K, T h) {
+        if (a0 == T(0) || a1 == T(0)) return true;
+        if (!(K > T(0))) return false;              // a straight line between positive ends
+        const T x = h / T(2) - (a1 - a0) / (K * h); // p's vertex
+        if (!(x > T(0) && x < h)) return false;
+        return a0 + (a1 - a0) * x / h - K * x * (h - x) / T(2) <= T(0);
     }
 
     // g of event i at t + theta h on the interpolant
@@ -318,7 +335,7 @@ template <class T, class State> class event_set {
         }
         const T ta = t + p[a].theta * h, tb = t + p[b].theta * h;
         if (ga != T(0) && sign_of(ga) != -sign_of(gb)) return note_hidden(i, ta, tb);
-        const int rising = m_dir > T(0) ? s : -s; // the sign as t increases
+        const int rising = m_dir > T(0) ? s : -s;           // the sign as t increases
         if (dropped(m_events[i].direction, rising)) return; // not refined: the filter drops it
         accept_zero(i, ga == T(0) ? ta : refine(i, ta, ga, tb, gb, t, h, interp), rising);
     }
