@@ -4,7 +4,6 @@
 #include "emit/emit.hpp"
 #include "emit/printer.hpp"
 
-#include <cctype>
 #include <set>
 #include <string>
 #include <vector>
@@ -13,21 +12,14 @@ namespace rotgen {
 
 namespace {
 
-// The functions a definition calls (`sqrt(`), for its using-declarations.
-std::set<std::string> calls_in(const std::string& text) {
-    static const std::vector<std::string> math{"abs", "acos", "asin", "atan", "atan2",
-                                               "cos", "cosh", "exp",  "log",  "pow",
-                                               "sin", "sinh", "sqrt", "tan",  "tanh"};
-    std::set<std::string> r;
-    for (const auto& f : math) {
-        const std::string call = f + "(";
-        for (std::size_t at = text.find(call); at != std::string::npos;
-             at = text.find(call, at + 1))
-            if (at == 0 || !(std::isalnum(static_cast<unsigned char>(text[at - 1])) ||
-                             text[at - 1] == '_' || text[at - 1] == '.'))
-                r.insert(f);
-    }
-    return r;
+// The functions a constant's definition calls (for its using-declarations): the calls in its
+// node's subtree, down to the named nodes it reads.
+void calls_below(const lowered_program& p, int id, bool root, std::set<std::string>& calls) {
+    if (!root && p.temporary_name.count(id)) return;
+    const lowered_node& n = p.nodes.at(static_cast<std::size_t>(id));
+    if (n.k == lowered_node::kind::call) calls.insert(n.name);
+    for (int c : node_children(n))
+        calls_below(p, c, false, calls);
 }
 
 } // namespace
@@ -44,8 +36,7 @@ std::string prepared_text(const lowered_form& lf) {
         const std::string member = c.name.substr(2); // p.c000 -> c000
         members += "\n    T " + member + "{};";
         definitions += "\n    p." + member + " = " + text + ";";
-        for (const auto& f : calls_in(text))
-            calls.insert(f);
+        calls_below(prog, c.node, true, calls);
         literals = literals || text.find("S(") != std::string::npos;
     }
     std::string body;

@@ -339,3 +339,27 @@ TEST_CASE("text from the model file cannot escape the header's comments", "[emit
     CHECK(text.find("\nint also_injected") == std::string::npos);
     CHECK_THAT(text, Contains("// first line int injected = 0;"));
 }
+
+TEST_CASE("prepare computes the parameters' functions once, with their declarations", "[emit]") {
+    // sqrt(k) and exp(k/I1) depend on the parameters alone: prepare() computes them, with the
+    // using-declarations its calls need; rhs reads them and calls only sin and cos.
+    scratch_file model("tests_tmp_emit_prepare_calls.yaml",
+                       "name: calltop\n"
+                       "parameters: {I1: 1.0, I3: 0.5, M: 1.0, g: 9.81, h: 0.1, k: 2.0}\n"
+                       "inertia: [I1, I1, I3]\n"
+                       "potential: M*g*h*sqrt(k)*cos(theta) + exp(k/I1)*cos(theta)^2/100\n");
+    const model_spec spec = load_model(model.path);
+    emit_request o;
+    o.outputs = {"rhs"};
+    const std::string text = emit_with(spec, derive(spec), o).text;
+    const std::string prepare = text.substr(text.find("prepared<T> prepare("));
+    const std::string prepare_body = prepare.substr(0, prepare.find("\n}\n"));
+    CHECK_THAT(prepare_body, Contains("    using std::exp;\n    using std::sqrt;\n"));
+    CHECK_THAT(prepare_body, Contains("sqrt(p.k)"));
+    CHECK_THAT(prepare_body, Contains("exp(p.c"));
+    const std::string rhs =
+        text.substr(text.find("void rhs(T t, const T* y, T* dydt, const prepared"));
+    const std::string rhs_body = rhs.substr(0, rhs.find("\n}\n"));
+    CHECK(rhs_body.find("sqrt") == std::string::npos);
+    CHECK(rhs_body.find("exp") == std::string::npos);
+}
