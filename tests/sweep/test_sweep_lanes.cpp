@@ -149,26 +149,31 @@ TEST_CASE("sweep --lanes: the batch kernel is the scalar kernel up to vector sin
     const lane_kernels k = compile_lanes(prepared, timings);
     const compiled_form& cf = prepared.compiled(form_kind::lagrangian, timings, nullptr);
     REQUIRE((k.width == 2 || k.width == 4));
-    const std::size_t lanes = 8, n = cf.sys.n, np = cf.f.parameters.size();
+    // the kernels read the prepared values w (the parameters, then the hoisted constants)
+    const std::size_t lanes = 8, n = cf.sys.n, np = cf.f.parameters.size(), nw = cf.prepared_size;
+    REQUIRE(nw > np); // the heavy top has constants (M g h, 1/I1, ...)
     std::mt19937_64 rng(7);
     std::uniform_real_distribution<double> angle(0.05, 3.1), rate(-40, 40), positive(0.2, 3);
     double worst_ulps = 0;
     for (int round = 0; round < 200; ++round) {
-        std::vector<double> y(n * lanes), p(np * lanes), d(n * lanes);
+        std::vector<double> y(n * lanes), w(nw * lanes), d(n * lanes);
+        std::vector<std::vector<double>> wl(lanes, std::vector<double>(nw));
         for (std::size_t l = 0; l < lanes; ++l) {
             for (std::size_t c = 0; c < n; ++c)
                 y[c * lanes + l] = c < 3 ? angle(rng) : rate(rng);
-            for (std::size_t j = 0; j < np; ++j)
-                p[j * lanes + l] = positive(rng);
+            std::vector<double> pl(np);
+            for (double& v : pl)
+                v = positive(rng);
+            cf.prepare(pl.data(), wl[l].data());
+            for (std::size_t j = 0; j < nw; ++j)
+                w[j * lanes + l] = wl[l][j];
         }
-        k.rhs(p.data(), 0.3, y.data(), d.data(), lanes);
+        k.rhs(w.data(), 0.3, y.data(), d.data(), lanes);
         for (std::size_t l = 0; l < lanes; ++l) {
-            std::vector<double> yl(n), pl(np), dl(n);
+            std::vector<double> yl(n), dl(n);
             for (std::size_t c = 0; c < n; ++c)
                 yl[c] = y[c * lanes + l];
-            for (std::size_t j = 0; j < np; ++j)
-                pl[j] = p[j * lanes + l];
-            cf.sys.f(pl.data(), 0.3, yl.data(), dl.data());
+            cf.sys.f(wl[l].data(), 0.3, yl.data(), dl.data());
             // in units of the last place of the largest rate of the lane: the rates are sums of
             // terms, so a 1-ulp change of sin theta moves a small sum by ulps of its terms
             double scale = 0;
