@@ -251,7 +251,6 @@ compiled_form compile_form(const scene_spec& scene, form_expressions f, bool ori
     c.sys.f = reinterpret_cast<loaded_system::kernel>(c.lib.symbol("rotgen_rhs"));
     c.sys.jac = reinterpret_cast<loaded_system::kernel>(c.lib.symbol("rotgen_jacobian"));
     c.prepare = reinterpret_cast<void (*)(const double*, double*)>(c.lib.symbol("rotgen_prepare"));
-    c.prepared_size = c.f.parameters.size() + constants.size();
     c.constants = constants;
     c.record = reinterpret_cast<loaded_system::kernel>(c.lib.symbol("rotgen_record"));
     for (std::size_t e = 0; e < events.size(); ++e)

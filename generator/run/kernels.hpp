@@ -79,14 +79,14 @@ struct compiled_form {
     std::string taylor_call;  // the header's function the Taylor entry points call
     // prepare(v, w): w = the parameter values v, then the constants computed from them
     void (*prepare)(const double* v, double* w) = nullptr;
-    std::size_t prepared_size = 0;      // of w
     std::vector<std::string> constants; // the members of w after the parameters: c000, ...
+    std::size_t prepared_size() const { return f.parameters.size() + constants.size(); } // of w
 
     // The system with these parameter values (they must outlive it), prepared once here.
     loaded_system system(const std::vector<double>& values) const {
         loaded_system s = sys;
         s.p = values.data();
-        auto w = std::make_shared<std::vector<double>>(prepared_size);
+        auto w = std::make_shared<std::vector<double>>(prepared_size());
         prepare(values.data(), w->data());
         s.w = w->data();
         s.prepared = std::move(w);

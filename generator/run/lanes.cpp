@@ -312,7 +312,7 @@ lane_kernels compile_lanes(const prepared_scene& prepared, stage_timings& timing
     k.rhs = reinterpret_cast<lane_kernels::kernel>(k.lib.symbol("rotgen_rhs_lanes"));
     using width_fn = unsigned long (*)();
     k.width = reinterpret_cast<width_fn>(k.lib.symbol("rotgen_lane_width"))();
-    k.prepare = cf.prepare, k.prepared_size = cf.prepared_size;
+    k.prepare = cf.prepare, k.prepared_size = cf.prepared_size();
     if (cf.sys.tay)
         k.taylor =
             reinterpret_cast<lane_kernels::taylor_kernel>(k.lib.symbol("rotgen_taylor_lanes"));

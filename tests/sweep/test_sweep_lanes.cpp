@@ -150,7 +150,7 @@ TEST_CASE("sweep --lanes: the batch kernel is the scalar kernel up to vector sin
     const compiled_form& cf = prepared.compiled(form_kind::lagrangian, timings, nullptr);
     REQUIRE((k.width == 2 || k.width == 4));
     // the kernels read the prepared values w (the parameters, then the hoisted constants)
-    const std::size_t lanes = 8, n = cf.sys.n, np = cf.f.parameters.size(), nw = cf.prepared_size;
+    const std::size_t lanes = 8, n = cf.sys.n, np = cf.f.parameters.size(), nw = cf.prepared_size();
     REQUIRE(nw > np); // the heavy top has constants (M g h, 1/I1, ...)
     std::mt19937_64 rng(7);
     std::uniform_real_distribution<double> angle(0.05, 3.1), rate(-40, 40), positive(0.2, 3);
