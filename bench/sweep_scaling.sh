@@ -8,9 +8,12 @@
 # 0.1 .. 1.5, t = 0 .. 10, DOP853 rtol 1e-8, the summary's "running the members" time. For each
 # power of two k up to the cores (nproc): k threads, k ranks of one thread, and above 2 cores 2
 # ranks of k/2 threads (--bind-to none, and with mpirun's default binding, which the summary warns
-# about); then all the cores with --lanes 8. Best of 5 runs of each, the ways interleaved (one of
-# each in turn); every summary.csv is compared with the one-thread run's (with lanes, the one-thread
-# lanes run's: DOP853's lanes share steps), byte for byte.
+# about), and from 8 cores 4 ranks of k/4 threads; then all the cores with --lanes 8 (as threads, as
+# ranks, and from 8 cores as 4 ranks of threads). Best of ROUNDS (default 5) runs of each, the ways
+# interleaved (one of each in turn); every summary.csv is compared with the one-thread run's (with
+# lanes, the one-thread lanes run's: DOP853's lanes share steps), byte for byte. A preset
+# ROTGEN_CACHE_DIR is kept (a machine that cannot compile the kernels gets them in its cache), and
+# mpirun passes it, CXX and LD_LIBRARY_PATH on to the ranks.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/summary_time.sh"
 rotgen=$(realpath "${1:?usage: sweep_scaling.sh ROTGEN [MEMBERS]}")
@@ -18,7 +21,8 @@ members=${2:-16384}
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-export ROTGEN_CACHE_DIR=$work/cache
+export ROTGEN_CACHE_DIR=${ROTGEN_CACHE_DIR:-$work/cache}
+rounds=${ROUNDS:-5}
 cores=$(nproc)
 run_root=()
 [[ $(id -u) == 0 ]] && run_root=(--allow-run-as-root)
@@ -42,16 +46,20 @@ for ((k = 2; k <= cores; k *= 2)); do
     ways+=("\`mpirun -n 2 --bind-to none -j $((k / 2))\`|mpirun -n 2 --bind-to none sweep -j $((k / 2))")
     ways+=("\`mpirun -n 2 -j $((k / 2))\` (default binding)|mpirun -n 2 sweep -j $((k / 2))")
   fi
+  ((k >= 8)) && ways+=("\`mpirun -n 4 -j $((k / 4))\`|mpirun -n 4 sweep -j $((k / 4))")
 done
 ways+=("$cores threads, \`--lanes 8\`|sweep -j $cores --lanes 8")
 ((cores >= 2)) && ways+=("\`mpirun -n $cores --lanes 8\`|mpirun -n $cores sweep -j 1 --lanes 8")
+((cores >= 8)) && ways+=("\`mpirun -n 4 -j $((cores / 4)) --lanes 8\`|mpirun -n 4 sweep -j $((cores / 4)) --lanes 8")
 
 one_run() { # $1: the way's command words; prints the seconds, leaves $work/out
   local words=($1) cmd=()
   rm -rf "$work/out"
   if [[ ${words[0]} == mpirun ]]; then
     local i=1
-    cmd=(mpirun --oversubscribe "${run_root[@]}")
+    cmd=(mpirun --oversubscribe "${run_root[@]}" -x ROTGEN_CACHE_DIR)
+    local v
+    for v in CXX LD_LIBRARY_PATH; do [[ -n ${!v:-} ]] && cmd+=(-x "$v"); done
     while [[ ${words[i]} != sweep ]]; do cmd+=("${words[i]}"); i=$((i + 1)); done
     cmd+=("$rotgen" "${words[@]:i}")
   else
@@ -64,8 +72,8 @@ one_run() { # $1: the way's command words; prints the seconds, leaves $work/out
 "$rotgen" sweep "$work/scene.yaml" -o "$work/reference" -j 1 -q # the kernels into the cache
 "$rotgen" sweep "$work/scene.yaml" -o "$work/reference_lanes" -j 1 -q --lanes 8
 declare -a best
-for round in 1 2 3 4 5; do
-  echo "round $round of 5" >&2
+for ((round = 1; round <= rounds; round++)); do
+  echo "round $round of $rounds" >&2
   for i in "${!ways[@]}"; do
     t=$(one_run "${ways[i]#*|}")
     [[ -n $t ]] || { echo "sweep_scaling.sh: no time from ${ways[i]#*|}" >&2; exit 1; }
@@ -87,7 +95,7 @@ cat <<EOF2
 load average $(cut -d' ' -f1-3 /proc/loadavg) when it finished.
 
 The heavy top, $members members (initial theta 0.1 .. 1.5), t = 0 .. 10, 101 samples, DOP853
-rtol 1e-8; the summary's "running the members" time, best of 5 runs of each, interleaved; every
+rtol 1e-8; the summary's "running the members" time, best of $rounds runs of each, interleaved; every
 run's summary.csv is byte-identical to the one-thread run's (with lanes, to the one-thread lanes
 run's).
 

@@ -15,7 +15,7 @@ rotgen=$(realpath "${1:?usage: taylor_lanes.sh ROTGEN}")
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-export ROTGEN_CACHE_DIR=$work/cache # its own kernel cache: the libraries timed below are these
+export ROTGEN_CACHE_DIR=${ROTGEN_CACHE_DIR:-$work/cache} # the libraries timed below are these
 members=1024 runs=${RUNS:-9}
 
 cat >"$work/taylor.yaml" <<YAML
