@@ -39,6 +39,18 @@ std::vector<double> get_doubles(const std::string& in, std::size_t& at) {
     return v;
 }
 
+void put_string(std::string& out, const std::string& s) {
+    put<std::uint64_t>(out, s.size());
+    out += s;
+}
+
+std::string get_string(const std::string& in, std::size_t& at) {
+    const std::size_t n = get<std::uint64_t>(in, at);
+    if (at + n > in.size()) throw std::runtime_error("sweep: a truncated MPI message");
+    at += n;
+    return in.substr(at - n, n);
+}
+
 // Runs group g, each outcome to slot(member, outcome).
 template <class Slot>
 void run_group(const member_groups& gs, std::size_t g, const batch_work& work, const Slot& slot) {
@@ -81,13 +93,10 @@ std::string pack(const std::vector<std::pair<std::size_t, member_outcome>>& outc
     put<std::uint64_t>(out, outcomes.size());
     for (const auto& [m, o] : outcomes) {
         put<std::uint64_t>(out, m);
-        put_doubles(out, o.final_row);
-        put_doubles(out, o.drifts);
-        put_doubles(out, o.event_times);
+        put_string(out, o.summary_row);
         put<std::uint64_t>(out, o.steps);
         put<std::uint64_t>(out, o.rhs_evals);
-        put<std::uint64_t>(out, o.status.size());
-        out += o.status;
+        put_string(out, o.status);
         put<std::uint8_t>(out, o.in_lanes ? 1 : 0);
         put_doubles(out, o.trajectory);
     }
@@ -108,15 +117,10 @@ std::vector<std::pair<std::size_t, member_outcome>> unpack(const std::string& in
     std::vector<std::pair<std::size_t, member_outcome>> outcomes(get<std::uint64_t>(in, at));
     for (auto& [m, o] : outcomes) {
         m = get<std::uint64_t>(in, at);
-        o.final_row = get_doubles(in, at);
-        o.drifts = get_doubles(in, at);
-        o.event_times = get_doubles(in, at);
+        o.summary_row = get_string(in, at);
         o.steps = get<std::uint64_t>(in, at);
         o.rhs_evals = get<std::uint64_t>(in, at);
-        const std::size_t n = get<std::uint64_t>(in, at);
-        if (at + n > in.size()) throw std::runtime_error("sweep: a truncated MPI message");
-        o.status = in.substr(at, n);
-        at += n;
+        o.status = get_string(in, at);
         o.in_lanes = get<std::uint8_t>(in, at) != 0;
         o.trajectory = get_doubles(in, at);
     }
@@ -125,6 +129,7 @@ std::vector<std::pair<std::size_t, member_outcome>> unpack(const std::string& in
 
 #ifndef ROTGEN_HAVE_MPI
 
+struct mpi_session::counter_window {};
 mpi_session::mpi_session() = default;
 mpi_session::~mpi_session() = default;
 bool mpi_session::all(bool ok) const {

@@ -6,8 +6,9 @@
 // - the rest is handed out by an atomic counter in an MPI window on rank 0 (MPI_Fetch_and_op,
 //   MPI_SUM, passive target: on one node, or with a network's RDMA atomics, rank 0 does nothing
 //   to serve it; elsewhere its main thread's MPI calls, every millisecond, move it on), in chunks
-//   that shrink as the counter nears the end (guided: the groups left over twice the threads of
-//   every rank, at least 1), so that the tail balances cheap and expensive members;
+//   that shrink as the counter nears the end (guided: the groups left, read from the counter just
+//   before, over twice the threads of every rank, at least 1), so that the tail balances cheap
+//   and expensive members;
 // - MPI_THREAD_FUNNELED: only each rank's main thread calls MPI. It fetches chunks ahead into a
 //   local queue (kept `jobs` + 1 chunks deep) that the rank's threads take groups from, so that a
 //   thread never waits for work longer than one fetch; it sends the outcomes its threads finished
@@ -26,6 +27,7 @@
 
 #include <algorithm>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -45,10 +47,15 @@ class mpi_session {
     std::size_t broadcast(std::size_t value) const;
     // The least of every rank's `value`, on every rank (all ranks call it; one process: value).
     std::size_t least(std::size_t value) const;
+    // The MPI window of the distribution's counter (MPI builds, more than one rank; else null):
+    // allocated with the session, so that its cost is set-up, like MPI_Init's, not the run's.
+    struct counter_window;
+    counter_window* counter() const { return m_counter.get(); }
 
   private:
     int m_rank = 0, m_size = 1;
     bool m_active = false;
+    std::unique_ptr<counter_window> m_counter;
 };
 
 // The groups of `group` members (the last may be shorter) of members 0 .. count-1.

@@ -7,6 +7,7 @@
 #include "sweep/distribute.hpp"
 #include "sweep/journal.hpp"
 #include "sweep/parallel.hpp"
+#include "sweep/sharing.hpp"
 
 #include <mpi.h>
 
@@ -21,10 +22,16 @@
 #include <iostream>
 #include <list>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <utility>
 
 namespace rotgen {
+
+struct mpi_session::counter_window {
+    std::uint64_t* base = nullptr;
+    MPI_Win win = MPI_WIN_NULL;
+};
 
 namespace {
 
@@ -39,57 +46,20 @@ bool started_by_mpirun() {
     return false;
 }
 
-using range = std::pair<std::size_t, std::size_t>; // groups first .. second-1
-
-// How the groups are shared by `ranks` ranks of `jobs` threads each, rank 0 holding at most
-// `window` members' outcomes.
-struct sharing {
-    member_groups gs;
-    std::size_t window, ranks, jobs;
-    // Groups in a chunk or a block, at most: every rank's queue (jobs + 1 chunks) fits half the
-    // window together, so that ranks rarely wait for the writer (and a chunk always fits); no
-    // bound when the window holds the whole sweep.
-    std::size_t most() const {
-        if (window >= gs.count) return std::max<std::size_t>(1, gs.size());
-        return std::max<std::size_t>(1, window / gs.group / (2 * ranks * (jobs + 1)));
-    }
-    // Each rank's static block: a quarter of the sweep, shared equally.
-    std::size_t block() const {
-        return std::clamp<std::size_t>(gs.size() / (4 * ranks), 1, most());
-    }
-    range first_block(std::size_t rank) const {
-        const std::size_t b = block();
-        return {std::min(gs.size(), rank * b), std::min(gs.size(), rank * b + b)};
-    }
-    std::size_t dynamic_start() const { return std::min(gs.size(), ranks * block()); }
-    // Guided: the groups not yet handed out (as of `next`, the counter last seen) over twice the
-    // threads of every rank, at least 1.
-    std::size_t chunk(std::size_t next) const {
-        const std::size_t left = gs.size() - std::min(gs.size(), next);
-        return std::clamp<std::size_t>(left / (2 * ranks * jobs), 1, most());
-    }
-};
+using range = group_range;
 
 // The MPI window on rank 0, two numbers: the next group to hand out, and rank 0's front (the
 // members it has written). Every access is atomic (MPI_Fetch_and_op), with passive target.
 class shared_counter {
   public:
-    shared_counter(bool root, std::uint64_t next) {
-        MPI_Win_allocate(MPI_Aint(root ? 2 * sizeof(std::uint64_t) : 0), sizeof(std::uint64_t),
-                         MPI_INFO_NULL, MPI_COMM_WORLD, &m_base, &m_win);
-        MPI_Win_lock_all(MPI_MODE_NOCHECK, m_win);
-        if (root) {
+    shared_counter(const mpi_session& s, std::uint64_t next) : m_win(s.counter()->win) {
+        if (s.rank() == 0) {
             op(0, next, MPI_REPLACE);
             op(1, 0, MPI_REPLACE);
         }
         MPI_Barrier(MPI_COMM_WORLD); // no one reads before they are set
     }
-    shared_counter(const shared_counter&) = delete;
-    shared_counter& operator=(const shared_counter&) = delete;
-    ~shared_counter() { // collective
-        MPI_Win_unlock_all(m_win);
-        MPI_Win_free(&m_win);
-    }
+    std::uint64_t next() { return op(0, 0, MPI_NO_OP); }
     std::uint64_t fetch_add(std::uint64_t n) { return op(0, n, MPI_SUM); }
     std::uint64_t front() { return op(1, 0, MPI_NO_OP); }
     void publish_front(std::uint64_t members) { op(1, members, MPI_REPLACE); }
@@ -101,8 +71,7 @@ class shared_counter {
         MPI_Win_flush(0, m_win);
         return old;
     }
-    std::uint64_t* m_base = nullptr;
-    MPI_Win m_win = MPI_WIN_NULL;
+    MPI_Win m_win;
 };
 
 // The chunks a rank's threads take groups from (in order), filled by its main thread; and the
@@ -236,18 +205,15 @@ struct feeder {
     shared_counter& counter;
     local_queue& queue;
     std::deque<range> fetched; // not yet in the queue: waiting for the window
-    std::size_t next = 0;      // the counter, as last seen
     std::size_t front = 0;     // rank 0's front, as last seen
     bool exhausted = false;
 
     void fetch_ahead() {
         while (!exhausted && queue.depth() + fetched.size() < sh.jobs + 1) {
-            const std::size_t n = sh.chunk(next), first = counter.fetch_add(n);
-            next = first + n;
-            if (first >= sh.gs.size())
-                exhausted = true;
+            if (const std::optional<range> r = take_chunk(sh, counter))
+                fetched.push_back(*r);
             else
-                fetched.emplace_back(first, std::min(sh.gs.size(), next));
+                exhausted = true;
         }
     }
     template <class Front> void admit(const Front& read_front) {
@@ -295,11 +261,11 @@ std::size_t receive(in_order& out, std::vector<std::size_t>& ran) {
 // and publishes its front. Returns the members each rank ran.
 std::vector<std::size_t> run_root(const mpi_session& s, const sharing& sh, const batch_work& work,
                                   in_order& out, const std::function<void(std::size_t)>& progress) {
-    shared_counter counter(true, sh.dynamic_start());
+    shared_counter counter(s, sh.dynamic_start());
     std::vector<std::size_t> ran(std::size_t(s.size()), 0);
     std::atomic<std::size_t> done{0};
     local_queue queue;
-    feeder feed{sh, counter, queue, {}, sh.dynamic_start()};
+    feeder feed{sh, counter, queue, {}};
     feed.fetched.push_back(sh.first_block(0));
     {
         rank_threads threads(unsigned(sh.jobs), sh.gs, work, queue,
@@ -351,8 +317,7 @@ class outbox {
 
 // The bytes an outcome takes in a message, about.
 std::size_t packed_size(const member_outcome& o) {
-    return 64 + o.status.size() +
-           8 * (o.final_row.size() + o.drifts.size() + o.event_times.size() + o.trajectory.size());
+    return 64 + o.status.size() + o.summary_row.size() + 8 * o.trajectory.size();
 }
 
 // Messages on their way to rank 0 (MPI_Isend), each kept until it is delivered.
@@ -391,9 +356,9 @@ class sender {
 
 // A rank other than 0: its threads' outcomes go to rank 0.
 void run_other(const mpi_session& s, const sharing& sh, const batch_work& work) {
-    shared_counter counter(false, 0);
+    shared_counter counter(s, 0);
     local_queue queue;
-    feeder feed{sh, counter, queue, {}, sh.dynamic_start()};
+    feeder feed{sh, counter, queue, {}};
     feed.fetched.push_back(sh.first_block(std::size_t(s.rank())));
     outbox box;
     sender sends;
@@ -423,9 +388,18 @@ mpi_session::mpi_session() {
     MPI_Comm_rank(MPI_COMM_WORLD, &m_rank);
     MPI_Comm_size(MPI_COMM_WORLD, &m_size);
     m_active = true;
+    if (m_size == 1) return;
+    m_counter = std::make_unique<counter_window>();
+    MPI_Win_allocate(MPI_Aint(m_rank == 0 ? 2 * sizeof(std::uint64_t) : 0), sizeof(std::uint64_t),
+                     MPI_INFO_NULL, MPI_COMM_WORLD, &m_counter->base, &m_counter->win);
+    MPI_Win_lock_all(MPI_MODE_NOCHECK, m_counter->win);
 }
 
 mpi_session::~mpi_session() {
+    if (m_counter) {
+        MPI_Win_unlock_all(m_counter->win);
+        MPI_Win_free(&m_counter->win);
+    }
     if (m_active) MPI_Finalize();
 }
 

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 namespace rotgen {
 
@@ -103,6 +104,13 @@ void write_summary_row(std::ostream& os, std::size_t m, const std::vector<double
     for (std::size_t i = 0; i < layout.invariants.size(); ++i)
         os << "," << (i < o.drifts.size() ? format_number(o.drifts[i]) : "");
     os << "," << o.steps << "," << o.rhs_evals << "," << csv_field(o.status) << "\n";
+}
+
+std::string summary_row_of(std::size_t m, const std::vector<double>& row,
+                           const summary_layout& layout, const member_outcome& outcome) {
+    std::ostringstream os;
+    write_summary_row(os, m, row, layout, outcome);
+    return os.str();
 }
 
 } // namespace rotgen

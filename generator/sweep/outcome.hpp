@@ -22,6 +22,9 @@ struct member_outcome {
     bool in_lanes = false;     // run in a batch of lanes (sweep --lanes), not alone
     // With trajectories: samples x (1 + columns), row-major; NaN past the last sample reached.
     std::vector<double> trajectory;
+    // Its line of summary.csv, formatted where the member ran (on every thread and rank at once),
+    // so that the one writer only appends it.
+    std::string summary_row;
     bool ok() const { return status == "ok"; }
 };
 
@@ -51,5 +54,8 @@ void write_summary_header(std::ostream& os, const sweep_plan& plan, const summar
 // Member m's row (`row`: its values of the varied keys).
 void write_summary_row(std::ostream& os, std::size_t m, const std::vector<double>& row,
                        const summary_layout& layout, const member_outcome& outcome);
+// The same row as a string (for member_outcome::summary_row).
+std::string summary_row_of(std::size_t m, const std::vector<double>& row,
+                           const summary_layout& layout, const member_outcome& outcome);
 
 } // namespace rotgen

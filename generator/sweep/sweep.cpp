@@ -182,7 +182,12 @@ std::vector<std::size_t> run_members(const mpi_session& session, const sweep_req
     return run_distributed(
         session, e.table.size() - from, e.lanes ? q.lanes : 1, jobs,
         [&](std::size_t first, std::size_t n) {
-            return run_neighbours(members, base, from + first, n);
+            std::vector<member_outcome> o = run_neighbours(members, base, from + first, n);
+            for (std::size_t k = 0; k < o.size(); ++k) {
+                const std::size_t m = from + first + k;
+                o[k].summary_row = summary_row_of(m, e.table.row(m), e.layout, o[k]);
+            }
+            return o;
         },
         out, progress);
 }

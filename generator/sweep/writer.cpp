@@ -190,9 +190,7 @@ sweep_writer::~sweep_writer() {
 }
 
 void sweep_writer::add(std::size_t member, member_outcome&& o) {
-    std::ostringstream row;
-    write_summary_row(row, member, m_table.row(member), m_layout, o);
-    m_rows += row.str();
+    m_rows += o.summary_row;
     if (m_h5) m_h5->add(o.trajectory);
     ++m_members;
     m_in_lanes += o.in_lanes ? 1 : 0;

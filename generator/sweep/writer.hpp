@@ -52,7 +52,7 @@ class sweep_writer {
     sweep_writer& operator=(const sweep_writer&) = delete;
     ~sweep_writer(); // without commit(): the journal as of its last chunk (journal_abandon)
 
-    // The next member's outcome (members come in order).
+    // The next member's outcome (members come in order), its summary row formatted where it ran.
     void add(std::size_t member, member_outcome&& outcome);
     // Completes the files, renames them into place and removes the set's other files.
     void commit();
