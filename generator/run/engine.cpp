@@ -15,6 +15,7 @@
 #include <cmath>
 #include <mutex>
 #include <optional>
+#include <utility>
 
 namespace rotgen {
 
@@ -60,7 +61,7 @@ class scene_run {
     const std::vector<double>& parameters() const { return m_parameters[m_current]; }
 
   private:
-    run_result finish();
+    run_result finish(); // the run's result, moved out: called once, at the end
     initial_kinematics exact_start();
     void decide_chart();
     const compiled_form& compile(form_kind form);
@@ -507,7 +508,7 @@ run_result scene_run::finish() {
     m_result.message = m_last.message;
     m_result.integrate_seconds = m_timings.total("integrate");
     record();
-    return m_result;
+    return std::move(m_result); // the run's last act: its rows are not copied
 }
 
 // A member's run in parts: scene_run's start, chart test and records.

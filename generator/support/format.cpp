@@ -18,9 +18,9 @@ std::string format_double(double x) {
 
 std::string format_number(double x) {
     if (std::isnan(x)) return "nan"; // undefined: a sign would mean nothing ("-nan")
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.17g", x);
-    return buf;
+    char buf[32]; // "%.17g", without printf's cost (a sweep writes a few per member)
+    const auto r = std::to_chars(buf, buf + sizeof buf, x, std::chars_format::general, 17);
+    return std::string(buf, r.ptr);
 }
 
 std::string short_number(double x, int digits) {
