@@ -227,12 +227,19 @@ struct feeder {
     }
 };
 
-// Waits for every rank without spinning (a blocking MPI call would keep a core busy).
+// Waits for a collective without spinning: a blocking MPI call keeps a core busy, and the ranks
+// waiting for rank 0 to prepare (a compilation, on a cold kernel cache) would take the cores it
+// needs when there are fewer cores than ranks.
+void wait_quietly(MPI_Request& r) {
+    for (int flag = 0; MPI_Test(&r, &flag, MPI_STATUS_IGNORE) == MPI_SUCCESS && !flag;)
+        std::this_thread::sleep_for(nap);
+}
+
+// Waits for every rank without spinning.
 void quiet_barrier() {
     MPI_Request r;
     MPI_Ibarrier(MPI_COMM_WORLD, &r);
-    for (int flag = 0; MPI_Test(&r, &flag, MPI_STATUS_IGNORE) == MPI_SUCCESS && !flag;)
-        std::this_thread::sleep_for(nap);
+    wait_quietly(r);
 }
 
 // Rank 0: the outcomes the other ranks have sent, into `out` (`ran` counts them by rank). Returns
@@ -406,21 +413,27 @@ mpi_session::~mpi_session() {
 std::size_t mpi_session::broadcast(std::size_t value) const {
     if (!m_active) return value;
     std::uint64_t v = value;
-    MPI_Bcast(&v, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+    MPI_Request r;
+    MPI_Ibcast(&v, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD, &r);
+    wait_quietly(r);
     return std::size_t(v);
 }
 
 std::size_t mpi_session::least(std::size_t value) const {
     if (!m_active) return value;
     std::uint64_t mine = value, least = 0;
-    MPI_Allreduce(&mine, &least, 1, MPI_UINT64_T, MPI_MIN, MPI_COMM_WORLD);
+    MPI_Request r;
+    MPI_Iallreduce(&mine, &least, 1, MPI_UINT64_T, MPI_MIN, MPI_COMM_WORLD, &r);
+    wait_quietly(r);
     return std::size_t(least);
 }
 
 bool mpi_session::all(bool ok) const {
     if (!m_active) return ok;
     int mine = ok ? 1 : 0, every = 0;
-    MPI_Allreduce(&mine, &every, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+    MPI_Request r;
+    MPI_Iallreduce(&mine, &every, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD, &r);
+    wait_quietly(r);
     return every == 1;
 }
 
