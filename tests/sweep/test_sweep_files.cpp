@@ -5,6 +5,7 @@
 // (SIGTERM, or SIGINT, raised by the sweep itself once N chunks are in the journal): no timing.
 #include "support.hpp"
 
+#include "support/format.hpp"
 #include "sweep/in_order.hpp"
 
 #include <catch2/catch.hpp>
@@ -12,8 +13,14 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
+#include <limits>
+#include <random>
 
 using namespace rotgen;
 using namespace rotgen::test;
@@ -225,4 +232,38 @@ TEST_CASE("sweep: an interrupted sweep keeps the journal of its finished members
     CHECK(read_file(dir + "/trajectories.h5") == read_file(whole + "/trajectories.h5"));
     std::filesystem::remove_all(whole);
     std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("the files' numbers are printf's 17 significant digits, for any double", "[sweep]") {
+    const auto printf17 = [](double x) {
+        char buf[40];
+        std::snprintf(buf, sizeof buf, "%.17g", x);
+        return std::string(buf);
+    };
+    const double edge[] = {0.0,
+                           -0.0,
+                           1.0,
+                           0.1,
+                           -2.5e-7,
+                           1e300,
+                           5e-324,
+                           2.2250738585072014e-308,
+                           123456789012345678.0,
+                           1e16,
+                           1e17,
+                           9.999999999999999e22,
+                           std::numeric_limits<double>::infinity(),
+                           -std::numeric_limits<double>::infinity()};
+    for (double x : edge)
+        CHECK(format_number(x) == printf17(x));
+    std::mt19937_64 bits(7);
+    int differ = 0;
+    for (int i = 0; i < 100000; ++i) {
+        const std::uint64_t b = bits();
+        double x;
+        std::memcpy(&x, &b, sizeof x);
+        if (!std::isnan(x) && format_number(x) != printf17(x)) ++differ;
+    }
+    CHECK(differ == 0);
+    CHECK(format_number(std::nan("")) == "nan"); // no sign: "-nan" would mean nothing
 }
