@@ -59,6 +59,17 @@ std::string usable_cache_directory() {
     return dir;
 }
 
+std::string host_vector_flags(std::string* target) {
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+    if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) {
+        if (target) *target = "avx2+fma";
+        return "-mavx2 -mfma -ffp-contract=off";
+    }
+#endif
+    if (target) *target = "sse2";
+    return "-ffp-contract=off";
+}
+
 std::string cache_directory() {
     if (const char* d = std::getenv("ROTGEN_CACHE_DIR"); d && *d) return d;
     if (const char* d = std::getenv("XDG_CACHE_HOME"); d && *d) return std::string(d) + "/rotgen";

@@ -71,16 +71,13 @@ std::string lane_source(const compiled_form& cf) {
 
 // The compiler flags of the batch kernel and the name of its target.
 std::pair<std::string, std::string> lane_target() {
-    std::string flags = "-ffp-contract=off";
+    std::string arch;
+    std::string flags = host_vector_flags(&arch);
 #ifdef ROTGEN_XSIMD_INCLUDE
     const std::string dir = ROTGEN_XSIMD_INCLUDE; // not the system's: -I there breaks <cstdlib>
     if (dir != "/usr/include" && dir != "/usr/local/include") flags += " -I'" + dir + "'";
 #endif
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-    if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"))
-        return {flags + " -mavx2 -mfma", "avx2+fma"};
-#endif
-    return {flags, "sse2"};
+    return {flags, arch};
 }
 
 // The members' states and parameters laid out by lane (component c of lane l at c*lanes + l);

@@ -68,13 +68,31 @@ template <class T, class S> class taylor_lane_stepper {
         if (!m_expanded) expand(sys, t, y, stats);
         const int p = m_p;
         const T inf = std::numeric_limits<T>::infinity();
-        T ln_rho = inf;
+        norms(p - 1, m_np1);
+        norms(p, m_np);
+        // ln is increasing, so the least of the lanes' ln(s / ||y^[k]||) / k is ln of the least
+        // quotient over k: two logarithms a step, not two a lane, with the same bits while every
+        // quotient is a normal number (taylor<T>::ln_radius takes another way otherwise).
+        T q1 = inf, q = inf;
+        bool normal = true;
         for (std::size_t l = 0; l < m_w; ++l) {
             if (!sys.is_live(l)) continue;
+            if (!(m_np1[l] == m_np1[l]) || !(m_np[l] == m_np[l]))
+                return std::numeric_limits<T>::quiet_NaN();
             const T s = m_relative[l] ? m_norm0[l] : T(1);
-            const T np1 = norm(l, p - 1), np = norm(l, p);
-            if (!(np1 == np1) || !(np == np)) return std::numeric_limits<T>::quiet_NaN();
-            ln_rho = std::min(ln_rho, taylor<T>::ln_radius(s, np1, np, p));
+            const T a = s / m_np1[l], b = s / m_np[l];
+            normal = normal && std::isnormal(a) && std::isnormal(b);
+            q1 = std::min(q1, a), q = std::min(q, b);
+        }
+        T ln_rho = inf;
+        if (normal) {
+            using std::log;
+            ln_rho = std::min(log(q1) / T(p - 1), log(q) / T(p));
+        } else {
+            for (std::size_t l = 0; l < m_w; ++l)
+                if (sys.is_live(l))
+                    ln_rho = std::min(ln_rho, taylor<T>::ln_radius(m_relative[l] ? m_norm0[l] : T(1),
+                                                                   m_np1[l], m_np[l], p));
         }
         if (ln_rho == inf) return inf;
         return taylor<T>::step_of(ln_rho, p);
@@ -132,27 +150,42 @@ template <class T, class S> class taylor_lane_stepper {
     }
     T* at(std::size_t i, int k) { return const_cast<T*>(std::as_const(*this).at(i, k)); }
 
-    // max_i |y_i^[k]| of lane l
-    T norm(std::size_t l, int k) const {
+    // Every lane's max_i |y_i^[k]| (NaN when one is not a number), into r.
+    void norms(int k, std::vector<T>& r) const {
         using std::abs;
-        T r = T(0);
+        r.assign(m_w, T(0));
         for (std::size_t i = 0; i < m_n; ++i) {
-            const T v = abs(at(i, k)[l]);
-            if (!(v == v)) return v;
-            r = std::max(r, v);
+            const T* c = at(i, k);
+            for (std::size_t l = 0; l < m_w; ++l) {
+                const T v = abs(c[l]);
+                r[l] = v == v ? std::max(r[l], v) : v; // NaN stays: max(NaN, v) is NaN
+            }
         }
-        return r;
     }
 
-    // Every lane's sum_{k>=1} y_i^[k] h^(k-1) (Horner's scheme, as taylor_stepper's), into r.
+    // Every lane's sum_{k>=1} y_i^[k] h^(k-1) (Horner's scheme, as taylor_stepper's), into r: a
+    // block of lanes at a time, its sums held in registers across the orders.
     void tail(std::size_t i, T h, T* r) const {
-        const T* top = at(i, m_p);
-        for (std::size_t l = 0; l < m_w; ++l)
-            r[l] = top[l];
-        for (int k = m_p - 1; k >= 1; --k) {
-            const T* c = at(i, k);
-            for (std::size_t l = 0; l < m_w; ++l)
-                r[l] = r[l] * h + c[l];
+        constexpr std::size_t block = 4;
+        std::size_t l0 = 0;
+        for (; l0 + block <= m_w; l0 += block) {
+            T acc[block];
+            const T* top = at(i, m_p) + l0;
+            for (std::size_t b = 0; b < block; ++b)
+                acc[b] = top[b];
+            for (int k = m_p - 1; k >= 1; --k) {
+                const T* c = at(i, k) + l0;
+                for (std::size_t b = 0; b < block; ++b)
+                    acc[b] = acc[b] * h + c[b];
+            }
+            for (std::size_t b = 0; b < block; ++b)
+                r[l0 + b] = acc[b];
+        }
+        for (; l0 < m_w; ++l0) {
+            T acc = at(i, m_p)[l0];
+            for (int k = m_p - 1; k >= 1; --k)
+                acc = acc * h + at(i, k)[l0];
+            r[l0] = acc;
         }
     }
 
@@ -194,6 +227,7 @@ template <class T, class S> class taylor_lane_stepper {
     int m_order_abs = 2, m_order_rel = 2; // the order of each control (taylor<T>::order_of)
     bool m_expanded = false;
     std::vector<T> m_c, m_norm0;
+    std::vector<T> m_np1, m_np; // each lane's norm of y^[p-1] and y^[p] (choose_step)
     std::vector<char> m_relative;
     mutable std::vector<T> m_acc; // Horner's running values, one per lane
     T m_h = T(0);

@@ -185,3 +185,23 @@ TEST_CASE("a taylor lane whose coefficients are not finite fails alone", "[taylo
         CHECK(y[c * 3 + 2] == y0[c * 3 + 2]);
     }
 }
+
+TEST_CASE("a taylor lane at rest leaves the step to the moving lanes, bit for bit",
+          "[taylor][lanes]") {
+    // lane 1 has no torque (h = 0) and no rates: every coefficient past order 0 is 0, so its
+    // radius is infinite and the step is lane 0's alone (the lanes' least quotient ignores it)
+    const std::vector<member> members{{0.5, 30, 0.1}, {0.9, 0, 0.0}};
+    const taylor<double> method = method_of(1e-12);
+    const auto sys = heavy_top_lanes(members);
+    Eigen::VectorXd y = lane_start(members);
+    const Eigen::VectorXd y0 = y;
+    const auto res = integrate(sys, method, 0.0, y, 2.0);
+    REQUIRE(res.ok());
+    const scalar_run alone = run_alone(members[0], method);
+    REQUIRE(alone.res.ok());
+    CHECK(res.stats.steps == alone.res.stats.steps);
+    for (Eigen::Index c = 0; c < 6; ++c) {
+        CHECK(y[c * 2] == alone.samples.back()[c]);
+        CHECK(y[c * 2 + 1] == y0[c * 2 + 1]);
+    }
+}
