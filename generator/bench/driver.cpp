@@ -65,8 +65,8 @@ std::string harness_text(const bench_sources& src) {
 // at GCC's default, one translation unit holding many configurations outlines Odeint's
 // Fehlberg 7(8) step (13.8 against 9.0 us for 119 fixed steps of the free top, 39 against
 // 28 us adaptive), which measured the inliner's budget, not the integrator. Every method is
-// compiled for this machine's vector instructions (host_vector_flags: the same bits as the
-// portable build), as heyoka's JIT compiles for its host.
+// compiled for this machine's vector instructions (host_vector_flags), as heyoka's JIT compiles
+// for its host.
 std::string driver_flags(const std::string& compiler_id) {
     std::string flags = "-std=c++17 -O3 -fno-math-errno -DNDEBUG " + host_vector_flags();
     const bool gcc = compiler_id.find("clang") == std::string::npos &&

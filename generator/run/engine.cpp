@@ -54,9 +54,8 @@ class scene_run {
     // The run in parts (member_parts): the start, the chart test of a sample, the records.
     Eigen::VectorXd start();
     bool keeps_chart(std::size_t sample, double t, const Eigen::VectorXd& y) const;
-    run_result finish_from(std::vector<std::pair<double, Eigen::VectorXd>> samples,
-                           const step_stats& stats, std::vector<member_event> events,
-                           int stopped_by);
+    run_result finish_from(const sample_states& samples, const step_stats& stats,
+                           std::vector<member_event> events, int stopped_by);
     bool starts_in_body() const { return m_start_in_body; }
     const std::vector<double>& parameters() const { return m_parameters[m_current]; }
 
@@ -77,7 +76,8 @@ class scene_run {
     void end_at_event(std::size_t which);
     void switch_chart(next to, Eigen::VectorXd& y, double& t_from);
     void record();
-    std::vector<double> record_row(const sample& s, std::vector<double>& out) const;
+    std::vector<double> record_row(double t, Eigen::Ref<const Eigen::VectorXd> y, std::size_t form,
+                                   std::vector<double>& out) const;
     void start_method();
 
     const prepared_scene& m_prepared;
@@ -94,7 +94,7 @@ class scene_run {
     std::size_t m_switches = 0; // changes of chart so far
     bool m_start_in_body = false;
     std::vector<double> m_times;
-    std::vector<sample> m_samples;
+    sample_states m_samples; // form: index into m_compiled
     std::size_t m_next_sample = 0;
     std::optional<any_method<double>> m_method;
     std::optional<split_runner> m_split; // split2/4/6: the body form as a split system
@@ -155,8 +155,9 @@ void scene_run::collect_events(std::size_t from) {
 // The run ended at the terminal event `which`, the last one noted: its state ends the rows.
 void scene_run::end_at_event(std::size_t which) {
     m_result.stopped_by = static_cast<int>(which);
-    if (m_samples.empty() || m_samples.back().t != m_event_samples.back().t)
-        m_samples.push_back(m_event_samples.back());
+    const sample& e = m_event_samples.back();
+    if (m_samples.empty() || m_samples.t(m_samples.size() - 1) != e.t)
+        m_samples.add(e.t, e.y, e.form);
 }
 
 // A start near the singularity starts in the body form (when the chart can switch).
@@ -309,7 +310,7 @@ scene_run::next scene_run::integrate_segment(Eigen::VectorXd& y, double t_from) 
     const std::size_t first_sample = m_samples.size();
     // returning false stops the run at this sample: the chart is left there
     const auto observe = [&](double t, const Eigen::VectorXd& yt) {
-        m_samples.push_back({t, yt, m_current});
+        m_samples.add(t, yt, m_current);
         if (m_on_sample) m_on_sample(t);
         if (!can_switch || m_samples.size() <= first_sample + 1 || reached_end(m_scene, t))
             return true;
@@ -329,7 +330,7 @@ scene_run::next scene_run::integrate_segment(Eigen::VectorXd& y, double t_from) 
     m_left_chart = m_last.code == status::stopped_by_observer;
     add_stats(m_result.stats, m_last.stats);
     if (m_last.code == status::stopped_by_event) return next::done;
-    if (!can_switch || m_samples.empty() || reached_end(m_scene, m_samples.back().t))
+    if (!can_switch || m_samples.empty() || reached_end(m_scene, m_samples.t(m_samples.size() - 1)))
         return next::done;
     if (m_left_chart) return euler_chart ? next::body : next::euler;
     return euler_chart && !m_last.ok() && sin_theta_of(cf.form, y) < switch_below ? next::body
@@ -338,7 +339,8 @@ scene_run::next scene_run::integrate_segment(Eigen::VectorXd& y, double t_from) 
 
 // Continues from the last sample in the other chart.
 void scene_run::switch_chart(next to, Eigen::VectorXd& y, double& t_from) {
-    const sample& last = m_samples.back();
+    const std::size_t k_last = m_samples.size() - 1;
+    const sample last{m_samples.t(k_last), m_samples.y(k_last), m_samples.form(k_last)};
     const compiled_form& from = *m_compiled[m_current];
     initial_kinematics k; // a rotor changes chart directly (rotor_other_chart)
     const form_kind target = to == next::body ? other_chart(m_scene.form) : m_scene.form;
@@ -370,16 +372,17 @@ void scene_run::switch_chart(next to, Eigen::VectorXd& y, double& t_from) {
 }
 
 // The row (t, the recorded columns) at a sample; `out` gets the record program's outputs there.
-std::vector<double> scene_run::record_row(const sample& s, std::vector<double>& out) const {
-    const compiled_form& cf = *m_compiled[s.form];
+std::vector<double> scene_run::record_row(double t, Eigen::Ref<const Eigen::VectorXd> y,
+                                          std::size_t form, std::vector<double>& out) const {
+    const compiled_form& cf = *m_compiled[form];
     out.resize(cf.outputs);
-    cf.record(m_parameters[s.form].data(), s.t, s.y.data(), out.data());
+    cf.record(m_parameters[form].data(), t, y.data(), out.data());
     std::optional<std::array<double, 3>> e;
     std::vector<double> row;
     row.reserve(cf.columns.size() + 1);
-    row.push_back(s.t);
+    row.push_back(t);
     for (const auto& src : cf.columns)
-        row.push_back(source_value(src, s.y, out, m_inertia, e));
+        row.push_back(source_value(src, y, out, m_inertia, e));
     return row;
 }
 
@@ -391,12 +394,12 @@ void scene_run::record() {
         m_result.invariants.push_back({inv, 0, 0});
     std::vector<double> out; // the record program's outputs at a sample
     for (const sample& s : m_event_samples)
-        m_result.event_rows.push_back(record_row(s, out));
+        m_result.event_rows.push_back(record_row(s.t, s.y, s.form, out));
     m_result.rows.reserve(m_samples.size());
     for (std::size_t k = 0; k < m_samples.size(); ++k) {
-        const compiled_form& cf = *m_compiled[m_samples[k].form];
-        const Eigen::VectorXd& ys = m_samples[k].y;
-        m_result.rows.push_back(record_row(m_samples[k], out));
+        const compiled_form& cf = *m_compiled[m_samples.form(k)];
+        const Eigen::Map<const Eigen::VectorXd> ys = m_samples.y(k);
+        m_result.rows.push_back(record_row(m_samples.t(k), ys, m_samples.form(k), out));
         std::optional<std::array<double, 3>> e;
         for (std::size_t i = 0; i < invariants.size(); ++i) {
             invariant_drift& d = m_result.invariants[i];
@@ -443,7 +446,7 @@ Eigen::VectorXd scene_run::start() {
     m_result.state_size = first.f.state.size();
     start_method();
     m_times = sample_times(m_scene);
-    m_samples.reserve(m_times.size());
+    m_samples.reserve(m_times.size(), first.f.state.size());
     set_up_events();
 
     Eigen::VectorXd y = state_of(first.f, k0);
@@ -481,11 +484,10 @@ bool scene_run::keeps_chart(std::size_t sample, double t, const Eigen::VectorXd&
 }
 
 // The run's records from the samples of a whole run in the first form, integrated elsewhere.
-run_result scene_run::finish_from(std::vector<std::pair<double, Eigen::VectorXd>> samples,
-                                  const step_stats& stats, std::vector<member_event> events,
-                                  int stopped_by) {
-    for (auto& [t, y] : samples)
-        m_samples.push_back({t, std::move(y), m_current});
+run_result scene_run::finish_from(const sample_states& samples, const step_stats& stats,
+                                  std::vector<member_event> events, int stopped_by) {
+    for (std::size_t k = 0; k < samples.size(); ++k)
+        m_samples.add(samples.t(k), samples.y(k), m_current);
     for (member_event& e : events) {
         m_event_samples.push_back({e.t, std::move(e.y), m_current});
         m_result.event_index.push_back(e.index);
@@ -525,10 +527,9 @@ class run_in_parts : public member_parts {
     bool keeps_chart(std::size_t sample, double t, const Eigen::VectorXd& y) const override {
         return m_run.keeps_chart(sample, t, y);
     }
-    run_result finish(std::vector<std::pair<double, Eigen::VectorXd>> samples,
-                      const step_stats& stats, std::vector<member_event> events,
-                      int stopped_by) override {
-        return m_run.finish_from(std::move(samples), stats, std::move(events), stopped_by);
+    run_result finish(const sample_states& samples, const step_stats& stats,
+                      std::vector<member_event> events, int stopped_by) override {
+        return m_run.finish_from(samples, stats, std::move(events), stopped_by);
     }
 
   private:

@@ -13,6 +13,7 @@
 
 #include "derive/derive.hpp"
 #include "run/kernels.hpp"
+#include "run/sample_states.hpp"
 #include "scene/scene.hpp"
 #include "support/timings.hpp"
 
@@ -108,9 +109,8 @@ class member_parts {
     virtual ~member_parts() = default;
     virtual bool start(Eigen::VectorXd& y0, std::vector<double>& parameters) = 0;
     virtual bool keeps_chart(std::size_t sample, double t, const Eigen::VectorXd& y) const = 0;
-    virtual run_result finish(std::vector<std::pair<double, Eigen::VectorXd>> samples,
-                              const step_stats& stats, std::vector<member_event> events,
-                              int stopped_by) = 0;
+    virtual run_result finish(const sample_states& samples, const step_stats& stats,
+                              std::vector<member_event> events, int stopped_by) = 0;
 };
 std::unique_ptr<member_parts> run_parts(const prepared_scene& prepared, const member_values& values,
                                         stage_timings& timings);

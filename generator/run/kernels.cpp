@@ -264,7 +264,7 @@ compiled_form compile_form(const scene_spec& scene, form_expressions f, bool ori
     return c;
 }
 
-double source_value(const value_source& src, const Eigen::VectorXd& y,
+double source_value(const value_source& src, Eigen::Ref<const Eigen::VectorXd> y,
                     const std::vector<double>& out, const Eigen::Matrix3d& inertia,
                     std::optional<std::array<double, 3>>& e) {
     if (src.kind == value_source::compiled) return out[static_cast<std::size_t>(src.index)];

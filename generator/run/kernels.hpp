@@ -123,7 +123,7 @@ std::optional<GiNaC::ex> form_value(const form_expressions& f, const std::string
 // rates q_dot = J^{-1} omega (5.30, undefined at theta = 0, pi), p = J^T I omega; or the unit
 // quaternion of the attitude (body -> space, scalar first, the sign with q0 >= 0: the same in
 // every form and across a chart switch). `e` caches the angles between calls at one sample.
-double source_value(const value_source& src, const Eigen::VectorXd& y,
+double source_value(const value_source& src, Eigen::Ref<const Eigen::VectorXd> y,
                     const std::vector<double>& out, const Eigen::Matrix3d& inertia,
                     std::optional<std::array<double, 3>>& e);
 

@@ -126,23 +126,24 @@ template <class V> std::vector<double> by_lane(const std::vector<V>& values, std
     return out;
 }
 
-using samples = std::vector<std::pair<double, Eigen::VectorXd>>;
-
 // A lane's run: its samples (none when the member must run alone), the events it met in time order,
 // the terminal one that ended it (-1: none) and the work it took part in: the batch's steps and
 // evaluations up to its own end (the step of its terminal event, or the batch's end).
 struct lane_run {
-    samples s;
+    sample_states s;
     std::vector<member_event> events;
     int stopped_by = -1;
     step_stats stats;
 };
 
-// Lane l of a lane state: its n components.
+// Lane l of a lane state: its n components, into yl (of size n).
+void lane_into(const Eigen::VectorXd& y, std::size_t l, std::size_t lanes, Eigen::VectorXd& yl) {
+    for (Eigen::Index c = 0; c < yl.size(); ++c)
+        yl[c] = y[c * static_cast<Eigen::Index>(lanes) + static_cast<Eigen::Index>(l)];
+}
 Eigen::VectorXd lane_of(const Eigen::VectorXd& y, std::size_t l, std::size_t n, std::size_t lanes) {
     Eigen::VectorXd yl(static_cast<Eigen::Index>(n));
-    for (std::size_t c = 0; c < n; ++c)
-        yl[static_cast<Eigen::Index>(c)] = y[static_cast<Eigen::Index>(c * lanes + l)];
+    lane_into(y, l, lanes, yl);
     return yl;
 }
 
@@ -193,7 +194,7 @@ void end_lanes(const scene_spec& scene, const event_set<double, Eigen::VectorXd>
     for (lane_run& r : out) {
         if (r.stopped_by < 0) continue;
         const double t_stop = r.events.back().t;
-        while (!r.s.empty() && r.s.back().first > t_stop)
+        while (!r.s.empty() && r.s.t(r.s.size() - 1) > t_stop)
             r.s.pop_back();
     }
 }
@@ -210,6 +211,7 @@ std::vector<lane_run> run_system(const prepared_scene& prepared, lane_batch& b, 
     event_set<double, Eigen::VectorXd> events = lane_events(prepared, b, lanes, scratch);
     std::vector<char> ended(members, 0); // by a terminal event (reported before later samples)
     std::size_t sample = 0, hits_seen = 0;
+    Eigen::VectorXd yl(static_cast<Eigen::Index>(n)); // a lane's state at a sample
     const auto observe = [&](double t, const Eigen::VectorXd& y) {
         for (; hits_seen < events.hits().size(); ++hits_seen) {
             const std::size_t e = events.hits()[hits_seen].index, l = e / scene.events.size();
@@ -221,12 +223,12 @@ std::vector<lane_run> run_system(const prepared_scene& prepared, lane_batch& b, 
         std::size_t live = 0;
         for (std::size_t l = 0; l < members; ++l) {
             if (!sys.is_live(l)) continue;
-            Eigen::VectorXd yl = lane_of(y, l, n, lanes);
+            lane_into(y, l, lanes, yl);
             if (!b.parts[b.member_of[l]]->keeps_chart(sample, t, yl)) {
                 sys.stop(l); // it changes chart here: it runs alone
                 continue;
             }
-            out[l].s.emplace_back(t, std::move(yl));
+            out[l].s.add(t, yl);
             ++live;
         }
         ++sample;
@@ -346,8 +348,8 @@ std::vector<std::optional<run_result>> run_lanes(const prepared_scene& prepared,
     for (std::size_t m = 0; m < members.size(); ++m) {
         const std::size_t l = b.lane_of[m];
         if (l != lane_batch::alone && !lanes[l].s.empty())
-            results[m] = b.parts[m]->finish(std::move(lanes[l].s), lanes[l].stats,
-                                            std::move(lanes[l].events), lanes[l].stopped_by);
+            results[m] = b.parts[m]->finish(lanes[l].s, lanes[l].stats, std::move(lanes[l].events),
+                                            lanes[l].stopped_by);
     }
     return results;
 }

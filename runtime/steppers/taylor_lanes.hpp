@@ -91,8 +91,9 @@ template <class T, class S> class taylor_lane_stepper {
         } else {
             for (std::size_t l = 0; l < m_w; ++l)
                 if (sys.is_live(l))
-                    ln_rho = std::min(ln_rho, taylor<T>::ln_radius(m_relative[l] ? m_norm0[l] : T(1),
-                                                                   m_np1[l], m_np[l], p));
+                    ln_rho =
+                        std::min(ln_rho, taylor<T>::ln_radius(m_relative[l] ? m_norm0[l] : T(1),
+                                                              m_np1[l], m_np[l], p));
         }
         if (ln_rho == inf) return inf;
         return taylor<T>::step_of(ln_rho, p);
