@@ -156,8 +156,7 @@ void scene_run::collect_events(std::size_t from) {
 void scene_run::end_at_event(std::size_t which) {
     m_result.stopped_by = static_cast<int>(which);
     const sample& e = m_event_samples.back();
-    if (m_samples.empty() || m_samples.t(m_samples.size() - 1) != e.t)
-        m_samples.add(e.t, e.y, e.form);
+    if (m_samples.empty() || m_samples.last_t() != e.t) m_samples.add(e.t, e.y, e.form);
 }
 
 // A start near the singularity starts in the body form (when the chart can switch).
@@ -330,7 +329,7 @@ scene_run::next scene_run::integrate_segment(Eigen::VectorXd& y, double t_from) 
     m_left_chart = m_last.code == status::stopped_by_observer;
     add_stats(m_result.stats, m_last.stats);
     if (m_last.code == status::stopped_by_event) return next::done;
-    if (!can_switch || m_samples.empty() || reached_end(m_scene, m_samples.t(m_samples.size() - 1)))
+    if (!can_switch || m_samples.empty() || reached_end(m_scene, m_samples.last_t()))
         return next::done;
     if (m_left_chart) return euler_chart ? next::body : next::euler;
     return euler_chart && !m_last.ok() && sin_theta_of(cf.form, y) < switch_below ? next::body

@@ -194,7 +194,7 @@ void end_lanes(const scene_spec& scene, const event_set<double, Eigen::VectorXd>
     for (lane_run& r : out) {
         if (r.stopped_by < 0) continue;
         const double t_stop = r.events.back().t;
-        while (!r.s.empty() && r.s.t(r.s.size() - 1) > t_stop)
+        while (!r.s.empty() && r.s.last_t() > t_stop)
             r.s.pop_back();
     }
 }

@@ -31,6 +31,7 @@ class sample_states {
     std::size_t size() const { return m_t.size(); }
     bool empty() const { return m_t.empty(); }
     double t(std::size_t k) const { return m_t[k]; }
+    double last_t() const { return m_t.back(); }
     std::size_t form(std::size_t k) const { return m_form[k]; }
     Eigen::Map<const Eigen::VectorXd> y(std::size_t k) const {
         const std::size_t end = k + 1 < size() ? m_start[k + 1] : m_y.size();
