@@ -103,13 +103,16 @@ std::string pack(const std::vector<std::pair<std::size_t, member_outcome>>& outc
     return out;
 }
 
-std::vector<std::size_t> run_in_process(std::size_t count, std::size_t group, unsigned jobs,
-                                        const batch_work& work, in_order& out,
-                                        const std::function<void(std::size_t)>& progress) {
+std::vector<rank_work> run_in_process(std::size_t count, std::size_t group, unsigned jobs,
+                                      const batch_work& work, in_order& out,
+                                      const std::function<void(std::size_t)>& progress,
+                                      work_clock::time_point start) {
     const member_groups gs{count, group};
     std::atomic<std::size_t> next{0}, done{0};
-    run_here([&] { return next++; }, gs, jobs, work, out, done, [&] { progress(done); });
-    return {done};
+    work_clock clock(start);
+    run_here([&] { return next++; }, gs, jobs, clock.wrap(work), out, done,
+             [&] { progress(done); });
+    return {clock.read()};
 }
 
 std::vector<std::pair<std::size_t, member_outcome>> unpack(const std::string& in) {
@@ -142,10 +145,11 @@ std::size_t mpi_session::least(std::size_t value) const {
     return value;
 }
 
-std::vector<std::size_t> run_distributed(const mpi_session&, std::size_t count, std::size_t group,
-                                         unsigned jobs, const batch_work& work, in_order* out,
-                                         const std::function<void(std::size_t)>& progress) {
-    return run_in_process(count, group, jobs, work, *out, progress);
+std::vector<rank_work> run_distributed(const mpi_session&, std::size_t count, std::size_t group,
+                                       unsigned jobs, const batch_work& work, in_order* out,
+                                       const std::function<void(std::size_t)>& progress,
+                                       work_clock::time_point start) {
+    return run_in_process(count, group, jobs, work, *out, progress, start);
 }
 
 #endif // the MPI build: distribute_mpi.cpp

@@ -24,6 +24,7 @@
 
 #include "sweep/in_order.hpp"
 #include "sweep/outcome.hpp"
+#include "sweep/work_clock.hpp"
 
 #include <algorithm>
 #include <functional>
@@ -73,17 +74,20 @@ using batch_work = std::function<std::vector<member_outcome>(std::size_t first, 
 // Runs members 0 .. count-1, in groups of `group` neighbours (the last may be shorter), on every
 // rank's `jobs` threads. On rank 0 every outcome goes through `out` (in member order, to its sink),
 // which bounds what waits in memory; progress(done) is called about ten times a second. Returns,
-// on rank 0, how many members each rank ran (rank order); other ranks return nothing and may pass
-// a null `out`.
-std::vector<std::size_t> run_distributed(const mpi_session& session, std::size_t count,
-                                         std::size_t group, unsigned jobs, const batch_work& work,
-                                         in_order* out,
-                                         const std::function<void(std::size_t)>& progress);
+// on rank 0, what each rank did (rank order: its members, busy time, its first member's start and
+// last member's end, from `start` on each rank); other ranks return nothing and may pass a null
+// `out`.
+std::vector<rank_work> run_distributed(const mpi_session& session, std::size_t count,
+                                       std::size_t group, unsigned jobs, const batch_work& work,
+                                       in_order* out,
+                                       const std::function<void(std::size_t)>& progress,
+                                       work_clock::time_point start);
 
-// run_distributed on this process alone: every member on its `jobs` threads (returns {count}).
-std::vector<std::size_t> run_in_process(std::size_t count, std::size_t group, unsigned jobs,
-                                        const batch_work& work, in_order& out,
-                                        const std::function<void(std::size_t)>& progress);
+// run_distributed on this process alone: every member on its `jobs` threads (returns one entry).
+std::vector<rank_work> run_in_process(std::size_t count, std::size_t group, unsigned jobs,
+                                      const batch_work& work, in_order& out,
+                                      const std::function<void(std::size_t)>& progress,
+                                      work_clock::time_point start);
 
 // The bytes of outcomes (with their member indices) for a message, and back.
 std::string pack(const std::vector<std::pair<std::size_t, member_outcome>>& outcomes);

@@ -242,44 +242,40 @@ void quiet_barrier() {
     wait_quietly(r);
 }
 
-// Rank 0: the outcomes the other ranks have sent, into `out` (`ran` counts them by rank). Returns
-// how many there were.
-std::size_t receive(in_order& out, std::vector<std::size_t>& ran) {
+// Rank 0: the outcomes of one message another rank has sent, if one has come, into `out`.
+// Returns how many there were. One message at a time: between two, the main thread keeps its own
+// threads' queue filled (draining every message first starved them for as long as the other
+// ranks sent faster than it delivered: a rank 0 of 4 threads idle for half a run).
+std::size_t receive(in_order& out) {
+    int flag = 0;
+    MPI_Status st;
+    MPI_Iprobe(MPI_ANY_SOURCE, results_tag, MPI_COMM_WORLD, &flag, &st);
+    if (!flag) return 0;
+    int bytes = 0;
+    MPI_Get_count(&st, MPI_BYTE, &bytes);
+    std::string buffer(std::size_t(bytes), '\0');
+    MPI_Recv(buffer.data(), bytes, MPI_BYTE, st.MPI_SOURCE, results_tag, MPI_COMM_WORLD,
+             MPI_STATUS_IGNORE);
     std::size_t got = 0;
-    for (;;) {
-        int flag = 0;
-        MPI_Status st;
-        MPI_Iprobe(MPI_ANY_SOURCE, results_tag, MPI_COMM_WORLD, &flag, &st);
-        if (!flag) return got;
-        int bytes = 0;
-        MPI_Get_count(&st, MPI_BYTE, &bytes);
-        std::string buffer(std::size_t(bytes), '\0');
-        MPI_Recv(buffer.data(), bytes, MPI_BYTE, st.MPI_SOURCE, results_tag, MPI_COMM_WORLD,
-                 MPI_STATUS_IGNORE);
-        for (auto& [m, o] : unpack(buffer)) {
-            out.deliver(m, std::move(o));
-            ++ran[std::size_t(st.MPI_SOURCE)];
-            ++got;
-        }
+    for (auto& [m, o] : unpack(buffer)) {
+        out.deliver(m, std::move(o));
+        ++got;
     }
+    return got;
 }
 
 // Rank 0: its threads deliver into `out`; its main thread receives the others' outcomes into it
-// and publishes its front. Returns the members each rank ran.
-std::vector<std::size_t> run_root(const mpi_session& s, const sharing& sh, const batch_work& work,
-                                  in_order& out, const std::function<void(std::size_t)>& progress) {
+// and publishes its front.
+void run_root(const mpi_session& s, const sharing& sh, const batch_work& work, in_order& out,
+              const std::function<void(std::size_t)>& progress) {
     shared_counter counter(s, sh.dynamic_start());
-    std::vector<std::size_t> ran(std::size_t(s.size()), 0);
-    std::atomic<std::size_t> done{0};
     local_queue queue;
     feeder feed{sh, counter, queue, {}};
     feed.fetched.push_back(sh.first_block(0));
     {
-        rank_threads threads(unsigned(sh.jobs), sh.gs, work, queue,
-                             [&](std::size_t m, member_outcome&& o) {
-                                 out.deliver(m, std::move(o));
-                                 ++done;
-                             });
+        rank_threads threads(
+            unsigned(sh.jobs), sh.gs, work, queue,
+            [&](std::size_t m, member_outcome&& o) { out.deliver(m, std::move(o)); });
         std::uint64_t published = 0;
         auto last = std::chrono::steady_clock::now();
         try {
@@ -287,7 +283,7 @@ std::vector<std::size_t> run_root(const mpi_session& s, const sharing& sh, const
                 threads.check(0);
                 feed.fetch_ahead();
                 feed.admit([&] { return out.done(); });
-                const std::size_t got = receive(out, ran);
+                const std::size_t got = receive(out);
                 if (out.done() != published) counter.publish_front(published = out.done());
                 if (std::chrono::steady_clock::now() - last > std::chrono::milliseconds(100)) {
                     progress(out.done());
@@ -300,9 +296,7 @@ std::vector<std::size_t> run_root(const mpi_session& s, const sharing& sh, const
         }
         threads.check(0);
     } // the threads joined
-    ran[0] = done;
     quiet_barrier();
-    return ran;
 }
 
 // The outcomes a rank's threads finished, for its main thread to send.
@@ -386,6 +380,19 @@ void run_other(const mpi_session& s, const sharing& sh, const batch_work& work) 
     quiet_barrier();
 }
 
+// Every rank's share of the run, on rank 0 (rank order); the others get nothing.
+std::vector<rank_work> gather(const mpi_session& s, const rank_work& mine) {
+    const double sent[4] = {double(mine.members), mine.busy, mine.first, mine.last};
+    std::vector<double> got(s.rank() == 0 ? 4 * std::size_t(s.size()) : 0);
+    MPI_Request r;
+    MPI_Igather(sent, 4, MPI_DOUBLE, got.data(), 4, MPI_DOUBLE, 0, MPI_COMM_WORLD, &r);
+    wait_quietly(r);
+    std::vector<rank_work> all;
+    for (std::size_t k = 0; k < got.size(); k += 4)
+        all.push_back({std::size_t(got[k]), got[k + 1], got[k + 2], got[k + 3]});
+    return all;
+}
+
 } // namespace
 
 mpi_session::mpi_session() {
@@ -437,18 +444,22 @@ bool mpi_session::all(bool ok) const {
     return every == 1;
 }
 
-std::vector<std::size_t> run_distributed(const mpi_session& s, std::size_t count, std::size_t group,
-                                         unsigned jobs, const batch_work& work, in_order* out,
-                                         const std::function<void(std::size_t)>& progress) {
-    if (s.size() == 1) return run_in_process(count, group, jobs, work, *out, progress);
+std::vector<rank_work> run_distributed(const mpi_session& s, std::size_t count, std::size_t group,
+                                       unsigned jobs, const batch_work& work, in_order* out,
+                                       const std::function<void(std::size_t)>& progress,
+                                       work_clock::time_point start) {
+    if (s.size() == 1) return run_in_process(count, group, jobs, work, *out, progress, start);
     // every rank computes the same sharing (the same count, group and -j; rank 0's window)
     const sharing sh{{count, group},
                      s.broadcast(s.rank() == 0 ? out->window() : 0),
                      std::size_t(s.size()),
                      std::max<std::size_t>(1, jobs)};
-    if (s.rank() == 0) return run_root(s, sh, work, *out, progress);
-    run_other(s, sh, work);
-    return {};
+    work_clock clock(start);
+    if (s.rank() == 0)
+        run_root(s, sh, clock.wrap(work), *out, progress);
+    else
+        run_other(s, sh, clock.wrap(work));
+    return gather(s, clock.read());
 }
 
 } // namespace rotgen

@@ -8,7 +8,8 @@
 # summary.csv is one process's byte for byte, with lanes too (when built with them). And with a
 # window of 4 members (the tests' hook ROTGEN_TEST_SWEEP_WINDOW), 2 and 3 ranks of 2 threads write
 # one process's summary.csv and trajectories.h5: a rank starts only members that fit rank 0's
-# window (a member outside it is an internal error that ends the run).
+# window (a member outside it is an internal error that ends the run). The `--timings` lines
+# of each rank's share (members, busy time, last member) agree with the ranks line and the run.
 #   mpi_balance.sh ROTGEN MPIEXEC SOURCE_DIR LANES(ON|OFF)
 set -euo pipefail
 rotgen=${1:?rotgen} mpiexec=${2:?mpiexec} src=${3:?source dir} lanes=${4:-OFF}
@@ -38,14 +39,38 @@ YAML
 counts() {
   sed -n 's/^  ranks   members run by rank 0, 1, ...: *//p' "$1" | tr -d ,
 }
+# balance FILE JOBS COUNTS...: FILE's --timings lines, one per rank ("threads" for one process),
+# say that each ran COUNTS members, and their times are consistent: a rank's JOBS threads were
+# busy for more than 0 s and no longer than JOBS times the span from its first member's start to
+# its last member's end, which lies within the members' stage time
+balance() {
+  local file=$1 jobs=$2
+  shift 2
+  awk -v jobs="$jobs" -v want="$*" '
+    function after(word,   k) { for (k = 1; k < NF; k++) if ($k == word) return $(k + 1) }
+    /^rotgen: timing members/ { stage = $4 }
+    /^rotgen: (rank [0-9]+|threads) .* members from / {
+      for (k = 2; k <= NF; k++) if ($k == "members") n = $(k - 1)
+      first = after("from"); last = after("to"); busy = after("busy")
+      got = got (got == "" ? "" : " ") n
+      if (!(busy > 0 && 0 <= first && first <= last && last <= stage + 0.002 &&
+            busy <= jobs * (last - first) + 0.003)) bad = bad "\n" $0
+    }
+    END {
+      if (got != want) { print "balance lines ran " got ", not " want; exit 1 }
+      if (bad != "") { print "balance lines with inconsistent times (stage " stage " s):" bad; exit 1 }
+    }' "$file" || { cat "$file"; exit 1; }
+}
 # check NAME WHO EXTRA...: 2 ranks of 2 threads write one process's summary.csv, and rank WHO
 # (the one without the expensive members) ran more than half of the 64
 check() {
   local name=$1 who=$2 c
   shift 2
-  "$rotgen" sweep "$work/$name.yaml" -o "$work/$name.one" -j 1 -q "$@"
+  "$rotgen" sweep "$work/$name.yaml" -o "$work/$name.one" -j 1 -q --timings "$@" \
+    2>"$work/$name.one.err"
+  balance "$work/$name.one.err" 1 64
   "$mpiexec" -n 2 --oversubscribe "${root[@]}" "$rotgen" sweep "$work/$name.yaml" \
-    -o "$work/$name.two" -j 2 "$@" >"$work/$name.out"
+    -o "$work/$name.two" -j 2 --timings "$@" >"$work/$name.out" 2>"$work/$name.err"
   cmp "$work/$name.one/summary.csv" "$work/$name.two/summary.csv" ||
     { echo "$name $*: summary.csv differs between 1 process and 2 ranks"; exit 1; }
   read -r -a c <<<"$(counts "$work/$name.out")"
@@ -53,6 +78,7 @@ check() {
   ((c[0] > 0 && c[1] > 0 && c[0] + c[1] == 64)) || { echo "$name $*: ranks ran ${c[*]}"; exit 1; }
   ((c[who] > 32)) ||
     { echo "$name $*: rank $who ran ${c[who]} of 64 (${c[*]}): the counter did not balance"; exit 1; }
+  balance "$work/$name.err" 2 "${c[@]}"
   echo "$name $*: ranks ran ${c[*]}"
 }
 # window N: N ranks of 2 threads with a window of 4 members write one process's files
