@@ -7,14 +7,17 @@
 //   MPI_SUM, passive target: on one node, or with a network's RDMA atomics, rank 0 does nothing
 //   to serve it; elsewhere its main thread's MPI calls, every millisecond, move it on), in chunks
 //   that shrink as the counter nears the end (guided: the groups left, read from the counter just
-//   before, over twice the threads of every rank, at least 1), so that the tail balances cheap
+//   before, over twice the chunks every rank may hold, at least 1), so that the tail balances cheap
 //   and expensive members;
 // - MPI_THREAD_FUNNELED: only each rank's main thread calls MPI. It fetches chunks ahead into a
 //   local queue (kept `jobs` + 1 chunks deep) that the rank's threads take groups from, so that a
 //   thread never waits for work longer than one fetch; it sends the outcomes its threads finished
 //   to rank 0 (MPI_Isend, messages of at most 1 MiB, pack/unpack), and on rank 0 it receives the
 //   others' outcomes into `in_order`, which alone writes the files: the same byte for byte as a
-//   one-process run's. The main thread sleeps between rounds (woken when its queue runs low).
+//   one-process run's. Rank 0 takes a message as soon as it sees it (MPI_Imrecv) and delivers it
+//   when it has arrived, one message between two refills of its own queue, so that its threads
+//   never wait for a transfer. The main thread sleeps between rounds (1 ms, woken when its queue
+//   runs low; 50 us while a message it sent is on its way: a large one moves only in its calls).
 // - Memory stays bounded: rank 0 publishes in the window how many members it has written (the
 //   front of `in_order`), and a rank lets its threads start a chunk only when the chunk's members
 //   fit the window of outcomes rank 0 may hold (front + window); chunks are sized so that every

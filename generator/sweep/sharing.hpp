@@ -35,11 +35,13 @@ struct sharing {
         return {std::min(gs.size(), rank * b), std::min(gs.size(), rank * b + b)};
     }
     std::size_t dynamic_start() const { return std::min(gs.size(), ranks * block()); }
-    // Guided: the groups not yet handed out (`next`: the counter) over twice the threads of every
-    // rank, at least 1.
+    // Guided: the groups not yet handed out (`next`: the counter) over twice the chunks every rank
+    // may hold (its queue keeps jobs + 1), at least 1: a rank then holds at most half its share of
+    // what is left, so that a slower rank (its members costlier, its cores shared) cannot keep the
+    // others waiting at the end for long.
     std::size_t chunk(std::size_t next) const {
         const std::size_t left = gs.size() - std::min(gs.size(), next);
-        return std::clamp<std::size_t>(left / (2 * ranks * jobs), 1, most());
+        return std::clamp<std::size_t>(left / (2 * ranks * (jobs + 1)), 1, most());
     }
 };
 

@@ -31,16 +31,16 @@ TEST_CASE("a late chunk is sized from the groups left now, not from those its ra
     plain_counter counter{sh.dynamic_start()};
     const auto early = take_chunk(sh, counter);
     REQUIRE(early);
-    CHECK(early->second - early->first == (16384 - 4096) / 32); // 384
+    CHECK(early->second - early->first == (16384 - 4096) / 64); // 192: over 16 ranks x 2 x 2 chunks
     while (counter.value < 16000) // the other ranks take chunks meanwhile
         REQUIRE(take_chunk(sh, counter));
     const std::size_t left = 16384 - counter.value;
     const auto late = take_chunk(sh, counter);
     REQUIRE(late);
-    // from the value this rank saw after its early chunk (4,480) it would be 372 groups, nearly
-    // all of the at most 384 left: one rank would run them while fifteen wait
-    CHECK(late->second - late->first == std::max<std::size_t>(1, left / 32));
-    CHECK(late->second - late->first < 12);
+    // from the value this rank saw after its early chunk (4,288) it would be 189 groups, nearly
+    // half of the at most 384 left: one rank would run them while fifteen wait
+    CHECK(late->second - late->first == std::max<std::size_t>(1, left / 64));
+    CHECK(late->second - late->first < 6);
 }
 
 TEST_CASE("the chunks cover every group after the static blocks once, and the last are single",
@@ -59,7 +59,7 @@ TEST_CASE("the chunks cover every group after the static blocks once, and the la
     }
     CHECK(std::count(taken.begin(), taken.end(), 1) == 125);
     REQUIRE(sizes.size() > 4);
-    CHECK(sizes.front() == (125 - 30) / 12); // 3 blocks of 10; then the rest over 2 x 3 x 2
+    CHECK(sizes.front() == (125 - 30) / 18); // 3 blocks of 10; then the rest over 2 x 3 x (2 + 1)
     CHECK(sizes.back() == 1);
     CHECK(std::is_sorted(sizes.rbegin(), sizes.rend())); // guided: never growing
 }
