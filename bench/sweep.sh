@@ -14,6 +14,7 @@
 # Timing claims live here, never in ctest.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/summary_time.sh"
+source "$(dirname "${BASH_SOURCE[0]}")/heavy_top_sweep.sh"
 rotgen=$(realpath "${1:?usage: sweep.sh ROTGEN}")
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 work=$(mktemp -d)
@@ -24,16 +25,7 @@ root_flag=()
 [[ $(id -u) == 0 ]] && root_flag=(--allow-run-as-root)
 
 scene() { # $1: name, $2: integrator mapping
-  cat >"$work/$1.yaml" <<YAML
-model: $root/models/heavy_top.yaml
-initial: {phi: 0, theta: 0.5, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 30}
-time: {start: 0, end: 10, samples: 101}
-integrator: $2
-record: [theta, energy]
-sweep:
-  vary:
-    initial.theta: {from: 0.1, to: 1.5, count: $members}
-YAML
+  heavy_top_sweep "$work/$1.yaml" "$members" "$2"
 }
 scene rk4 "{method: rk4, step: 0.01}"
 scene dop853 "{method: dop853, rtol: 1e-8, atol: 1e-10}"

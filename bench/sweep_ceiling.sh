@@ -13,24 +13,15 @@
 # own "running the members".
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/summary_time.sh"
+source "$(dirname "${BASH_SOURCE[0]}")/heavy_top_sweep.sh"
 rotgen=$(realpath "${1:?usage: sweep_ceiling.sh ROTGEN [MEMBERS]}")
 members=${2:-4096}
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 export ROTGEN_CACHE_DIR=${ROTGEN_CACHE_DIR:-$work/cache}
 rounds=${ROUNDS:-3}
 cores=$(nproc)
-sed "s/count: 16384/count: $members/" >"$work/scene.yaml" <<YAML
-model: $root/models/heavy_top.yaml
-initial: {phi: 0, theta: 0.5, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 30}
-time: {start: 0, end: 10, samples: 101}
-integrator: {method: dop853, rtol: 1e-8, atol: 1e-10}
-record: [theta, energy]
-sweep:
-  vary:
-    initial.theta: {from: 0.1, to: 1.5, count: 16384}
-YAML
+heavy_top_sweep "$work/scene.yaml" "$members" "{method: dop853, rtol: 1e-8, atol: 1e-10}"
 
 one() { # $1: the core; prints the seconds
   taskset -c "$1" "$rotgen" sweep "$work/scene.yaml" -o "$work/out$1" -j 1 2>/dev/null |

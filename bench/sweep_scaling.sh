@@ -16,9 +16,9 @@
 # mpirun passes it, CXX and LD_LIBRARY_PATH on to the ranks.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/summary_time.sh"
+source "$(dirname "${BASH_SOURCE[0]}")/heavy_top_sweep.sh"
 rotgen=$(realpath "${1:?usage: sweep_scaling.sh ROTGEN [MEMBERS]}")
 members=${2:-16384}
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 export ROTGEN_CACHE_DIR=${ROTGEN_CACHE_DIR:-$work/cache}
@@ -26,16 +26,7 @@ rounds=${ROUNDS:-5}
 cores=$(nproc)
 run_root=()
 [[ $(id -u) == 0 ]] && run_root=(--allow-run-as-root)
-cat >"$work/scene.yaml" <<YAML
-model: $root/models/heavy_top.yaml
-initial: {phi: 0, theta: 0.5, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 30}
-time: {start: 0, end: 10, samples: 101}
-integrator: {method: dop853, rtol: 1e-8, atol: 1e-10}
-record: [theta, energy]
-sweep:
-  vary:
-    initial.theta: {from: 0.1, to: 1.5, count: $members}
-YAML
+heavy_top_sweep "$work/scene.yaml" "$members" "{method: dop853, rtol: 1e-8, atol: 1e-10}"
 
 # The ways, "label|command words" (the scene and -o are added)
 ways=("1 thread|sweep -j 1")

@@ -11,23 +11,14 @@
 # turn) so that all see the same load. Timing claims live here, never in ctest.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/../summary_time.sh"
+source "$(dirname "${BASH_SOURCE[0]}")/../heavy_top_sweep.sh"
 rotgen=$(realpath "${1:?usage: taylor_lanes.sh ROTGEN}")
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 export ROTGEN_CACHE_DIR=${ROTGEN_CACHE_DIR:-$work/cache} # the libraries timed below are these
 members=1024 runs=${RUNS:-9}
 
-cat >"$work/taylor.yaml" <<YAML
-model: $root/models/heavy_top.yaml
-initial: {phi: 0, theta: 0.5, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 30}
-time: {start: 0, end: 10, samples: 101}
-integrator: {method: taylor, rtol: 1e-12, atol: 1e-12}
-record: [theta, energy]
-sweep:
-  vary:
-    initial.theta: {from: 0.1, to: 1.5, count: $members}
-YAML
+heavy_top_sweep "$work/taylor.yaml" "$members" "{method: taylor, rtol: 1e-12, atol: 1e-12}"
 sed 's/end: 10,/end: 0.01,/' "$work/taylor.yaml" >"$work/short.yaml"
 
 # "WALL CPU" of one sweep of $1 with the options $2...: WALL the sweep's own "running the members"
