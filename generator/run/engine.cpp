@@ -76,6 +76,8 @@ class scene_run {
     void end_at_event(std::size_t which);
     void switch_chart(next to, Eigen::VectorXd& y, double& t_from);
     void record();
+    const compiled_form& record_outputs(double t, Eigen::Ref<const Eigen::VectorXd> y,
+                                        std::size_t form, std::vector<double>& out) const;
     std::vector<double> record_row(double t, Eigen::Ref<const Eigen::VectorXd> y, std::size_t form,
                                    std::vector<double>& out) const;
     void start_method();
@@ -373,9 +375,7 @@ void scene_run::switch_chart(next to, Eigen::VectorXd& y, double& t_from) {
 // The row (t, the recorded columns) at a sample; `out` gets the record program's outputs there.
 std::vector<double> scene_run::record_row(double t, Eigen::Ref<const Eigen::VectorXd> y,
                                           std::size_t form, std::vector<double>& out) const {
-    const compiled_form& cf = *m_compiled[form];
-    out.resize(cf.outputs);
-    cf.record(m_parameters[form].data(), t, y.data(), out.data());
+    const compiled_form& cf = record_outputs(t, y, form, out);
     std::optional<std::array<double, 3>> e;
     std::vector<double> row;
     row.reserve(cf.columns.size() + 1);
@@ -385,7 +385,17 @@ std::vector<double> scene_run::record_row(double t, Eigen::Ref<const Eigen::Vect
     return row;
 }
 
-// Records and invariants at every sample (and event), each by the form that integrated it.
+// The record program's outputs at a sample, into `out`; returns the form's kernels.
+const compiled_form& scene_run::record_outputs(double t, Eigen::Ref<const Eigen::VectorXd> y,
+                                               std::size_t form, std::vector<double>& out) const {
+    const compiled_form& cf = *m_compiled[form];
+    out.resize(cf.outputs);
+    cf.record(m_parameters[form].data(), t, y.data(), out.data());
+    return cf;
+}
+
+// Records and invariants at every sample (and event), each by the form that integrated it; the
+// rows of every sample, or of the last only (prepared_scene::every_row).
 void scene_run::record() {
     const std::vector<invariant>& invariants = m_prepared.invariants();
     m_result.invariants.clear();
@@ -394,11 +404,15 @@ void scene_run::record() {
     std::vector<double> out; // the record program's outputs at a sample
     for (const sample& s : m_event_samples)
         m_result.event_rows.push_back(record_row(s.t, s.y, s.form, out));
-    m_result.rows.reserve(m_samples.size());
+    const bool every = m_prepared.every_row();
+    m_result.rows.reserve(every ? m_samples.size() : 1);
     for (std::size_t k = 0; k < m_samples.size(); ++k) {
         const compiled_form& cf = *m_compiled[m_samples.form(k)];
         const Eigen::Map<const Eigen::VectorXd> ys = m_samples.y(k);
-        m_result.rows.push_back(record_row(m_samples.t(k), ys, m_samples.form(k), out));
+        if (every || k + 1 == m_samples.size())
+            m_result.rows.push_back(record_row(m_samples.t(k), ys, m_samples.form(k), out));
+        else
+            record_outputs(m_samples.t(k), ys, m_samples.form(k), out);
         std::optional<std::array<double, 3>> e;
         for (std::size_t i = 0; i < invariants.size(); ++i) {
             invariant_drift& d = m_result.invariants[i];

@@ -48,6 +48,11 @@ class prepared_scene {
     bool can_switch() const { return m_can_switch; }
     bool orientation() const { return m_orientation; } // the body form keeps the quaternion
     const std::vector<invariant>& invariants() const { return m_invariants; }
+    // Whether a run keeps every sample's row (the default) or the last one only: a sweep without
+    // trajectories needs no more (its summary takes the last row, and the invariants' drifts are
+    // still taken at every sample). A member's rows cost about a quarter of its fixed cost.
+    bool every_row() const { return m_every_row; }
+    void keep_last_row_only() { m_every_row = false; }
 
     // The kernels of `form`, compiled (or loaded from the cache) on first use; thread-safe, and the
     // reference stays valid. Throws user_error when the form cannot give a recorded quantity.
@@ -68,7 +73,7 @@ class prepared_scene {
 
     scene_spec m_scene;
     derivation m_d;
-    bool m_can_switch = false, m_orientation = false;
+    bool m_can_switch = false, m_orientation = false, m_every_row = true;
     std::vector<invariant> m_invariants;
     mutable std::map<std::pair<form_kind, bool>, form_expressions> m_forms; // each built once
     mutable std::map<form_kind, std::unique_ptr<compiled_form>> m_compiled;

@@ -150,6 +150,7 @@ struct ensemble {
         }
         if (q.lanes > 1) lane_check(scene);
         prepared = std::make_unique<prepared_scene>(scene, timings);
+        if (!q.trajectories) prepared->keep_last_row_only();
         prepared->compile_all(timings);
         layout = layout_of(*prepared);
         if (q.lanes > 1) lanes = std::make_unique<lane_kernels>(compile_lanes(*prepared, timings));

@@ -62,6 +62,7 @@ void prepare(ensemble& e, const std::string& text, const sweep_options& o) {
         e.table = std::make_unique<member_table>(*e.plan);
         if (o.lanes > 1) lane_check(*e.scene);
         e.prepared = std::make_unique<prepared_scene>(*e.scene, timings);
+        if (!o.trajectories) e.prepared->keep_last_row_only();
     }
     py::gil_scoped_release released; // compiling locks by itself
     e.prepared->compile_all(timings);

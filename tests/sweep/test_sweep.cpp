@@ -2,7 +2,10 @@
 // `rotgen simulate` of the same scene with its values written in, a failing member among others.
 #include "support.hpp"
 
+#include "run/engine.hpp"
+#include "run/prepared.hpp"
 #include "scene/scene.hpp"
+#include "support/timings.hpp"
 #include "sweep/members.hpp"
 
 #include <catch2/catch.hpp>
@@ -250,4 +253,30 @@ TEST_CASE("sweep: event.<name> is the time of the event's first occurrence, empt
         if (m == 0) CHECK(first_deep.empty()); // the empty field: theta0 = 0.3 stays below 0.85
         if (m == 1) CHECK(turns == 2);         // the first of two turning points
     }
+}
+
+TEST_CASE("sweep: a member run that keeps its last row only has that row and every drift of the "
+          "full run",
+          "[sweep]") {
+    // a sweep without --trajectories needs the last row and the invariants at every sample
+    const scratch_file f("sweep_last_row.yaml",
+                         heavy_top_scene("{phi: 0, theta: 0.5, psi: 0, phi_dot: 0, theta_dot: 0, "
+                                         "psi_dot: 30}",
+                                         ""));
+    stage_timings timings;
+    const prepared_scene every(load_scene(f.path), timings);
+    prepared_scene last(load_scene(f.path), timings);
+    last.keep_last_row_only();
+    const rotgen::run_result all = run_member(every, values_of(every.scene()), timings);
+    const rotgen::run_result one = run_member(last, values_of(last.scene()), timings);
+    REQUIRE(all.rows.size() == 201);
+    REQUIRE(one.rows.size() == 1);
+    CHECK(one.rows[0] == all.rows.back()); // the same doubles: t = 2 and the recorded columns
+    REQUIRE(one.invariants.size() == all.invariants.size());
+    REQUIRE(all.invariants.size() >= 2); // the energy and p_phi at least
+    for (std::size_t i = 0; i < all.invariants.size(); ++i) {
+        CHECK(one.invariants[i].drift == all.invariants[i].drift);
+        CHECK(one.invariants[i].drift > 0); // taken over the samples, not left at 0
+    }
+    CHECK(one.stats.accepted == all.stats.accepted);
 }
