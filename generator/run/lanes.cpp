@@ -235,6 +235,8 @@ std::vector<lane_run> run_system(const prepared_scene& prepared, lane_batch& b, 
         return live > 0;
     };
     const std::vector<double> times = sample_times(scene);
+    for (lane_run& r : out)
+        r.s.reserve(times.size(), n); // one allocation each, not one per doubling
     Eigen::VectorXd y = Eigen::Map<const Eigen::VectorXd>(by_lane(b.y0, lanes).data(),
                                                           static_cast<Eigen::Index>(n * lanes));
     const integration_result<double> res =
