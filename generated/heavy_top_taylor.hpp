@@ -305,44 +305,54 @@ ROTGEN_TAYLOR_INLINE auto taylor_pairwise(const F& f) {
     }
 }
 
-// sum_{j=Lo..Hi-1} a[j] b[K-j] in four running sums, the one of j = Lo + r + 4i in r, added as
-// (r0 + r1) + (r2 + r3) (pairwise below 4 terms): a dot product of a with b reversed, which a
-// double computes four terms at a time in one vector (GCC 12+, Clang) with the same roundings as
-// any other T (so a batch of lanes gives each lane the bits of the scalar run). The callers leave
-// out the terms of a[K] and b[K], written just before: a vector load over a fresh store waits for
-// it (a store-forwarding stall cost more than the vector saved).
-template <int Lo, int Hi, int K, class T>
+// sum_{j=Lo..Hi-1} a[j] b[K-j] (Weighted: j a[j] b[K-j]) in four running sums, the one of
+// j = Lo + r + 4i in r, added as (r0 + r1) + (r2 + r3) (pairwise below 4 terms): a dot product of
+// a with b reversed, which a double computes four terms at a time in one vector (GCC 12+, Clang)
+// with the same roundings as any other T (so a batch of lanes gives each lane the bits of the
+// scalar run). The callers leave out the terms of a[K] and b[K], written just before: a vector
+// load over a fresh store waits for it (a store-forwarding stall cost more than the vector saved).
+template <int Lo, int Hi, int K, bool Weighted = false, class T>
 ROTGEN_TAYLOR_INLINE T taylor_dot(const T* a, const T* b) {
+    using S = typename scalar_of<T>::type;
+    const auto term = [&](int j) -> T {
+        if constexpr (Weighted)
+            return S(j) * a[j] * b[K - j];
+        else
+            return a[j] * b[K - j];
+    };
     if constexpr (Hi - Lo < 4) {
-        return taylor_pairwise<Lo, Hi>([&](auto j) { return a[j] * b[K - j]; });
+        return taylor_pairwise<Lo, Hi>([&](auto j) { return term(j); });
     } else {
 #if defined(__clang__) || (defined(__GNUC__) && __GNUC__ >= 12)
         if constexpr (std::is_same_v<T, double>) {
             typedef double v4 __attribute__((vector_size(4 * sizeof(double))));
             v4 x, y, acc;
-            __builtin_memcpy(&x, a + Lo, sizeof x);
-            __builtin_memcpy(&y, b + K - Lo - 3, sizeof y);
-            acc = x * __builtin_shufflevector(y, y, 3, 2, 1, 0);
-            int j = Lo + 4;
-            for (; j + 4 <= Hi; j += 4) {
-                __builtin_memcpy(&x, a + j, sizeof x);
+            const auto terms = [&](int j, v4& t) { // the terms j .. j+3 (no vector by value:
+                __builtin_memcpy(&x, a + j, sizeof x); // without AVX its ABI differs)
                 __builtin_memcpy(&y, b + K - j - 3, sizeof y);
-                acc = acc + x * __builtin_shufflevector(y, y, 3, 2, 1, 0);
+                if constexpr (Weighted)
+                    x = v4{double(j), double(j + 1), double(j + 2), double(j + 3)} * x;
+                t = x * __builtin_shufflevector(y, y, 3, 2, 1, 0);
+            };
+            terms(Lo, acc);
+            int j = Lo + 4;
+            for (v4 t; j + 4 <= Hi; j += 4) {
+                terms(j, t);
+                acc = acc + t;
             }
             double r[4] = {acc[0], acc[1], acc[2], acc[3]};
             for (int q = 0; j + q < Hi; ++q)
-                r[q] = r[q] + a[j + q] * b[K - j - q];
+                r[q] = r[q] + term(j + q);
             return (r[0] + r[1]) + (r[2] + r[3]);
         }
 #endif
-        T r[4] = {a[Lo] * b[K - Lo], a[Lo + 1] * b[K - Lo - 1], a[Lo + 2] * b[K - Lo - 2],
-                  a[Lo + 3] * b[K - Lo - 3]};
+        T r[4] = {term(Lo), term(Lo + 1), term(Lo + 2), term(Lo + 3)};
         int j = Lo + 4;
         for (; j + 4 <= Hi; j += 4)
             for (int q = 0; q < 4; ++q)
-                r[q] = r[q] + a[j + q] * b[K - j - q];
+                r[q] = r[q] + term(j + q);
         for (int q = 0; j + q < Hi; ++q)
-            r[q] = r[q] + a[j + q] * b[K - j - q];
+            r[q] = r[q] + term(j + q);
         return (r[0] + r[1]) + (r[2] + r[3]);
     }
 }
@@ -378,8 +388,11 @@ ROTGEN_TAYLOR_INLINE T taylor_div(T n_k, const T* b, const T* u) {
 template <int K, class T>
 ROTGEN_TAYLOR_INLINE void taylor_sin_cos(T* s, T* c, const T* a) {
     using S = typename scalar_of<T>::type;
-    const T ss = taylor_pairwise<1, K + 1>([&](auto j) { return S(j) * a[j] * c[K - j]; });
-    const T cs = taylor_pairwise<1, K + 1>([&](auto j) { return S(j) * a[j] * s[K - j]; });
+    T ss = S(K) * a[K] * c[0], cs = S(K) * a[K] * s[0];
+    if constexpr (K >= 2) {
+        ss = taylor_dot<1, K, K, true>(a, c) + ss;
+        cs = taylor_dot<1, K, K, true>(a, s) + cs;
+    }
     s[K] = ss / S(K);
     c[K] = -cs / S(K);
 }
