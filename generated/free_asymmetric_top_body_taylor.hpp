@@ -234,6 +234,32 @@ ROTGEN_TAYLOR_INLINE auto taylor_pairwise(const F& f) {
     }
 }
 
+// The term j of taylor_dot: a[j] b[K-j], or j a[j] b[K-j] (Weighted).
+template <int K, bool Weighted, class T>
+ROTGEN_TAYLOR_INLINE T taylor_term(const T* a, const T* b, int j) {
+    using S = typename scalar_of<T>::type;
+    if constexpr (Weighted)
+        return S(j) * a[j] * b[K - j];
+    else
+        return a[j] * b[K - j];
+}
+
+#if defined(__clang__) || (defined(__GNUC__) && __GNUC__ >= 12)
+#define ROTGEN_TAYLOR_VECTOR 1
+typedef double taylor_v4 __attribute__((vector_size(4 * sizeof(double))));
+
+// The terms j .. j+3 of taylor_dot as one vector, into t (by reference: without AVX a vector's ABI
+// by value differs).
+template <int K, bool Weighted>
+ROTGEN_TAYLOR_INLINE void taylor_terms(const double* a, const double* b, int j, taylor_v4& t) {
+    taylor_v4 x, y;
+    __builtin_memcpy(&x, a + j, sizeof x);
+    __builtin_memcpy(&y, b + K - j - 3, sizeof y);
+    if constexpr (Weighted) x = taylor_v4{double(j), double(j + 1), double(j + 2), double(j + 3)} * x;
+    t = x * __builtin_shufflevector(y, y, 3, 2, 1, 0);
+}
+#endif
+
 // sum_{j=Lo..Hi-1} a[j] b[K-j] (Weighted: j a[j] b[K-j]) in four running sums, the one of
 // j = Lo + r + 4i in r, added as (r0 + r1) + (r2 + r3) (pairwise below 4 terms): a dot product of
 // a with b reversed, which a double computes four terms at a time in one vector (GCC 12+, Clang)
@@ -242,46 +268,32 @@ ROTGEN_TAYLOR_INLINE auto taylor_pairwise(const F& f) {
 // load over a fresh store waits for it (a store-forwarding stall cost more than the vector saved).
 template <int Lo, int Hi, int K, bool Weighted = false, class T>
 ROTGEN_TAYLOR_INLINE T taylor_dot(const T* a, const T* b) {
-    using S = typename scalar_of<T>::type;
-    const auto term = [&](int j) -> T {
-        if constexpr (Weighted)
-            return S(j) * a[j] * b[K - j];
-        else
-            return a[j] * b[K - j];
-    };
     if constexpr (Hi - Lo < 4) {
-        return taylor_pairwise<Lo, Hi>([&](auto j) { return term(j); });
+        return taylor_pairwise<Lo, Hi>([&](auto j) { return taylor_term<K, Weighted>(a, b, j); });
     } else {
-#if defined(__clang__) || (defined(__GNUC__) && __GNUC__ >= 12)
+        T r[4];
+        int j = Lo + 4;
+#ifdef ROTGEN_TAYLOR_VECTOR
         if constexpr (std::is_same_v<T, double>) {
-            typedef double v4 __attribute__((vector_size(4 * sizeof(double))));
-            v4 x, y, acc;
-            const auto terms = [&](int j, v4& t) { // the terms j .. j+3 (no vector by value:
-                __builtin_memcpy(&x, a + j, sizeof x); // without AVX its ABI differs)
-                __builtin_memcpy(&y, b + K - j - 3, sizeof y);
-                if constexpr (Weighted)
-                    x = v4{double(j), double(j + 1), double(j + 2), double(j + 3)} * x;
-                t = x * __builtin_shufflevector(y, y, 3, 2, 1, 0);
-            };
-            terms(Lo, acc);
-            int j = Lo + 4;
-            for (v4 t; j + 4 <= Hi; j += 4) {
-                terms(j, t);
+            taylor_v4 acc, t;
+            taylor_terms<K, Weighted>(a, b, Lo, acc);
+            for (; j + 4 <= Hi; j += 4) {
+                taylor_terms<K, Weighted>(a, b, j, t);
                 acc = acc + t;
             }
-            double r[4] = {acc[0], acc[1], acc[2], acc[3]};
-            for (int q = 0; j + q < Hi; ++q)
-                r[q] = r[q] + term(j + q);
-            return (r[0] + r[1]) + (r[2] + r[3]);
-        }
-#endif
-        T r[4] = {term(Lo), term(Lo + 1), term(Lo + 2), term(Lo + 3)};
-        int j = Lo + 4;
-        for (; j + 4 <= Hi; j += 4)
             for (int q = 0; q < 4; ++q)
-                r[q] = r[q] + term(j + q);
+                r[q] = acc[q];
+        } else
+#endif
+        {
+            for (int q = 0; q < 4; ++q)
+                r[q] = taylor_term<K, Weighted>(a, b, Lo + q);
+            for (; j + 4 <= Hi; j += 4)
+                for (int q = 0; q < 4; ++q)
+                    r[q] = r[q] + taylor_term<K, Weighted>(a, b, j + q);
+        }
         for (int q = 0; j + q < Hi; ++q)
-            r[q] = r[q] + term(j + q);
+            r[q] = r[q] + taylor_term<K, Weighted>(a, b, j + q);
         return (r[0] + r[1]) + (r[2] + r[3]);
     }
 }
