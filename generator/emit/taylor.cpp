@@ -467,7 +467,8 @@ std::vector<std::string> taylor_builder::orders(const std::vector<std::string>& 
     lines.push_back("    // orders 1 .. " + std::string(fixed ? "Order" : "order") +
                     ": the state's from the rates' (y^[k] = f^[k-1] / k), then each operation's");
     if (fixed) {
-        lines.push_back("    detail::taylor_orders<Order>([&](auto order_k) {");
+        lines.push_back(
+            "    detail::taylor_orders<Order>([&](auto order_k) ROTGEN_TAYLOR_LAMBDA {");
         lines.push_back("        constexpr int k = decltype(order_k)::value;");
     } else {
         lines.push_back("    for (int k = 1; k <= order; ++k) {");

@@ -32,6 +32,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <string>
 #include <type_traits>
@@ -53,6 +55,60 @@ struct has_taylor<
     S, T,
     std::void_t<decltype(std::declval<const S&>().taylor(std::declval<T>(), std::declval<T*>(), 1)),
                 decltype(std::declval<const S&>().taylor_series())>> : std::true_type {};
+
+// A lower bound of log2 x for a normal double x > 0, at most log2_width below it: the exponent
+// e plus m - 1 for the significand m in [1, 2) (log2 is concave, so above that chord, and at most
+// log2(1/ln 2) - (1/ln 2 - 1) = 0.0861 above it).
+inline constexpr double log2_width = 0.0861;
+inline double log2_below(double x) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &x, sizeof bits);
+    const int e = static_cast<int>((bits >> 52) & 0x7ff) - 1023;
+    bits = (bits & 0x000fffffffffffffULL) | 0x3ff0000000000000ULL;
+    double m;
+    std::memcpy(&m, &bits, sizeof m);
+    return e + (m - 1);
+}
+
+// r_i = sum_{m=0..p-1} d(m, i) h^m for i < W, as E(h^2) + h O(h^2) with E the sum of the even m
+// and O of the odd: two independent chains of Horner's scheme at half the length, for each of the
+// W sums side by side (held in registers, the loop over i inside the loop over m). A step waits
+// on these chains (the next expansion needs their sums): one Horner chain over m after another
+// was 8% of the free top's time.
+template <std::size_t W, class T, class D>
+ROTGEN_ALWAYS_INLINE void split_horner(int p, T h, const D& d, T* r) {
+    const T u = h * h;
+    const int top = p - 1;                          // >= 1: the order is at least 2
+    int me = top - top % 2, mo = top - 1 + top % 2; // the highest even and odd m
+    T e[W], o[W];
+    for (std::size_t i = 0; i < W; ++i)
+        e[i] = d(me, i), o[i] = d(mo, i);
+    for (me -= 2, mo -= 2; mo >= 1; me -= 2, mo -= 2)
+        for (std::size_t i = 0; i < W; ++i) {
+            e[i] = e[i] * u + d(me, i);
+            o[i] = o[i] * u + d(mo, i);
+        }
+    if (me >= 0)
+        for (std::size_t i = 0; i < W; ++i)
+            e[i] = e[i] * u + d(me, i);
+    for (std::size_t i = 0; i < W; ++i)
+        r[i] = e[i] + h * o[i];
+}
+
+// split_horner over n sums: W = n when n is a small constant, else blocks of 4 and single ones.
+template <int N, class T, class D>
+ROTGEN_ALWAYS_INLINE void split_horners(int p, T h, std::size_t n, const D& d, T* r) {
+    if constexpr (N > 0 && N <= 8) {
+        split_horner<std::size_t(N)>(p, h, d, r);
+    } else {
+        std::size_t i0 = 0;
+        const auto shifted = [&](int m, std::size_t i) { return d(m, i0 + i); };
+        for (; i0 + 4 <= n; i0 += 4)
+            split_horner<4>(p, h, shifted, r + i0);
+        for (; i0 < n; ++i0)
+            split_horner<1>(p, h, shifted, r + i0);
+    }
+}
 } // namespace detail
 
 // True when the system gives its Taylor coefficients (the taylor method can integrate it).
@@ -108,6 +164,10 @@ template <class T> struct taylor {
     // quotient is a normal number (two per step saved a tenth of a step of the free top).
     static T ln_radius(T s, T np1, T np, int p) {
         using std::log;
+        if (np1 > T(0) && np > T(0)) {
+            const T a = s / np1, b = s / np;
+            if (std::isnormal(a) && std::isnormal(b)) return min_ln_ratio(a, p - 1, b, p);
+        }
         const T inf = std::numeric_limits<T>::infinity();
         const auto ln_rho = [&](T nk, int k) {
             if (!(nk > T(0))) return inf;
@@ -115,6 +175,21 @@ template <class T> struct taylor {
             return (std::isnormal(q) ? log(q) : log(s) - log(nk)) / T(k);
         };
         return std::min(ln_rho(np1, p - 1), ln_rho(np, p));
+    }
+
+    // min(ln(a) / j, ln(b) / k) for normal a, b > 0, with one logarithm where bounds on log2
+    // from the bits of the two doubles already tell which is smaller (else two): the same bits
+    // either way (the margin covers the logarithm's rounding many times over).
+    static T min_ln_ratio(T a, int j, T b, int k) {
+        using std::log;
+        if constexpr (std::is_same_v<T, double>) {
+            constexpr double w = detail::log2_width + 1e-3;
+            const double la = detail::log2_below(a), lb = detail::log2_below(b);
+            // (la + w) / j < lb / k, multiplied out: a division's latency is the step's
+            if ((la + w) * k < lb * j) return log(a) / T(j);
+            if ((lb + w) * j < la * k) return log(b) / T(k);
+        }
+        return std::min(log(a) / T(j), log(b) / T(k));
     }
 
     // The step for that radius: rho / e^2 exp(-0.7 / (p - 1)) (JZ (3.14)).
@@ -147,7 +222,7 @@ template <class T, class S> class taylor_stepper {
 
     taylor_stepper(const taylor<T>& m, std::size_t n)
         : m_method(m), m_n(n), m_y1(vector::Zero(static_cast<Eigen::Index>(n))), m_f0(m_y1),
-          m_comp(m_y1), m_comp_start(m_y1) {
+          m_comp(m_y1), m_comp_start(m_y1), m_tail(m_y1) {
         m_max_order = m.max_order();
         m_order_abs = m.order_of(false), m_order_rel = m.order_of(true);
     }
@@ -187,9 +262,10 @@ template <class T, class S> class taylor_stepper {
         if (!m_expanded) expand(sys, t, y, stats);
         m_h = h;
         const bool continued = m_stepped && y == m_y1;
+        tails(h, m_tail);
         for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(m_n); ++i) {
             m_comp_start[i] = continued ? m_comp[i] : T(0);
-            const T increment = h * horner(static_cast<std::size_t>(i), h, 1) - m_comp_start[i];
+            const T increment = h * m_tail[i] - m_comp_start[i];
             m_y1[i] = y[i] + increment;
             m_comp[i] = (m_y1[i] - y[i]) - increment;
         }
@@ -207,9 +283,10 @@ template <class T, class S> class taylor_stepper {
     // The step's polynomial at theta h (from the step's start, compensated as the step's end).
     void dense(T theta, vector& out) const {
         const T th = theta * m_h;
+        tails(th, out);
         for (std::size_t i = 0; i < m_n; ++i) {
             const auto e = static_cast<Eigen::Index>(i);
-            out[e] = coefficient(i, 0) + (th * horner(i, th, 1) - m_comp_start[e]);
+            out[e] = coefficient(i, 0) + (th * out[e] - m_comp_start[e]);
         }
     }
 
@@ -233,16 +310,14 @@ template <class T, class S> class taylor_stepper {
         return r;
     }
 
-    // sum_{k=first..p} y_i^[k] h^(k - first), by Horner's scheme
-    T horner(std::size_t i, T h, int first) const {
-        const T* c = m_c.data() + i * static_cast<std::size_t>(m_p + 1);
-        T r = c[m_p];
-        int k = m_p - 1;
-        for (; k >= first + 3; k -= 4) // unrolled by hand: the loop's control cost as its body
-            r = (((r * h + c[k]) * h + c[k - 1]) * h + c[k - 2]) * h + c[k - 3];
-        for (; k >= first; --k)
-            r = r * h + c[k];
-        return r;
+    // r_i = sum_{k=1..p} y_i^[k] h^(k-1) for every component i (detail::split_horner, the
+    // components side by side).
+    template <class V> void tails(T h, V& r) const {
+        const auto stride = static_cast<std::size_t>(m_p + 1);
+        const T* c = m_c.data();
+        detail::split_horners<V::RowsAtCompileTime>(
+            m_p, h, static_cast<std::size_t>(r.size()),
+            [&](int m, std::size_t i) { return c[i * stride + std::size_t(m + 1)]; }, &r[0]);
     }
 
     // The control and order at (t, y), then the coefficients up to that order.
@@ -272,6 +347,7 @@ template <class T, class S> class taylor_stepper {
     std::vector<T> m_c; // series s, coefficient k at s * (m_p + 1) + k
     vector m_y1, m_f0;
     vector m_comp, m_comp_start; // Kahan's compensation of m_y1, and of the step's start
+    vector m_tail;               // tails(): the step's sum of y^[k] h^(k-1), k >= 1
     bool m_stepped = false;      // m_y1 and m_comp hold a step's end
 };
 

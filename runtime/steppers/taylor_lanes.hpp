@@ -71,8 +71,8 @@ template <class T, class S> class taylor_lane_stepper {
         norms(p - 1, m_np1);
         norms(p, m_np);
         // ln is increasing, so the least of the lanes' ln(s / ||y^[k]||) / k is ln of the least
-        // quotient over k: two logarithms a step, not two a lane, with the same bits while every
-        // quotient is a normal number (taylor<T>::ln_radius takes another way otherwise).
+        // quotient over k: at most two logarithms a step, not two a lane, with the same bits while
+        // every quotient is a normal number (taylor<T>::ln_radius takes another way otherwise).
         T q1 = inf, q = inf;
         bool normal = true;
         for (std::size_t l = 0; l < m_w; ++l) {
@@ -86,8 +86,7 @@ template <class T, class S> class taylor_lane_stepper {
         }
         T ln_rho = inf;
         if (normal) {
-            using std::log;
-            ln_rho = std::min(log(q1) / T(p - 1), log(q) / T(p));
+            ln_rho = taylor<T>::min_ln_ratio(q1, p - 1, q, p);
         } else {
             for (std::size_t l = 0; l < m_w; ++l)
                 if (sys.is_live(l))
@@ -164,30 +163,11 @@ template <class T, class S> class taylor_lane_stepper {
         }
     }
 
-    // Every lane's sum_{k>=1} y_i^[k] h^(k-1) (Horner's scheme, as taylor_stepper's), into r: a
-    // block of lanes at a time, its sums held in registers across the orders.
+    // Every lane's sum_{k>=1} y_i^[k] h^(k-1) (detail::split_horner, as taylor_stepper's), into
+    // r: a block of lanes at a time, its sums held in registers across the orders.
     void tail(std::size_t i, T h, T* r) const {
-        constexpr std::size_t block = 4;
-        std::size_t l0 = 0;
-        for (; l0 + block <= m_w; l0 += block) {
-            T acc[block];
-            const T* top = at(i, m_p) + l0;
-            for (std::size_t b = 0; b < block; ++b)
-                acc[b] = top[b];
-            for (int k = m_p - 1; k >= 1; --k) {
-                const T* c = at(i, k) + l0;
-                for (std::size_t b = 0; b < block; ++b)
-                    acc[b] = acc[b] * h + c[b];
-            }
-            for (std::size_t b = 0; b < block; ++b)
-                r[l0 + b] = acc[b];
-        }
-        for (; l0 < m_w; ++l0) {
-            T acc = at(i, m_p)[l0];
-            for (int k = m_p - 1; k >= 1; --k)
-                acc = acc * h + at(i, k)[l0];
-            r[l0] = acc;
-        }
+        detail::split_horners<-1>(
+            m_p, h, m_w, [&](int m, std::size_t l) { return at(i, m + 1)[l]; }, r);
     }
 
     // Whether lane l of y is the last step's end.
