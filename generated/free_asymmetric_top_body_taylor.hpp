@@ -218,9 +218,11 @@ T taylor_atan2(const T* u, const T* y, const T* x, const T* r, int k) {
 // sum_{j=Lo..Hi-1} f(j), f given j as a constant, added as a balanced tree; inlined (each call is a
 // few instructions: GCC's heuristics otherwise leave the larger orders' calls)
 // ROTGEN_TAYLOR_LAMBDA does the same for the lambdas handed to them (taylor_fixed's one per order
-// too): left to GCC's heuristics, a bench driver kept four orders of the heavy top's expansion out
-// of line, each reloading every series pointer through the closure (17% of the expansion's
-// instructions).
+// too) where AVX's 16 registers of four doubles hold the sums: left to GCC's heuristics, a bench
+// driver kept four orders of the heavy top's expansion out of line, each reloading every series
+// pointer through the closure (17% of the expansion's instructions). Without AVX the whole
+// expansion in one function spills its two-register vectors: a heavy-top sweep took 0.32-0.39 s
+// against 0.22-0.30 s with GCC's choice, so it is left to GCC there.
 #ifndef ROTGEN_TAYLOR_INLINE
 #if defined(__GNUC__)
 #define ROTGEN_TAYLOR_INLINE __attribute__((always_inline)) inline
@@ -229,7 +231,7 @@ T taylor_atan2(const T* u, const T* y, const T* x, const T* r, int k) {
 #endif
 #endif
 #ifndef ROTGEN_TAYLOR_LAMBDA
-#if defined(__GNUC__) && !defined(__clang__)
+#if defined(__GNUC__) && !defined(__clang__) && defined(__AVX__)
 #define ROTGEN_TAYLOR_LAMBDA __attribute__((always_inline))
 #else
 #define ROTGEN_TAYLOR_LAMBDA
