@@ -9,8 +9,9 @@
 # power of two k up to the cores (nproc): k threads, k ranks of one thread, and above 2 cores 2
 # ranks of k/2 threads (--bind-to none, and with mpirun's default binding, which the summary warns
 # about), and from 8 cores 4 ranks of k/4 threads; then all the cores with --lanes 8 (as threads, as
-# ranks, and from 8 cores as 4 ranks of threads). Best of ROUNDS (default 5) runs of each, the ways
-# interleaved (one of each in turn); every summary.csv is compared with the one-thread run's (with
+# ranks, and from 8 cores as 4 ranks of threads). ROUNDS (default 5) runs of each, the ways
+# interleaved (one of each in turn), the one-thread baseline also at the end of each round; the best
+# and the median of each, and the speed-ups of both; every summary.csv is compared with the one-thread run's (with
 # lanes, the one-thread lanes run's: DOP853's lanes share steps), byte for byte. A preset
 # ROTGEN_CACHE_DIR is kept (a machine that cannot compile the kernels gets them in its cache), and
 # mpirun passes it, CXX and LD_LIBRARY_PATH on to the ranks.
@@ -62,21 +63,27 @@ one_run() { # $1: the way's command words; prints the seconds, leaves $work/out
 
 "$rotgen" sweep "$work/scene.yaml" -o "$work/reference" -j 1 -q # the kernels into the cache
 "$rotgen" sweep "$work/scene.yaml" -o "$work/reference_lanes" -j 1 -q --lanes 8
-declare -a best
+# times[i]: every run of way i, space-separated. The one-thread way, the baseline, runs at the start
+# and at the end of each round: on a virtual machine its time can jump between two levels (2.9 and
+# 4.1 s on the 16-core machine), and the speed-ups are only as good as it.
+declare -a times
+measure() { # $1: the way's index
+  local t reference=$work/reference
+  t=$(one_run "${ways[$1]#*|}")
+  [[ -n $t ]] || { echo "sweep_scaling.sh: no time from ${ways[$1]#*|}" >&2; exit 1; }
+  [[ ${ways[$1]} == *--lanes* ]] && reference=$work/reference_lanes
+  cmp -s "$work/out/summary.csv" "$reference/summary.csv" ||
+    { echo "sweep_scaling.sh: ${ways[$1]%%|*} wrote another summary.csv" >&2; exit 1; }
+  times[$1]="${times[$1]:-} $t"
+}
 for ((round = 1; round <= rounds; round++)); do
   echo "round $round of $rounds" >&2
-  for i in "${!ways[@]}"; do
-    t=$(one_run "${ways[i]#*|}")
-    [[ -n $t ]] || { echo "sweep_scaling.sh: no time from ${ways[i]#*|}" >&2; exit 1; }
-    reference=$work/reference
-    [[ ${ways[i]} == *--lanes* ]] && reference=$work/reference_lanes
-    cmp -s "$work/out/summary.csv" "$reference/summary.csv" ||
-      { echo "sweep_scaling.sh: ${ways[i]%%|*} wrote another summary.csv" >&2; exit 1; }
-    if [[ -z ${best[i]:-} ]] || awk -v a="$t" -v b="${best[i]}" 'BEGIN { exit !(a < b) }'; then
-      best[i]=$t
-    fi
-  done
+  for i in "${!ways[@]}"; do measure "$i"; done
+  measure 0
 done
+# "best median count" of the times given
+stats() { printf '%s\n' $* | sort -g | awk '{ v[NR] = $1 } END {
+  printf "%s %s %d", v[1], (NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2), NR }'; }
 
 cat <<EOF2
 # rotgen sweep: scaling with the cores
@@ -86,14 +93,17 @@ cat <<EOF2
 load average $(cut -d' ' -f1-3 /proc/loadavg) when it finished.
 
 The heavy top, $members members (initial theta 0.1 .. 1.5), t = 0 .. 10, 101 samples, DOP853
-rtol 1e-8; the summary's "running the members" time, best of $rounds runs of each, interleaved; every
-run's summary.csv is byte-identical to the one-thread run's (with lanes, to the one-thread lanes
+rtol 1e-8; the summary's "running the members" time of $rounds runs of each, interleaved (the one-thread
+baseline twice a round); the speed-ups are over the one-thread run's best and median; every run's
+summary.csv is byte-identical to the one-thread run's (with lanes, to the one-thread lanes
 run's).
 
-| run | seconds | speed-up over 1 thread |
-|---|---:|---:|
+| run | runs | best s | median s | speed-up (best) | speed-up (medians) |
+|---|---:|---:|---:|---:|---:|
 EOF2
+read -r b0 m0 _ <<<"$(stats ${times[0]})"
 for i in "${!ways[@]}"; do
-  awk -v l="${ways[i]%%|*}" -v t="${best[i]}" -v b="${best[0]}" \
-    'BEGIN { printf "| %s | %.3g | %.2f |\n", l, t, b / t }'
+  read -r b m n <<<"$(stats ${times[i]})"
+  awk -v l="${ways[i]%%|*}" -v b="$b" -v m="$m" -v n="$n" -v b0="$b0" -v m0="$m0" \
+    'BEGIN { printf "| %s | %d | %.3g | %.3g | %.2f | %.2f |\n", l, n, b, m, b0 / b, m0 / m }'
 done
