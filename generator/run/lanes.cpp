@@ -51,20 +51,25 @@ std::string lane_source(const compiled_form& cf) {
       << "            db[c].store_unaligned(dydt + c * lanes + l);\n"
       << "    }\n}\n";
     if (cf.sys.tay)
-        s << "void rotgen_taylor_lanes(const double* v, double t, double* c, int order,\n"
-          << "                         unsigned long lanes) {\n"
+        s << "// 1 when every coefficient written is finite (x - x stays 0 for a finite x)\n"
+          << "int rotgen_taylor_lanes(const double* v, double t, double* c, int order,\n"
+          << "                        unsigned long lanes) {\n"
           << "    const unsigned long m = static_cast<unsigned long>(order) + 1;\n"
           << "    thread_local std::vector<rg_batch> cb;\n"
           << "    cb.resize(rg_model::taylor_series * m);\n"
+          << "    rg_batch nonfinite(0.0);\n"
           << "    for (unsigned long l = 0; l < lanes; l += rg_batch::size) {\n"
           << "        for (unsigned long i = 0; i < " << n << "; ++i)\n"
           << "            cb[i * m] = rg_batch::load_unaligned(c + i * m * lanes + l);\n"
           << "        rg_model::" << cf.taylor_call
           << "(rg_batch(t), cb.data(), order, rg_params(v, lanes, l));\n"
           << "        for (unsigned long i = 0; i < " << n << "; ++i)\n"
-          << "            for (unsigned long k = 1; k < m; ++k)\n"
+          << "            for (unsigned long k = 1; k < m; ++k) {\n"
           << "                cb[i * m + k].store_unaligned(c + (i * m + k) * lanes + l);\n"
-          << "    }\n}\n";
+          << "                nonfinite += cb[i * m + k] - cb[i * m + k];\n"
+          << "            }\n"
+          << "    }\n"
+          << "    return xsimd::all(nonfinite == rg_batch(0.0)) ? 1 : 0;\n}\n";
     s << "}\n";
     return s.str();
 }
@@ -276,7 +281,7 @@ std::vector<lane_run> integrate_lanes(const prepared_scene& prepared, const lane
     };
     if constexpr (std::is_same_v<Method, taylor<double>>) {
         const auto coefficients = [&k, &p, lanes](double t, double* c, int order) {
-            k.taylor(p.data(), t, c, order, lanes);
+            return k.taylor(p.data(), t, c, order, lanes) != 0; // whether all are finite
         };
         lane_taylor_system<double, decltype(kernel), decltype(coefficients)> sys(
             kernel, coefficients, n, lanes);

@@ -38,9 +38,10 @@ struct lane_kernels {
     // lanes a multiple of width
     using kernel = void (*)(const double* p, double t, const double* y, double* dydt,
                             unsigned long lanes);
-    // taylor(p, t, c, order, lanes): lane_taylor_system's layout (runtime/lanes.hpp)
-    using taylor_kernel = void (*)(const double* p, double t, double* c, int order,
-                                   unsigned long lanes);
+    // taylor(p, t, c, order, lanes): lane_taylor_system's layout (runtime/lanes.hpp); 1 when
+    // every coefficient it wrote is finite, else 0
+    using taylor_kernel = int (*)(const double* p, double t, double* c, int order,
+                                  unsigned long lanes);
     loaded_library lib;
     kernel rhs = nullptr;
     taylor_kernel taylor = nullptr; // with the Taylor method

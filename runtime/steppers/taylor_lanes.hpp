@@ -21,9 +21,22 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 namespace rotgen {
+
+namespace detail {
+// f(w) with the lane count as a compile-time constant where it is 4 or 8 (a whole number of AVX2
+// or AVX-512 batches, and the widths people use), so that the loops over the lanes below unroll;
+// as a plain number otherwise. The same operations in the same order either way: a lane's bits
+// do not depend on it.
+template <class F> decltype(auto) with_lanes(std::size_t w, F&& f) {
+    if (w == 8) return f(std::integral_constant<std::size_t, 8>{});
+    if (w == 4) return f(std::integral_constant<std::size_t, 4>{});
+    return f(w);
+}
+} // namespace detail
 
 template <class T, class S> class taylor_lane_stepper {
   public:
@@ -106,17 +119,22 @@ template <class T, class S> class taylor_lane_stepper {
         m_h = h;
         for (std::size_t l = 0; l < m_w; ++l)
             m_continued[l] = m_stepped && sys.is_live(l) && continues(y, l);
-        T* r = m_acc.data();
-        for (std::size_t i = 0; i < m_n; ++i) {
-            tail(i, h, r);
-            for (std::size_t l = 0; l < m_w; ++l) {
-                const auto e = static_cast<Eigen::Index>(i * m_w + l);
-                m_comp_start[e] = m_continued[l] ? m_comp[e] : T(0);
-                const T increment = h * r[l] - m_comp_start[e];
-                m_y1[e] = y[e] + increment;
-                m_comp[e] = (m_y1[e] - y[e]) - increment;
+        detail::with_lanes(m_w, [&](auto w) {
+            T* r = m_acc.data();
+            for (std::size_t i = 0; i < m_n; ++i) {
+                tail(i, h, r, w);
+                T* y1 = &m_y1[static_cast<Eigen::Index>(i * w)];
+                T* comp = &m_comp[static_cast<Eigen::Index>(i * w)];
+                T* start = &m_comp_start[static_cast<Eigen::Index>(i * w)];
+                const T* y0 = &y[static_cast<Eigen::Index>(i * w)];
+                for (std::size_t l = 0; l < w; ++l) {
+                    start[l] = m_continued[l] ? comp[l] : T(0);
+                    const T increment = h * r[l] - start[l];
+                    y1[l] = y0[l] + increment;
+                    comp[l] = (y1[l] - y0[l]) - increment;
+                }
             }
-        }
+        });
         m_stepped = true;
         return {m_y1.allFinite() ? status::ok : status::non_finite, T(0)};
     }
@@ -130,14 +148,17 @@ template <class T, class S> class taylor_lane_stepper {
 
     void dense(T theta, vector& out) const {
         const T th = theta * m_h;
-        T* r = m_acc.data();
-        for (std::size_t i = 0; i < m_n; ++i) {
-            tail(i, th, r);
-            for (std::size_t l = 0; l < m_w; ++l) {
-                const auto e = static_cast<Eigen::Index>(i * m_w + l);
-                out[e] = at(i, 0)[l] + (th * r[l] - m_comp_start[e]);
+        detail::with_lanes(m_w, [&](auto w) {
+            T* r = m_acc.data();
+            for (std::size_t i = 0; i < m_n; ++i) {
+                tail(i, th, r, w);
+                const T* y0 = at(i, 0);
+                const T* start = &m_comp_start[static_cast<Eigen::Index>(i * w)];
+                T* o = &out[static_cast<Eigen::Index>(i * w)];
+                for (std::size_t l = 0; l < w; ++l)
+                    o[l] = y0[l] + (th * r[l] - start[l]);
             }
-        }
+        });
     }
 
     int last_order() const { return m_p; }
@@ -154,20 +175,29 @@ template <class T, class S> class taylor_lane_stepper {
     void norms(int k, std::vector<T>& r) const {
         using std::abs;
         r.assign(m_w, T(0));
-        for (std::size_t i = 0; i < m_n; ++i) {
-            const T* c = at(i, k);
-            for (std::size_t l = 0; l < m_w; ++l) {
-                const T v = abs(c[l]);
-                r[l] = v == v ? std::max(r[l], v) : v; // NaN stays: max(NaN, v) is NaN
+        detail::with_lanes(m_w, [&](auto w) {
+            T* m = r.data();
+            for (std::size_t i = 0; i < m_n; ++i) {
+                const T* c = at(i, k);
+                for (std::size_t l = 0; l < w; ++l) {
+                    const T v = abs(c[l]);
+                    m[l] = v == v ? std::max(m[l], v) : v; // NaN stays: max(NaN, v) is NaN
+                }
             }
-        }
+        });
     }
 
     // Every lane's sum_{k>=1} y_i^[k] h^(k-1) (detail::split_horner, as taylor_stepper's), into
     // r: a block of lanes at a time, its sums held in registers across the orders.
-    void tail(std::size_t i, T h, T* r) const {
-        detail::split_horners<-1>(
-            m_p, h, m_w, [&](int m, std::size_t l) { return at(i, m + 1)[l]; }, r);
+    // w: the lane count, as with_lanes gives it.
+    template <class W> void tail(std::size_t i, T h, T* r, W w) const {
+        const T* c = at(i, 1); // coefficient m + 1 of the lanes at c[m w + l]
+        if constexpr (std::is_integral_v<W>)
+            detail::split_horners<-1>(
+                m_p, h, w, [&](int m, std::size_t l) { return c[std::size_t(m) * w + l]; }, r);
+        else
+            detail::split_horner<W::value>(
+                m_p, h, [&](int m, std::size_t l) { return c[std::size_t(m) * W::value + l]; }, r);
     }
 
     // Whether lane l of y is the last step's end.

@@ -20,6 +20,7 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <random>
@@ -188,6 +189,43 @@ TEST_CASE("sweep --lanes: the batch kernel is the scalar kernel up to vector sin
     // documents no bound) differ from libm's by an ulp or so, and the rates are sums of terms
     // several times larger than the largest rate, carrying those ulps
     CHECK(worst_ulps <= 100);
+}
+
+TEST_CASE(
+    "sweep --lanes: the batch taylor kernel says whether the coefficients it wrote are finite",
+    "[sweep][lanes][taylor]") {
+    const scratch_file scene("lanes_taylor_kernel.yaml",
+                             heavy_top("{method: taylor, rtol: 1e-10, atol: 1e-10}", ""));
+    stage_timings timings;
+    const prepared_scene prepared(load_scene(scene.path), timings);
+    const lane_kernels k = compile_lanes(prepared, timings);
+    REQUIRE(k.taylor != nullptr);
+    const compiled_form& cf = prepared.compiled(form_kind::lagrangian, timings, nullptr);
+    const std::size_t lanes = 8, n = cf.sys.n, np = cf.f.parameters.size();
+    const int order = 13; // the order of rtol 1e-10 (taylor<double>::order_for)
+    const std::size_t m = order + 1;
+    // the kernel's answer and how many coefficients are not finite, lane 1 at theta1 and the
+    // others at 0.5 (y = (phi, theta, psi, phi_dot, theta_dot, psi_dot), psi_dot = 30)
+    const auto expand = [&](double theta1) {
+        std::vector<double> c(n * m * lanes), p(np * lanes);
+        for (std::size_t l = 0; l < lanes; ++l) {
+            c[(1 * m) * lanes + l] = l == 1 ? theta1 : 0.5;
+            c[(5 * m) * lanes + l] = 30;
+            for (std::size_t j = 0; j < np; ++j)
+                p[j * lanes + l] = cf.f.parameters[j].value;
+        }
+        const int finite = k.taylor(p.data(), 0, c.data(), order, lanes);
+        const auto bad =
+            std::count_if(c.begin(), c.end(), [](double v) { return !std::isfinite(v); });
+        return std::make_pair(finite, bad);
+    };
+    const auto [finite, bad] = expand(0.5);
+    CHECK(finite == 1);
+    CHECK(bad == 0);
+    // at theta = 0 the Lagrangian form divides by sin theta
+    const auto [finite0, bad0] = expand(0.0);
+    CHECK(finite0 == 0);
+    CHECK(bad0 > 0);
 }
 
 TEST_CASE("sweep --lanes: rk4 lanes end within rounding of the scalar runs, dop853 lanes within "
