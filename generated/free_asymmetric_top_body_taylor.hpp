@@ -311,23 +311,80 @@ ROTGEN_TAYLOR_INLINE T taylor_dot(const T* a, const T* b) {
     }
 }
 
+// sum_{j=1..K-1} a[j] b[K-j] (Weighted: j a[j] b[K-j]), K >= 2, for the recurrences of order K:
+// the terms of coefficient K - 1 (j = 1 and K - 1, written one order before) added apart from the
+// vector sum of the rest (taylor_dot), which a load over those fresh stores would wait for too
+// (the free top's expansion at order 19 took 12% less time).
+template <int K, bool Weighted = false, class T>
+ROTGEN_TAYLOR_INLINE T taylor_inner(const T* a, const T* b) {
+    if constexpr (K == 2) {
+        return taylor_term<K, Weighted>(a, b, 1);
+    } else {
+        const T last = taylor_term<K, Weighted>(a, b, 1) + taylor_term<K, Weighted>(a, b, K - 1);
+        if constexpr (K == 3)
+            return last;
+        else
+            return taylor_dot<2, K - 1, K, Weighted>(a, b) + last;
+    }
+}
+
 template <int K, class T>
 ROTGEN_TAYLOR_INLINE T taylor_mul(const T* a, const T* b) {
     if constexpr (K < 2) {
         return taylor_pairwise<0, K + 1>([&](auto j) ROTGEN_TAYLOR_LAMBDA { return a[j] * b[K - j]; });
     } else {
-        return taylor_dot<1, K, K>(a, b) + (a[0] * b[K] + a[K] * b[0]);
+        return taylor_inner<K>(a, b) + (a[0] * b[K] + a[K] * b[0]);
     }
+}
+
+// s (a b)^[K] for a factor s that does not vary, as (s a[0]) b[K] + (s b[0]) a[K] + s (the rest):
+// the newest coefficients are one product and two sums from the result, where s times the sum
+// would add a product (taylor_fixed's rates y^[k] = c (a b)^[k-1] / k, with s = c / k).
+template <int K, class T>
+ROTGEN_TAYLOR_INLINE T taylor_mul(const T* a, const T* b, const T& s) {
+    if constexpr (K == 0) {
+        return (s * a[0]) * b[0];
+    } else {
+        const T head = (s * a[0]) * b[K] + (s * b[0]) * a[K];
+        if constexpr (K == 1)
+            return head;
+        else
+            return s * taylor_inner<K>(a, b) + head;
+    }
+}
+
+// the sum of a[j] a[K-j] over j = 1 .. (K+1)/2 - 1 (half of Leibniz's inner terms), K >= 3
+template <int K, class T>
+ROTGEN_TAYLOR_INLINE T taylor_half_inner(const T* a) {
+    if constexpr ((K + 1) / 2 > 2)
+        return taylor_dot<2, (K + 1) / 2, K>(a, a) + a[1] * a[K - 1];
+    else
+        return a[1] * a[K - 1];
 }
 
 template <int K, class T>
 ROTGEN_TAYLOR_INLINE T taylor_square(const T* a) {
     using S = typename scalar_of<T>::type;
     T s = a[0] * a[K];
-    if constexpr ((K + 1) / 2 > 1) s = taylor_dot<1, (K + 1) / 2, K>(a, a) + s;
+    if constexpr ((K + 1) / 2 > 1) s = taylor_half_inner<K>(a) + s;
     s = S(2) * s;
     if constexpr (K % 2 == 0) s += a[K / 2] * a[K / 2];
     return s;
+}
+
+// s (a a)^[K] for a factor s that does not vary (as taylor_mul's)
+template <int K, class T>
+ROTGEN_TAYLOR_INLINE T taylor_square(const T* a, const T& s) {
+    using S = typename scalar_of<T>::type;
+    if constexpr (K == 0) {
+        return (s * a[0]) * a[0];
+    } else {
+        const T s2 = S(2) * s;
+        T r = (s2 * a[0]) * a[K];
+        if constexpr ((K + 1) / 2 > 1) r = s2 * taylor_half_inner<K>(a) + r;
+        if constexpr (K % 2 == 0) r = (s * a[K / 2]) * a[K / 2] + r;
+        return r;
+    }
 }
 
 template <int K, class T>
@@ -335,7 +392,7 @@ ROTGEN_TAYLOR_INLINE T taylor_div(T n_k, const T* b, const T* u) {
     if constexpr (K < 2) {
         return (n_k - b[1] * u[0]) / b[0];
     } else {
-        return (n_k - (taylor_dot<1, K, K>(b, u) + b[K] * u[0])) / b[0];
+        return (n_k - (taylor_inner<K>(b, u) + b[K] * u[0])) / b[0];
     }
 }
 
@@ -344,8 +401,8 @@ ROTGEN_TAYLOR_INLINE void taylor_sin_cos(T* s, T* c, const T* a) {
     using S = typename scalar_of<T>::type;
     T ss = S(K) * a[K] * c[0], cs = S(K) * a[K] * s[0];
     if constexpr (K >= 2) {
-        ss = taylor_dot<1, K, K, true>(a, c) + ss;
-        cs = taylor_dot<1, K, K, true>(a, s) + cs;
+        ss = taylor_inner<K, true>(a, c) + ss;
+        cs = taylor_inner<K, true>(a, s) + cs;
     }
     s[K] = ss / S(K);
     c[K] = -cs / S(K);
@@ -440,14 +497,9 @@ void taylor_fixed(T t, T* c, const params<T>& p) {
     detail::taylor_orders<Order>([&](auto order_k) ROTGEN_TAYLOR_LAMBDA {
         constexpr int k = decltype(order_k)::value;
         const S inv_k = S(1)/S(k);
-        omega1[k] = -u000[k - 1]*inv_k;
-        omega2[k] = u001[k - 1]*inv_k;
-        omega3[k] = -u002[k - 1]*inv_k;
-        if constexpr (k < Order) {
-            u000[k] = k001*detail::taylor_mul<k>(omega3, omega2);
-            u001[k] = k003*detail::taylor_mul<k>(omega1, omega3);
-            u002[k] = k005*detail::taylor_mul<k>(omega1, omega2);
-        }
+        omega1[k] = detail::taylor_mul<k - 1>(omega3, omega2, -k001*inv_k);
+        omega2[k] = detail::taylor_mul<k - 1>(omega1, omega3, k003*inv_k);
+        omega3[k] = detail::taylor_mul<k - 1>(omega1, omega2, -k005*inv_k);
     });
 }
 

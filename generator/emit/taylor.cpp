@@ -68,9 +68,16 @@ class taylor_builder {
     std::string order_zero(const series_op& op) const;
     // fixed: k is a compile-time constant (taylor_fixed); the sums of products are folded
     std::string order_k(const series_op& op, bool fixed) const;
-    std::vector<std::string> rates();
+    struct rate_lines {
+        std::vector<std::string> loop, fixed; // one per state, in taylor() and taylor_fixed()
+        std::set<int> folded; // the operations taylor_fixed computes inside a rate (not apart)
+    };
+    rate_lines rates();
+    std::string folded_rate(int series, const numeric& c, int uses, std::set<int>& folded) const;
+    int uses(int series) const;
     std::vector<std::string> head(const std::string& m) const;
-    std::vector<std::string> orders(const std::vector<std::string>& rates, bool fixed) const;
+    std::vector<std::string> orders(const std::vector<std::string>& rates, bool fixed,
+                                    const std::set<int>& folded = {}) const;
     std::string sum_text(const series_op& op, const std::string& index, bool with_constant) const;
     std::string ref(int s, const std::string& index) const {
         return m_names.at(s) + "[" + index + "]";
@@ -417,21 +424,68 @@ std::string taylor_builder::order_k(const series_op& op, bool fixed) const {
     throw std::logic_error("taylor: unknown operation");
 }
 
+// The operands of the operations that read series s.
+int taylor_builder::uses(int s) const {
+    int n = 0;
+    for (const auto& op : m_ops) {
+        n += (op.a == s) + (op.b == s) + (op.r == s);
+        for (const auto& t : op.terms)
+            n += t.second == s;
+    }
+    return n;
+}
+
+// taylor_fixed's rate y^[k] = c f^[k-1] / k where f is a product (or a square) of two series that
+// nothing else reads: the product at order k - 1 scaled by s = c scale / k inside the sum
+// (detail::taylor_mul with a factor), which takes two operations off the chain from one order's
+// coefficients to the next (the free top's expansion at order 11 took 6% less time). Empty when
+// the rate is not of that kind (`uses`: the reads of the series, the rates' included).
+std::string taylor_builder::folded_rate(int series, const numeric& c, int uses,
+                                        std::set<int>& folded) const {
+    std::size_t i = 0;
+    while (i < m_ops.size() && m_ops[i].out != series)
+        ++i;
+    if (i == m_ops.size() || uses != 1) return "";
+    const series_op& op = m_ops[i];
+    if (op.kind != series_op::mul && op.kind != series_op::square) return "";
+    std::string s; // c scale / k, a T
+    if (op.scale.empty())
+        s = "T(" + (c.is_equal(1) ? "" : c.is_equal(-1) ? "-" : print_number(c) + "*") + "inv_k)";
+    else
+        s = c.is_equal(1)    ? op.scale + "*inv_k"
+            : c.is_equal(-1) ? "-" + op.scale + "*inv_k"
+                             : op.scale + "*(" + print_number(c) + "*inv_k)";
+    folded.insert(static_cast<int>(i));
+    const std::string a = m_names[static_cast<std::size_t>(op.a)];
+    if (op.kind == series_op::square) return "detail::taylor_square<k - 1>(" + a + ", " + s + ");";
+    return "detail::taylor_mul<k - 1>(" + a + ", " + m_names[static_cast<std::size_t>(op.b)] +
+           ", " + s + ");";
+}
+
 // The state's coefficient k, one line per state: y^[k] = f^[k-1] / k.
-std::vector<std::string> taylor_builder::rates() {
-    std::vector<std::string> lines;
+taylor_builder::rate_lines taylor_builder::rates() {
+    std::vector<std::pair<numeric, int>> linear(m_p.outputs.size(), {0, -1});
+    for (std::size_t i = 0; i < m_p.outputs.size(); ++i) // first: each may add series
+        if (!constant(m_p.outputs[i])) linear[i] = linear_of(m_p.outputs[i]);
+    rate_lines lines;
     for (std::size_t i = 0; i < m_p.outputs.size(); ++i) {
-        const int o = m_p.outputs[i];
         const std::string x = m_names.at(i) + "[k] = ";
-        if (constant(o)) {
-            lines.push_back(x + "k == 1 ? T(" + constant_text(o) + ") : T(S(0));");
+        const auto [c, series] = linear[i];
+        if (series < 0) {
+            lines.loop.push_back(x + "k == 1 ? T(" + constant_text(m_p.outputs[i]) +
+                                 ") : T(S(0));");
+            lines.fixed.push_back(lines.loop.back());
             continue;
         }
-        const auto [c, series] = linear_of(o);
         const std::string f = m_names[static_cast<std::size_t>(series)] + "[k - 1]*inv_k;";
-        lines.push_back(x + (c.is_equal(1)    ? f
-                             : c.is_equal(-1) ? "-" + f
-                                              : print_number(c) + "*" + f));
+        lines.loop.push_back(x + (c.is_equal(1)    ? f
+                                  : c.is_equal(-1) ? "-" + f
+                                                   : print_number(c) + "*" + f));
+        int reads = uses(series);
+        for (const auto& l : linear)
+            reads += l.second == series;
+        const std::string folded = folded_rate(series, c, reads, lines.folded);
+        lines.fixed.push_back(folded.empty() ? lines.loop.back() : x + folded);
     }
     return lines;
 }
@@ -461,8 +515,8 @@ std::vector<std::string> taylor_builder::head(const std::string& m) const {
 }
 
 // Orders 1 .. order: a loop (generic), or one copy per order with k a constant (fixed).
-std::vector<std::string> taylor_builder::orders(const std::vector<std::string>& rates,
-                                                bool fixed) const {
+std::vector<std::string> taylor_builder::orders(const std::vector<std::string>& rates, bool fixed,
+                                                const std::set<int>& folded) const {
     std::vector<std::string> lines;
     lines.push_back("    // orders 1 .. " + std::string(fixed ? "Order" : "order") +
                     ": the state's from the rates' (y^[k] = f^[k-1] / k), then each operation's");
@@ -476,21 +530,22 @@ std::vector<std::string> taylor_builder::orders(const std::vector<std::string>& 
     lines.push_back("        const S inv_k = S(1)/S(k);");
     for (const auto& r : rates)
         lines.push_back("        " + r);
-    const bool more = !m_ops.empty() || m_time >= 0;
+    const bool more = m_ops.size() > folded.size() || m_time >= 0;
     const std::string in = fixed && more ? "    " : "";
     if (more)
         lines.push_back(fixed ? "        if constexpr (k < Order) {"
                               : "        if (k == order) break;");
     if (m_time >= 0) lines.push_back(in + "        time[k] = k == 1 ? T(S(1)) : T(S(0));");
-    for (const auto& op : m_ops)
-        lines.push_back(in + "        " + order_k(op, fixed));
+    for (std::size_t i = 0; i < m_ops.size(); ++i)
+        if (!folded.count(static_cast<int>(i)))
+            lines.push_back(in + "        " + order_k(m_ops[i], fixed));
     if (fixed && more) lines.push_back("        }");
     lines.push_back(fixed ? "    });" : "    }");
     return lines;
 }
 
 taylor_body taylor_builder::build() {
-    const std::vector<std::string> r = rates(); // first: it may name constants
+    const rate_lines r = rates(); // first: it may name constants
     const auto join = [](std::vector<std::string> a, const std::vector<std::string>& b) {
         a.insert(a.end(), b.begin(), b.end());
         std::string text;
@@ -499,8 +554,8 @@ taylor_body taylor_builder::build() {
         return text;
     };
     taylor_body b;
-    b.text = join(head("const int m = order + 1;"), orders(r, false));
-    b.fixed_text = join(head("constexpr int m = Order + 1;"), orders(r, true));
+    b.text = join(head("const int m = order + 1;"), orders(r.loop, false));
+    b.fixed_text = join(head("constexpr int m = Order + 1;"), orders(r.fixed, true, r.folded));
     b.series = m_names.size();
     b.operations = m_ops.size();
     return b;

@@ -159,44 +159,54 @@ template <class T> struct taylor {
         return order > 0 ? order : order_for(relative ? rtol : atol);
     }
 
-    // ln of Jorba & Zou's radius estimate, min over k = p - 1, p of (ln s - ln ||y^[k]||) / k
-    // (+inf when both norms are 0), from ln(s / ||y^[k]||): one logarithm each where the
-    // quotient is a normal number (two per step saved a tenth of a step of the free top).
-    static T ln_radius(T s, T np1, T np, int p) {
-        using std::log;
-        if (np1 > T(0) && np > T(0)) {
-            const T a = s / np1, b = s / np;
-            if (std::isnormal(a) && std::isnormal(b)) return min_ln_ratio(a, p - 1, b, p);
-        }
-        const T inf = std::numeric_limits<T>::infinity();
-        const auto ln_rho = [&](T nk, int k) {
-            if (!(nk > T(0))) return inf;
-            const T q = s / nk;
-            return (std::isnormal(q) ? log(q) : log(s) - log(nk)) / T(k);
-        };
-        return std::min(ln_rho(np1, p - 1), ln_rho(np, p));
-    }
+    // Jorba & Zou's step at order p from the norms of its last two coefficients, with what
+    // depends on p alone computed once: h = exp(c - m), m = max over k = p - 1, p of
+    // ln(||y^[k]|| / s) / k (-inf when both norms are 0: the series ends) and
+    // c = -2 - 0.7 / (p - 1). The step waits on this chain (the next expansion needs the step),
+    // so it holds no division: the reciprocals of k and of s are taken off the chain.
+    struct step_rule {
+        int p = 2;
+        T inv_p1 = T(1), inv_p = T(0.5), c = T(-2.7);
+        explicit step_rule(int order = 2)
+            : p(order), inv_p1(T(1) / T(order - 1)), inv_p(T(1) / T(order)),
+              c(-T(2) - T(0.7) / T(order - 1)) {}
 
-    // min(ln(a) / j, ln(b) / k) for normal a, b > 0, with one logarithm where bounds on log2
-    // from the bits of the two doubles already tell which is smaller (else two): the same bits
-    // either way (the margin covers the logarithm's rounding many times over).
-    static T min_ln_ratio(T a, int j, T b, int k) {
-        using std::log;
-        if constexpr (std::is_same_v<T, double>) {
-            constexpr double w = detail::log2_width + 1e-3;
-            const double la = detail::log2_below(a), lb = detail::log2_below(b);
-            // (la + w) / j < lb / k, multiplied out: a division's latency is the step's
-            if ((la + w) * k < lb * j) return log(a) / T(j);
-            if ((lb + w) * j < la * k) return log(b) / T(k);
+        // m from the norms n1 = ||y^[p-1]||, n = ||y^[p]|| and inv_s = 1 / s, s = ||y||_inf
+        // (relative) or 1 (absolute): one logarithm where the quotients n / s are normal numbers
+        T ln_inverse_radius(T n1, T n, T s, T inv_s) const {
+            using std::log;
+            const T a = n1 * inv_s, b = n * inv_s;
+            if (std::isnormal(a) && std::isnormal(b)) return max_ln_ratio(a, b);
+            const T minus_inf = -std::numeric_limits<T>::infinity();
+            const auto ln_ratio = [&](T nk, T inv_k, T q) {
+                if (!(nk > T(0))) return minus_inf;
+                return (std::isnormal(q) ? log(q) : log(nk) - log(s)) * inv_k;
+            };
+            return std::max(ln_ratio(n1, inv_p1, a), ln_ratio(n, inv_p, b));
         }
-        return std::min(log(a) / T(j), log(b) / T(k));
-    }
 
-    // The step for that radius: rho / e^2 exp(-0.7 / (p - 1)) (JZ (3.14)).
-    static T step_of(T ln_rho, int p) {
-        using std::exp;
-        return exp(ln_rho - T(2) - T(0.7) / T(p - 1));
-    }
+        // max(ln(a) / (p - 1), ln(b) / p) for normal a, b > 0, with one logarithm where bounds on
+        // log2 from the bits of the two doubles already tell which is larger (else two): the same
+        // bits either way (the margin covers the logarithm's rounding many times over).
+        T max_ln_ratio(T a, T b) const {
+            using std::log;
+            if constexpr (std::is_same_v<T, double>) {
+                constexpr double w = detail::log2_width + 1e-3;
+                const double la = detail::log2_below(a), lb = detail::log2_below(b);
+                const int j = p - 1, k = p;
+                // la / j > (lb + w) / k, multiplied out
+                if (la * k > (lb + w) * j) return log(a) * inv_p1;
+                if (lb * j > (la + w) * k) return log(b) * inv_p;
+            }
+            return std::max(log(a) * inv_p1, log(b) * inv_p);
+        }
+
+        // the step for m (+inf when m is -inf)
+        T step(T m) const {
+            using std::exp;
+            return exp(c - m);
+        }
+    };
 
     // The highest order a step may take: `order` if fixed, else the larger of the tolerances'.
     int max_order() const {
@@ -225,6 +235,7 @@ template <class T, class S> class taylor_stepper {
           m_comp(m_y1), m_comp_start(m_y1), m_tail(m_y1) {
         m_max_order = m.max_order();
         m_order_abs = m.order_of(false), m_order_rel = m.order_of(true);
+        m_rule_abs = rule(m_order_abs), m_rule_rel = rule(m_order_rel);
     }
 
     bool start(const S& sys, T t0, const vector& y0, step_stats& stats) {
@@ -250,9 +261,10 @@ template <class T, class S> class taylor_stepper {
         if (!(np1 == np1) || !(np == np)) return std::numeric_limits<T>::quiet_NaN();
         // in logarithms, then one exp (two pow calls and an exp cost about a fifth of a step at
         // order 15)
-        const T ln_rho = taylor<T>::ln_radius(m_relative ? m_norm0 : T(1), np1, np, p);
-        if (ln_rho == std::numeric_limits<T>::infinity()) return ln_rho;
-        return taylor<T>::step_of(ln_rho, p);
+        const auto& sr = m_relative ? m_rule_rel : m_rule_abs;
+        const T m = sr.ln_inverse_radius(np1, np, m_relative ? m_norm0 : T(1), m_inv_s);
+        if (m == -std::numeric_limits<T>::infinity()) return -m;
+        return sr.step(m);
     }
 
     // y + sum_{k>=1} y^[k] h^k: the increment added with Kahan's compensation carried from step
@@ -329,6 +341,7 @@ template <class T, class S> class taylor_stepper {
             m_norm0 = max(m_norm0, abs(y[static_cast<Eigen::Index>(i)]));
         const taylor<T>& m = m_method;
         m_relative = m.rtol > T(0) && m.rtol * m_norm0 > m.atol;
+        m_inv_s = m_relative ? T(1) / m_norm0 : T(1); // off the step's chain: see step_rule
         m_p = m_relative ? m_order_rel : m_order_abs;
         const std::size_t stride = static_cast<std::size_t>(m_p + 1);
         for (std::size_t i = 0; i < m_n; ++i)
@@ -342,8 +355,10 @@ template <class T, class S> class taylor_stepper {
     std::size_t m_n;
     int m_max_order = 2, m_p = 2;
     int m_order_abs = 2, m_order_rel = 2; // the order of each control (order_of: one log each)
+    using rule = typename taylor<T>::step_rule;
+    rule m_rule_abs, m_rule_rel; // the step rule of each control's order
     bool m_expanded = false, m_relative = false;
-    T m_norm0 = T(0), m_h = T(0);
+    T m_norm0 = T(0), m_inv_s = T(1), m_h = T(0);
     std::vector<T> m_c; // series s, coefficient k at s * (m_p + 1) + k
     vector m_y1, m_f0;
     vector m_comp, m_comp_start; // Kahan's compensation of m_y1, and of the step's start

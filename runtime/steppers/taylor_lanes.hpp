@@ -64,6 +64,7 @@ template <class T, class S> class taylor_lane_stepper {
         m_n = sys.components();
         m_c.assign(m_size * static_cast<std::size_t>(m_max_order + 1), T(0));
         m_norm0.assign(m_w, T(0));
+        m_inv_s.assign(m_w, T(1));
         m_relative.assign(m_w, 0);
         m_acc.assign(m_w, T(0));
         m_continued.assign(m_w, 0);
@@ -83,32 +84,34 @@ template <class T, class S> class taylor_lane_stepper {
         const T inf = std::numeric_limits<T>::infinity();
         norms(p - 1, m_np1);
         norms(p, m_np);
-        // ln is increasing, so the least of the lanes' ln(s / ||y^[k]||) / k is ln of the least
-        // quotient over k: at most two logarithms a step, not two a lane, with the same bits while
-        // every quotient is a normal number (taylor<T>::ln_radius takes another way otherwise).
-        T q1 = inf, q = inf;
-        bool normal = true;
+        // ln is increasing, so the largest of the lanes' ln(||y^[k]|| / s) / k is ln of the
+        // largest quotient over k: at most two logarithms a step, not two a lane, with the same
+        // bits while every quotient is a normal number (step_rule takes another way otherwise).
+        const typename taylor<T>::step_rule rule(p);
+        T q1 = T(0), q = T(0);
+        bool normal = true, live = false;
         for (std::size_t l = 0; l < m_w; ++l) {
             if (!sys.is_live(l)) continue;
             if (!(m_np1[l] == m_np1[l]) || !(m_np[l] == m_np[l]))
                 return std::numeric_limits<T>::quiet_NaN();
-            const T s = m_relative[l] ? m_norm0[l] : T(1);
-            const T a = s / m_np1[l], b = s / m_np[l];
+            const T a = m_np1[l] * m_inv_s[l], b = m_np[l] * m_inv_s[l];
             normal = normal && std::isnormal(a) && std::isnormal(b);
-            q1 = std::min(q1, a), q = std::min(q, b);
+            q1 = std::max(q1, a), q = std::max(q, b);
+            live = true;
         }
-        T ln_rho = inf;
+        if (!live) return inf;
+        T m = -inf;
         if (normal) {
-            ln_rho = taylor<T>::min_ln_ratio(q1, p - 1, q, p);
+            m = rule.max_ln_ratio(q1, q);
         } else {
             for (std::size_t l = 0; l < m_w; ++l)
                 if (sys.is_live(l))
-                    ln_rho =
-                        std::min(ln_rho, taylor<T>::ln_radius(m_relative[l] ? m_norm0[l] : T(1),
-                                                              m_np1[l], m_np[l], p));
+                    m = std::max(m, rule.ln_inverse_radius(m_np1[l], m_np[l],
+                                                           m_relative[l] ? m_norm0[l] : T(1),
+                                                           m_inv_s[l]));
         }
-        if (ln_rho == inf) return inf;
-        return taylor<T>::step_of(ln_rho, p);
+        if (m == -inf) return inf;
+        return rule.step(m);
     }
 
     // Each lane's y + sum_{k>=1} y^[k] h^k with Kahan's compensation carried from step to step,
@@ -218,6 +221,7 @@ template <class T, class S> class taylor_lane_stepper {
         int p = m.order > 0 ? m.order : 2;
         for (std::size_t l = 0; l < m_w; ++l) {
             m_relative[l] = m.rtol > T(0) && m.rtol * m_norm0[l] > m.atol;
+            m_inv_s[l] = m_relative[l] ? T(1) / m_norm0[l] : T(1); // see taylor<T>::step_rule
             if (m.order == 0 && sys.is_live(l))
                 p = std::max(p, m_relative[l] ? m_order_rel : m_order_abs);
         }
@@ -235,7 +239,7 @@ template <class T, class S> class taylor_lane_stepper {
     int m_max_order = 2, m_p = 2;
     int m_order_abs = 2, m_order_rel = 2; // the order of each control (taylor<T>::order_of)
     bool m_expanded = false;
-    std::vector<T> m_c, m_norm0;
+    std::vector<T> m_c, m_norm0, m_inv_s;
     std::vector<T> m_np1, m_np; // each lane's norm of y^[p-1] and y^[p] (choose_step)
     std::vector<char> m_relative;
     mutable std::vector<T> m_acc; // Horner's running values, one per lane

@@ -196,9 +196,9 @@ TEST_CASE("taylor keeps the rounding of the state and of the time from accumulat
     CHECK(free < 1e-14);
 }
 
-// The step rule's one logarithm (taylor<T>::min_ln_ratio): the bounds on log2 that pick which of
-// min(ln(a) / j, ln(b) / k) to compute hold, and the answer has the bits of computing both, over
-// quotients from 1e-300 to 1e300 and near ties, where it must take both logarithms.
+// The step rule's one logarithm (taylor<T>::step_rule::max_ln_ratio): the bounds on log2 that
+// pick which of max(ln(a) / (p - 1), ln(b) / p) to compute hold, and the answer has the bits of
+// computing both, over quotients from 1e-300 to 1e300 and near ties, where it must take both.
 TEST_CASE("taylor's step rule takes one logarithm with the bits of two", "[taylor]") {
     std::uint64_t state = 12345;
     const auto uniform = [&state] { // xorshift64*: a fixed, portable sequence in [0, 1)
@@ -217,8 +217,9 @@ TEST_CASE("taylor's step rule takes one logarithm with the bits of two", "[taylo
         const double b = n % 2 ? std::pow(10.0, 600 * uniform() - 300)
                                : std::exp(std::log(a) * k / j * (1 + 1e-4 * (uniform() - 0.5)));
         if (!std::isnormal(b)) continue;
-        const double two = std::min(std::log(a) / j, std::log(b) / k);
-        const double one = taylor<double>::min_ln_ratio(a, j, b, k);
+        const taylor<double>::step_rule rule(k);
+        const double two = std::max(std::log(a) * rule.inv_p1, std::log(b) * rule.inv_p);
+        const double one = rule.max_ln_ratio(a, b);
         if (std::memcmp(&one, &two, sizeof one) != 0) ++differ;
         ties += n % 2 == 0;
     }

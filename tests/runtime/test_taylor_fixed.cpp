@@ -1,6 +1,6 @@
 // The Taylor coefficients for an order known when compiled (taylor_fixed<Order>, the recurrences
-// unrolled and their sums added pairwise) against the loop of taylor(), for every order 1..20 and
-// every series of the heavy top (products, a square, a quotient, sin and cos) and the free top;
+// unrolled and their sums added pairwise) against the loop of taylor(), for every order 1..20, on
+// the state of the heavy top (products, a square, a quotient, sin and cos) and of the free top;
 // and taylor_specialised's choice between them.
 #include <catch2/catch.hpp>
 
@@ -47,8 +47,9 @@ struct free_model {
     }
 };
 
-// max over the series and coefficients of |fixed - loop| / max(|loop| of that coefficient over
-// the series, tiny): the two differ only in the order of the additions.
+// max over the state's series and coefficients of |fixed - loop| / max(|loop| of that coefficient
+// over the state, tiny): the two differ only in the order of the additions. (taylor_fixed computes
+// a product that only a rate reads inside the rate, and leaves its series as scratch.)
 template <class Model, int P, std::size_t N> double deviation(const std::array<double, N>& y) {
     const std::vector<double> loop = by_loop<Model>(y, P);
     std::vector<double> c(loop.size(), 0.0);
@@ -59,9 +60,9 @@ template <class Model, int P, std::size_t N> double deviation(const std::array<d
     double worst = 0;
     for (std::size_t k = 0; k < m; ++k) {
         double scale = 1e-300;
-        for (std::size_t s = 0; s < Model::taylor_series; ++s)
+        for (std::size_t s = 0; s < N; ++s)
             scale = std::max(scale, std::abs(loop[s * m + k]));
-        for (std::size_t s = 0; s < Model::taylor_series; ++s)
+        for (std::size_t s = 0; s < N; ++s)
             worst = std::max(worst, std::abs(c[s * m + k] - loop[s * m + k]) / scale);
     }
     return worst;

@@ -157,7 +157,9 @@ TEST_CASE("the Taylor method locates events on its own series", "[simulate][even
     // (DOP853 at the same rtol: 1.3e-12, the test above)
     CHECK_THAT(ev.rows[0][1], Catch::Matchers::WithinAbs(fall_time(0.3, M_PI / 4), 1e-13));
     CHECK_THAT(ev.rows[1][1], Catch::Matchers::WithinAbs(fall_time(0.3, M_PI / 2), 1e-13));
-    CHECK_THAT(ev.rows[1][2], Catch::Matchers::WithinAbs(M_PI / 2, 1e-14));
+    // theta there: the refinement stops at a bracket of 1e-14 |t| = 2.4e-14 in t, where
+    // theta' = 1.38, so up to 3.4e-14 (observed 2.1e-14)
+    CHECK_THAT(ev.rows[1][2], Catch::Matchers::WithinAbs(M_PI / 2, 4e-14));
 }
 
 TEST_CASE("events in every form and across the chart switch agree", "[simulate][events]") {
