@@ -311,14 +311,19 @@ ROTGEN_TAYLOR_INLINE T taylor_dot(const T* a, const T* b) {
     }
 }
 
-// sum_{j=1..K-1} a[j] b[K-j] (Weighted: j a[j] b[K-j]), K >= 2, for the recurrences of order K:
-// the terms of coefficient K - 1 (j = 1 and K - 1, written one order before) added apart from the
-// vector sum of the rest (taylor_dot), which a load over those fresh stores would wait for too
-// (the free top's expansion at order 19 took 12% less time).
+// Whether the recurrences of order K add the terms of coefficient K - 1 (written one order
+// before) apart from the vector sums (taylor_inner): for a system of few recurrences per order
+// (3 here; apart at 8 or fewer), where each order waits on the last and a vector load
+// over those fresh stores would wait for them too (the free top's expansion, 3 recurrences, took
+// 12% less time at order 19), but not for a larger one, whose orders have work enough to hide the
+// wait and pay for the extra operations (the heavy top's, 22, took 15-20% more).
+constexpr bool taylor_last_apart = true;
+
+// sum_{j=1..K-1} a[j] b[K-j] (Weighted: j a[j] b[K-j]), K >= 2, for the recurrences of order K
 template <int K, bool Weighted = false, class T>
 ROTGEN_TAYLOR_INLINE T taylor_inner(const T* a, const T* b) {
-    if constexpr (K == 2) {
-        return taylor_term<K, Weighted>(a, b, 1);
+    if constexpr (K == 2 || !taylor_last_apart) {
+        return taylor_dot<1, K, K, Weighted>(a, b);
     } else {
         const T last = taylor_term<K, Weighted>(a, b, 1) + taylor_term<K, Weighted>(a, b, K - 1);
         if constexpr (K == 3)
@@ -356,7 +361,9 @@ ROTGEN_TAYLOR_INLINE T taylor_mul(const T* a, const T* b, const T& s) {
 // the sum of a[j] a[K-j] over j = 1 .. (K+1)/2 - 1 (half of Leibniz's inner terms), K >= 3
 template <int K, class T>
 ROTGEN_TAYLOR_INLINE T taylor_half_inner(const T* a) {
-    if constexpr ((K + 1) / 2 > 2)
+    if constexpr (!taylor_last_apart)
+        return taylor_dot<1, (K + 1) / 2, K>(a, a);
+    else if constexpr ((K + 1) / 2 > 2)
         return taylor_dot<2, (K + 1) / 2, K>(a, a) + a[1] * a[K - 1];
     else
         return a[1] * a[K - 1];

@@ -382,14 +382,19 @@ ROTGEN_TAYLOR_INLINE T taylor_dot(const T* a, const T* b) {
     }
 }
 
-// sum_{j=1..K-1} a[j] b[K-j] (Weighted: j a[j] b[K-j]), K >= 2, for the recurrences of order K:
-// the terms of coefficient K - 1 (j = 1 and K - 1, written one order before) added apart from the
-// vector sum of the rest (taylor_dot), which a load over those fresh stores would wait for too
-// (the free top's expansion at order 19 took 12% less time).
+// Whether the recurrences of order K add the terms of coefficient K - 1 (written one order
+// before) apart from the vector sums (taylor_inner): for a system of few recurrences per order
+// (22 here; apart at 8 or fewer), where each order waits on the last and a vector load
+// over those fresh stores would wait for them too (the free top's expansion, 3 recurrences, took
+// 12% less time at order 19), but not for a larger one, whose orders have work enough to hide the
+// wait and pay for the extra operations (the heavy top's, 22, took 15-20% more).
+constexpr bool taylor_last_apart = false;
+
+// sum_{j=1..K-1} a[j] b[K-j] (Weighted: j a[j] b[K-j]), K >= 2, for the recurrences of order K
 template <int K, bool Weighted = false, class T>
 ROTGEN_TAYLOR_INLINE T taylor_inner(const T* a, const T* b) {
-    if constexpr (K == 2) {
-        return taylor_term<K, Weighted>(a, b, 1);
+    if constexpr (K == 2 || !taylor_last_apart) {
+        return taylor_dot<1, K, K, Weighted>(a, b);
     } else {
         const T last = taylor_term<K, Weighted>(a, b, 1) + taylor_term<K, Weighted>(a, b, K - 1);
         if constexpr (K == 3)
@@ -427,7 +432,9 @@ ROTGEN_TAYLOR_INLINE T taylor_mul(const T* a, const T* b, const T& s) {
 // the sum of a[j] a[K-j] over j = 1 .. (K+1)/2 - 1 (half of Leibniz's inner terms), K >= 3
 template <int K, class T>
 ROTGEN_TAYLOR_INLINE T taylor_half_inner(const T* a) {
-    if constexpr ((K + 1) / 2 > 2)
+    if constexpr (!taylor_last_apart)
+        return taylor_dot<1, (K + 1) / 2, K>(a, a);
+    else if constexpr ((K + 1) / 2 > 2)
         return taylor_dot<2, (K + 1) / 2, K>(a, a) + a[1] * a[K - 1];
     else
         return a[1] * a[K - 1];
@@ -681,9 +688,9 @@ void taylor_fixed(T t, T* c, const params<T>& p) {
         phi[k] = phi_dot[k - 1]*inv_k;
         theta[k] = theta_dot[k - 1]*inv_k;
         psi[k] = psi_dot[k - 1]*inv_k;
-        phi_dot[k] = detail::taylor_mul<k - 1>(u007, theta_dot, T(inv_k));
-        theta_dot[k] = detail::taylor_mul<k - 1>(sin_theta, u012, -k002*inv_k);
-        psi_dot[k] = detail::taylor_mul<k - 1>(u021, theta_dot, T(inv_k));
+        phi_dot[k] = u008[k - 1]*inv_k;
+        theta_dot[k] = -u013[k - 1]*inv_k;
+        psi_dot[k] = u022[k - 1]*inv_k;
         if constexpr (k < Order) {
             detail::taylor_sin_cos<k>(sin_theta, cos_theta, theta);
             u002[k] = detail::taylor_div<k>(T(S(0)), sin_theta, u002);
@@ -692,10 +699,12 @@ void taylor_fixed(T t, T* c, const params<T>& p) {
             u005[k] = p.I3*psi_dot[k];
             u006[k] = u004[k] + u005[k];
             u007[k] = detail::taylor_mul<k>(u002, u006);
+            u008[k] = detail::taylor_mul<k>(u007, theta_dot);
             u009[k] = k003*u003[k];
             u010[k] = u005[k] + u009[k];
             u011[k] = detail::taylor_mul<k>(u010, phi_dot);
             u012[k] = u011[k];
+            u013[k] = k002*detail::taylor_mul<k>(sin_theta, u012);
             u014[k] = detail::taylor_square<k>(cos_theta);
             u015[k] = p.I3*detail::taylor_mul<k>(u002, u014);
             u016[k] = sin_theta[k] + u015[k];
@@ -704,6 +713,7 @@ void taylor_fixed(T t, T* c, const params<T>& p) {
             u019[k] = detail::taylor_mul<k>(cos_theta, u002);
             u020[k] = detail::taylor_mul<k>(u019, u018);
             u021[k] = u017[k] - u020[k];
+            u022[k] = detail::taylor_mul<k>(u021, theta_dot);
         }
     });
 }

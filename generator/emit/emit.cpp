@@ -479,7 +479,9 @@ std::string taylor_text(const lowered_form& lf, const lowered_function& fn,
                      {},
                      std::to_string(b.series) + " series, " + std::to_string(b.operations) +
                          " recurrences per order"});
-    return fill_template("taylor_helpers.hpp.in", {}) +
+    return fill_template("taylor_helpers.hpp.in",
+                         {{"operations", std::to_string(b.operations)},
+                          {"last_apart", b.few_operations ? "true" : "false"}}) +
            fill_template("taylor.hpp.in", {{"n", std::to_string(n)},
                                            {"n_minus_1", std::to_string(n - 1)},
                                            {"layout", layout_of(lf)},

@@ -438,7 +438,8 @@ int taylor_builder::uses(int s) const {
 // taylor_fixed's rate y^[k] = c f^[k-1] / k where f is a product (or a square) of two series that
 // nothing else reads: the product at order k - 1 scaled by s = c scale / k inside the sum
 // (detail::taylor_mul with a factor), which takes two operations off the chain from one order's
-// coefficients to the next (the free top's expansion at order 11 took 6% less time). Empty when
+// coefficients to the next (the free top's expansion at order 11 took 6% less time; used where
+// the recurrences are few, taylor_body::few_operations). Empty when
 // the rate is not of that kind (`uses`: the reads of the series, the rates' included).
 std::string taylor_builder::folded_rate(int series, const numeric& c, int uses,
                                         std::set<int>& folded) const {
@@ -545,7 +546,8 @@ std::vector<std::string> taylor_builder::orders(const std::vector<std::string>& 
 }
 
 taylor_body taylor_builder::build() {
-    const rate_lines r = rates(); // first: it may name constants
+    const rate_lines r = rates();       // first: it may name constants
+    const bool few = m_ops.size() <= 8; // taylor_body::few_operations
     const auto join = [](std::vector<std::string> a, const std::vector<std::string>& b) {
         a.insert(a.end(), b.begin(), b.end());
         std::string text;
@@ -555,9 +557,11 @@ taylor_body taylor_builder::build() {
     };
     taylor_body b;
     b.text = join(head("const int m = order + 1;"), orders(r.loop, false));
-    b.fixed_text = join(head("constexpr int m = Order + 1;"), orders(r.fixed, true, r.folded));
+    b.fixed_text = join(head("constexpr int m = Order + 1;"),
+                        few ? orders(r.fixed, true, r.folded) : orders(r.loop, true));
     b.series = m_names.size();
     b.operations = m_ops.size();
+    b.few_operations = few;
     return b;
 }
 

@@ -46,6 +46,11 @@ struct taylor_body {
     std::string fixed_text;     // of taylor_fixed<Order>(t, c, p): the order a constant
     std::size_t series = 0;     // coefficient blocks in c: the state's, then the intermediates'
     std::size_t operations = 0; // recurrences per order (sums, products, calls)
+    // at most 8 recurrences per order: each order waits on the last, so taylor_fixed takes
+    // operations off that chain (products folded into the rates, the last order's terms apart from
+    // the vector sums: templates/taylor_helpers.hpp.in), where a larger system has work enough to
+    // hide the wait and pays for the extra operations (the heavy top's 22 took 10-25% more)
+    bool few_operations = false;
 };
 
 // The body of taylor() for the rhs program `rhs` (its inputs: the state as y[i], the parameters,
