@@ -57,6 +57,7 @@ template <class T, class S> class taylor_lane_stepper {
           m_comp(m_y1), m_comp_start(m_y1) {
         m_max_order = m.max_order();
         m_order_abs = m.order_of(false), m_order_rel = m.order_of(true);
+        m_rule_abs = step_rule(m_order_abs), m_rule_rel = step_rule(m_order_rel);
     }
 
     bool start(const S& sys, T t0, const vector& y0, step_stats& stats) {
@@ -87,7 +88,9 @@ template <class T, class S> class taylor_lane_stepper {
         // ln is increasing, so the largest of the lanes' ln(||y^[k]|| / s) / k is ln of the
         // largest quotient over k: at most two logarithms a step, not two a lane, with the same
         // bits while every quotient is a normal number (step_rule takes another way otherwise).
-        const typename taylor<T>::step_rule rule(p);
+        const step_rule rule = p == m_rule_rel.p   ? m_rule_rel
+                               : p == m_rule_abs.p ? m_rule_abs
+                                                   : step_rule(p); // no live lane
         T q1 = T(0), q = T(0);
         bool normal = true, live = false;
         for (std::size_t l = 0; l < m_w; ++l) {
@@ -238,6 +241,8 @@ template <class T, class S> class taylor_lane_stepper {
     std::size_t m_size, m_n = 0, m_w = 1;
     int m_max_order = 2, m_p = 2;
     int m_order_abs = 2, m_order_rel = 2; // the order of each control (taylor<T>::order_of)
+    using step_rule = typename taylor<T>::step_rule;
+    step_rule m_rule_abs, m_rule_rel; // the step rule of each control's order
     bool m_expanded = false;
     std::vector<T> m_c, m_norm0, m_inv_s;
     std::vector<T> m_np1, m_np; // each lane's norm of y^[p-1] and y^[p] (choose_step)
