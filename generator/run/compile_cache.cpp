@@ -70,6 +70,13 @@ std::string host_vector_flags(std::string* target) {
     return "-ffp-contract=off";
 }
 
+std::string host_exact_vector_flags() {
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+    if (__builtin_cpu_supports("avx2")) return "-mavx2";
+#endif
+    return "";
+}
+
 std::string cache_directory() {
     if (const char* d = std::getenv("ROTGEN_CACHE_DIR"); d && *d) return d;
     if (const char* d = std::getenv("XDG_CACHE_HOME"); d && *d) return std::string(d) + "/rotgen";

@@ -45,10 +45,18 @@ const std::string& compiler_identity();
 // The flags that let compiled code use this machine's vector instructions: "-mavx2 -mfma
 // -ffp-contract=off" where the CPU has AVX2 and FMA, else "-ffp-contract=off"; `target` gets
 // their name ("avx2+fma" or "sse2"). No contraction keeps products and sums rounding apart, but
-// the code is not the portable build's bit for bit (a heavy-top sweep's final theta moved by
-// 9e-16 relative with the scalar kernels built so), which is why simulate and sweep's scalar
-// kernels stay portable.
+// the code is not the portable build's bit for bit: GCC 12's SLP vectoriser emits vfmaddsub
+// despite -ffp-contract=off (the body form's rhs of the heavy top, half of 100,000 random states
+// off by an ulp), so the lane kernels, which have their own arithmetic anyway, use these.
 std::string host_vector_flags(std::string* target = nullptr);
+
+// The flags that let compiled code use this machine's vectors with the portable build's bits:
+// "-mavx2" where the CPU has AVX2, else none. Without -mfma no instruction can fuse a product
+// into a sum, and vector + - * / round as the scalar ones do (tests/run/test_kernel_flags.cpp).
+// The scalar kernels of a `taylor` scene use them: the recurrences' sums run in 4-wide vectors,
+// a heavy-top Taylor sweep's members 23% faster here; the other methods' kernels stay portable
+// (a DOP853 sweep's took 25% longer with them: not investigated).
+std::string host_exact_vector_flags();
 
 // Compiles `source` (a complete translation unit) unless the cache has it, then loads it.
 // `name` labels the files in the cache; `extra_flags` are added to the compiler's (and the key).

@@ -244,8 +244,9 @@ compiled_form compile_form(const scene_spec& scene, form_expressions f, bool ori
         constants.push_back(k.name.substr(2)); // p.c000 -> c000
     const std::string source =
         header.text + entry_points(c.f, header.unit, program, events, c.taylor_call, constants);
-    c.lib =
-        timings.time("compile", header.unit, [&] { return compile_and_load(source, header.unit); });
+    const std::string flags = taylor ? host_exact_vector_flags() : "";
+    c.lib = timings.time("compile", header.unit,
+                         [&] { return compile_and_load(source, header.unit, flags); });
     c.header = header.text, c.unit = header.unit;
     c.sys.n = c.f.state.size();
     c.sys.f = reinterpret_cast<loaded_system::kernel>(c.lib.symbol("rotgen_rhs"));
