@@ -8,9 +8,11 @@
 # 1e-10), one member at a time and in SIMD lanes (`--lanes 8`, the runs interleaved); the cost of a
 # member outside its integration (the same sweep to t = 0.01); DOP853 on 2 threads against 1;
 # `mpirun -n 2` (one thread per rank) against one process, and what the ranks cost in CPU, once
-# and per member (from this sweep and one of 4 times the members). Each figure is the best of 9
+# and per member (from this sweep and one of 4 times the members). Each figure is the median of 9
 # runs of the members (the summary's "running the members" time: the kernels are compiled once,
-# before, and cached), the ways of running a scene interleaved (one of each in turn).
+# before, and cached), the ways of running a scene interleaved (one of each in turn), each round
+# from fresh copies of rotgen and the kernel cache (a copy's speed depends on where its pages lie
+# in memory on a virtual machine: docs/design-notes.md).
 # Timing claims live here, never in ctest.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/summary_time.sh"
@@ -46,33 +48,43 @@ one_run() {
   cpu=$(awk '/^cpu/ { print $2 + $3 }' "$work/cpu")
   echo "$t $cpu"
 }
-# One run of the scene $1 as $2 says: one (1 thread), lanes (1 thread, --lanes), two (2 threads) or
-# mpi (2 ranks of 1 thread); "WALL CPU" as one_run gives them
+# Fresh copies of rotgen and of the kernel cache for a round (new pages), which run_as runs
+fresh_copies() {
+  rm -rf "$work/round" && mkdir -p "$work/round"
+  cp "$rotgen" "$work/round/rotgen" && cp -r "$ROTGEN_CACHE_DIR" "$work/round/cache"
+}
+# One run of the scene $1 as $2 says, from the round's copies: one (1 thread), lanes (1 thread,
+# --lanes), two (2 threads) or mpi (2 ranks of 1 thread); "WALL CPU" as one_run gives them
 run_as() {
+  local bin=$work/round/rotgen
   case $2 in
-    one) one_run "$rotgen" sweep "$1" -j 1 ;;
-    lanes) one_run "$rotgen" sweep "$1" -j 1 --lanes $lanes ;;
-    two) one_run "$rotgen" sweep "$1" -j 2 ;;
-    mpi) one_run mpirun -n 2 --oversubscribe "${root_flag[@]}" "$rotgen" sweep -j 1 "$1" ;;
+    one) ROTGEN_CACHE_DIR=$work/round/cache one_run "$bin" sweep "$1" -j 1 ;;
+    lanes) ROTGEN_CACHE_DIR=$work/round/cache one_run "$bin" sweep "$1" -j 1 --lanes $lanes ;;
+    two) ROTGEN_CACHE_DIR=$work/round/cache one_run "$bin" sweep "$1" -j 2 ;;
+    mpi) ROTGEN_CACHE_DIR=$work/round/cache one_run mpirun -n 2 --oversubscribe "${root_flag[@]}" \
+           -x ROTGEN_CACHE_DIR "$bin" sweep -j 1 "$1" ;;
   esac
 }
-# "WALL CPU" for each way $2 $3 ... of running the scene $1, the best of 9 of each (by wall time),
-# the runs interleaved (one of each in turn) so that all see the same load
-best_of_9_each() {
+median() { sort -g | awk '{ v[NR] = $1 } END { print (NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2) }'; }
+# "WALL CPU" for each way $2 $3 ... of running the scene $1, the medians of 9 of each (wall and CPU
+# apart), the runs interleaved (one of each in turn, from a round's fresh copies) so that all see
+# the same load
+median_of_9_each() {
   local scene=$1 k t cpu
   shift
-  local -a best=() best_cpu=()
+  rm -f "$work"/way-*
   for _ in 1 2 3 4 5 6 7 8 9; do
+    fresh_copies
     k=0
     for way in "$@"; do
-      read -r t cpu < <(run_as "$scene" "$way")
-      if [[ -z ${best[k]:-} ]] || awk -v a="$t" -v b="${best[k]}" 'BEGIN { exit !(a < b) }'; then
-        best[k]=$t best_cpu[k]=$cpu
-      fi
+      run_as "$scene" "$way" >>"$work/way-$k"
       k=$((k + 1))
     done
   done
-  for ((k = 0; k < $#; k++)); do printf '%s %s ' "${best[k]}" "${best_cpu[k]}"; done
+  for ((k = 0; k < $#; k++)); do
+    printf '%s %s ' "$(awk '{ print $1 }' "$work/way-$k" | median)" \
+      "$(awk '{ print $2 }' "$work/way-$k" | median)"
+  done
   echo
 }
 rate() { awk -v n=$members -v t="$1" 'BEGIN { printf "%.0f", n / t }'; }
@@ -85,20 +97,25 @@ ratio_sub() { awk -v a="$1" -v b="$2" -v c="$3" -v d="$4" 'BEGIN { printf "%.2f"
 "$rotgen" sweep "$work/dop853.yaml" -o "$work/warm" -q -j 1
 "$rotgen" sweep "$work/rk4.yaml" -o "$work/warm" -q -j 1 --lanes $lanes # the batch kernel
 echo "rk4, 1 thread, without and with --lanes $lanes" >&2
-read -r rk4_1 rk4_1c rk4_l rk4_lc < <(best_of_9_each "$work/rk4.yaml" one lanes)
+read -r rk4_1 rk4_1c rk4_l rk4_lc < <(median_of_9_each "$work/rk4.yaml" one lanes)
 echo "rk4 to t = 0.01, 1 thread, without and with --lanes $lanes" >&2
-read -r short_1 short_1c short_l short_lc < <(best_of_9_each "$work/short.yaml" one lanes)
+read -r short_1 short_1c short_l short_lc < <(median_of_9_each "$work/short.yaml" one lanes)
 arch=$("$rotgen" sweep "$work/rk4.yaml" -o "$work/out" -j 1 --lanes $lanes |
        sed -n 's/^  lanes .* in batches of [0-9]* (\(.*\))$/\1/p')
 echo "dop853: 1 thread, --lanes $lanes, 2 threads, mpirun -n 2" >&2
-read -r dop_1 dop_1c dop_l dop_lc dop_2 dop_2c mpi_2 mpi_2c < <(best_of_9_each "$work/dop853.yaml" \
+read -r dop_1 dop_1c dop_l dop_lc dop_2 dop_2c mpi_2 mpi_2c < <(median_of_9_each "$work/dop853.yaml" \
   one lanes two mpi)
-# one member's right-hand side: the scalar kernel against the batch kernel (bench/lanes/rhs_time.cpp)
+# one member's right-hand side: the scalar kernel against the batch kernel (bench/lanes/rhs_time.cpp),
+# the medians over 5 fresh copies of the two libraries
 "${CXX:-g++}" -O2 "$root/bench/lanes/rhs_time.cpp" -o "$work/rhs_time" -ldl
-read -r rhs_1 rhs_4 rhs_8 < <("$work/rhs_time" "$(ls "$ROTGEN_CACHE_DIR"/heavy_top-*.so | head -1)" \
-  "$(ls "$ROTGEN_CACHE_DIR"/heavy_top_lanes-*.so | head -1)" 6 5)
+for _ in 1 2 3 4 5; do
+  cp "$(ls "$ROTGEN_CACHE_DIR"/heavy_top-*.so | head -1)" "$work/scalar.so"
+  cp "$(ls "$ROTGEN_CACHE_DIR"/heavy_top_lanes-*.so | head -1)" "$work/batch.so"
+  "$work/rhs_time" "$work/scalar.so" "$work/batch.so" 6 5 >>"$work/rhs_times"
+done
+read -r rhs_1 rhs_4 rhs_8 <<<"$(for c in 1 2 3; do awk -v c=$c '{ print $c }' "$work/rhs_times" | median; done | tr '\n' ' ')"
 echo "dop853 with $((4 * members)) members: 1 thread, mpirun -n 2" >&2
-read -r _ big_1c _ big_2c < <(best_of_9_each "$work/dop853_4x.yaml" one mpi)
+read -r _ big_1c _ big_2c < <(median_of_9_each "$work/dop853_4x.yaml" one mpi)
 # MPI's CPU cost, the 2-rank CPU time minus the 1-process CPU time, is a + b·members: b from the
 # two sizes, per member; a, once per sweep
 mpi_per_member=$(awk -v n=$members -v a="$dop_1c" -v b="$mpi_2c" -v c="$big_1c" -v d="$big_2c" \
@@ -111,7 +128,8 @@ cat <<EOF2
 
 \`bash bench/sweep.sh build/rotgen > bench/results/sweep.md\`; $(nproc) cores ($(grep -m1 'model name' /proc/cpuinfo | sed 's/.*: //')),
 load average $(cut -d' ' -f1-3 /proc/loadavg) when it finished (the machine is shared: the
-figures are the best of 9 runs, interleaved, and still move with the load).
+figures are medians of 9 runs, interleaved, each round from fresh copies of rotgen and its
+kernels, and still move with the load).
 
 The heavy top, $members members (initial theta 0.1 .. 1.5), t = 0 .. 10, 101 samples, records theta and
 energy; the time is the sweep's own "running the members" (the kernels compiled once, before).
@@ -132,13 +150,13 @@ $arch; the scalar and lane runs were interleaved. Integration alone (the run min
 t = 0.01, in wall µs per member): RK4 $(sub_us "$rk4_1" "$short_1") scalar, $(sub_us "$rk4_l" "$short_l") in lanes ($(ratio_sub "$rk4_1" "$short_1" "$rk4_l" "$short_l")×); DOP853
 $(sub_us "$dop_1" "$short_1") scalar, $(sub_us "$dop_l" "$short_l") in lanes ($(ratio_sub "$dop_1" "$short_1" "$dop_l" "$short_l")×).
 
-One member's right-hand side (\`bench/lanes/rhs_time.cpp\`, calls interleaved, best of 5): $rhs_1 ns
+One member's right-hand side (\`bench/lanes/rhs_time.cpp\`, calls interleaved, best of 5, the median over 5 fresh copies of the kernels): $rhs_1 ns
 scalar, $rhs_4 ns in a batch of 4 lanes ($(ratio "$rhs_1" "$rhs_4")×), $rhs_8 ns in a batch of 8
 ($(ratio "$rhs_1" "$rhs_8")×: two vectors per call keep more arithmetic in flight).
 
 CPU µs per member: the command's user + system time (all ranks, preparation included) over the
 $members members. What two ranks cost in CPU beyond one process, from this sweep and the same
-with $((4 * members)) members (DOP853, best of 9 each, interleaved): $mpi_once s once per sweep
+with $((4 * members)) members (DOP853, medians of 9 each, interleaved): $mpi_once s once per sweep
 (\`mpirun\`'s and MPI's start-up, the second rank's preparation) and $mpi_per_member µs per member
 (the queue's messages; within the noise of the timings when near 0).
 EOF2
