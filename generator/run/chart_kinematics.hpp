@@ -21,4 +21,8 @@ initial_kinematics from_body(const Eigen::VectorXd& y, const Eigen::Matrix3d& in
 // |sin theta| of a state of the given form (Euler-angle forms: theta is y[1]).
 double sin_theta_of(form_kind form, const Eigen::VectorXd& y);
 
+// sin_theta_of(form, y) < bound (0 < bound < 1), without a sine where theta is plainly far from the
+// singular set (a run asks it at every sample): the same answer.
+bool sin_theta_below(form_kind form, const Eigen::VectorXd& y, double bound);
+
 } // namespace rotgen

@@ -315,8 +315,8 @@ scene_run::next scene_run::integrate_segment(Eigen::VectorXd& y, double t_from) 
         if (m_on_sample) m_on_sample(t);
         if (!can_switch || m_samples.size() <= first_sample + 1 || reached_end(m_scene, t))
             return true;
-        const double st = sin_theta_of(cf.form, yt);
-        return !(euler_chart ? st < switch_below : st > switch_back_above);
+        return euler_chart ? !sin_theta_below(cf.form, yt, switch_below)
+                           : !(sin_theta_of(cf.form, yt) > switch_back_above);
     };
     const std::size_t first_hit = m_events.hits().size();
     if (m_events.size() > 0) use_event_functions(cf);

@@ -14,6 +14,8 @@
 #include <cstdlib>
 #include <optional>
 #include <stdexcept>
+#include <string>
+#include <unordered_map>
 
 #ifdef ROTGEN_HAVE_QUADMATH
 #include "lower/quad.hpp"
@@ -63,11 +65,29 @@ struct slot_source {
 // The shortest decimal that reads back as x (the exact value of a plain number, as
 // exact_scene_value gives it), in long double and in quad; and a quad result in long double.
 // Zero is +0 in all three: GiNaC has no -0.
+struct exact_decimal {
+    long double ld;
+    quad q;
+};
+exact_decimal read_decimal(double x) {
+    if (x == 0) return {0.0L, 0};
+    const std::string text = format_double(x);
+    return {std::strtold(text.c_str(), nullptr), strtoflt128(text.c_str(), nullptr)};
+}
+// read_decimal(x), remembered: a sweep's members share all but their varied values, and writing
+// and reading a decimal back costs about as much as the rest of a member's start in quad
+// precision. Each thread keeps the last values it read (bounded).
+const exact_decimal& decimal_of(double x) {
+    thread_local std::unordered_map<double, exact_decimal> seen;
+    if (const auto it = seen.find(x); it != seen.end()) return it->second;
+    if (seen.size() >= 256) seen.clear();
+    return seen.emplace(x, read_decimal(x)).first->second;
+}
 long double long_double_of(double x) {
-    return x == 0 ? 0.0L : std::strtold(format_double(x).c_str(), nullptr);
+    return decimal_of(x).ld;
 }
 quad quad_of(double x) {
-    return x == 0 ? 0 : strtoflt128(format_double(x).c_str(), nullptr);
+    return decimal_of(x).q;
 }
 long double rounded(quad x) {
     return x == 0 ? 0.0L : static_cast<long double>(x);

@@ -3,24 +3,40 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <string_view>
 
 namespace rotgen {
 
-std::string format_double(double x) {
+void append_double(std::string& out, double x) {
     char buf[64];
     const auto r = std::to_chars(buf, buf + sizeof buf, x);
-    std::string s(buf, r.ptr);
-    if (s.find_first_of(".e") == std::string::npos && s.find("inf") == std::string::npos &&
-        s.find("nan") == std::string::npos)
-        s += ".0";
+    const std::string_view s(buf, static_cast<std::size_t>(r.ptr - buf));
+    out += s;
+    if (s.find_first_of(".e") == std::string_view::npos &&
+        s.find("inf") == std::string_view::npos && s.find("nan") == std::string_view::npos)
+        out += ".0";
+}
+
+std::string format_double(double x) {
+    std::string s;
+    append_double(s, x);
     return s;
 }
 
-std::string format_number(double x) {
-    if (std::isnan(x)) return "nan"; // undefined: a sign would mean nothing ("-nan")
+void append_number(std::string& out, double x) {
+    if (std::isnan(x)) { // undefined: a sign would mean nothing ("-nan")
+        out += "nan";
+        return;
+    }
     char buf[32]; // "%.17g", without printf's cost (a sweep writes a few per member)
     const auto r = std::to_chars(buf, buf + sizeof buf, x, std::chars_format::general, 17);
-    return std::string(buf, r.ptr);
+    out.append(buf, r.ptr);
+}
+
+std::string format_number(double x) {
+    std::string s;
+    append_number(s, x);
+    return s;
 }
 
 std::string short_number(double x, int digits) {

@@ -12,6 +12,11 @@ std::string format_double(double x);
 // 17 significant digits (printf "%.17g"): every double round-trips; the CSV number format.
 std::string format_number(double x);
 
+// format_double(x) and format_number(x) appended to `out`, without a string of their own (a
+// sweep's summary rows are built from a few dozen each).
+void append_double(std::string& out, double x);
+void append_number(std::string& out, double x);
+
 // `digits` significant digits (printf "%.<digits>g"): for summaries and tables.
 std::string short_number(double x, int digits = 3);
 

@@ -89,28 +89,35 @@ void write_summary_header(std::ostream& os, const sweep_plan& plan, const summar
     os << ",steps,rhs_evals,status\n";
 }
 
-void write_summary_row(std::ostream& os, std::size_t m, const std::vector<double>& row,
-                       const summary_layout& layout, const member_outcome& o) {
-    os << m;
-    for (double v : row)
-        os << "," << format_double(v);
+std::string summary_row_of(std::size_t m, const std::vector<double>& row,
+                           const summary_layout& layout, const member_outcome& o) {
+    std::string s = std::to_string(m);
+    s.reserve(32 * (row.size() + layout.columns.size() + layout.invariants.size() + 4));
+    // ",x" for the i-th of `values` if it has one and it is not NaN (where NaN means none), else
+    // ","
+    const auto field = [&s](const std::vector<double>& values, std::size_t i, bool nan_is_none) {
+        s += ',';
+        if (i < values.size() && !(nan_is_none && std::isnan(values[i])))
+            append_number(s, values[i]);
+    };
+    for (double v : row) {
+        s += ',';
+        append_double(s, v);
+    }
     for (std::size_t c = 0; c <= layout.columns.size(); ++c)
-        os << "," << (c < o.final_row.size() ? format_number(o.final_row[c]) : "");
+        field(o.final_row, c, false);
     for (std::size_t i = 0; i < layout.events.size(); ++i)
-        os << ","
-           << (i < o.event_times.size() && !std::isnan(o.event_times[i])
-                   ? format_number(o.event_times[i])
-                   : "");
+        field(o.event_times, i, true);
     for (std::size_t i = 0; i < layout.invariants.size(); ++i)
-        os << "," << (i < o.drifts.size() ? format_number(o.drifts[i]) : "");
-    os << "," << o.steps << "," << o.rhs_evals << "," << csv_field(o.status) << "\n";
+        field(o.drifts, i, false);
+    s += ',' + std::to_string(o.steps) + ',' + std::to_string(o.rhs_evals) + ',' +
+         csv_field(o.status) + '\n';
+    return s;
 }
 
-std::string summary_row_of(std::size_t m, const std::vector<double>& row,
-                           const summary_layout& layout, const member_outcome& outcome) {
-    std::ostringstream os;
-    write_summary_row(os, m, row, layout, outcome);
-    return os.str();
+void write_summary_row(std::ostream& os, std::size_t m, const std::vector<double>& row,
+                       const summary_layout& layout, const member_outcome& outcome) {
+    os << summary_row_of(m, row, layout, outcome);
 }
 
 } // namespace rotgen
