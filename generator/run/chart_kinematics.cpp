@@ -63,14 +63,17 @@ double sin_theta_of(form_kind form, const Eigen::VectorXd& y) {
 }
 
 bool sin_theta_below(form_kind form, const Eigen::VectorXd& y, double bound) {
-    if (form == form_kind::lagrangian || form == form_kind::hamiltonian) {
-        // r: the distance of the middle angle from the nearest singular angle (a multiple of pi,
-        // proper sequences; of pi plus pi/2, Tait-Bryan), good to 1e-9 for |angle| < 1e6; and
+    const double beta = y[1];
+    if ((form == form_kind::lagrangian || form == form_kind::hamiltonian) && std::abs(beta) < 1e6) {
+        // r: the distance of the middle angle from a singular angle (a multiple of pi, proper
+        // sequences; of pi plus pi/2, Tait-Bryan) good to 1e-9, the nearest one but where x / pi
+        // is within rounding of a half (then r is about pi/2, and |sin| about 1, either way); and
         // sin r >= (2/pi) r on [0, pi/2], so r > (pi/2) bound + 1e-6 means |sin| > bound
-        const double pi = 3.14159265358979323846, beta = y[1];
+        const double pi = 3.14159265358979323846;
         const double x = active_sequence().proper() ? beta : beta - pi / 2;
-        const double r = std::abs(x - pi * std::nearbyint(x / pi));
-        if (std::abs(beta) < 1e6 && r > pi / 2 * bound + 1e-6) return false;
+        const double q = x * (1 / pi); // the nearest integer by a cast (no libm call)
+        const double k = static_cast<double>(static_cast<long long>(q + (q < 0 ? -0.5 : 0.5)));
+        if (std::abs(x - pi * k) > pi / 2 * bound + 1e-6) return false;
     }
     return sin_theta_of(form, y) < bound;
 }
