@@ -6,7 +6,7 @@
 # The heavy top of bench/sweep.sh (models/heavy_top.yaml, 1024 members over initial theta
 # 0.1 .. 1.5, t = 0 .. 10, 101 samples), integrated by `taylor` at rtol = atol = 1e-12: on one
 # thread, one member at a time and with `--lanes 4` and `--lanes 8`; the same to t = 0.01 (a
-# member's cost outside its integration). Each figure is the median of 9 rounds of the sweep's own
+# member's cost outside its integration). Each figure is the median of 21 rounds of the sweep's own
 # "running the members" time (kernels compiled once, before; each round from fresh copies of the
 # binary and the kernels, below), the ways interleaved in each round so that all see the same load.
 # Timing claims live here, never in ctest.
@@ -17,7 +17,7 @@ rotgen=$(realpath "${1:?usage: taylor_lanes.sh ROTGEN}")
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 export ROTGEN_CACHE_DIR=${ROTGEN_CACHE_DIR:-$work/cache} # the libraries timed below are these
-members=1024 runs=${RUNS:-9}
+members=1024 runs=${RUNS:-21}
 
 heavy_top_sweep "$work/taylor.yaml" "$members" "{method: taylor, rtol: 1e-12, atol: 1e-12}"
 sed 's/end: 10,/end: 0.01,/' "$work/taylor.yaml" >"$work/short.yaml"
