@@ -44,8 +44,14 @@ ways+=("$cores threads, \`--lanes 8\`|sweep -j $cores --lanes 8")
 ((cores >= 2)) && ways+=("\`mpirun -n $cores --lanes 8\`|mpirun -n $cores sweep -j 1 --lanes 8")
 ((cores >= 8)) && ways+=("\`mpirun -n 4 -j $((cores / 4)) --lanes 8\`|mpirun -n 4 sweep -j $((cores / 4)) --lanes 8")
 
+# Fresh copies of rotgen and of the kernel cache for a round (new pages: a copy's speed depends on
+# where its pages lie in memory on a virtual machine, docs/design-notes.md), which one_run runs
+fresh_copies() {
+  rm -rf "$work/round" && mkdir -p "$work/round"
+  cp "$rotgen" "$work/round/rotgen" && cp -r "$ROTGEN_CACHE_DIR" "$work/round/cache"
+}
 one_run() { # $1: the way's command words; prints the seconds, leaves $work/out
-  local words=($1) cmd=()
+  local words=($1) cmd=() rotgen=$work/round/rotgen
   rm -rf "$work/out"
   if [[ ${words[0]} == mpirun ]]; then
     local i=1
@@ -57,8 +63,8 @@ one_run() { # $1: the way's command words; prints the seconds, leaves $work/out
   else
     cmd=("$rotgen" "${words[@]}")
   fi
-  "${cmd[@]:0:${#cmd[@]}}" "$work/scene.yaml" -o "$work/out" 2>/dev/null |
-    summary_seconds "running the members"
+  ROTGEN_CACHE_DIR=$work/round/cache "${cmd[@]:0:${#cmd[@]}}" "$work/scene.yaml" -o "$work/out" \
+    2>/dev/null | summary_seconds "running the members"
 }
 
 "$rotgen" sweep "$work/scene.yaml" -o "$work/reference" -j 1 -q # the kernels into the cache
@@ -78,6 +84,7 @@ measure() { # $1: the way's index
 }
 for ((round = 1; round <= rounds; round++)); do
   echo "round $round of $rounds" >&2
+  fresh_copies
   for i in "${!ways[@]}"; do measure "$i"; done
   measure 0
 done
@@ -94,7 +101,7 @@ load average $(cut -d' ' -f1-3 /proc/loadavg) when it finished.
 
 The heavy top, $members members (initial theta 0.1 .. 1.5), t = 0 .. 10, 101 samples, DOP853
 rtol 1e-8; the summary's "running the members" time of $rounds runs of each, interleaved (the one-thread
-baseline twice a round); the speed-ups are over the one-thread run's best and median; every run's
+baseline twice a round), each round from fresh copies of rotgen and its kernels; the speed-ups are over the one-thread run's best and median; every run's
 summary.csv is byte-identical to the one-thread run's (with lanes, to the one-thread lanes
 run's).
 
