@@ -59,15 +59,16 @@ std::string usable_cache_directory() {
     return dir;
 }
 
-std::string host_vector_flags(std::string* target) {
+std::string host_vector_flags(std::string* target, bool fused) {
+    const std::string contract = fused ? "-ffp-contract=fast" : "-ffp-contract=off";
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
     if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) {
         if (target) *target = "avx2+fma";
-        return "-mavx2 -mfma -ffp-contract=off";
+        return "-mavx2 -mfma " + contract;
     }
 #endif
     if (target) *target = "sse2";
-    return "-ffp-contract=off";
+    return contract;
 }
 
 std::string host_exact_vector_flags() {

@@ -42,20 +42,21 @@ std::string usable_cache_directory();
 // Throws std::runtime_error if the compiler does not run.
 const std::string& compiler_identity();
 
-// The flags that let compiled code use this machine's vector instructions: "-mavx2 -mfma
-// -ffp-contract=off" where the CPU has AVX2 and FMA, else "-ffp-contract=off"; `target` gets
-// their name ("avx2+fma" or "sse2"). No contraction keeps products and sums rounding apart, but
-// the code is not the portable build's bit for bit: GCC 12's SLP vectoriser emits vfmaddsub
-// despite -ffp-contract=off (the body form's rhs of the heavy top, half of 100,000 random states
-// off by an ulp), so the lane kernels, which have their own arithmetic anyway, use these.
-std::string host_vector_flags(std::string* target = nullptr);
+// The flags that let compiled code use this machine's vector instructions: "-mavx2 -mfma" where
+// the CPU has AVX2 and FMA, with "-ffp-contract=off", or "-ffp-contract=fast" if `fused` (products
+// fused into sums); "-ffp-contract=off" or "=fast" alone elsewhere. `target` gets their name
+// ("avx2+fma" or "sse2"). Even without contraction the code is not the portable build's bit for
+// bit: GCC 12's SLP vectoriser emits vfmaddsub despite -ffp-contract=off (the heavy top's body-form
+// rhs, half of 100,000 random states off by an ulp). For the bench driver, and fused for the lane
+// kernels, whose arithmetic is their own anyway (vector sin and cos, shared steps).
+std::string host_vector_flags(std::string* target = nullptr, bool fused = false);
 
 // The flags that let compiled code use this machine's vectors with the portable build's bits:
 // "-mavx2" where the CPU has AVX2, else none. Without -mfma no instruction can fuse a product
 // into a sum, and vector + - * / round as the scalar ones do (tests/run/test_kernel_flags.cpp).
-// The scalar kernels of a `taylor` scene use them: the recurrences' sums run in 4-wide vectors,
-// a heavy-top Taylor sweep's members 23% faster here; the other methods' kernels stay portable
-// (a DOP853 sweep's took 25% longer with them: not investigated).
+// The scalar kernels of a `taylor` scene use them: the recurrences' sums run in 4-wide vectors
+// (one heavy-top expansion 275 against 539 ns). The other methods' kernels stay portable: a
+// DOP853 sweep took 25% longer with any VEX-encoded code (docs/design-notes.md).
 std::string host_exact_vector_flags();
 
 // Compiles `source` (a complete translation unit) unless the cache has it, then loads it.

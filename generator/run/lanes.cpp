@@ -75,12 +75,12 @@ std::string lane_source(const compiled_form& cf) {
 }
 
 // The compiler flags of the batch kernel and the name of its target. Products are fused into
-// sums where the CPU has FMA (-ffp-contract=fast after host_vector_flags' "off"): a lane's bits
-// are not its scalar run's anyway (vector sin and cos, shared steps), and a heavy-top Taylor
-// expansion took 129 against 146 ns a lane (bench/results/taylor_kernel.md).
+// sums where the CPU has FMA: a lane's bits are not its scalar run's anyway (vector sin and cos,
+// shared steps), and a heavy-top Taylor expansion took 129 against 146 ns a lane
+// (bench/results/taylor_kernel.md).
 std::pair<std::string, std::string> lane_target() {
     std::string arch;
-    std::string flags = host_vector_flags(&arch) + " -ffp-contract=fast";
+    std::string flags = host_vector_flags(&arch, true);
 #ifdef ROTGEN_XSIMD_INCLUDE
     const std::string dir = ROTGEN_XSIMD_INCLUDE; // not the system's: -I there breaks <cstdlib>
     if (dir != "/usr/include" && dir != "/usr/local/include") flags += " -I'" + dir + "'";
