@@ -242,7 +242,7 @@ template <class T, class S> class taylor_stepper {
         if constexpr (has_taylor_v<S, T>) {
             m_c.assign(sys.taylor_series() * static_cast<std::size_t>(m_max_order + 1), T(0));
             expand(sys, t0, y0, stats);
-            for (std::size_t i = 0; i < m_n; ++i)
+            for (std::size_t i = 0; i < size(); ++i)
                 m_f0[static_cast<Eigen::Index>(i)] = coefficient(i, 1);
             return m_f0.allFinite();
         } else {
@@ -275,7 +275,7 @@ template <class T, class S> class taylor_stepper {
         m_h = h;
         const bool continued = m_stepped && y == m_y1;
         tails(h, m_tail);
-        for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(m_n); ++i) {
+        for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(size()); ++i) {
             m_comp_start[i] = continued ? m_comp[i] : T(0);
             const T increment = h * m_tail[i] - m_comp_start[i];
             m_y1[i] = y[i] + increment;
@@ -296,7 +296,7 @@ template <class T, class S> class taylor_stepper {
     void dense(T theta, vector& out) const {
         const T th = theta * m_h;
         tails(th, out);
-        for (std::size_t i = 0; i < m_n; ++i) {
+        for (std::size_t i = 0; i < size(); ++i) {
             const auto e = static_cast<Eigen::Index>(i);
             out[e] = coefficient(i, 0) + (th * out[e] - m_comp_start[e]);
         }
@@ -305,6 +305,11 @@ template <class T, class S> class taylor_stepper {
     int last_order() const { return m_p; } // the order of the last expansion
 
   private:
+    // The state's size: a compile-time constant where the system's is (the loops over the
+    // components unroll: 8% of a step of the free top at order 11), else the run's.
+    static constexpr Eigen::Index fixed_size = vector::RowsAtCompileTime;
+    std::size_t size() const { return fixed_size > 0 ? std::size_t(fixed_size) : m_n; }
+
     T coefficient(std::size_t i, int k) const {
         return m_c[i * static_cast<std::size_t>(m_p + 1) + static_cast<std::size_t>(k)];
     }
@@ -314,7 +319,7 @@ template <class T, class S> class taylor_stepper {
         using std::abs;
         using std::max;
         T r = T(0);
-        for (std::size_t i = 0; i < m_n; ++i) {
+        for (std::size_t i = 0; i < size(); ++i) {
             const T v = abs(coefficient(i, k));
             if (!(v == v)) return v;
             r = max(r, v);
@@ -337,14 +342,14 @@ template <class T, class S> class taylor_stepper {
         using std::abs;
         using std::max;
         m_norm0 = T(0);
-        for (std::size_t i = 0; i < m_n; ++i)
+        for (std::size_t i = 0; i < size(); ++i)
             m_norm0 = max(m_norm0, abs(y[static_cast<Eigen::Index>(i)]));
         const taylor<T>& m = m_method;
         m_relative = m.rtol > T(0) && m.rtol * m_norm0 > m.atol;
         m_inv_s = m_relative ? T(1) / m_norm0 : T(1); // off the step's chain: see step_rule
         m_p = m_relative ? m_order_rel : m_order_abs;
         const std::size_t stride = static_cast<std::size_t>(m_p + 1);
-        for (std::size_t i = 0; i < m_n; ++i)
+        for (std::size_t i = 0; i < size(); ++i)
             m_c[i * stride] = y[static_cast<Eigen::Index>(i)];
         sys.taylor(t, m_c.data(), m_p);
         ++stats.rhs_evals;
