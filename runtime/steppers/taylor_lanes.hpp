@@ -193,14 +193,14 @@ template <class T, class S> class taylor_lane_stepper {
         });
     }
 
-    // Every lane's sum_{k>=1} y_i^[k] h^(k-1) (detail::split_horner, as taylor_stepper's), into
+    // Every lane's sum_{k>=1} y_i^[k] h^(k-1) (detail::series_sum, as taylor_stepper's), into
     // r: a block of lanes at a time, its sums held in registers across the orders.
-    // w: the lane count, as with_lanes gives it (split_horners keeps a constant one's sums in
+    // w: the lane count, as with_lanes gives it (series_sums keeps a constant one's sums in
     // registers).
     template <class W> void tail(std::size_t i, T h, T* r, W w) const {
         constexpr int lanes = std::is_integral_v<W> ? -1 : static_cast<int>(W{});
         const T* c = at(i, 1); // coefficient m + 1 of the lanes at c[m w + l]
-        detail::split_horners<lanes>(
+        detail::series_sums<lanes>(
             m_p, h, w, [&](int m, std::size_t l) { return c[std::size_t(m) * w + l]; }, r);
     }
 
