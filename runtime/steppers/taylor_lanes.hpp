@@ -200,8 +200,7 @@ template <class T, class S> class taylor_lane_stepper {
     template <class W> void tail(std::size_t i, T h, T* r, W w) const {
         constexpr int lanes = std::is_integral_v<W> ? -1 : static_cast<int>(W{});
         const T* c = at(i, 1); // coefficient m + 1 of the lanes at c[m w + l]
-        detail::series_sums<lanes>(
-            m_p, h, w, [&](int m, std::size_t l) { return c[std::size_t(m) * w + l]; }, r);
+        detail::series_sums<lanes>(m_p, h, w, {c, w, 1}, r);
     }
 
     // Whether lane l of y is the last step's end.
