@@ -4,7 +4,7 @@
 //
 // Each step expands the solution through (t, y) into its Taylor polynomial, from the system's
 // generated coefficient function (`rotgen emit --outputs taylor`; x^[k] = x^(k)/k!):
-//   y(t + h) = sum_{k=0..p} y^[k] h^k                                 (Horner's scheme)
+//   y(t + h) = sum_{k=0..p} y^[k] h^k          (Estrin's scheme to order 16, split Horner above)
 // The order and the step come from the tolerance and the last two coefficients (Jorba & Zou,
 // section 3.2, as heyoka applies it, with rotgen's rtol/atol):
 //   control  relative (eps = rtol) when rtol ||y||_inf > atol, else absolute (eps = atol)
@@ -15,6 +15,8 @@
 //                                                           convergence from the series' tail)
 //   step     h = rho / e^2 · exp(-0.7 / (p - 1))           (JZ (3.14): the truncation error
 //                                                           ~ eps s, with a safety factor)
+// For a double the rule's logarithm and exponential are taken to about 1e-7, not to the last bit
+// (detail::ln_step, detail::exp_step: each step waits on them).
 // There is no error estimate and no rejected step: the step is chosen before it is taken (the
 // driver asks choose_step(), integrate/self_stepping.hpp). With `step > 0` the method takes fixed
 // steps of order `order` (or the order of the tolerance) instead. Dense output is the step's own
@@ -86,7 +88,8 @@ inline double log2_below(double x) {
 inline double exp_step(double x) {
     const double y = x * 1.4426950408889634; // log2(e)
     if (!(y > -1020.0 && y < 1020.0)) return std::exp(x);
-    constexpr double round = 6755399441055744.0; // 1.5 2^52: y + round rounds y to an integer
+    // 1.5 2^52: y + round rounds y to an integer (IEEE arithmetic: not under -ffast-math)
+    constexpr double round = 6755399441055744.0;
     const double shifted = y + round;
     const double n = shifted - round;
     const double f = y - n, f2 = f * f, f4 = f2 * f2;
