@@ -1,9 +1,10 @@
 // One heavy-top Taylor expansion (taylor_fixed<15>, the order of rtol 1e-12) per member, three
-// ways: on double (as a sweep's scalar kernels run it), on one xsimd batch of 4 doubles (as
-// --lanes 4 runs it, and --lanes 8 twice a call), and on two batches interleaved in one pass (8
-// lanes in one expansion: if the batch expansion waited on its chain of orders, two independent
-// chains would hide that wait). ns per member (per lane), the median of 15 timings. Built by
-// bench/lanes/taylor_kernel.sh with the generated header as UNIT_HEADER, namespace UNIT.
+// ways: on double (as a sweep's scalar kernels run it), on one xsimd batch (4 doubles with AVX2,
+// as --lanes 4 runs it and --lanes 8 twice a call; 8 with AVX-512, as a `taylor` scene's --lanes 8
+// runs it there), and on two batches interleaved in one pass (if the batch expansion waited on
+// its chain of orders, two independent chains would hide that wait). ns per member (per lane), the
+// median of 15 timings. Built by bench/lanes/taylor_kernel.sh with the generated header as
+// UNIT_HEADER, namespace UNIT.
 #include <xsimd/xsimd.hpp>
 
 #include <cmath>
@@ -88,7 +89,8 @@ template <class T> double ns_per_member(int lanes) {
 } // namespace
 
 int main() {
-    const double scalar = ns_per_member<double>(1), one = ns_per_member<batch>(4),
-                 pair = ns_per_member<two::batches>(8);
+    const int w = static_cast<int>(batch::size); // 4 with AVX2, 8 with AVX-512
+    const double scalar = ns_per_member<double>(1), one = ns_per_member<batch>(w),
+                 pair = ns_per_member<two::batches>(2 * w);
     std::printf("%.0f %.0f %.0f\n", scalar, one, pair);
 }

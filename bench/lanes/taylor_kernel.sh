@@ -26,18 +26,27 @@ build() { # OUT FLAGS...
 build "$work/portable"
 build "$work/scalar" -mavx2
 build "$work/lanes" -mavx2 -mfma -ffp-contract=fast
+wide=no # the 8-wide batches of a `taylor` scene's lane kernels where the CPU has AVX-512
+if grep -q ' avx512f ' /proc/cpuinfo && grep -q ' avx512dq ' /proc/cpuinfo; then
+  wide=yes
+  build "$work/wide" -mavx512f -mavx512dq -mavx512vl -mavx512bw -mavx2 -mfma -ffp-contract=fast
+fi
 for ((i = 0; i < copies; i++)); do
   echo "copy $((i + 1)) of $copies" >&2
   cp "$work/scalar" "$work/s$i" && cp "$work/lanes" "$work/l$i" && cp "$work/portable" "$work/p$i"
   read -r s _ _ < <("$work/s$i")
   read -r _ b t < <("$work/l$i")
   read -r p _ _ < <("$work/p$i")
-  echo "$s $b $t $p" >>"$work/times"
+  b8=-
+  if [ $wide = yes ]; then
+    cp "$work/wide" "$work/w$i" && read -r _ b8 _ < <("$work/w$i") && rm "$work/w$i"
+  fi
+  echo "$s $b $t $p $b8" >>"$work/times"
   rm "$work/s$i" "$work/l$i" "$work/p$i"
 done
 median() { sort -g | awk '{ v[NR] = $1 } END { print (NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2) }'; }
 col() { awk -v c="$1" '{ print $c }' "$work/times" | median; }
-s=$(col 1) b=$(col 2) t=$(col 3) p=$(col 4)
+s=$(col 1) b=$(col 2) t=$(col 3) p=$(col 4) b8=$(col 5)
 ratio() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", a / b }'; }
 cat <<MD
 # What lanes gain in one Taylor expansion
@@ -56,6 +65,7 @@ the sums of the recurrences run four terms to a vector), the batches as the lane
 | double, compiled without \`-mavx2\` (as a sweep's scalar kernels were before) | $p | $(ratio "$s" "$p") |
 | one batch of 4 lanes (\`--lanes 4\`; \`--lanes 8\` calls it twice) | $b | $(ratio "$s" "$b") |
 | two batches of 4 interleaved in one expansion (8 lanes) | $t | $(ratio "$s" "$t") |
+$([ $wide = yes ] && echo "| one batch of 8 lanes on AVX-512 (a \`taylor\` scene's \`--lanes 8\` there) | $b8 | $(ratio "$s" "$b8") |")
 
-Every copy's "double, batch, two batches, double without -mavx2" ns: $(tr '\n' ';' <"$work/times" | sed 's/;$//; s/;/; /g').
+Every copy's "double, batch, two batches, double without -mavx2, AVX-512 batch" ns: $(tr '\n' ';' <"$work/times" | sed 's/;$//; s/;/; /g').
 MD

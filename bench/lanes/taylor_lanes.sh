@@ -40,31 +40,35 @@ one_run() {
   shift
   rm -rf "$work/out"
   t=$(ROTGEN_CACHE_DIR=$round_dir/cache /usr/bin/time -f "cpu %U %S" -o "$work/cpu" \
-      "$round_dir/rotgen" sweep "$scene" -o "$work/out" -j 1 "$@" 2>&1 |
+      env $lane_env "$round_dir/rotgen" sweep "$scene" -o "$work/out" -j 1 "$@" 2>&1 |
       summary_seconds "running the members")
   [[ -n $t ]] || { echo "taylor_lanes.sh: no time from: $scene $*" >&2; exit 1; }
   echo "$t $(awk '/^cpu/ { print $2 + $3 }' "$work/cpu")"
 }
 median() { sort -g | awk '{ v[NR] = $1 } END { print (NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2) }'; }
-for way in "" "--lanes 4" "--lanes 8"; do # compile the kernels into the cache
+# the ways: alone, --lanes 4, --lanes 8 (8-wide batches where the CPU has AVX-512), and --lanes 8
+# in 4-wide AVX2 batches (ROTGEN_LANES_TARGET=avx2: issue 29's measure)
+ways=("" "--lanes 4" "--lanes 8" "--lanes 8")
+envs=("" "" "" "ROTGEN_LANES_TARGET=avx2")
+for k in 0 1 2 3; do # compile the kernels into the cache
   # shellcheck disable=SC2086
-  "$rotgen" sweep "$work/taylor.yaml" -o "$work/warm" -q -j 1 $way
+  env ${envs[k]} "$rotgen" sweep "$work/taylor.yaml" -o "$work/warm" -q -j 1 ${ways[k]}
 done
 summary=$("$rotgen" sweep "$work/taylor.yaml" -o "$work/out" -j 1 --lanes 8 2>&1)
 lanes_line=$(sed -n 's/^  lanes   //p' <<<"$summary")
+lanes_arch=$(sed -n 's/.*(\(.*\))$/\1/p' <<<"$lanes_line")
 steps_lanes=$(sed -n 's/^  steps   //p' <<<"$summary")
 steps_alone=$("$rotgen" sweep "$work/taylor.yaml" -o "$work/out" -j 1 2>&1 | sed -n 's/^  steps   //p')
-# Every round: fresh copies, then alone, --lanes 4, --lanes 8 on both scenes (interleaved, so that
-# all see the same load). Leaves "WALL CPU" per run in $work/times/SCENE-WAY.
-ways=("" "--lanes 4" "--lanes 8")
+# Every round: fresh copies, then the ways on both scenes (interleaved, so that all see the same
+# load). Leaves "WALL CPU" per run in $work/times/SCENE-WAY.
 mkdir -p "$work/times"
 for ((r = 0; r < runs; r++)); do
   echo "round $((r + 1)) of $runs" >&2
   fresh_copies
   for scene in taylor short; do
-    for k in 0 1 2; do
+    for k in 0 1 2 3; do
       # shellcheck disable=SC2086
-      one_run "$work/$scene.yaml" ${ways[k]} >>"$work/times/$scene-$k"
+      lane_env=${envs[k]} one_run "$work/$scene.yaml" ${ways[k]} >>"$work/times/$scene-$k"
     done
   done
 done
@@ -74,6 +78,7 @@ best() { awk '{ print $1 }' "$work/times/$1" | sort -g | head -1; }
 read -r one one_c l4 l4_c l8 l8_c <<<"$(med taylor-0 1) $(med taylor-0 2) $(med taylor-1 1) $(med taylor-1 2) $(med taylor-2 1) $(med taylor-2 2)"
 read -r s_one s_one_c s_l4 s_l4_c s_l8 s_l8_c <<<"$(med short-0 1) $(med short-0 2) $(med short-1 1) $(med short-1 2) $(med short-2 1) $(med short-2 2)"
 read -r b_one b_l4 b_l8 <<<"$(best taylor-0) $(best taylor-1) $(best taylor-2)"
+read -r a8 a8_c s_a8 s_a8_c b_a8 <<<"$(med taylor-3 1) $(med taylor-3 2) $(med short-3 1) $(med short-3 2) $(best taylor-3)"
 
 ratio() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", a / b }'; }
 us() { awk -v t="$1" -v n=$members 'BEGIN { printf "%.0f", t / n * 1e6 }'; }
@@ -96,10 +101,12 @@ members" (the kernels compiled once, before).
 |---|---:|---:|---:|---:|---:|---:|---:|---:|---:|
 | one member at a time | $one | $b_one | $(us "$one") | 1 | $(sub_us "$one" "$s_one") | 1 | $(us "$one_c") | $(sub_us "$one_c" "$s_one_c") | 1 |
 | \`--lanes 4\` | $l4 | $b_l4 | $(us "$l4") | $(ratio "$one" "$l4") | $(sub_us "$l4" "$s_l4") | $(ratio "$(sub_us "$one" "$s_one")" "$(sub_us "$l4" "$s_l4")") | $(us "$l4_c") | $(sub_us "$l4_c" "$s_l4_c") | $(ratio "$(sub_us "$one_c" "$s_one_c")" "$(sub_us "$l4_c" "$s_l4_c")") |
-| \`--lanes 8\` | $l8 | $b_l8 | $(us "$l8") | $(ratio "$one" "$l8") (goal 2.5) | $(sub_us "$l8" "$s_l8") | $(ratio "$(sub_us "$one" "$s_one")" "$(sub_us "$l8" "$s_l8")") | $(us "$l8_c") | $(sub_us "$l8_c" "$s_l8_c") | $(ratio "$(sub_us "$one_c" "$s_one_c")" "$(sub_us "$l8_c" "$s_l8_c")") |
+| \`--lanes 8\`, 4-wide AVX2 batches (\`ROTGEN_LANES_TARGET=avx2\`) | $a8 | $b_a8 | $(us "$a8") | $(ratio "$one" "$a8") (goal 2.5) | $(sub_us "$a8" "$s_a8") | $(ratio "$(sub_us "$one" "$s_one")" "$(sub_us "$a8" "$s_a8")") | $(us "$a8_c") | $(sub_us "$a8_c" "$s_a8_c") | $(ratio "$(sub_us "$one_c" "$s_one_c")" "$(sub_us "$a8_c" "$s_a8_c")") |
+| \`--lanes 8\` ($lanes_arch) | $l8 | $b_l8 | $(us "$l8") | $(ratio "$one" "$l8") | $(sub_us "$l8" "$s_l8") | $(ratio "$(sub_us "$one" "$s_one")" "$(sub_us "$l8" "$s_l8")") | $(us "$l8_c") | $(sub_us "$l8_c" "$s_l8_c") | $(ratio "$(sub_us "$one_c" "$s_one_c")" "$(sub_us "$l8_c" "$s_l8_c")") |
 | to t = 0.01 (a member's cost outside its integration) | $s_one | | $(us "$s_one") | | | | $(us "$s_one_c") | | |
 | the same, \`--lanes 4\` | $s_l4 | | $(us "$s_l4") | | | | $(us "$s_l4_c") | | |
-| the same, \`--lanes 8\` | $s_l8 | | $(us "$s_l8") | | | | $(us "$s_l8_c") | | |
+| the same, \`--lanes 8\`, AVX2 | $s_a8 | | $(us "$s_a8") | | | | $(us "$s_a8_c") | | |
+| the same, \`--lanes 8\` ($lanes_arch) | $s_l8 | | $(us "$s_l8") | | | | $(us "$s_l8_c") | | |
 
 "Integration alone" is the run to t = 10 minus the run to t = 0.01. CPU: the whole command's user +
 system time (its preparation, the same in every row, cancels in "integration alone"); on a loaded

@@ -71,6 +71,18 @@ std::string host_vector_flags(std::string* target, bool fused) {
     return contract;
 }
 
+std::string host_lane_vector_flags(std::string* target, bool wide) {
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+    if (wide && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
+        __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw") &&
+        __builtin_cpu_supports("fma")) {
+        if (target) *target = "avx512+fma";
+        return "-mavx512f -mavx512dq -mavx512vl -mavx512bw -mavx2 -mfma -ffp-contract=fast";
+    }
+#endif
+    return host_vector_flags(target, true);
+}
+
 std::string host_exact_vector_flags() {
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
     if (__builtin_cpu_supports("avx2")) return "-mavx2";

@@ -51,11 +51,18 @@ const std::string& compiler_identity();
 // kernels, whose arithmetic is their own anyway (vector sin and cos, shared steps).
 std::string host_vector_flags(std::string* target = nullptr, bool fused = false);
 
+// host_vector_flags(target, true), or where the CPU has AVX-512 (F, DQ, VL, BW) and `wide`, its
+// 8-wide vectors: "-mavx512f -mavx512dq -mavx512vl -mavx512bw -mavx2 -mfma -ffp-contract=fast",
+// target "avx512+fma". For the lane kernels of a `taylor` scene: one heavy-top expansion in a
+// batch of 8 took 45 ns a lane against 131 in a batch of 4 (bench/results/taylor_kernel.md),
+// while a DOP853 lane sweep took 10% longer with them (docs/design-notes.md).
+std::string host_lane_vector_flags(std::string* target, bool wide);
+
 // The flags that let compiled code use this machine's vectors with the portable build's bits:
 // "-mavx2" where the CPU has AVX2, else none. Without -mfma no instruction can fuse a product
 // into a sum, and vector + - * / round as the scalar ones do (tests/run/test_kernel_flags.cpp).
 // The scalar kernels of a `taylor` scene use them: the recurrences' sums run in 4-wide vectors
-// (one heavy-top expansion 275 against 539 ns). The other methods' kernels stay portable: a
+// (one heavy-top expansion 281 against 551 ns). The other methods' kernels stay portable: a
 // DOP853 sweep took 25% longer with any VEX-encoded code (docs/design-notes.md).
 std::string host_exact_vector_flags();
 

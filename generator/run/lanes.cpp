@@ -2,6 +2,7 @@
 
 #include "support/error.hpp"
 
+#include <cstdlib>
 #include <memory>
 #include <sstream>
 #include <type_traits>
@@ -74,13 +75,27 @@ std::string lane_source(const compiled_form& cf) {
     return s.str();
 }
 
+// Whether a `taylor` scene's batch kernel may use AVX-512: unless ROTGEN_LANES_TARGET=avx2 (to
+// compare; lane by lane the operations are the same, and so are the results' bytes); "auto" or
+// unset: yes.
+bool lanes_may_be_wide() {
+    const char* v = std::getenv("ROTGEN_LANES_TARGET");
+    const std::string target = v ? v : "";
+    if (target.empty() || target == "auto") return true;
+    if (target == "avx2") return false;
+    throw user_error({"ROTGEN_LANES_TARGET=" + target},
+                     "unknown lane target; use avx2 (never AVX-512) or auto (the default)");
+}
+
 // The compiler flags of the batch kernel and the name of its target. Products are fused into
 // sums where the CPU has FMA: a lane's bits are not its scalar run's anyway (vector sin and cos,
 // shared steps), and a heavy-top Taylor expansion took 129 against 146 ns a lane
-// (bench/results/taylor_kernel.md).
-std::pair<std::string, std::string> lane_target() {
+// (bench/results/taylor_kernel.md). A `taylor` scene's batches are 8 wide where the CPU has
+// AVX-512 and `lanes` (the members run together) is a multiple of 8 (host_lane_vector_flags).
+std::pair<std::string, std::string> lane_target(const std::string& method, std::size_t lanes) {
+    const bool wide = method == "taylor" && lanes % 8 == 0 && lanes_may_be_wide();
     std::string arch;
-    std::string flags = host_vector_flags(&arch, true);
+    std::string flags = host_lane_vector_flags(&arch, wide);
 #ifdef ROTGEN_XSIMD_INCLUDE
     const std::string dir = ROTGEN_XSIMD_INCLUDE; // not the system's: -I there breaks <cstdlib>
     if (dir != "/usr/include" && dir != "/usr/local/include") flags += " -I'" + dir + "'";
@@ -305,14 +320,15 @@ void lane_check(const scene_spec& scene) {
                              " (or run the sweep without --lanes)");
 }
 
-lane_kernels compile_lanes(const prepared_scene& prepared, stage_timings& timings) {
+lane_kernels compile_lanes(const prepared_scene& prepared, stage_timings& timings,
+                           std::size_t lanes) {
 #ifndef ROTGEN_HAVE_XSIMD
-    (void)prepared, (void)timings;
+    (void)prepared, (void)timings, (void)lanes;
     throw user_error({"rotgen sweep"}, "--lanes: this rotgen was built without xsimd "
                                        "(libxsimd-dev); run the sweep without --lanes");
 #else
     const compiled_form& cf = prepared.compiled(prepared.scene().form, timings, nullptr);
-    const auto [flags, arch] = lane_target();
+    const auto [flags, arch] = lane_target(prepared.scene().integrator.method, lanes);
     lane_kernels k;
     k.arch = arch;
     const std::string source = lane_source(cf);

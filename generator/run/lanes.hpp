@@ -57,7 +57,8 @@ struct lane_kernels {
 void lane_check(const scene_spec& scene);
 
 // The batch kernel of the scene's form (compiled, or loaded from the cache).
-lane_kernels compile_lanes(const prepared_scene& prepared, stage_timings& timings);
+lane_kernels compile_lanes(const prepared_scene& prepared, stage_timings& timings,
+                           std::size_t lanes);
 
 // Runs the members together; a member's entry is empty when it must run alone (above).
 // Thread-safe as run_member is.

@@ -153,7 +153,8 @@ struct ensemble {
         if (!q.trajectories) prepared->keep_last_row_only();
         prepared->compile_all(timings);
         layout = layout_of(*prepared);
-        if (q.lanes > 1) lanes = std::make_unique<lane_kernels>(compile_lanes(*prepared, timings));
+        if (q.lanes > 1)
+            lanes = std::make_unique<lane_kernels>(compile_lanes(*prepared, timings, q.lanes));
     }
 };
 

@@ -67,7 +67,8 @@ void prepare(ensemble& e, const std::string& text, const sweep_options& o) {
     py::gil_scoped_release released; // compiling locks by itself
     e.prepared->compile_all(timings);
     e.layout = layout_of(*e.prepared);
-    if (o.lanes > 1) e.lanes = std::make_unique<lane_kernels>(compile_lanes(*e.prepared, timings));
+    if (o.lanes > 1)
+        e.lanes = std::make_unique<lane_kernels>(compile_lanes(*e.prepared, timings, o.lanes));
 }
 
 // What the members leave: each member's summary row (text) and samples, in its own slot.

@@ -74,11 +74,11 @@ summary_pair summaries(const scratch_file& scene, const std::string& name, int l
     return out;
 }
 
-// The summary's lanes line for `in` of `of` members in batches of `w`, on either target.
+// The summary's lanes line for `in` of `of` members in batches of `w`, on any target.
 bool lanes_line_is(const std::string& line, std::size_t in, std::size_t of, int w) {
     const std::string head = "lanes   " + std::to_string(in) + " of " + std::to_string(of) +
                              " members in batches of " + std::to_string(w) + " (";
-    return line == head + "avx2+fma)" || line == head + "sse2)";
+    return line == head + "avx2+fma)" || line == head + "avx512+fma)" || line == head + "sse2)";
 }
 
 // The `steps` and `rhs_evals` columns of the summary written by summaries(scene, name, ...) and
@@ -147,7 +147,7 @@ TEST_CASE("sweep --lanes: the batch kernel is the scalar kernel up to vector sin
     const scratch_file scene("lanes_kernel.yaml", heavy_top("{method: rk4, step: 0.01}", ""));
     stage_timings timings;
     const prepared_scene prepared(load_scene(scene.path), timings);
-    const lane_kernels k = compile_lanes(prepared, timings);
+    const lane_kernels k = compile_lanes(prepared, timings, 4);
     const compiled_form& cf = prepared.compiled(form_kind::lagrangian, timings, nullptr);
     REQUIRE((k.width == 2 || k.width == 4));
     // the kernels read the prepared values w (the parameters, then the hoisted constants)
@@ -199,7 +199,7 @@ TEST_CASE(
                              heavy_top("{method: taylor, rtol: 1e-10, atol: 1e-10}", ""));
     stage_timings timings;
     const prepared_scene prepared(load_scene(scene.path), timings);
-    const lane_kernels k = compile_lanes(prepared, timings);
+    const lane_kernels k = compile_lanes(prepared, timings, 8); // 8-wide where AVX-512 is
     REQUIRE(k.taylor != nullptr);
     const compiled_form& cf = prepared.compiled(form_kind::lagrangian, timings, nullptr);
     const std::size_t lanes = 8, n = cf.sys.n, np = cf.f.parameters.size();
@@ -393,4 +393,57 @@ TEST_CASE("sweep --lanes: what lanes cannot run is refused with one line, exit 2
     CHECK((r.err == located || r.err == unlocated));
     struct stat st {};
     CHECK(::stat(dir.c_str(), &st) != 0);
+}
+
+// Whether this CPU has what a `taylor` scene's 8-wide batch kernels need (host_lane_vector_flags).
+bool cpu_has_avx512() {
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+    return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
+           __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw") &&
+           __builtin_cpu_supports("fma");
+#else
+    return false;
+#endif
+}
+
+// A `taylor` scene's lanes run 8-wide where the CPU has AVX-512 (on a CPU without it, this checks
+// the AVX2 target only); ROTGEN_LANES_TARGET=avx2 keeps them 4-wide, to the same bytes; another
+// value is refused.
+TEST_CASE("sweep --lanes: a taylor scene's batches are AVX-512 where the CPU has it unless "
+          "ROTGEN_LANES_TARGET=avx2",
+          "[sweep][lanes][taylor]") {
+    const std::string vary =
+        "sweep:\n  vary:\n    initial.theta: {from: 0.2, to: 1.4, count: 16}\n";
+    const scratch_file scene("lanes_target.yaml",
+                             heavy_top("{method: taylor, rtol: 1e-10, atol: 1e-10}", vary));
+    const auto run = [&](const std::string& name) {
+        const std::string dir = scratch(name);
+        const test::run_result r =
+            run_rotgen("sweep '" + scene.path + "' -o '" + dir + "' -j 1 --lanes 8");
+        std::string line;
+        for (const std::string& l : text_lines(r.out + r.err))
+            if (l.rfind("  lanes   ", 0) == 0) line = l.substr(2);
+        return std::make_tuple(r, line, read_file(dir + "/summary.csv"));
+    };
+    const auto [wide, wide_line, wide_summary] = run("lanes_target_scalar");
+    REQUIRE(wide.status == 0);
+    if (cpu_has_avx512())
+        CHECK(wide_line == "lanes   16 of 16 members in batches of 8 (avx512+fma)");
+    else
+        CHECK(lanes_line_is(wide_line, 16, 16, 8));
+    ::setenv("ROTGEN_LANES_TARGET", "avx2", 1);
+    const auto [narrow, narrow_line, narrow_summary] = run("lanes_target_lanes");
+    ::setenv("ROTGEN_LANES_TARGET", "bogus", 1);
+    const auto [bad, bad_line, bad_summary] = run("lanes_target_bad");
+    ::unsetenv("ROTGEN_LANES_TARGET");
+    REQUIRE(narrow.status == 0);
+    CHECK(lanes_line_is(narrow_line, 16, 16, 8));
+    CHECK(narrow_line.find("avx512") == std::string::npos); // avx2+fma (or sse2)
+    // lane by lane the same operations, so the same bytes (observed; also for 1,024 heavy tops)
+    CHECK(wide_summary == narrow_summary);
+    CHECK(bad.status == 2);
+    CHECK(bad.err == "rotgen: error: ROTGEN_LANES_TARGET=bogus: unknown lane target; use avx2 "
+                     "(never AVX-512) or auto (the default)\n");
+    struct stat st {};
+    CHECK(::stat(scratch("lanes_target_bad").c_str(), &st) != 0);
 }
