@@ -46,7 +46,7 @@ struct lane_kernels {
     kernel rhs = nullptr;
     taylor_kernel taylor = nullptr; // with the Taylor method
     std::size_t width = 1;          // doubles per batch
-    std::string arch;               // "avx2+fma" or "sse2"
+    std::string arch;               // "avx512+fma", "avx2+fma" or "sse2"
     // rhs reads the prepared values (compiled_form::prepare) by lane, taylor the parameters
     void (*prepare)(const double* v, double* w) = nullptr;
     std::size_t prepared_size = 0;
@@ -56,7 +56,9 @@ struct lane_kernels {
 // than rk4, dop853 and taylor.
 void lane_check(const scene_spec& scene);
 
-// The batch kernel of the scene's form (compiled, or loaded from the cache).
+// The batch kernel of the scene's form (compiled, or loaded from the cache) for `lanes` members
+// run together: a `taylor` scene's is 8 wide where the CPU has AVX-512 and `lanes` is a multiple
+// of 8 (unless ROTGEN_LANES_TARGET=avx2; another value of it throws user_error).
 lane_kernels compile_lanes(const prepared_scene& prepared, stage_timings& timings,
                            std::size_t lanes);
 
