@@ -5,7 +5,8 @@
 #
 # The heavy top of bench/sweep.sh (models/heavy_top.yaml, 1024 members over initial theta
 # 0.1 .. 1.5, t = 0 .. 10, 101 samples), integrated by `taylor` at rtol = atol = 1e-12: on one
-# thread, one member at a time and with `--lanes 4` and `--lanes 8`; the same to t = 0.01 (a
+# thread, one member at a time, with `--lanes 4`, `--lanes 8` (8-wide on AVX-512) and `--lanes 8`
+# in AVX2 batches (ROTGEN_LANES_TARGET=avx2); the same to t = 0.01 (a
 # member's cost outside its integration). Each figure is the median of 21 rounds of the sweep's own
 # "running the members" time (kernels compiled once, before; each round from fresh copies of the
 # binary and the kernels, below), the ways interleaved in each round so that all see the same load.

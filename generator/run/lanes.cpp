@@ -76,8 +76,8 @@ std::string lane_source(const compiled_form& cf) {
 }
 
 // Whether a `taylor` scene's batch kernel may use AVX-512: unless ROTGEN_LANES_TARGET=avx2 (to
-// compare; lane by lane the operations are the same, and so are the results' bytes); "auto" or
-// unset: yes.
+// compare: lane by lane the operations are the same, and on the heavy top so were the results'
+// bytes); "auto" or unset: yes.
 bool lanes_may_be_wide() {
     const char* v = std::getenv("ROTGEN_LANES_TARGET");
     const std::string target = v ? v : "";
