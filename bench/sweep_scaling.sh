@@ -7,9 +7,10 @@
 # The heavy top (models/heavy_top.yaml), MEMBERS (default 16,384) members over initial theta
 # 0.1 .. 1.5, t = 0 .. 10, DOP853 rtol 1e-8, the summary's "running the members" time. For each
 # power of two k up to the cores (nproc): k threads, k ranks of one thread, and above 2 cores 2
-# ranks of k/2 threads (--bind-to none, and with mpirun's default binding, which the summary warns
-# about), and from 8 cores 4 ranks of k/4 threads; then all the cores with --lanes 8 (as threads, as
-# ranks, and from 8 cores as 4 ranks of threads). ROUNDS (default 5) runs of each, the ways
+# ranks of k/2 threads (--bind-to none, and with mpirun's default binding, one core a rank, which
+# rotgen widens: sweep/binding.hpp), and from 8 cores 4 ranks of k/4 threads; one rank of all the
+# threads (default binding); then all the cores with --lanes 8 (as threads, as ranks, and from 8
+# cores as 4 ranks of threads). ROUNDS (default 5) runs of each, the ways
 # interleaved (one of each in turn), the one-thread baseline also at the end of each round; the best
 # and the median of each, and the speed-ups of both; every summary.csv is compared with the one-thread run's (with
 # lanes, the one-thread lanes run's: DOP853's lanes share steps), byte for byte. A preset
@@ -36,10 +37,12 @@ for ((k = 2; k <= cores; k *= 2)); do
   ways+=("\`mpirun -n $k\`, 1 thread each|mpirun -n $k sweep -j 1")
   if ((k >= 4)); then
     ways+=("\`mpirun -n 2 --bind-to none -j $((k / 2))\`|mpirun -n 2 --bind-to none sweep -j $((k / 2))")
-    ways+=("\`mpirun -n 2 -j $((k / 2))\` (default binding)|mpirun -n 2 sweep -j $((k / 2))")
+    ways+=("\`mpirun -n 2 -j $((k / 2))\` (default binding, which rotgen widens)|mpirun -n 2 sweep -j $((k / 2))")
   fi
   ((k >= 8)) && ways+=("\`mpirun -n 4 -j $((k / 4))\`|mpirun -n 4 sweep -j $((k / 4))")
 done
+# one rank of all the threads: mpirun binds it to one core, and rotgen gives its threads their cores
+((cores >= 2)) && ways+=("\`mpirun -n 1 -j $cores\` (default binding, which rotgen widens)|mpirun -n 1 sweep -j $cores")
 ways+=("$cores threads, \`--lanes 8\`|sweep -j $cores --lanes 8")
 ((cores >= 2)) && ways+=("\`mpirun -n $cores --lanes 8\`|mpirun -n $cores sweep -j 1 --lanes 8")
 ((cores >= 8)) && ways+=("\`mpirun -n 4 -j $((cores / 4)) --lanes 8\`|mpirun -n 4 sweep -j $((cores / 4)) --lanes 8")

@@ -45,6 +45,11 @@ class mpi_session {
     ~mpi_session(); // MPI_Finalize
     int rank() const { return m_rank; }
     int size() const { return m_size; }
+    // Whether a launcher (mpirun, srun) started this process: MPI runs, even with one rank.
+    bool launched() const { return m_active; }
+    // This rank among the ranks on its node (MPI_COMM_TYPE_SHARED), and how many they are.
+    int node_rank() const { return m_node_rank; }
+    int node_size() const { return m_node_size; }
     // Whether `ok` holds on every rank (all ranks call it; one process: ok).
     bool all(bool ok) const;
     // Rank 0's value, on every rank.
@@ -57,7 +62,7 @@ class mpi_session {
     counter_window* counter() const { return m_counter.get(); }
 
   private:
-    int m_rank = 0, m_size = 1;
+    int m_rank = 0, m_size = 1, m_node_rank = 0, m_node_size = 1;
     bool m_active = false;
     std::unique_ptr<counter_window> m_counter;
 };

@@ -439,6 +439,11 @@ mpi_session::mpi_session() {
     MPI_Comm_rank(MPI_COMM_WORLD, &m_rank);
     MPI_Comm_size(MPI_COMM_WORLD, &m_size);
     m_active = true;
+    MPI_Comm node = MPI_COMM_NULL;
+    MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+    MPI_Comm_rank(node, &m_node_rank);
+    MPI_Comm_size(node, &m_node_size);
+    MPI_Comm_free(&node);
     if (m_size == 1) return;
     m_counter = std::make_unique<counter_window>();
     MPI_Win_allocate(MPI_Aint(m_rank == 0 ? 2 * sizeof(std::uint64_t) : 0), sizeof(std::uint64_t),

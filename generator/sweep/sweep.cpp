@@ -10,6 +10,7 @@
 #include "support/progress.hpp"
 #include "support/timings.hpp"
 #include "sweep/batch.hpp"
+#include "sweep/binding.hpp"
 #include "sweep/distribute.hpp"
 #include "sweep/journal.hpp"
 #include "sweep/members.hpp"
@@ -231,6 +232,22 @@ int finish(const sweep_request& q, const ensemble& e, const std::string& workers
     return 3;
 }
 
+// ROTGEN_BINDING's policy, checked on every rank before anything is written; rank 0 throws the
+// error, the others return nothing.
+std::optional<binding_policy> checked_binding(const mpi_session& session) {
+    std::optional<binding_policy> policy;
+    std::exception_ptr failure;
+    try {
+        policy = binding_of_environment();
+    } catch (const user_error&) {
+        failure = std::current_exception();
+    }
+    if (session.all(!failure)) return policy;
+    if (session.rank() != 0) return std::nullopt;
+    if (failure) std::rethrow_exception(failure);
+    throw std::runtime_error("another MPI rank's ROTGEN_BINDING is not auto or keep");
+}
+
 // Rank 0 prepares (and compiles into the cache) and opens its outputs first; then the other ranks
 // prepare. A failure on any rank stops every rank; rank 0 reports it.
 std::unique_ptr<ensemble> prepare_everywhere(const mpi_session& session, const sweep_request& q,
@@ -263,23 +280,35 @@ std::unique_ptr<ensemble> prepare_everywhere(const mpi_session& session, const s
     return e;
 }
 
-// A warning when a process's threads outnumber the cores it may run on (`cores`, the least over
-// the ranks): they then share cores and the sweep runs no faster than on those cores. mpirun binds
-// each rank to one core when it starts 2 ranks or fewer (Open MPI), so that `mpirun -n 2 rotgen
-// sweep -j 8` runs 8 threads on one core.
-std::string oversubscribed(const mpi_session& session, unsigned jobs, std::size_t cores) {
-    if (jobs <= cores) return "";
+// Where the threads run, when rotgen bound them again (sweep/binding.hpp), and a warning when a
+// rank's threads outnumber its cores (`cores`, the least over the ranks) or a node's ranks share
+// too few cores (`crowded`): the threads then share cores and run no faster than those cores.
+std::string placement(const mpi_session& session, unsigned jobs, const thread_cores& placed,
+                      std::size_t cores, bool crowded) {
+    const auto count = [](std::size_t n, const char* what) {
+        return std::to_string(n) + " " + what + (n == 1 ? "" : "s");
+    };
+    std::string line;
+    if (placed.rebound && !placed.shared)
+        line = "\n  cores   the launcher bound each rank to " + count(placed.bound, "core") +
+               ", too few for its threads: rotgen gave it " + count(placed.cores, "core") +
+               " of its own (ROTGEN_BINDING=keep keeps the launcher's binding)";
+    if (crowded)
+        return line + "\n  warning the " + count(std::size_t(session.node_size()), "rank") +
+               " on a node run " + count(std::size_t(session.node_size()) * jobs, "thread") +
+               " on its " + count(placed.cores, "core");
+    if (jobs <= cores) return line;
     const std::string who = session.size() > 1 ? "an MPI rank" : "this process";
-    return "\n  warning " + std::to_string(jobs) + " threads share the " + std::to_string(cores) +
-           (cores == 1 ? " core " : " cores ") + who + " may run on" +
-           (session.size() > 1 ? " (mpirun binds each rank to a core or a socket: give it "
+    return line + "\n  warning " + count(jobs, "thread") + " share the " + count(cores, "core") +
+           " " + who + " may run on" +
+           (session.launched() ? " (the launcher's binding or a batch system's cpuset: give mpirun "
                                  "--bind-to none, or --map-by slot:PE=" +
                                      std::to_string(jobs) + ")"
                                : " (its CPU affinity: taskset, a batch system's cpuset)");
 }
 
 // "1 thread on each of 2 MPI ranks, lanes of 4 (avx2)"; with MPI, the members each rank ran.
-std::string workers_of(const mpi_session& session, unsigned jobs, std::size_t cores,
+std::string workers_of(const mpi_session& session, unsigned jobs, const std::string& placed,
                        const std::vector<rank_work>& ran) {
     std::string w =
         std::to_string(jobs) + (jobs == 1 ? " thread" : " threads") +
@@ -289,7 +318,7 @@ std::string workers_of(const mpi_session& session, unsigned jobs, std::size_t co
         for (std::size_t r = 0; r < ran.size(); ++r)
             w += (r == 0 ? " " : ", ") + std::to_string(ran[r].members);
     }
-    return w + oversubscribed(session, jobs, cores);
+    return w + placed;
 }
 
 } // namespace
@@ -297,6 +326,8 @@ std::string workers_of(const mpi_session& session, unsigned jobs, std::size_t co
 int sweep(const sweep_request& q) {
     const mpi_session session;
     if (session.rank() == 0) journal_not_yet();
+    const std::optional<binding_policy> binding = checked_binding(session);
+    if (!binding) return 2; // a rank other than 0: rank 0 reported the error
     stage_timings timings;
     std::unique_ptr<sweep_writer> writer;
     const std::unique_ptr<ensemble> e = prepare_everywhere(session, q, timings, writer);
@@ -307,7 +338,11 @@ int sweep(const sweep_request& q) {
     progress_line progress(double(from), double(e->table.size()), root && !q.quiet, "members");
     // under mpirun a rank per core, each with one thread, unless -j says otherwise
     const unsigned jobs = q.jobs != 0 ? q.jobs : session.size() > 1 ? 1 : all_cores();
-    const std::size_t cores = session.least(all_cores());
+    const thread_cores placed =
+        place_threads(jobs, session.launched(), session.node_rank(), session.node_size(), *binding);
+    const std::size_t cores = session.least(placed.cores);
+    const bool crowded =
+        !session.all(!placed.shared || std::size_t(session.node_size()) * jobs <= placed.cores);
     std::unique_ptr<in_order> out;
     if (root)
         out = std::make_unique<in_order>(
@@ -324,8 +359,9 @@ int sweep(const sweep_request& q) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     progress.finish();
     if (!root) return 0;
-    const int status =
-        finish(q, *e, workers_of(session, jobs, cores, ran), *writer, seconds, timings);
+    const int status = finish(
+        q, *e, workers_of(session, jobs, placement(session, jobs, placed, cores, crowded), ran),
+        *writer, seconds, timings);
     if (q.timings) print_balance(std::cerr, ran, jobs, seconds);
     return status;
 }

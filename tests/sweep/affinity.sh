@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # A sweep warns, in its summary, when its threads outnumber the cores a process may run on (its
-# CPU affinity): one process held to one core by taskset, and (given MPIEXEC, on 2 cores or more)
-# 2 ranks that mpirun binds to one core each, each running 2 threads; no warning when the threads
-# fit (-j 1 on one core; 2 ranks of 2 threads with --bind-to none).
+# CPU affinity): one process held to one core by taskset; no warning when the threads fit (-j 1
+# on one core). Given MPIEXEC, on 2 cores or more: a rank that mpirun binds to one core gets cores
+# for its threads (sweep/binding.hpp), with the same summary.csv, unless ROTGEN_BINDING=keep or
+# mpirun itself is held to that core (taskset), and then it warns; 2 ranks of 2 threads on 2 cores
+# share them, with a warning; an unknown ROTGEN_BINDING is bad input.
 #   affinity.sh ROTGEN SOURCE_DIR [MPIEXEC]
 set -euo pipefail
 rotgen=${1:?rotgen} src=${2:?source dir} mpiexec=${3:-}
@@ -23,12 +25,41 @@ expect no "$work/b.txt" "taskset -c 0, -j 1"
 if [[ -n $mpiexec ]] && (($(nproc) >= 2)); then
   root=()
   [[ $(id -u) == 0 ]] && root=(--allow-run-as-root)
-  "$mpiexec" -n 2 --bind-to core "${root[@]}" "$rotgen" sweep "$scene" -o "$work/c" "${vary[@]}" \
-    -j 2 >"$work/c.txt" 2>&1
-  expect yes "$work/c.txt" "mpirun -n 2 --bind-to core, -j 2"
-  grep -q "an MPI rank may run on (mpirun binds" "$work/c.txt" || { cat "$work/c.txt"; exit 1; }
-  "$mpiexec" -n 2 --bind-to none "${root[@]}" "$rotgen" sweep "$scene" -o "$work/d" "${vary[@]}" \
-    -j 2 >"$work/d.txt" 2>&1
-  expect no "$work/d.txt" "mpirun -n 2 --bind-to none, -j 2"
+  mpi() { # mpi OUT MPIRUN_ARGS... -- SWEEP_ARGS...: one sweep under mpirun, its summary in OUT.txt
+    local out=$1 launch=()
+    shift
+    while [[ $1 != -- ]]; do launch+=("$1") && shift; done
+    shift
+    "$mpiexec" "${root[@]}" "${launch[@]}" "$rotgen" sweep "$scene" -o "$work/$out" "${vary[@]}" \
+      "$@" >"$work/$out.txt" 2>&1
+  }
+  # mpirun binds one rank to one core: rotgen gives its 2 threads 2 cores (same summary.csv)
+  mpi e -n 1 --bind-to core -x ROTGEN_BINDING= -- -j 2
+  expect no "$work/e.txt" "mpirun -n 1 --bind-to core, -j 2"
+  grep -q "^  cores   the launcher bound each rank to 1 core, too few for its threads: rotgen gave it 2 cores of its own" \
+    "$work/e.txt" || { cat "$work/e.txt"; exit 1; }
+  cmp "$work/a/summary.csv" "$work/e/summary.csv"
+  # ... unless ROTGEN_BINDING=keep, and then it warns
+  ROTGEN_BINDING=keep mpi f -n 1 --bind-to core -x ROTGEN_BINDING -- -j 2
+  expect yes "$work/f.txt" "mpirun -n 1 --bind-to core, ROTGEN_BINDING=keep, -j 2"
+  grep -q "this process may run on (the launcher's binding" "$work/f.txt" || { cat "$work/f.txt"; exit 1; }
+  grep -q "^  cores " "$work/f.txt" && { cat "$work/f.txt"; exit 1; }
+  # mpirun itself held to one core by taskset: its rank stays there, and the summary warns
+  taskset -c 0 "$mpiexec" "${root[@]}" -n 1 -x ROTGEN_BINDING= "$rotgen" sweep "$scene" \
+    -o "$work/h" "${vary[@]}" -j 2 >"$work/h.txt" 2>&1
+  expect yes "$work/h.txt" "taskset -c 0 mpirun -n 1, -j 2"
+  grep -q "^  cores " "$work/h.txt" && { cat "$work/h.txt"; exit 1; }
+  # 2 ranks of 2 threads on 2 cores: they share the cores, and the summary says so
+  mpi c -n 2 --bind-to core -x ROTGEN_BINDING= -- -j 2
+  grep -q "^  warning the 2 ranks on a node run 4 threads on its $(nproc) cores" "$work/c.txt" ||
+    (($(nproc) >= 4)) || { cat "$work/c.txt"; exit 1; }
+  mpi d -n 2 --bind-to none -- -j 1
+  expect no "$work/d.txt" "mpirun -n 2 --bind-to none, -j 1"
+  grep -q "warning" "$work/d.txt" && { cat "$work/d.txt"; exit 1; }
+  # a policy it does not know: exit 2, nothing written
+  status=0
+  ROTGEN_BINDING=spread mpi g -n 1 -x ROTGEN_BINDING -- -j 2 || status=$?
+  [[ $status == 2 && ! -e $work/g ]] || { echo "exit $status"; cat "$work/g.txt"; exit 1; }
+  grep -q "ROTGEN_BINDING=spread: unknown binding policy" "$work/g.txt" || { cat "$work/g.txt"; exit 1; }
 fi
 echo "the oversubscription warning appears exactly when the threads outnumber the cores"

@@ -1,0 +1,99 @@
+#include "sweep/binding.hpp"
+
+#include "support/error.hpp"
+#include "sweep/parallel.hpp"
+
+#ifdef __linux__
+#include <sched.h>
+#include <unistd.h>
+#endif
+
+#include <cstdlib>
+
+namespace rotgen {
+
+binding_policy binding_of_environment() {
+    const char* v = std::getenv("ROTGEN_BINDING");
+    const std::string policy = v ? v : "";
+    if (policy.empty() || policy == "auto") return binding_policy::automatic;
+    if (policy == "keep") return binding_policy::keep;
+    throw user_error({"ROTGEN_BINDING=" + policy},
+                     "unknown binding policy; use keep (the launcher's binding) or auto (the "
+                     "default: threads that outnumber a rank's cores get cores of their own)");
+}
+
+std::vector<int> cores_for_rank(const std::vector<int>& allowed, unsigned jobs, int node_rank,
+                                int node_size) {
+    const std::size_t first = std::size_t(node_rank) * jobs;
+    if (std::size_t(node_size) * jobs > allowed.size() || node_rank < 0) return allowed;
+    return {allowed.begin() + std::ptrdiff_t(first),
+            allowed.begin() + std::ptrdiff_t(first + jobs)};
+}
+
+#ifdef __linux__
+namespace {
+
+std::vector<int> affinity(pid_t process = 0) {
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    std::vector<int> cpus;
+    if (sched_getaffinity(process, sizeof set, &set) != 0) return cpus;
+    for (int c = 0; c < CPU_SETSIZE; ++c)
+        if (CPU_ISSET(c, &set)) cpus.push_back(c);
+    return cpus;
+}
+
+bool bind_to(const std::vector<int>& cpus) {
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    for (const int c : cpus)
+        CPU_SET(c, &set);
+    return sched_setaffinity(0, sizeof set, &set) == 0;
+}
+
+// The cores this process may be bound to: those its launcher (the parent: mpirun, orted,
+// slurmstepd) may run on, less those the cpuset withholds (asked for every core, the kernel grants
+// those the cpuset allows). A launcher held by taskset keeps its ranks to its cores.
+std::vector<int> allowed_cores() {
+    std::vector<int> every(CPU_SETSIZE);
+    for (int c = 0; c < CPU_SETSIZE; ++c)
+        every[std::size_t(c)] = c;
+    const std::vector<int> launcher = affinity(getppid());
+    if (!bind_to(launcher.empty() ? every : launcher)) return {};
+    return affinity();
+}
+
+} // namespace
+
+thread_cores place_threads(unsigned jobs, bool launched, int node_rank, int node_size,
+                           binding_policy policy) {
+    const std::vector<int> bound = affinity();
+    thread_cores placed{bound.size(), bound.size(), false, false};
+    if (bound.empty() || jobs <= bound.size() || !launched || policy == binding_policy::keep)
+        return placed;
+    const std::vector<int> allowed = allowed_cores();
+    if (allowed.size() <= bound.size()) { // nothing gained: back to the launcher's binding
+        bind_to(bound);
+        return placed;
+    }
+    const std::vector<int> mine = cores_for_rank(allowed, jobs, node_rank, node_size);
+    if (!bind_to(mine)) {
+        bind_to(bound);
+        return placed;
+    }
+    placed.cores = affinity().size(); // what the kernel granted
+    placed.rebound = true;
+    placed.shared = mine.size() == allowed.size() && node_size > 1;
+    return placed;
+}
+
+#else
+
+thread_cores place_threads(unsigned, bool, int, int, binding_policy) {
+    const std::size_t n = all_cores();
+    return {n, n, false, false};
+}
+
+#endif
+
+} // namespace rotgen
