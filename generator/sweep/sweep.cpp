@@ -248,8 +248,10 @@ std::optional<binding_policy> checked_binding(const mpi_session& session) {
     throw std::runtime_error("another MPI rank's ROTGEN_BINDING is not auto or keep");
 }
 
-// Rank 0 prepares (and compiles into the cache) and opens its outputs first; then the other ranks
-// prepare. A failure on any rank stops every rank; rank 0 reports it.
+// Rank 0 prepares (and compiles into the cache) and opens its outputs first; then one rank of
+// every other node (a node-local cache is filled once a node, not once a rank: a compilation can
+// take seconds and hundreds of MB); then the rest, who find the kernels in the cache. A failure on
+// any rank stops every rank; rank 0 reports it.
 std::unique_ptr<ensemble> prepare_everywhere(const mpi_session& session, const sweep_request& q,
                                              stage_timings& timings,
                                              std::unique_ptr<sweep_writer>& writer) {
@@ -266,16 +268,13 @@ std::unique_ptr<ensemble> prepare_everywhere(const mpi_session& session, const s
             failure = std::current_exception();
         }
     };
-    if (session.rank() == 0) attempt();
-    if (!session.all(session.rank() != 0 || !failure)) {
+    const int mine = session.rank() == 0 ? 0 : session.node_rank() == 0 ? 1 : 2;
+    for (int stage = 0; stage < 3; ++stage) {
+        if (mine == stage) attempt();
+        if (session.all(!failure)) continue;
+        if (session.rank() != 0) return nullptr; // rank 0 reports it
         if (failure) std::rethrow_exception(failure);
-        return nullptr; // rank 0 reports it
-    }
-    if (session.rank() != 0) attempt();
-    if (!session.all(!failure)) {
-        if (session.rank() == 0)
-            throw std::runtime_error("another MPI rank could not prepare the scene");
-        return nullptr;
+        throw std::runtime_error("another MPI rank could not prepare the scene");
     }
     return e;
 }
