@@ -9,6 +9,8 @@
 #endif
 
 #include <cstdlib>
+#include <fstream>
+#include <sstream>
 
 namespace rotgen {
 
@@ -22,12 +24,33 @@ binding_policy binding_of_environment() {
                      "default: threads that outnumber a rank's cores get cores of their own)");
 }
 
-std::vector<int> cores_for_rank(const std::vector<int>& allowed, unsigned jobs, int node_rank,
-                                int node_size) {
-    const std::size_t first = std::size_t(node_rank) * jobs;
-    if (std::size_t(node_size) * jobs > allowed.size() || node_rank < 0) return allowed;
-    return {allowed.begin() + std::ptrdiff_t(first),
-            allowed.begin() + std::ptrdiff_t(first + jobs)};
+std::vector<int> cpu_list(const std::string& text) {
+    std::vector<int> cpus;
+    std::istringstream in(text);
+    for (std::string range; std::getline(in, range, ',');) {
+        int first = 0, last = 0;
+        char dash = 0;
+        std::istringstream r(range);
+        if (!(r >> first)) return {};
+        last = first;
+        if (r >> dash && (dash != '-' || !(r >> last))) return {};
+        if (last < first || last - first > 65536) return {};
+        for (int c = first; c <= last; ++c)
+            cpus.push_back(c);
+    }
+    return cpus;
+}
+
+std::vector<int> cpus_for_rank(const std::vector<core_cpus>& cores, unsigned jobs, int node_rank,
+                               int node_size) {
+    std::vector<int> cpus;
+    const bool fit = node_rank >= 0 && std::size_t(node_size) * jobs <= cores.size();
+    const std::size_t first = fit ? std::size_t(node_rank) * jobs : 0;
+    const std::size_t end = fit ? first + jobs : cores.size();
+    for (std::size_t k = first; k < end; ++k)
+        cpus.insert(cpus.end(), cores[k].begin(), cores[k].end());
+    std::sort(cpus.begin(), cpus.end());
+    return cpus;
 }
 
 #ifdef __linux__
@@ -63,6 +86,15 @@ std::vector<int> allowed_cores() {
     return affinity();
 }
 
+// The CPUs that share CPU c's core (sysfs); {c} where that is unknown.
+std::vector<int> siblings_of(int c) {
+    std::ifstream in("/sys/devices/system/cpu/cpu" + std::to_string(c) +
+                     "/topology/thread_siblings_list");
+    std::string line;
+    std::vector<int> list = std::getline(in, line) ? cpu_list(line) : std::vector<int>{};
+    return list.empty() ? std::vector<int>{c} : list;
+}
+
 } // namespace
 
 thread_cores place_threads(unsigned jobs, bool launched, int node_rank, int node_size,
@@ -76,7 +108,8 @@ thread_cores place_threads(unsigned jobs, bool launched, int node_rank, int node
         bind_to(bound);
         return placed;
     }
-    const std::vector<int> mine = cores_for_rank(allowed, jobs, node_rank, node_size);
+    const std::vector<int> mine =
+        cpus_for_rank(group_by_core(allowed, siblings_of), jobs, node_rank, node_size);
     if (!bind_to(mine)) {
         bind_to(bound);
         return placed;

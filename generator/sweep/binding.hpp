@@ -4,7 +4,8 @@
 // slower than the same cores as threads. Under a launcher, when a rank's threads outnumber the
 // cores it is bound to, rotgen binds it again, before its threads start:
 // - to `jobs` cores of its own when the cores its node allows hold every rank's threads: rank k
-//   of the node gets the allowed cores k*jobs .. k*jobs+jobs-1, as `--map-by slot:PE=jobs` would.
+//   of the node gets the allowed cores k*jobs .. k*jobs+jobs-1, each with its hardware threads,
+//   as `--map-by slot:PE=jobs` would.
 //   The allowed cores are those the launcher itself (the parent process: mpirun, orted,
 //   slurmstepd) may run on, less those a batch system's cpuset withholds (the kernel keeps that);
 // - else to all of the allowed cores, which the node's ranks then share.
@@ -12,6 +13,7 @@
 // the default. A process started without a launcher keeps its affinity (taskset's, for one).
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -30,14 +32,42 @@ struct thread_cores {
     bool shared = false;   // ... to all of the node's allowed cores, shared with its other ranks
 };
 
-// The allowed cores `cpus` (ascending) that node rank `node_rank` of `node_size` ranks of `jobs`
-// threads each takes: its own block when all blocks fit, else all of them.
-std::vector<int> cores_for_rank(const std::vector<int>& allowed, unsigned jobs, int node_rank,
-                                int node_size);
+// A core: the allowed CPUs (hardware threads) that share it, ascending.
+using core_cpus = std::vector<int>;
+
+// The CPUs of a list in the kernel's format ("0-3,8,10-11"); empty if it is not one.
+std::vector<int> cpu_list(const std::string& text);
+
+// The allowed CPUs (ascending) grouped by core, in the order of their first CPU; `siblings(c)` is
+// the CPUs that share c's core (sysfs' thread_siblings_list; {c} where it is unknown).
+template <class Siblings>
+std::vector<core_cpus> group_by_core(const std::vector<int>& allowed, Siblings siblings);
+
+// The CPUs that node rank `node_rank` of `node_size` ranks of `jobs` threads each takes: `jobs`
+// cores of its own (rank k: cores k*jobs .. k*jobs+jobs-1, with all their hardware threads) when
+// every rank's threads fit the cores, else every allowed CPU.
+std::vector<int> cpus_for_rank(const std::vector<core_cpus>& cores, unsigned jobs, int node_rank,
+                               int node_size);
 
 // Binds this process (as above) when `launched` by MPI, the policy is automatic and `jobs`
 // outnumbers its cores; call it before any worker thread starts (threads inherit the binding).
 thread_cores place_threads(unsigned jobs, bool launched, int node_rank, int node_size,
                            binding_policy policy);
+
+template <class Siblings>
+std::vector<core_cpus> group_by_core(const std::vector<int>& allowed, Siblings siblings) {
+    std::vector<core_cpus> cores;
+    std::vector<int> placed;
+    for (const int c : allowed) {
+        if (std::find(placed.begin(), placed.end(), c) != placed.end()) continue;
+        core_cpus core{c};
+        for (const int s : siblings(c))
+            if (s != c && std::binary_search(allowed.begin(), allowed.end(), s)) core.push_back(s);
+        std::sort(core.begin(), core.end());
+        placed.insert(placed.end(), core.begin(), core.end());
+        cores.push_back(std::move(core));
+    }
+    return cores;
+}
 
 } // namespace rotgen
