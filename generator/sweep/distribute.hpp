@@ -17,7 +17,8 @@
 //   one-process run's. Rank 0 takes a message as soon as it sees it (MPI_Imrecv) and delivers it
 //   when it has arrived, one message between two refills of its own queue, so that its threads
 //   never wait for a transfer. The main thread sleeps between rounds (1 ms, woken when its queue
-//   runs low; 50 us while a message it sent is on its way: a large one moves only in its calls).
+//   runs low; while a message it sends or takes is on its way, 50 us at first, doubled each time
+//   up to 1 ms: a large one moves only in the calls of both ends).
 // - Memory stays bounded: rank 0 publishes in the window how many members it has written (the
 //   front of `in_order`), and a rank lets its threads start a chunk only when the chunk's members
 //   fit the window of outcomes rank 0 may hold (front + window); chunks are sized so that every

@@ -39,10 +39,26 @@ constexpr int results_tag = 3;
 constexpr std::size_t message_bytes = std::size_t(1)
                                       << 20;       // a message's outcomes (or one), at most
 constexpr auto nap = std::chrono::milliseconds(1); // the main thread's sleep when nothing happens
+
 // A main thread's sleep while a message it sends or receives is on its way (a large one moves on
-// only in MPI calls at both ends): on 16 cores, 4 ranks of 4 threads with lanes took 0.23 s with
-// the 1 ms nap where 50 us took 0.18 s.
-constexpr auto transfer_nap = std::chrono::microseconds(50);
+// only in MPI calls at both ends): 50 us, doubled each time the message is still on its way, up to
+// the 1 ms nap. On 16 cores, 4 ranks of 4 threads with lanes took 0.23 s with the 1 ms nap where
+// 50 us took 0.18 s (rank 0 then blocked in MPI_Recv). A fixed 50 us, though, woke a main thread
+// up to 20 times while its message waited for rank 0 to take it, on the core its worker needed:
+// on 2 cores, `mpirun -n 2` sweeps took 4-8% longer than with this backoff (bench/results/
+// sweep_naps.md).
+class transfer_wait {
+  public:
+    void sleep() {
+        std::this_thread::sleep_for(m_wait);
+        m_wait = std::min(2 * m_wait, std::chrono::microseconds(nap));
+    }
+    void reset() { m_wait = first; }
+
+  private:
+    static constexpr std::chrono::microseconds first{50};
+    std::chrono::microseconds m_wait = first;
+};
 
 bool started_by_mpirun() {
     for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK", "MPI_LOCALNRANKS"})
@@ -308,6 +324,7 @@ void run_root(const mpi_session& s, const sharing& sh, const batch_work& work, i
             [&](std::size_t m, member_outcome&& o) { out.deliver(m, std::move(o)); });
         std::uint64_t published = 0;
         auto last = std::chrono::steady_clock::now();
+        transfer_wait transfer;
         try {
             while (!(threads.finished() && out.done() == sh.gs.count)) {
                 threads.check(0);
@@ -319,10 +336,12 @@ void run_root(const mpi_session& s, const sharing& sh, const batch_work& work, i
                     progress(out.done());
                     last = std::chrono::steady_clock::now();
                 }
-                if (got == 0 && incoming.waiting())
-                    std::this_thread::sleep_for(transfer_nap); // it moves on in MPI calls
-                else if (got == 0)
-                    queue.sleep();
+                if (got == 0 && incoming.waiting()) {
+                    transfer.sleep(); // it moves on in MPI calls
+                    continue;
+                }
+                transfer.reset();
+                if (got == 0) queue.sleep();
             }
         } catch (...) { // the writer failed
             abort_all(std::current_exception(), 0);
@@ -399,6 +418,7 @@ void run_other(const mpi_session& s, const sharing& sh, const batch_work& work) 
     {
         rank_threads threads(unsigned(sh.jobs), sh.gs, work, queue,
                              [&](std::size_t m, member_outcome&& o) { box.add(m, std::move(o)); });
+        transfer_wait transfer;
         for (;;) {
             threads.check(s.rank());
             feed.fetch_ahead();
@@ -407,10 +427,12 @@ void run_other(const mpi_session& s, const sharing& sh, const batch_work& work) 
             sends.send(box.take());
             const bool idle = sends.idle();
             if (idle && finished) break;
-            if (idle)
-                queue.sleep();
-            else // a large message moves on only in this thread's MPI calls
-                std::this_thread::sleep_for(transfer_nap);
+            if (!idle) { // a large message moves on only in this thread's MPI calls
+                transfer.sleep();
+                continue;
+            }
+            transfer.reset();
+            queue.sleep();
         }
         threads.check(s.rank());
     }
