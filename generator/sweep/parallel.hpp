@@ -9,9 +9,9 @@
 
 namespace rotgen {
 
-// The number of threads `-j 0` means: every core this process may run on (its CPU affinity, which
-// taskset, Slurm's cpusets and mpirun's binding restrict; std::thread::hardware_concurrency where
-// the affinity is unknown), at least 1.
+// The number of threads a sweep runs without -j (one process): every core this process may run on
+// (its CPU affinity, which taskset, Slurm's cpusets and mpirun's binding restrict;
+// std::thread::hardware_concurrency where the affinity is unknown), at least 1.
 unsigned all_cores();
 
 // Calls work(m) for every index next() gives until it gives `none`, on `jobs` threads (jobs 1: on
