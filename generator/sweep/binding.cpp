@@ -53,7 +53,24 @@ std::vector<int> cpus_for_rank(const std::vector<core_cpus>& cores, unsigned job
     return cpus;
 }
 
+std::size_t cpus_in(const std::vector<unsigned char>& mask) {
+    std::size_t n = 0;
+    for (unsigned char byte : mask)
+        for (; byte != 0; byte &= static_cast<unsigned char>(byte - 1))
+            ++n;
+    return n;
+}
+
 #ifdef __linux__
+
+std::vector<unsigned char> cpu_mask() {
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    if (sched_getaffinity(0, sizeof set, &set) != 0) return {};
+    const auto* bytes = reinterpret_cast<const unsigned char*>(&set);
+    return {bytes, bytes + sizeof set};
+}
+
 namespace {
 
 std::vector<int> affinity(pid_t process = 0) {
@@ -121,6 +138,13 @@ thread_cores place_threads(unsigned jobs, bool launched, int node_rank, int node
 }
 
 #else
+
+std::vector<unsigned char> cpu_mask() {
+    std::vector<unsigned char> mask((all_cores() + 7) / 8);
+    for (std::size_t c = 0; c < all_cores(); ++c)
+        mask[c / 8] |= static_cast<unsigned char>(1u << (c % 8));
+    return mask;
+}
 
 thread_cores place_threads(unsigned, bool, int, int, binding_policy) {
     const std::size_t n = all_cores();

@@ -49,6 +49,12 @@ std::vector<core_cpus> group_by_core(const std::vector<int>& allowed, Siblings s
 std::vector<int> cpus_for_rank(const std::vector<core_cpus>& cores, unsigned jobs, int node_rank,
                                int node_size);
 
+// The CPUs this process may run on now, as bits (the bytes of its affinity mask; elsewhere than
+// Linux, as many bits as it has cores), and how many bits are set in such a mask: a node's ranks
+// or their masks together (mpi_session::node_union) for the cores the node's ranks run on.
+std::vector<unsigned char> cpu_mask();
+std::size_t cpus_in(const std::vector<unsigned char>& mask);
+
 // Binds this process (as above) when `launched` by MPI, the policy is automatic and `jobs`
 // outnumbers its cores; call it before any worker thread starts (threads inherit the binding).
 thread_cores place_threads(unsigned jobs, bool launched, int node_rank, int node_size,

@@ -133,6 +133,7 @@ std::vector<std::pair<std::size_t, member_outcome>> unpack(const std::string& in
 #ifndef ROTGEN_HAVE_MPI
 
 struct mpi_session::counter_window {};
+struct mpi_session::node_group {};
 mpi_session::mpi_session() = default;
 mpi_session::~mpi_session() = default;
 bool mpi_session::all(bool ok) const {
@@ -143,6 +144,9 @@ std::size_t mpi_session::broadcast(std::size_t value) const {
 }
 std::size_t mpi_session::least(std::size_t value) const {
     return value;
+}
+std::vector<unsigned char> mpi_session::node_union(std::vector<unsigned char> bits) const {
+    return bits;
 }
 
 std::vector<rank_work> run_distributed(const mpi_session&, std::size_t count, std::size_t group,

@@ -51,6 +51,9 @@ class mpi_session {
     // This rank among the ranks on its node (MPI_COMM_TYPE_SHARED), and how many they are.
     int node_rank() const { return m_node_rank; }
     int node_size() const { return m_node_size; }
+    // The bitwise or of every `bits` of the ranks on this node (all of them call it; one process:
+    // bits): the CPUs of the node's masks together.
+    std::vector<unsigned char> node_union(std::vector<unsigned char> bits) const;
     // Whether `ok` holds on every rank (all ranks call it; one process: ok).
     bool all(bool ok) const;
     // Rank 0's value, on every rank.
@@ -61,11 +64,13 @@ class mpi_session {
     // allocated with the session, so that its cost is set-up, like MPI_Init's, not the run's.
     struct counter_window;
     counter_window* counter() const { return m_counter.get(); }
+    struct node_group; // the node's ranks (their communicator)
 
   private:
     int m_rank = 0, m_size = 1, m_node_rank = 0, m_node_size = 1;
     bool m_active = false;
     std::unique_ptr<counter_window> m_counter;
+    std::unique_ptr<node_group> m_node;
 };
 
 // The groups of `group` members (the last may be shorter) of members 0 .. count-1.

@@ -33,6 +33,10 @@ struct mpi_session::counter_window {
     MPI_Win win = MPI_WIN_NULL;
 };
 
+struct mpi_session::node_group {
+    MPI_Comm comm = MPI_COMM_NULL;
+};
+
 namespace {
 
 constexpr int results_tag = 3;
@@ -461,7 +465,8 @@ mpi_session::mpi_session() {
     MPI_Comm_rank(MPI_COMM_WORLD, &m_rank);
     MPI_Comm_size(MPI_COMM_WORLD, &m_size);
     m_active = true;
-    MPI_Comm node = MPI_COMM_NULL;
+    m_node = std::make_unique<node_group>();
+    MPI_Comm& node = m_node->comm;
     // ROTGEN_TEST_NODE=K, the tests' hook: the ranks that give the same K play one node
     if (const char* k = std::getenv("ROTGEN_TEST_NODE"))
         MPI_Comm_split(MPI_COMM_WORLD, std::atoi(k), m_rank, &node);
@@ -469,7 +474,6 @@ mpi_session::mpi_session() {
         MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
     MPI_Comm_rank(node, &m_node_rank);
     MPI_Comm_size(node, &m_node_size);
-    MPI_Comm_free(&node);
     if (m_size == 1) return;
     m_counter = std::make_unique<counter_window>();
     MPI_Win_allocate(MPI_Aint(m_rank == 0 ? 2 * sizeof(std::uint64_t) : 0), sizeof(std::uint64_t),
@@ -482,7 +486,17 @@ mpi_session::~mpi_session() {
         MPI_Win_unlock_all(m_counter->win);
         MPI_Win_free(&m_counter->win);
     }
+    if (m_node) MPI_Comm_free(&m_node->comm);
     if (m_active) MPI_Finalize();
+}
+
+std::vector<unsigned char> mpi_session::node_union(std::vector<unsigned char> bits) const {
+    if (!m_node || m_node_size == 1) return bits;
+    MPI_Request r;
+    MPI_Iallreduce(MPI_IN_PLACE, bits.data(), int(bits.size()), MPI_BYTE, MPI_BOR, m_node->comm,
+                   &r);
+    wait_quietly(r);
+    return bits;
 }
 
 std::size_t mpi_session::broadcast(std::size_t value) const {

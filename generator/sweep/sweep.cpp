@@ -279,11 +279,19 @@ std::unique_ptr<ensemble> prepare_everywhere(const mpi_session& session, const s
     return e;
 }
 
+// The threads of a node's ranks together, and the cores their masks hold together.
+struct node_load {
+    std::size_t threads, cores;
+    bool elsewhere; // some node (this one or another) runs more threads than it has cores
+    bool crowded() const { return threads > cores; }
+};
+
 // Where the threads run, when rotgen bound them again (sweep/binding.hpp), and a warning when a
-// rank's threads outnumber its cores (`cores`, the least over the ranks) or a node's ranks share
-// too few cores (`crowded`): the threads then share cores and run no faster than those cores.
+// rank's threads outnumber its cores (`cores`, the least over the ranks) or, failing that, when a
+// node's ranks run more threads than the cores they may run on (`node`, this rank's node's): the
+// threads then share cores and run no faster than those.
 std::string placement(const mpi_session& session, unsigned jobs, const thread_cores& placed,
-                      std::size_t cores, bool crowded) {
+                      std::size_t cores, const node_load& node) {
     const auto count = [](std::size_t n, const char* what) {
         return std::to_string(n) + " " + what + (n == 1 ? "" : "s");
     };
@@ -292,18 +300,22 @@ std::string placement(const mpi_session& session, unsigned jobs, const thread_co
         line = "\n  cores   the launcher bound each rank to " + count(placed.bound, "core") +
                ", too few for its threads: rotgen gave it " + count(placed.cores, "core") +
                " of its own (ROTGEN_BINDING=keep keeps the launcher's binding)";
-    if (crowded)
-        return line + "\n  warning the " + count(std::size_t(session.node_size()), "rank") +
-               " on a node run " + count(std::size_t(session.node_size()) * jobs, "thread") +
-               " on its " + count(placed.cores, "core");
-    if (jobs <= cores) return line;
     const std::string who = session.size() > 1 ? "an MPI rank" : "this process";
-    return line + "\n  warning " + count(jobs, "thread") + " share the " + count(cores, "core") +
-           " " + who + " may run on" +
-           (session.launched() ? " (the launcher's binding or a batch system's cpuset: give mpirun "
-                                 "--bind-to none, or --map-by slot:PE=" +
-                                     std::to_string(jobs) + ")"
-                               : " (its CPU affinity: taskset, a batch system's cpuset)");
+    if (jobs > cores)
+        return line + "\n  warning " + count(jobs, "thread") + " share the " +
+               count(cores, "core") + " " + who + " may run on" +
+               (session.launched()
+                    ? " (the launcher's binding or a batch system's cpuset: give mpirun "
+                      "--bind-to none, or --map-by slot:PE=" +
+                          std::to_string(jobs) + ")"
+                    : " (its CPU affinity: taskset, a batch system's cpuset)");
+    if (node.crowded())
+        return line + "\n  warning the " + count(std::size_t(session.node_size()), "rank") +
+               " on this node run " + count(node.threads, "thread") + " on its " +
+               count(node.cores, "core");
+    if (node.elsewhere)
+        return line + "\n  warning the ranks on a node run more threads than its cores";
+    return line;
 }
 
 // "1 thread on each of 2 MPI ranks, lanes of 4 (avx2)"; with MPI, the members each rank ran.
@@ -340,8 +352,9 @@ int sweep(const sweep_request& q) {
     const thread_cores placed =
         place_threads(jobs, session.launched(), session.node_rank(), session.node_size(), *binding);
     const std::size_t cores = session.least(placed.cores);
-    const bool crowded =
-        !session.all(!placed.shared || std::size_t(session.node_size()) * jobs <= placed.cores);
+    node_load node{std::size_t(session.node_size()) * jobs, cpus_in(session.node_union(cpu_mask())),
+                   false};
+    node.elsewhere = !session.all(!node.crowded());
     std::unique_ptr<in_order> out;
     if (root)
         out = std::make_unique<in_order>(
@@ -358,9 +371,9 @@ int sweep(const sweep_request& q) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     progress.finish();
     if (!root) return 0;
-    const int status = finish(
-        q, *e, workers_of(session, jobs, placement(session, jobs, placed, cores, crowded), ran),
-        *writer, seconds, timings);
+    const int status =
+        finish(q, *e, workers_of(session, jobs, placement(session, jobs, placed, cores, node), ran),
+               *writer, seconds, timings);
     if (q.timings) print_balance(std::cerr, ran, jobs, seconds);
     return status;
 }

@@ -4,7 +4,7 @@
 # on one core). Given MPIEXEC, on 2 cores or more: a rank that mpirun binds to one core gets cores
 # for its threads (sweep/binding.hpp), with the same summary.csv, unless ROTGEN_BINDING=keep or
 # mpirun itself is held to that core (taskset), and then it warns; 2 ranks of 2 threads on 2 cores
-# share them, with a warning; an unknown ROTGEN_BINDING is bad input.
+# share them, bound or not, with a warning; an unknown ROTGEN_BINDING is bad input.
 #   affinity.sh ROTGEN SOURCE_DIR [MPIEXEC]
 set -euo pipefail
 rotgen=${1:?rotgen} src=${2:?source dir} mpiexec=${3:-}
@@ -51,11 +51,18 @@ if [[ -n $mpiexec ]] && (($(nproc) >= 2)); then
   grep -q "^  cores " "$work/h.txt" && { cat "$work/h.txt"; exit 1; }
   # 2 ranks of 2 threads on 2 cores: they share the cores, and the summary says so
   mpi c -n 2 --bind-to core -x ROTGEN_BINDING= -- -j 2
-  grep -q "^  warning the 2 ranks on a node run 4 threads on its $(nproc) cores" "$work/c.txt" ||
+  grep -q "^  warning the 2 ranks on this node run 4 threads on its 2 cores" "$work/c.txt" ||
     (($(nproc) >= 4)) || { cat "$work/c.txt"; exit 1; }
+  # ... and so they do unbound, where each rank's threads fit its own cores
+  mpi i -n 2 --bind-to none -- -j 2
+  grep -q "^  warning the 2 ranks on this node run 4 threads on its 2 cores" "$work/i.txt" ||
+    (($(nproc) >= 4)) || { cat "$work/i.txt"; exit 1; }
   mpi d -n 2 --bind-to none -- -j 1
   expect no "$work/d.txt" "mpirun -n 2 --bind-to none, -j 1"
   grep -q "warning" "$work/d.txt" && { cat "$work/d.txt"; exit 1; }
+  # one thread on each of 2 ranks bound to a core each: the node's cores together hold them
+  mpi j -n 2 --bind-to core -- -j 1
+  grep -q "warning" "$work/j.txt" && { cat "$work/j.txt"; exit 1; }
   # a policy it does not know: exit 2, nothing written
   status=0
   ROTGEN_BINDING=spread mpi g -n 1 -x ROTGEN_BINDING -- -j 2 || status=$?

@@ -3,6 +3,7 @@
 // node's ranks; the rebinding itself is tested through mpirun (tests/sweep/affinity.sh).
 #include "support/error.hpp"
 #include "sweep/binding.hpp"
+#include "sweep/parallel.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -98,4 +99,11 @@ TEST_CASE("ROTGEN_BINDING takes auto or keep and names any other value", "[sweep
         CHECK(e.message().rfind("ROTGEN_BINDING=none: ", 0) == 0);
     }
     ::unsetenv("ROTGEN_BINDING");
+}
+
+TEST_CASE("a CPU mask's bits are counted, and this process's mask holds its cores",
+          "[sweep][binding]") {
+    CHECK(cpus_in({0xff, 0x01, 0x00, 0x80}) == 10);
+    CHECK(cpus_in({}) == 0);
+    CHECK(cpus_in(cpu_mask()) == all_cores());
 }
