@@ -148,6 +148,12 @@ std::size_t mpi_session::least(std::size_t value) const {
 std::vector<unsigned char> mpi_session::node_union(std::vector<unsigned char> bits) const {
     return bits;
 }
+std::string mpi_session::first_message(const std::string& mine) const {
+    return mine;
+}
+std::string mpi_session::name() const {
+    return "this process";
+}
 
 std::vector<rank_work> run_distributed(const mpi_session&, std::size_t count, std::size_t group,
                                        unsigned jobs, const batch_work& work, in_order* out,

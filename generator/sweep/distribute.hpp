@@ -60,6 +60,11 @@ class mpi_session {
     std::size_t broadcast(std::size_t value) const;
     // The least of every rank's `value`, on every rank (all ranks call it; one process: value).
     std::size_t least(std::size_t value) const;
+    // The lowest rank's non-empty `mine`, on rank 0 (all ranks call it; the others get ""; one
+    // process: mine). For an error on another rank, which rank 0 alone reports.
+    std::string first_message(const std::string& mine) const;
+    // "MPI rank 3 on node07" (one process: "this process").
+    std::string name() const;
     // The MPI window of the distribution's counter (MPI builds, more than one rank; else null):
     // allocated with the session, so that its cost is set-up, like MPI_Init's, not the run's.
     struct counter_window;

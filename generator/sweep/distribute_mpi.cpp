@@ -40,6 +40,7 @@ struct mpi_session::node_group {
 namespace {
 
 constexpr int results_tag = 3;
+constexpr int message_tag = 4; // an error's text, to rank 0
 constexpr std::size_t message_bytes = std::size_t(1)
                                       << 20;       // a message's outcomes (or one), at most
 constexpr auto nap = std::chrono::milliseconds(1); // the main thread's sleep when nothing happens
@@ -515,6 +516,33 @@ std::size_t mpi_session::least(std::size_t value) const {
     MPI_Iallreduce(&mine, &least, 1, MPI_UINT64_T, MPI_MIN, MPI_COMM_WORLD, &r);
     wait_quietly(r);
     return std::size_t(least);
+}
+
+std::string mpi_session::first_message(const std::string& mine) const {
+    if (!m_active) return mine;
+    const auto none = std::size_t(m_size);
+    const std::size_t from = least(mine.empty() ? none : std::size_t(m_rank));
+    if (from == none || (m_rank != 0 && std::size_t(m_rank) != from)) return "";
+    if (from == 0) return mine; // rank 0's own
+    if (m_rank != 0) {
+        MPI_Send(mine.data(), int(mine.size()), MPI_CHAR, 0, message_tag, MPI_COMM_WORLD);
+        return "";
+    }
+    MPI_Status st;
+    MPI_Probe(int(from), message_tag, MPI_COMM_WORLD, &st);
+    int n = 0;
+    MPI_Get_count(&st, MPI_CHAR, &n);
+    std::string text(std::size_t(n), '\0');
+    MPI_Recv(text.data(), n, MPI_CHAR, int(from), message_tag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    return text;
+}
+
+std::string mpi_session::name() const {
+    if (!m_active) return "this process";
+    char host[MPI_MAX_PROCESSOR_NAME] = {};
+    int length = 0;
+    MPI_Get_processor_name(host, &length);
+    return "MPI rank " + std::to_string(m_rank) + " on " + std::string(host, std::size_t(length));
 }
 
 bool mpi_session::all(bool ok) const {

@@ -61,6 +61,8 @@ extern "C" void on_interrupt_before(int) {
     say("rotgen: interrupted; nothing written\n");
 }
 
+extern "C" void on_interrupt_quietly(int) {}
+
 } // namespace
 
 journal_names journal_in(const std::string& dir) {
@@ -128,6 +130,10 @@ void journal_committed(std::uint64_t bytes, std::size_t members) {
 
 void journal_not_yet() {
     set_interrupt_hook(on_interrupt_before);
+}
+
+void journal_elsewhere() {
+    set_interrupt_hook(on_interrupt_quietly);
 }
 
 void journal_unwatch() {

@@ -46,6 +46,9 @@ journal_found read_journal(const journal_names& names, std::size_t chunk, std::s
 // the journal's files exist until they are renamed into place.
 // Before the journal exists: an interruption prints "interrupted; nothing written".
 void journal_not_yet();
+// On an MPI rank other than 0, which keeps no journal: an interruption says nothing (rank 0 says
+// it once; and mpirun ends the others with SIGTERM when rank 0 exits with an error it reported).
+void journal_elsewhere();
 void journal_watch(const journal_names& names, int summary_fd, std::uint64_t bytes,
                    std::size_t members, bool made_dir);
 void journal_committed(std::uint64_t bytes, std::size_t members); // a chunk is whole on disk

@@ -232,6 +232,30 @@ int finish(const sweep_request& q, const ensemble& e, const std::string& workers
     return 3;
 }
 
+// After a failure on some rank (session.all said so), rank 0 throws the first: its own, or the
+// lowest other rank's, named (a user_error stays one: exit 2); the other ranks return.
+void rethrow_first(const mpi_session& session, const std::exception_ptr& failure) {
+    std::string mine; // 'u' (a user_error) or 'i', then the message
+    if (failure && session.rank() != 0) {
+        try {
+            std::rethrow_exception(failure);
+        } catch (const user_error& e) {
+            mine = "u" + e.message();
+        } catch (const std::exception& e) {
+            mine = "i" + std::string(e.what());
+        } catch (...) {
+            mine = "ian unknown failure";
+        }
+        mine += " (" + session.name() + ")";
+    }
+    const std::string first = session.first_message(mine);
+    if (session.rank() != 0) return;
+    if (failure) std::rethrow_exception(failure);
+    if (first.empty()) throw std::runtime_error("another MPI rank failed");
+    if (first[0] == 'u') throw user_error({}, first.substr(1));
+    throw std::runtime_error(first.substr(1));
+}
+
 // ROTGEN_BINDING's policy, checked on every rank before anything is written; rank 0 throws the
 // error, the others return nothing.
 std::optional<binding_policy> checked_binding(const mpi_session& session) {
@@ -243,9 +267,8 @@ std::optional<binding_policy> checked_binding(const mpi_session& session) {
         failure = std::current_exception();
     }
     if (session.all(!failure)) return policy;
-    if (session.rank() != 0) return std::nullopt;
-    if (failure) std::rethrow_exception(failure);
-    throw std::runtime_error("another MPI rank's ROTGEN_BINDING is not auto or keep");
+    rethrow_first(session, failure);
+    return std::nullopt;
 }
 
 // Rank 0 prepares (and compiles into the cache) and opens its outputs first; then one rank of
@@ -272,9 +295,8 @@ std::unique_ptr<ensemble> prepare_everywhere(const mpi_session& session, const s
     for (int stage = 0; stage < 3; ++stage) {
         if (mine == stage) attempt();
         if (session.all(!failure)) continue;
-        if (session.rank() != 0) return nullptr; // rank 0 reports it
-        if (failure) std::rethrow_exception(failure);
-        throw std::runtime_error("another MPI rank could not prepare the scene");
+        rethrow_first(session, failure);
+        return nullptr;
     }
     return e;
 }
@@ -336,7 +358,10 @@ std::string workers_of(const mpi_session& session, unsigned jobs, const std::str
 
 int sweep(const sweep_request& q) {
     const mpi_session session;
-    if (session.rank() == 0) journal_not_yet();
+    if (session.rank() == 0)
+        journal_not_yet();
+    else
+        journal_elsewhere();
     const std::optional<binding_policy> binding = checked_binding(session);
     if (!binding) return 2; // a rank other than 0: rank 0 reported the error
     stage_timings timings;
