@@ -232,24 +232,30 @@ int finish(const sweep_request& q, const ensemble& e, const std::string& workers
     return 3;
 }
 
-// After a failure on some rank (session.all said so), rank 0 throws the first: its own, or the
-// lowest other rank's, named (a user_error stays one: exit 2); the other ranks return.
-void rethrow_first(const mpi_session& session, const std::exception_ptr& failure) {
-    std::string mine; // 'u' (a user_error) or 'i', then the message
-    if (failure && session.rank() != 0) {
-        try {
-            std::rethrow_exception(failure);
-        } catch (const user_error& e) {
-            mine = "u" + e.message();
-        } catch (const std::exception& e) {
-            mine = "i" + std::string(e.what());
-        } catch (...) {
-            mine = "ian unknown failure";
-        }
-        mine += " (" + session.name() + ")";
+// 'u' (a user_error) or 'i' (any other failure), then its one-line message.
+std::string describe(const std::exception_ptr& failure) {
+    try {
+        std::rethrow_exception(failure);
+    } catch (const user_error& e) {
+        return "u" + e.message();
+    } catch (const std::exception& e) {
+        return "i" + std::string(e.what());
+    } catch (...) {
+        return "ian unknown failure";
     }
-    const std::string first = session.first_message(mine);
-    if (session.rank() != 0) return;
+}
+
+// After a failure on some rank (session.all said so), rank 0 throws the first: its own, or the
+// lowest other rank's, named (a user_error stays one: exit 2). The other ranks return the exit
+// status rank 0 gives (1 or 2), so that mpirun's is that one whichever rank ends first.
+int rethrow_first(const mpi_session& session, const std::exception_ptr& failure) {
+    const bool root = session.rank() == 0;
+    const std::string mine = failure ? describe(failure) : "";
+    const std::string other =
+        session.first_message(root || !failure ? "" : mine + " (" + session.name() + ")");
+    const std::string& first = root && failure ? mine : other;
+    const int status = int(session.broadcast(!first.empty() && first[0] == 'u' ? 2 : 1));
+    if (!root) return status;
     if (failure) std::rethrow_exception(failure);
     if (first.empty()) throw std::runtime_error("another MPI rank failed");
     if (first[0] == 'u') throw user_error({}, first.substr(1));
@@ -257,8 +263,8 @@ void rethrow_first(const mpi_session& session, const std::exception_ptr& failure
 }
 
 // ROTGEN_BINDING's policy, checked on every rank before anything is written; rank 0 throws the
-// error, the others return nothing.
-std::optional<binding_policy> checked_binding(const mpi_session& session) {
+// error, the others return nothing, with its exit status in `status`.
+std::optional<binding_policy> checked_binding(const mpi_session& session, int& status) {
     std::optional<binding_policy> policy;
     std::exception_ptr failure;
     try {
@@ -267,17 +273,18 @@ std::optional<binding_policy> checked_binding(const mpi_session& session) {
         failure = std::current_exception();
     }
     if (session.all(!failure)) return policy;
-    rethrow_first(session, failure);
+    status = rethrow_first(session, failure);
     return std::nullopt;
 }
 
 // Rank 0 prepares (and compiles into the cache) and opens its outputs first; then one rank of
 // every other node (a node-local cache is filled once a node, not once a rank: a compilation can
 // take seconds and hundreds of MB); then the rest, who find the kernels in the cache. A failure on
-// any rank stops every rank; rank 0 reports it.
+// any rank stops every rank: rank 0 reports it (rethrow_first), and the others return null with
+// its exit status in `status`.
 std::unique_ptr<ensemble> prepare_everywhere(const mpi_session& session, const sweep_request& q,
                                              stage_timings& timings,
-                                             std::unique_ptr<sweep_writer>& writer) {
+                                             std::unique_ptr<sweep_writer>& writer, int& status) {
     std::unique_ptr<ensemble> e;
     std::exception_ptr failure;
     const auto attempt = [&] {
@@ -295,7 +302,7 @@ std::unique_ptr<ensemble> prepare_everywhere(const mpi_session& session, const s
     for (int stage = 0; stage < 3; ++stage) {
         if (mine == stage) attempt();
         if (session.all(!failure)) continue;
-        rethrow_first(session, failure);
+        status = rethrow_first(session, failure);
         return nullptr;
     }
     return e;
@@ -362,12 +369,13 @@ int sweep(const sweep_request& q) {
         journal_not_yet();
     else
         journal_elsewhere();
-    const std::optional<binding_policy> binding = checked_binding(session);
-    if (!binding) return 2; // a rank other than 0: rank 0 reported the error
+    int failed = 0; // a rank other than 0: the status of the error rank 0 reports
+    const std::optional<binding_policy> binding = checked_binding(session, failed);
+    if (!binding) return failed;
     stage_timings timings;
     std::unique_ptr<sweep_writer> writer;
-    const std::unique_ptr<ensemble> e = prepare_everywhere(session, q, timings, writer);
-    if (!e) return 2; // a rank other than 0: rank 0 reported the error
+    const std::unique_ptr<ensemble> e = prepare_everywhere(session, q, timings, writer, failed);
+    if (!e) return failed;
     const bool root = session.rank() == 0;
     // the members a journal holds are not run again (--resume)
     const std::size_t from = session.broadcast(root ? writer->first() : 0);
