@@ -3,11 +3,12 @@
 # sweep/distribute_mpi.cpp), with the newer one's threads on the same cores as the yardstick
 # (Markdown on stdout, progress on stderr):
 #
-#   bash bench/sweep_ranks_ab.sh OLD_ROTGEN NEW_ROTGEN [MEMBERS] > bench/results/sweep_naps.md
+#   [RANKS=2] [ROUNDS=5] bash bench/sweep_ranks_ab.sh OLD_ROTGEN NEW_ROTGEN [MEMBERS] \
+#     > bench/results/sweep_naps.md
 #
 # The heavy top (bench/heavy_top_sweep.sh), MEMBERS (default 16,384) members, DOP853 rtol 1e-8;
-# `mpirun -n 2` ranks of one thread each as they are, with --lanes 8 and with --trajectories (large
-# messages), for both builds, and `-j 2` threads of the new one; ROUNDS (default 5) rounds, every
+# `mpirun -n RANKS` (default 2) ranks of one thread each as they are, with --lanes 8 and with
+# --trajectories (large messages), for both builds, and `-j RANKS` threads of the new one; ROUNDS (default 5) rounds, every
 # way once a round in turn, each round from fresh copies of both builds; the summary's "running
 # the members" time, best and median. Every run's summary.csv is compared with the first round's
 # of the same options, byte for byte.
@@ -18,11 +19,13 @@ old=$(realpath "${1:?usage: sweep_ranks_ab.sh OLD_ROTGEN NEW_ROTGEN [MEMBERS]}")
 new=$(realpath "${2:?usage: sweep_ranks_ab.sh OLD_ROTGEN NEW_ROTGEN [MEMBERS]}")
 members=${3:-16384}
 rounds=${ROUNDS:-5}
+ranks=${RANKS:-2}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 export ROTGEN_CACHE_DIR=$work/cache
-root=()
+root=() pass=() # mpirun passes CXX and LD_LIBRARY_PATH on to the ranks where they are set
 [[ $(id -u) == 0 ]] && root=(--allow-run-as-root)
+for v in CXX LD_LIBRARY_PATH; do [[ -n ${!v:-} ]] && pass+=(-x "$v"); done
 heavy_top_sweep "$work/scene.yaml" "$members" "{method: dop853, rtol: 1e-8, atol: 1e-10}"
 options=("" "--lanes 8" "--trajectories")
 "$new" sweep "$work/scene.yaml" -o "$work/warm" -j 1 -q --lanes 8 # the kernels into the cache
@@ -31,8 +34,9 @@ declare -A times
 one_run() { # $1: old|new|threads, $2: the options' index; adds the seconds to times
   local opts=(${options[$2]}) cmd=()
   case $1 in
-    old | new) cmd=(mpirun "${root[@]}" --oversubscribe -x ROTGEN_CACHE_DIR -n 2 "$work/$1" sweep -j 1) ;;
-    threads) cmd=("$work/new" sweep -j 2) ;;
+    old | new) cmd=(mpirun "${root[@]}" --oversubscribe -x ROTGEN_CACHE_DIR "${pass[@]}" -n "$ranks"
+      "$work/$1" sweep -j 1) ;;
+    threads) cmd=("$work/new" sweep -j "$ranks") ;;
   esac
   rm -rf "$work/out"
   local t
@@ -64,10 +68,10 @@ cat <<EOF2
 OLD: $(cd "$(dirname "$old")" && git log -1 --format=%h 2>/dev/null || echo "?"), NEW: $(cd "$(dirname "$new")" && git log -1 --format=%h 2>/dev/null || echo "?") (the commits of the trees the builds are in; a build may hold uncommitted changes).
 
 The heavy top, $members members, DOP853 rtol 1e-8, t = 0 .. 10, 101 samples; the summary's "running
-the members" time in seconds, best and median of $rounds interleaved runs; \`mpirun -n 2\` is one
+the members" time in seconds, best and median of $rounds interleaved runs; \`mpirun -n $ranks\` is one
 thread a rank; every summary.csv of an option is byte-identical.
 
-| options | OLD, \`mpirun -n 2\` best | median | NEW, \`mpirun -n 2\` best | median | NEW, \`-j 2\` best | median |
+| options | OLD, \`mpirun -n $ranks\` best | median | NEW, \`mpirun -n $ranks\` best | median | NEW, \`-j $ranks\` best | median |
 |---|---:|---:|---:|---:|---:|---:|
 EOF2
 for i in "${!options[@]}"; do
