@@ -3,6 +3,7 @@
 #include "support/error.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <sstream>
 
 namespace rotgen {
@@ -27,6 +28,14 @@ const option_spec* find_option(const command_spec& c, const std::string& word) {
     const std::string best = closest_name(word.substr(0, word.find('=')), names);
     usage_error(c, "unknown option '" + word + "' for " + c.name +
                        (best.empty() ? "" : "; did you mean '" + best + "'?"));
+}
+
+// Whether an argument after an option that takes a value is another option rather than its value:
+// it starts with '-' and is longer than "-" (standard input or output), but is not a negative
+// number ("-j -1" then says what -j takes, not that it needs a value).
+bool looks_like_option(const std::string& a) {
+    if (a.size() < 2 || a[0] != '-') return false;
+    return !(std::isdigit(static_cast<unsigned char>(a[1])) || a[1] == '.');
 }
 
 } // namespace
@@ -77,7 +86,7 @@ parsed_options parse_options(const command_spec& c, const std::vector<std::strin
             if (o->value.empty()) usage_error(c, o->name + " takes no value");
             v = a.substr(eq + 1);
         } else if (!o->value.empty() && !o->optional_value) {
-            if (i + 1 >= args.size() || (args[i + 1].size() > 1 && args[i + 1][0] == '-'))
+            if (i + 1 >= args.size() || looks_like_option(args[i + 1]))
                 usage_error(c, o->name + " needs a value (" + o->value + ")");
             v = args[++i];
         }

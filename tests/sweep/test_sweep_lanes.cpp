@@ -380,6 +380,11 @@ TEST_CASE("sweep --lanes: what lanes cannot run is refused with one line, exit 2
             "rotgen sweep: --lanes needs a whole number of lanes from 1 to 64, got 'four'"},
         row{"{method: rk4, step: 0.01}", "--lanes 65",
             "rotgen sweep: --lanes needs a whole number of lanes from 1 to 64, got '65'"},
+        row{"{method: rk4, step: 0.01}", "--lanes -4",
+            "rotgen sweep: --lanes needs a whole number of lanes from 1 to 64, got '-4'"},
+        row{"{method: rk4, step: 0.01}", "-j -1",
+            "rotgen sweep: -j needs a whole number of threads from 1 to 4096, got '-1'"},
+        row{"{method: rk4, step: 0.01}", "-j --lanes 4", "rotgen sweep: -j needs a value (N)"},
     }));
     const scratch_file scene("lanes_bad.yaml",
                              heavy_top(scene_tail, "sweep:\n  vary:\n    initial.theta: {values: "
