@@ -2,7 +2,8 @@
 # A sweep under `mpirun -n 2` and `-n 3` writes the same files, byte for byte, as one process with
 # one thread: summary.csv (with a failed member and an event column) and trajectories.h5; every
 # rank runs members and the counts the summary reports add up; a 2-rank sweep interrupted after 5
-# journal chunks (the test hook ROTGEN_TEST_SWEEP_INTERRUPT: rank 0 raises SIGTERM) and finished
+# journal chunks (the test hook ROTGEN_TEST_SWEEP_INTERRUPT: rank 0 raises SIGTERM; one line says
+# so, rank 1 stays quiet) and finished
 # by `--resume` under 2 ranks writes the same files too.
 #   mpi_sweep.sh ROTGEN MPIEXEC SOURCE_DIR
 set -euo pipefail
@@ -64,6 +65,8 @@ status=0
 [[ $status != 0 && $status != 3 ]] || { echo "interrupted: exit $status"; exit 1; }
 grep -q "^rotgen: interrupted; kept the journal $work/resumed/summary.partial.csv (5 members)" \
   "$work/err" || { echo "no journal line: $(cat "$work/err")"; exit 1; }
+# ... said once: rank 1, ended by mpirun's SIGTERM, says nothing
+[[ $(grep -c '^rotgen: ' "$work/err") == 1 ]] || { echo "not one line: $(cat "$work/err")"; exit 1; }
 [[ $(($(wc -l <"$work/resumed/summary.partial.csv") - 1)) == 5 ]] ||
   { echo "the journal does not hold 5 members"; exit 1; }
 status=0
