@@ -187,7 +187,10 @@ def main():
     for page in pages(root):
         name = page.relative_to(root)
         for block, first, sources in blocks_with_sources(page.read_text(), results):
-            values = result_numbers(sources)
+            for absent in [s for s in sources if not s.is_file()]:
+                missing += 1
+                print(f"{name}:{first}: the source {absent.relative_to(root)} does not exist")
+            values = result_numbers(s for s in sources if s.is_file())
             for token, i, line in figures(block):
                 checked += 1
                 if has_source(token, values):
