@@ -13,7 +13,9 @@ author = "the rotgen authors"
 copyright = "the rotgen authors"
 version = release = os.environ.get("ROTGEN_VERSION", "")
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "_ext"))
 extensions = [
+    "rotgen_cpp",  # docs/_ext: the directive rotgen-header, one header's C++ reference
     "myst_parser",
     "breathe",
     "sphinx.ext.autodoc",
@@ -24,7 +26,7 @@ extensions = [
 # contents. The README is the repository's front page, not a page of the site.
 source_suffix = {".md": "markdown"}
 root_doc = "index"
-exclude_patterns = ["_build", "Doxyfile.in", "CMakeLists.txt"]
+exclude_patterns = ["_build", "_ext", "Doxyfile.in", "CMakeLists.txt"]
 myst_heading_anchors = 3  # [text](page.md#a-heading) links, as a forge renders them
 myst_enable_extensions = ["dollarmath"]
 suppress_warnings = []

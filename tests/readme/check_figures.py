@@ -45,8 +45,6 @@ NOT_FIGURES = [re.compile(r"\(\d+\.\d+\)"),                      # the chapter's
 # (a phrase of the paragraph, the figures it may state without a source, why). Checked as text
 # moves between the README and docs/: an entry is matched by its phrase in any file.
 ALLOWED = [
-    ("ctest tests: the derivation", ["445"],
-     "the number of tests ctest registers: it changes with every test added, and ctest prints it"),
     ("equally spaced", ["1e8"], "the largest `samples` a scene accepts: an input limit"),
     ("a second run at 2e-16", ["2e-16"], "the tolerance of the reference's error estimate: an input"),
     ("Estrin's tree rounds more than split Horner's", ["3.8", "2.3", "1.9e-15", "4.6e-15", "19",
@@ -56,9 +54,7 @@ ALLOWED = [
     ("opens paused at t = 2.5", ["2.5"], "an example time in a page's address: an input"),
     ("about 24 bytes a number", ["24"], "the sweep's own estimate per number: a constant of the code"),
     ("at most about 32 MB of results wait", ["32"], "a limit set in the code, not a measurement"),
-    ("the status is 130 or 143", ["130", "143"], "exit statuses"),
     ("HDF5 keeps attributes under 64 KiB", ["64"], "HDF5's limit, a fact of the library"),
-    ("1 to 4,096", ["4,096"], "the journal's chunk bounds: constants of the code"),
     ("agrees to about 14 digits", ["14"], "measured by tests/sweep/test_sweep_lanes.cpp (no bench yet)"),
     ("to the last digit with RK4, to 8e-13", ["8e-13"],
      "measured by tests/sweep/test_sweep_lanes.cpp (no bench yet)"),
