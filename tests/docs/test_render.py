@@ -34,7 +34,10 @@ PAGES = {
         "emit", "SimulateResult", "SweepResult", "InputError", "RunError", "__version__")],
     # Sphinx's C++ ids: _CPPv4 then the mangled qualified name (N6rotgen9integrateE...).
     "cpp.html": [(f"the entry {n}", rf'id="_CPPv4[^"]*{m}') for n, m in (
-        ("rotgen::integrate", "N6rotgen9integrate"),
+        # integrate(system, method, t0, y, ...) of integrate.hpp (method.hpp's overloads take an
+        # any_method<T>)
+        ("rotgen::integrate(sys, const Method&, ...)", "N6rotgen9integrateE[^\"]*RK6Method"),
+        ("rotgen::integrate(sys, const any_method<T>&, ...)", "N6rotgen9integrateE[^\"]*10any_method"),
         ("rotgen::dop853", "N6rotgen6dop853"),
         ("rotgen::rk4", "N6rotgen3rk4"),
         ("rotgen::taylor", "N6rotgen6taylor"),
