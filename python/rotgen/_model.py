@@ -84,7 +84,7 @@ class Model:
 
         Raises
         ------
-        InputError
+        ValueError
             An unknown format.
         """
         if format not in self._equations:

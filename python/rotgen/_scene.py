@@ -75,7 +75,8 @@ class Scene:
     model : str
         The model's name.
     model_file : str
-        The model's file as rotgen found it (``<model>`` for a model given inline).
+        The model's file as the scene names it, joined to the scene's directory (``<scene>``
+        for a model given inline).
     form : str
         The form the scene runs (``lagrangian``, ``body``, ...).
     method : str
