@@ -46,8 +46,6 @@ NOT_FIGURES = [re.compile(r"\(\d+\.\d+\)"),                      # the chapter's
 # (a phrase of the paragraph, the figures it may state without a source, why). Checked as text
 # moves between the README and docs/: an entry is matched by its phrase in any file.
 ALLOWED = [
-    ("ctest tests: the derivation", ["445"],
-     "the number of tests ctest registers: it changes with every test added, and ctest prints it"),
     ("equally spaced", ["1e8"], "the largest `samples` a scene accepts: an input limit"),
     ("a second run at 2e-16", ["2e-16"], "the tolerance of the reference's error estimate: an input"),
     ("Estrin's tree rounds more than split Horner's", ["3.8", "2.3", "1.9e-15", "4.6e-15", "19",
@@ -57,7 +55,6 @@ ALLOWED = [
     ("opens paused at t = 2.5", ["2.5"], "an example time in a page's address: an input"),
     ("about 24 bytes a number", ["24"], "the sweep's own estimate per number: a constant of the code"),
     ("at most about 32 MB of results wait", ["32"], "a limit set in the code, not a measurement"),
-    ("the status is 130 or 143", ["130", "143"], "exit statuses"),
     ("HDF5 keeps attributes under 64 KiB", ["64"], "HDF5's limit, a fact of the library"),
     ("1e6 + 5·10^-7", ["5e-7"], "the scene's input: I3 - I2"),
     ("moved from 0.074 to 0.086 s", ["0.074", "0.086", "0.0744", "0.0745", "0.0408", "0.0410"],
