@@ -46,10 +46,14 @@
 #include <cmath>
 #include <cstddef>
 
-namespace rotgen {
+/// \namespace rotgen::models
 /// The kernels that `rotgen emit` writes: one namespace per emitted header.
-namespace models {
+
+/// \namespace rotgen::models::cube_on_corner
 /// The kernels of the model 'cube_on_corner', Lagrangian form, y = (q, q_dot), explicit accelerations q_ddot = M^{-1} f (cube_on_corner.hpp).
+
+namespace rotgen {
+namespace models {
 namespace cube_on_corner {
 
 namespace detail {

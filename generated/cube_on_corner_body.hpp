@@ -48,10 +48,14 @@
 #include <cmath>
 #include <cstddef>
 
-namespace rotgen {
+/// \namespace rotgen::models
 /// The kernels that `rotgen emit` writes: one namespace per emitted header.
-namespace models {
+
+/// \namespace rotgen::models::cube_on_corner_body
 /// The kernels of the model 'cube_on_corner', body form, Euler's equations with a quaternion, y = (q, omega) (cube_on_corner_body.hpp).
+
+namespace rotgen {
+namespace models {
 namespace cube_on_corner_body {
 
 namespace detail {

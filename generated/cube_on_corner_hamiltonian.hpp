@@ -46,10 +46,14 @@
 #include <cmath>
 #include <cstddef>
 
-namespace rotgen {
+/// \namespace rotgen::models
 /// The kernels that `rotgen emit` writes: one namespace per emitted header.
-namespace models {
+
+/// \namespace rotgen::models::cube_on_corner_hamiltonian
 /// The kernels of the model 'cube_on_corner', Hamiltonian form, y = (q, p) (cube_on_corner_hamiltonian.hpp).
+
+namespace rotgen {
+namespace models {
 namespace cube_on_corner_hamiltonian {
 
 namespace detail {

@@ -47,10 +47,14 @@
 #include <cmath>
 #include <cstddef>
 
-namespace rotgen {
+/// \namespace rotgen::models
 /// The kernels that `rotgen emit` writes: one namespace per emitted header.
-namespace models {
+
+/// \namespace rotgen::models::cube_on_corner_reduced
 /// The kernels of the model 'cube_on_corner', reduced (Routh) form, cyclic coordinates ignored (cube_on_corner_reduced.hpp).
+
+namespace rotgen {
+namespace models {
 namespace cube_on_corner_reduced {
 
 namespace detail {

@@ -47,10 +47,14 @@
 #include <cmath>
 #include <cstddef>
 
-namespace rotgen {
+/// \namespace rotgen::models
 /// The kernels that `rotgen emit` writes: one namespace per emitted header.
-namespace models {
+
+/// \namespace rotgen::models::damped_driven_top
 /// The kernels of the model 'damped_driven_top', Lagrangian form, y = (q, q_dot), explicit accelerations q_ddot = M^{-1} f (damped_driven_top.hpp).
+
+namespace rotgen {
+namespace models {
 namespace damped_driven_top {
 
 namespace detail {

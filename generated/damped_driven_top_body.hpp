@@ -51,10 +51,14 @@
 #include <cmath>
 #include <cstddef>
 
-namespace rotgen {
+/// \namespace rotgen::models
 /// The kernels that `rotgen emit` writes: one namespace per emitted header.
-namespace models {
+
+/// \namespace rotgen::models::damped_driven_top_body
 /// The kernels of the model 'damped_driven_top', body form, Euler's equations with a quaternion, y = (q, omega) (damped_driven_top_body.hpp).
+
+namespace rotgen {
+namespace models {
 namespace damped_driven_top_body {
 
 namespace detail {

@@ -47,10 +47,14 @@
 #include <cmath>
 #include <cstddef>
 
-namespace rotgen {
+/// \namespace rotgen::models
 /// The kernels that `rotgen emit` writes: one namespace per emitted header.
-namespace models {
+
+/// \namespace rotgen::models::damped_driven_top_hamiltonian
 /// The kernels of the model 'damped_driven_top', Hamiltonian form, y = (q, p) (damped_driven_top_hamiltonian.hpp).
+
+namespace rotgen {
+namespace models {
 namespace damped_driven_top_hamiltonian {
 
 namespace detail {

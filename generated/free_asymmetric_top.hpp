@@ -46,10 +46,14 @@
 #include <cmath>
 #include <cstddef>
 
-namespace rotgen {
+/// \namespace rotgen::models
 /// The kernels that `rotgen emit` writes: one namespace per emitted header.
-namespace models {
+
+/// \namespace rotgen::models::free_asymmetric_top
 /// The kernels of the model 'free_asymmetric_top', Lagrangian form, y = (q, q_dot), explicit accelerations q_ddot = M^{-1} f (free_asymmetric_top.hpp).
+
+namespace rotgen {
+namespace models {
 namespace free_asymmetric_top {
 
 namespace detail {

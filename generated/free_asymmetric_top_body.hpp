@@ -40,10 +40,14 @@
 #include <cmath>
 #include <cstddef>
 
-namespace rotgen {
+/// \namespace rotgen::models
 /// The kernels that `rotgen emit` writes: one namespace per emitted header.
-namespace models {
+
+/// \namespace rotgen::models::free_asymmetric_top_body
 /// The kernels of the model 'free_asymmetric_top', body form, Euler's equations, y = omega (free_asymmetric_top_body.hpp).
+
+namespace rotgen {
+namespace models {
 namespace free_asymmetric_top_body {
 
 namespace detail {

@@ -37,10 +37,14 @@
 #include <type_traits>
 #include <utility>
 
-namespace rotgen {
+/// \namespace rotgen::models
 /// The kernels that `rotgen emit` writes: one namespace per emitted header.
-namespace models {
+
+/// \namespace rotgen::models::free_asymmetric_top_body_taylor
 /// The kernels of the model 'free_asymmetric_top', body form, Euler's equations, y = omega (free_asymmetric_top_body_taylor.hpp).
+
+namespace rotgen {
+namespace models {
 namespace free_asymmetric_top_body_taylor {
 
 namespace detail {

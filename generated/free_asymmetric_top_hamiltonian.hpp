@@ -46,10 +46,14 @@
 #include <cmath>
 #include <cstddef>
 
-namespace rotgen {
+/// \namespace rotgen::models
 /// The kernels that `rotgen emit` writes: one namespace per emitted header.
-namespace models {
+
+/// \namespace rotgen::models::free_asymmetric_top_hamiltonian
 /// The kernels of the model 'free_asymmetric_top', Hamiltonian form, y = (q, p) (free_asymmetric_top_hamiltonian.hpp).
+
+namespace rotgen {
+namespace models {
 namespace free_asymmetric_top_hamiltonian {
 
 namespace detail {

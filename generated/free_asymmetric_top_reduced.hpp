@@ -47,10 +47,14 @@
 #include <cmath>
 #include <cstddef>
 
-namespace rotgen {
+/// \namespace rotgen::models
 /// The kernels that `rotgen emit` writes: one namespace per emitted header.
-namespace models {
+
+/// \namespace rotgen::models::free_asymmetric_top_reduced
 /// The kernels of the model 'free_asymmetric_top', reduced (Routh) form, cyclic coordinates ignored (free_asymmetric_top_reduced.hpp).
+
+namespace rotgen {
+namespace models {
 namespace free_asymmetric_top_reduced {
 
 namespace detail {

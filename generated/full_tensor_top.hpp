@@ -47,10 +47,14 @@
 #include <cmath>
 #include <cstddef>
 
-namespace rotgen {
+/// \namespace rotgen::models
 /// The kernels that `rotgen emit` writes: one namespace per emitted header.
-namespace models {
+
+/// \namespace rotgen::models::full_tensor_top
 /// The kernels of the model 'full_tensor_top', Lagrangian form, y = (q, q_dot), explicit accelerations q_ddot = M^{-1} f (full_tensor_top.hpp).
+
+namespace rotgen {
+namespace models {
 namespace full_tensor_top {
 
 namespace detail {

@@ -49,10 +49,14 @@
 #include <cmath>
 #include <cstddef>
 
-namespace rotgen {
+/// \namespace rotgen::models
 /// The kernels that `rotgen emit` writes: one namespace per emitted header.
-namespace models {
+
+/// \namespace rotgen::models::full_tensor_top_body
 /// The kernels of the model 'full_tensor_top', body form, Euler's equations with a quaternion, y = (q, omega) (full_tensor_top_body.hpp).
+
+namespace rotgen {
+namespace models {
 namespace full_tensor_top_body {
 
 namespace detail {

@@ -47,10 +47,14 @@
 #include <cmath>
 #include <cstddef>
 
-namespace rotgen {
+/// \namespace rotgen::models
 /// The kernels that `rotgen emit` writes: one namespace per emitted header.
-namespace models {
+
+/// \namespace rotgen::models::full_tensor_top_hamiltonian
 /// The kernels of the model 'full_tensor_top', Hamiltonian form, y = (q, p) (full_tensor_top_hamiltonian.hpp).
+
+namespace rotgen {
+namespace models {
 namespace full_tensor_top_hamiltonian {
 
 namespace detail {

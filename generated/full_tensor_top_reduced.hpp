@@ -48,10 +48,14 @@
 #include <cmath>
 #include <cstddef>
 
-namespace rotgen {
+/// \namespace rotgen::models
 /// The kernels that `rotgen emit` writes: one namespace per emitted header.
-namespace models {
+
+/// \namespace rotgen::models::full_tensor_top_reduced
 /// The kernels of the model 'full_tensor_top', reduced (Routh) form, cyclic coordinates ignored (full_tensor_top_reduced.hpp).
+
+namespace rotgen {
+namespace models {
 namespace full_tensor_top_reduced {
 
 namespace detail {

@@ -47,10 +47,14 @@
 #include <cmath>
 #include <cstddef>
 
-namespace rotgen {
+/// \namespace rotgen::models
 /// The kernels that `rotgen emit` writes: one namespace per emitted header.
-namespace models {
+
+/// \namespace rotgen::models::heavy_top
 /// The kernels of the model 'heavy_top', Lagrangian form, y = (q, q_dot), explicit accelerations q_ddot = M^{-1} f (heavy_top.hpp).
+
+namespace rotgen {
+namespace models {
 namespace heavy_top {
 
 namespace detail {

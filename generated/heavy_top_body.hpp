@@ -49,10 +49,14 @@
 #include <cmath>
 #include <cstddef>
 
-namespace rotgen {
+/// \namespace rotgen::models
 /// The kernels that `rotgen emit` writes: one namespace per emitted header.
-namespace models {
+
+/// \namespace rotgen::models::heavy_top_body
 /// The kernels of the model 'heavy_top', body form, Euler's equations with a quaternion, y = (q, omega) (heavy_top_body.hpp).
+
+namespace rotgen {
+namespace models {
 namespace heavy_top_body {
 
 namespace detail {

@@ -47,10 +47,14 @@
 #include <cmath>
 #include <cstddef>
 
-namespace rotgen {
+/// \namespace rotgen::models
 /// The kernels that `rotgen emit` writes: one namespace per emitted header.
-namespace models {
+
+/// \namespace rotgen::models::heavy_top_reduced
 /// The kernels of the model 'heavy_top', reduced (Routh) form, cyclic coordinates ignored (heavy_top_reduced.hpp).
+
+namespace rotgen {
+namespace models {
 namespace heavy_top_reduced {
 
 namespace detail {

@@ -45,10 +45,14 @@
 #include <type_traits>
 #include <utility>
 
-namespace rotgen {
+/// \namespace rotgen::models
 /// The kernels that `rotgen emit` writes: one namespace per emitted header.
-namespace models {
+
+/// \namespace rotgen::models::heavy_top_taylor
 /// The kernels of the model 'heavy_top', Lagrangian form, y = (q, q_dot), explicit accelerations q_ddot = M^{-1} f (heavy_top_taylor.hpp).
+
+namespace rotgen {
+namespace models {
 namespace heavy_top_taylor {
 
 namespace detail {

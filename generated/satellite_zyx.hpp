@@ -46,10 +46,14 @@
 #include <cmath>
 #include <cstddef>
 
-namespace rotgen {
+/// \namespace rotgen::models
 /// The kernels that `rotgen emit` writes: one namespace per emitted header.
-namespace models {
+
+/// \namespace rotgen::models::satellite_zyx
 /// The kernels of the model 'satellite_zyx', Lagrangian form, y = (q, q_dot), explicit accelerations q_ddot = M^{-1} f (satellite_zyx.hpp).
+
+namespace rotgen {
+namespace models {
 namespace satellite_zyx {
 
 namespace detail {

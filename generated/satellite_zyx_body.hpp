@@ -49,10 +49,14 @@
 #include <cmath>
 #include <cstddef>
 
-namespace rotgen {
+/// \namespace rotgen::models
 /// The kernels that `rotgen emit` writes: one namespace per emitted header.
-namespace models {
+
+/// \namespace rotgen::models::satellite_zyx_body
 /// The kernels of the model 'satellite_zyx', body form, Euler's equations with a quaternion, y = (q, omega) (satellite_zyx_body.hpp).
+
+namespace rotgen {
+namespace models {
 namespace satellite_zyx_body {
 
 namespace detail {

@@ -36,10 +36,10 @@ class Model:
         The model's ``name``.
     rotor : bool
         Whether the model is a linear rotor (``rotor: true``, two angles).
-    parameters : dict of str to float
-        The parameters and their values, in the file's order.
-    descriptions : dict of str to str
-        The parameters' descriptions, for those that have one.
+    parameters : dict
+        The parameters (str) and their values (float), in the file's order.
+    descriptions : dict
+        The parameters' descriptions (str), for those that have one.
 
     Examples
     --------

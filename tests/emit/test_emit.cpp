@@ -50,8 +50,8 @@ TEST_CASE("the header follows the documented API", "[emit]") {
     const std::string& t = h.text;
     CHECK_THAT(t, Contains("namespace rotgen {\nnamespace models {\nnamespace heavy_top {"));
     CHECK_THAT(t, Contains("template <class T>\nstruct params {"));
-    CHECK_THAT(t,
-               Contains("T g = T(rg_scalar(981)/rg_scalar(100)); // gravitational acceleration"));
+    CHECK_THAT(
+        t, Contains("/// gravitational acceleration\n    T g = T(rg_scalar(981)/rg_scalar(100));"));
     CHECK_THAT(t, Contains("constexpr std::size_t state_size = 6;"));
     CHECK_THAT(
         t,
@@ -98,9 +98,8 @@ TEST_CASE("every form has its unit, state layout and outputs", "[emit]") {
     h = emit_model("heavy_top", o);
     CHECK(h.unit == "heavy_top_reduced");
     CHECK_THAT(h.text, Contains("constexpr std::size_t state_size = 2;"));
-    CHECK_THAT(
-        h.text,
-        Contains("T p_phi = T(rg_scalar(0)); // conserved momentum of the ignored coordinate phi"));
+    CHECK_THAT(h.text, Contains("/// conserved momentum of the ignored coordinate phi\n    T p_phi "
+                                "= T(rg_scalar(0));"));
     CHECK_THAT(h.text, Contains("void ignored_rates(const T* y, T* rates, const params<T>& p) {"));
     o.form = form_kind::body;
     h = emit_model("heavy_top", o);
