@@ -1,27 +1,28 @@
-// rotgen runtime — the vector arithmetic of the explicit Runge–Kutta methods.
-//
-// Rigid-body states have 3 to 13 components, and for them the integrator's own work costs as much
-// as the generated kernel (the free top's right-hand side is three products). Written as Eigen
-// expressions on member vectors, a DOP853 stage on the free top cost 16 ns against 9.5 ns for a
-// stage of Boost.Odeint's Fehlberg 7(8) on the same kernel: every stage went through memory (the
-// kernel writes through a pointer), partly as 16-byte loads of values just stored as 8-byte
-// scalars, which the CPU cannot forward.
-//
-// So the explicit methods keep their stages in `work_vector`s: for a system with a static size a
-// std::array<T, N> in a local variable, which the compiler keeps in registers once the loops below
-// (trip count N, known) are unrolled and the kernel is inlined — as fast as the same step written
-// out by hand in scalar variables (16.7 µs for 242 steps of the free top, both); for a run-time
-// size an Eigen vector held by the stepper. The stages are stored in the stepper only in steps that
-// hold samples (dense output). Free top, DOP853 at tol 1e-10, 2909 evaluations: 46 µs before,
-// 26.5 µs after (bench/workprecision; the README's "Work-precision" section).
-//
-//   stage(out, y, h, newest, earlier...)   out = y + h·(Σ earlier a_j k_j + a_new k_new)
-//   combination(out, terms...)             out = Σ a_j k_j
-//   all_finite(v), assign(to, from)
-//
-// A stage is evaluated as (y + h·Σ earlier) + (h·a_new)·k_new: everything but the newest stage can
-// be summed while f is still computing it, so the next evaluation of f waits for one multiply and
-// one add only (the compiler may not reassociate floating-point sums itself).
+/// \file
+/// rotgen runtime — the vector arithmetic of the explicit Runge–Kutta methods.
+///
+/// Rigid-body states have 3 to 13 components, and for them the integrator's own work costs as much
+/// as the generated kernel (the free top's right-hand side is three products). Written as Eigen
+/// expressions on member vectors, a DOP853 stage on the free top cost 16 ns against 9.5 ns for a
+/// stage of Boost.Odeint's Fehlberg 7(8) on the same kernel: every stage went through memory (the
+/// kernel writes through a pointer), partly as 16-byte loads of values just stored as 8-byte
+/// scalars, which the CPU cannot forward.
+///
+/// So the explicit methods keep their stages in `work_vector`s: for a system with a static size a
+/// std::array<T, N> in a local variable, which the compiler keeps in registers once the loops below
+/// (trip count N, known) are unrolled and the kernel is inlined — as fast as the same step written
+/// out by hand in scalar variables (16.7 µs for 242 steps of the free top, both); for a run-time
+/// size an Eigen vector held by the stepper. The stages are stored in the stepper only in steps
+/// that hold samples (dense output). Free top, DOP853 at tol 1e-10, 2909 evaluations: 46 µs before,
+/// 26.5 µs after (bench/workprecision; the README's "Work-precision" section).
+///
+///   stage(out, y, h, newest, earlier...)   out = y + h·(Σ earlier a_j k_j + a_new k_new)
+///   combination(out, terms...)             out = Σ a_j k_j
+///   all_finite(v), assign(to, from)
+///
+/// A stage is evaluated as (y + h·Σ earlier) + (h·a_new)·k_new: everything but the newest stage can
+/// be summed while f is still computing it, so the next evaluation of f waits for one multiply and
+/// one add only (the compiler may not reassociate floating-point sums itself).
 #pragma once
 
 #include <Eigen/Core>
@@ -50,8 +51,11 @@ using work_vector =
 // and the state may alias the system's parameters, which then are reloaded after every store
 // (measured: DOP853 on the free top with run-time parameters 8.1 against 13.9 µs).
 #if defined(__GNUC__) || defined(__clang__)
+/// Forces inlining (GCC, Clang); plain `inline` elsewhere. See the comment above.
 #define ROTGEN_ALWAYS_INLINE __attribute__((always_inline)) inline
+/// Keeps a function out of line and marks it rarely run (GCC, Clang); nothing elsewhere.
 #define ROTGEN_COLD __attribute__((noinline, cold))
+/// Keeps a function out of line (GCC, Clang); nothing elsewhere.
 #define ROTGEN_NOINLINE __attribute__((noinline))
 #else
 #define ROTGEN_ALWAYS_INLINE inline
@@ -59,7 +63,7 @@ using work_vector =
 #define ROTGEN_NOINLINE
 #endif
 
-// A work vector of n components, zero.
+/// A work vector of n components, zero.
 template <class V> V make_work_vector(std::size_t n) {
     V v{};
     if constexpr (!std::is_aggregate_v<V>) v = V::Zero(static_cast<Eigen::Index>(n));
@@ -70,7 +74,7 @@ template <class V> constexpr std::size_t size_of(const V& v) {
     return static_cast<std::size_t>(v.size());
 }
 
-// One term a·k of a linear combination of stage vectors.
+/// One term a·k of a linear combination of stage vectors.
 template <class T, class V> struct term {
     T a;
     const V& k;
@@ -96,10 +100,10 @@ template <class V, class... Terms> inline void combination(V& out, Terms... term
         out[i] = (... + (terms.a * terms.k[i]));
 }
 
-// Whether every value is finite. For a run-time size of a floating-point type, x - x is 0 for a
-// finite x and NaN otherwise: one pass without branches, four sums so that it vectorises (a lane
-// system's state has n·W values; rk4 on a run-time size of 6 takes 10% less time). A static size
-// keeps the plain loop, which the compiler unrolls (2% faster there).
+/// Whether every value is finite. For a run-time size of a floating-point type, x - x is 0 for a
+/// finite x and NaN otherwise: one pass without branches, four sums so that it vectorises (a lane
+/// system's state has n·W values; rk4 on a run-time size of 6 takes 10% less time). A static size
+/// keeps the plain loop, which the compiler unrolls (2% faster there).
 template <class V> inline bool all_finite(const V& v) {
     using T = std::decay_t<decltype(v[0])>;
     const std::size_t n = size_of(v);

@@ -1,6 +1,7 @@
-// rotgen runtime — the exact solution of the force-free asymmetric top, omega(t) in body axes,
-// in Jacobi elliptic functions (Boost.Math). A reference for tests and benchmarks: Euler's
-// equations (5.87)-(5.89), I1 omega1' = (I2 - I3) omega2 omega3 and cyclic permutations.
+/// \file
+/// rotgen runtime — the exact solution of the force-free asymmetric top, omega(t) in body axes,
+/// in Jacobi elliptic functions (Boost.Math). A reference for tests and benchmarks: Euler's
+/// equations (5.87)-(5.89), I1 omega1' = (I2 - I3) omega2 omega3 and cyclic permutations.
 #pragma once
 
 #include <boost/math/special_functions/ellint_1.hpp>
@@ -12,27 +13,31 @@
 
 namespace rotgen {
 
-// Exact solution (Landau & Lifshitz, Mechanics, §37), for I1 < I2 < I3 off the separatrix.
-// Invariants: 2E = Σ I_i ω_i²,  L² = Σ I_i² ω_i²,  and I1 <= L²/(2E) <= I3.
-// Eliminating ω1 and ω3 with the invariants,
-//   I1 (I3 − I1) ω1² = (2E I3 − L²) − I2 (I3 − I2) ω2²
-//   I3 (I3 − I1) ω3² = (L² − 2E I1) − I2 (I2 − I1) ω2²
-// so that ω2' = (I3 − I1)/I2 · ω3 ω1 is a separable equation solved by elliptic functions.
-// Case L² < 2E·I2 (the polhode circles the axis of the smallest moment, ω1 never vanishes):
-//   ω1 = s1 A1 dn(u, k),  ω2 = σ A2 sn(u, k),  ω3 = A3 cn(u, k),  u = λ t + u0,
-//   A1² = (2E I3 − L²) / (I1 (I3 − I1)),   A2² = (L² − 2E I1) / (I2 (I2 − I1)),
-//   A3² = (L² − 2E I1) / (I3 (I3 − I1)),   λ² = (I2 − I1)(2E I3 − L²) / (I1 I2 I3),
-//   k²  = (I3 − I2)(L² − 2E I1) / ((I2 − I1)(2E I3 − L²))  (< 1 exactly when L² < 2E I2).
-// Substituting (sn' = cn dn, cn' = −sn dn, dn' = −k² sn cn) into the three equations gives the
-// identities A2 λ = |I3 − I1|/I2 A1 A3, A1 λ k² = |I3 − I2|/I1 A2 A3, A3 λ = |I2 − I1|/I3 A1 A2
-// and the sign condition σ = s1 · sgn(I3 − I1); s1 = sgn ω1(0). The phase u0 = F(φ0, k) with
-// the amplitude φ0 = atan2(sn u0, cn u0) = atan2(ω2(0)/(σ A2), ω3(0)/A3).
-// Case L² > 2E·I2 (about the axis of the largest moment, ω3 never vanishes): relabel the axes
-// 1 ↔ 3 and flip the sign of ω2 — (I1, I2, I3) → (I3, I2, I1), (ω1, ω2, ω3) → (ω3, −ω2, ω1) maps
-// Euler's equations onto themselves — and use the formulas above in the relabelled frame (where
-// I3 − I1 < 0, hence σ = −s1, and every quantity under a square root is again positive).
+/// Exact solution (Landau & Lifshitz, Mechanics, §37), for I1 < I2 < I3 off the separatrix.
+/// Invariants: 2E = Σ I_i ω_i²,  L² = Σ I_i² ω_i²,  and I1 <= L²/(2E) <= I3.
+/// Eliminating ω1 and ω3 with the invariants,
+///   I1 (I3 − I1) ω1² = (2E I3 − L²) − I2 (I3 − I2) ω2²
+///   I3 (I3 − I1) ω3² = (L² − 2E I1) − I2 (I2 − I1) ω2²
+/// so that ω2' = (I3 − I1)/I2 · ω3 ω1 is a separable equation solved by elliptic functions.
+/// Case L² < 2E·I2 (the polhode circles the axis of the smallest moment, ω1 never vanishes):
+///   ω1 = s1 A1 dn(u, k),  ω2 = σ A2 sn(u, k),  ω3 = A3 cn(u, k),  u = λ t + u0,
+///   A1² = (2E I3 − L²) / (I1 (I3 − I1)),   A2² = (L² − 2E I1) / (I2 (I2 − I1)),
+///   A3² = (L² − 2E I1) / (I3 (I3 − I1)),   λ² = (I2 − I1)(2E I3 − L²) / (I1 I2 I3),
+///   k²  = (I3 − I2)(L² − 2E I1) / ((I2 − I1)(2E I3 − L²))  (< 1 exactly when L² < 2E I2).
+/// Substituting (sn' = cn dn, cn' = −sn dn, dn' = −k² sn cn) into the three equations gives the
+/// identities A2 λ = |I3 − I1|/I2 A1 A3, A1 λ k² = |I3 − I2|/I1 A2 A3, A3 λ = |I2 − I1|/I3 A1 A2
+/// and the sign condition σ = s1 · sgn(I3 − I1); s1 = sgn ω1(0). The phase u0 = F(φ0, k) with
+/// the amplitude φ0 = atan2(sn u0, cn u0) = atan2(ω2(0)/(σ A2), ω3(0)/A3).
+/// Case L² > 2E·I2 (about the axis of the largest moment, ω3 never vanishes): relabel the axes
+/// 1 ↔ 3 and flip the sign of ω2 — (I1, I2, I3) → (I3, I2, I1), (ω1, ω2, ω3) → (ω3, −ω2, ω1) maps
+/// Euler's equations onto themselves — and use the formulas above in the relabelled frame (where
+/// I3 − I1 < 0, hence σ = −s1, and every quantity under a square root is again positive).
+/// The constructor throws std::invalid_argument for moments out of order or a state on the
+/// separatrix (L² = 2E·I2).
 template <class T> class free_top_exact {
   public:
+    /// Solves for the amplitudes, λ, k and the phase from the principal moments I (I1 < I2 < I3)
+    /// and ω(0) = w0 in body axes.
     free_top_exact(std::array<T, 3> I, std::array<T, 3> w0) {
         using std::sqrt;
         if (!(I[0] < I[1] && I[1] < I[2]))
@@ -68,6 +73,7 @@ template <class T> class free_top_exact {
         m_u0 = boost::math::ellint_1(m_k, amplitude);
     }
 
+    /// ω(t) in body axes, t in the units of the moments and ω(0).
     std::array<T, 3> operator()(T t) const {
         T cn, dn;
         const T sn = boost::math::jacobi_elliptic(m_k, m_lambda * t + m_u0, &cn, &dn);
@@ -76,8 +82,9 @@ template <class T> class free_top_exact {
         return v;
     }
 
+    /// The modulus k of the Jacobi elliptic functions (k² < 1).
     T modulus() const { return m_k; }
-    // period of the motion of ω: 4K(k)/λ
+    /// period of the motion of ω: 4K(k)/λ
     T period() const { return T(4) * boost::math::ellint_1(m_k) / m_lambda; }
 
   private:

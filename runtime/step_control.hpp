@@ -1,5 +1,6 @@
-// rotgen runtime — error norm, PI step-size controller and initial step selection for the
-// adaptive methods (Hairer, Nørsett & Wanner, Solving ODEs I, §II.4; the codes DOPRI5/DOP853).
+/// \file
+/// rotgen runtime — error norm, PI step-size controller and initial step selection for the
+/// adaptive methods (Hairer, Nørsett & Wanner, Solving ODEs I, §II.4; the codes DOPRI5/DOP853).
 #pragma once
 
 #include <algorithm>
@@ -13,24 +14,24 @@
 
 namespace rotgen {
 
-// Options shared by the adaptive methods. Each method sets its own defaults in its header.
+/// Options shared by the adaptive methods. Each method sets its own defaults in its header.
 template <class T> struct adaptive_options {
-    T rtol = T(1e-6);    // relative tolerance, >= 10·eps(T) (or 0 with atol > 0)
-    T atol = T(1e-9);    // absolute tolerance, >= 0
-    T h0 = T(0);         // initial step; 0 selects it automatically (hinit below)
-    T hmax = T(0);       // largest step; 0 means |t_end − t0|
-    T fixed_step = T(0); // > 0: no error control, steps of this size (order studies, benches)
-    T safety = T(0.9);   // safety factor of the controller
-    T facmin = T(0.2);   // smallest step-size ratio h_new/h
-    T facmax = T(10);    // largest step-size ratio h_new/h
-    T beta = T(0.04);    // PI controller weight of the previous error (0: I controller)
-    std::size_t max_steps = 1000000; // attempted steps before status::max_steps
+    T rtol = T(1e-6);    ///< relative tolerance, >= 10·eps(T) (or 0 with atol > 0)
+    T atol = T(1e-9);    ///< absolute tolerance, >= 0
+    T h0 = T(0);         ///< initial step; 0 selects it automatically (hinit below)
+    T hmax = T(0);       ///< largest step; 0 means |t_end − t0|
+    T fixed_step = T(0); ///< > 0: no error control, steps of this size (order studies, benches)
+    T safety = T(0.9);   ///< safety factor of the controller
+    T facmin = T(0.2);   ///< smallest step-size ratio h_new/h
+    T facmax = T(10);    ///< largest step-size ratio h_new/h
+    T beta = T(0.04);    ///< PI controller weight of the previous error (0: I controller)
+    std::size_t max_steps = 1000000; ///< attempted steps before status::max_steps
 };
 
 namespace detail {
 
-// Error norm (HNW I, (4.11)): RMS over i of err_i / sk_i, sk_i = atol + rtol·max(|y0_i|, |y1_i|).
-// Any vectors with size() and operator[] (Eigen vectors, the explicit methods' work vectors).
+/// Error norm (HNW I, (4.11)): RMS over i of err_i / sk_i, sk_i = atol + rtol·max(|y0_i|, |y1_i|).
+/// Any vectors with size() and operator[] (Eigen vectors, the explicit methods' work vectors).
 template <class T, class E, class V>
 T error_norm(const E& err, const V& y0, const V& y1, T atol, T rtol) {
     using std::sqrt;
@@ -46,7 +47,7 @@ T error_norm(const E& err, const V& y0, const V& y1, T atol, T rtol) {
     return sqrt(sum / T(err.size()));
 }
 
-// Validation of the options shared by the adaptive methods; returns an empty string when valid.
+/// Validation of the options shared by the adaptive methods; returns an empty string when valid.
 template <class T> std::string check_adaptive_options(const adaptive_options<T>& o) {
     using std::isfinite;
     const T eps = std::numeric_limits<T>::epsilon();
@@ -65,18 +66,18 @@ template <class T> std::string check_adaptive_options(const adaptive_options<T>&
     return "";
 }
 
-// PI controller (HNW I, (4.13) and the code DOPRI5):
-//   fac11 = err^alpha,  alpha = 1/q − 0.75·beta,  q = order of the error estimate + 1
-//   accepted (err <= 1): h_new = h · clamp(safety / (fac11 · err_old^(−beta)), facmin, facmax),
-//                        err_old = max(err, 1e-4); no growth right after a rejection
-//   rejected (err > 1):  h_new = h · max(facmin, safety / fac11)
+/// PI controller (HNW I, (4.13) and the code DOPRI5):
+///   fac11 = err^alpha,  alpha = 1/q − 0.75·beta,  q = order of the error estimate + 1
+///   accepted (err <= 1): h_new = h · clamp(safety / (fac11 · err_old^(−beta)), facmin, facmax),
+///                        err_old = max(err, 1e-4); no growth right after a rejection
+///   rejected (err > 1):  h_new = h · max(facmin, safety / fac11)
 template <class T> class pi_controller {
   public:
     pi_controller(const adaptive_options<T>& o, int q)
         : m_safety(o.safety), m_facmin(o.facmin), m_facmax(o.facmax), m_beta(o.beta),
           m_alpha(T(1) / T(q) - T(0.75) * o.beta), m_eighth_root(o.beta == T(0) && q == 8) {}
 
-    // New step after an accepted step of size h with error err (<= 1).
+    /// New step after an accepted step of size h with error err (<= 1).
     T accepted(T h, T err) {
         using std::max;
         using std::min;
@@ -92,7 +93,7 @@ template <class T> class pi_controller {
         return h * ratio;
     }
 
-    // New step after a rejected step of size h with error err (> 1, or non-finite).
+    /// New step after a rejected step of size h with error err (> 1, or non-finite).
     T rejected(T h, T err) {
         using std::isfinite;
         using std::max;
@@ -102,9 +103,9 @@ template <class T> class pi_controller {
     }
 
   private:
-    // err^alpha. The next step waits for this on every step, so DOP853's exponent 1/8 is taken as
-    // three square roots (within 2 ulp of pow, at about half its latency; measured: 2 µs of 40 on
-    // the free top at tol 1e-10).
+    /// err^alpha. The next step waits for this on every step, so DOP853's exponent 1/8 is taken as
+    /// three square roots (within 2 ulp of pow, at about half its latency; measured: 2 µs of 40 on
+    /// the free top at tol 1e-10).
     T power_alpha(T err) const {
         using std::pow;
         using std::sqrt;
@@ -117,12 +118,12 @@ template <class T> class pi_controller {
     bool m_rejected = false;
 };
 
-// Initial step (HNW I, §II.4, "Starting step size"; the routine HINIT of DOPRI5), with `order`
-// the order of the method. `f0` = f(t0, y0), `dir` = ±1, `hmax` > 0.
-//   d0 = ‖y0‖, d1 = ‖f0‖ (weighted RMS norms);  h = 0.01·d0/d1 (or 1e-6 if either is tiny)
-//   explicit Euler step to y1, d2 = ‖f(t0 + h, y1) − f0‖ / h
-//   h1 = (0.01 / max(d1, d2))^(1/order)  (or max(1e-6, 1e-3·h) if both are tiny)
-//   h  = min(100·h, h1, hmax)
+/// Initial step (HNW I, §II.4, "Starting step size"; the routine HINIT of DOPRI5), with `order`
+/// the order of the method. `f0` = f(t0, y0), `dir` = ±1, `hmax` > 0.
+///   d0 = ‖y0‖, d1 = ‖f0‖ (weighted RMS norms);  h = 0.01·d0/d1 (or 1e-6 if either is tiny)
+///   explicit Euler step to y1, d2 = ‖f(t0 + h, y1) − f0‖ / h
+///   h1 = (0.01 / max(d1, d2))^(1/order)  (or max(1e-6, 1e-3·h) if both are tiny)
+///   h  = min(100·h, h1, hmax)
 template <class S, class T, class V, class F>
 T initial_step(const S& sys, T t0, const V& y0, const F& f0, T dir, T hmax, T atol, T rtol,
                int order, step_stats& stats) {

@@ -204,17 +204,17 @@ std::string form_title(const lowered_form& f) {
 std::string comment_block(const std::string& text, const std::string& indent = "") {
     std::istringstream words(text);
     std::string word, line, out;
-    const std::size_t width = 100 - 3 - indent.size();
+    const std::size_t width = 100 - 4 - indent.size();
     bool first = true;
     while (words >> word) {
         if (!line.empty() && line.size() + 1 + word.size() > width) {
-            out += "// " + (first ? std::string() : indent) + line + "\n";
+            out += "/// " + (first ? std::string() : indent) + line + "\n";
             first = false;
             line.clear();
         }
         line += (line.empty() ? "" : " ") + word;
     }
-    if (!line.empty()) out += "// " + (first ? std::string() : indent) + line + "\n";
+    if (!line.empty()) out += "/// " + (first ? std::string() : indent) + line + "\n";
     return out;
 }
 
@@ -383,11 +383,15 @@ std::string params_members(const lowered_form& lf) {
     if (lf.runtime_parameters.empty())
         return "    // none: every parameter is folded into the code (" + join(lf.folded, ", ") +
                ")";
-    std::string members = "    using rg_scalar = typename detail::scalar_of<T>::type;";
+    std::string members =
+        "    /// The scalar type of the literals: T::Scalar for array and autodiff types, else T.\n"
+        "    using rg_scalar = typename detail::scalar_of<T>::type;";
     for (const auto& p : lf.runtime_parameters) {
-        members +=
-            "\n    T " + p.name + " = T(" + literal(exact_decimal(p.value), "rg_scalar") + ");";
-        if (!p.description.empty()) members += " // " + one_line(p.description);
+        members += "\n    /// " +
+                   (p.description.empty() ? "The parameter " + p.name + " of the model file."
+                                          : one_line(p.description)) +
+                   "\n    T " + p.name + " = T(" + literal(exact_decimal(p.value), "rg_scalar") +
+                   ");";
     }
     return members;
 }
@@ -401,7 +405,7 @@ std::string description(const lowered_form& lf, const std::vector<function_stats
     desc += comment_block("Form: " + form_title(lf) + ".");
     for (const auto& note : lf.notes)
         desc += comment_block(note, "  ");
-    desc += "//\n";
+    desc += "///\n";
     desc += comment_block("State y (dim " + std::to_string(n) + "): " + join(lf.state_names, ", ") +
                           ".");
     const bool rotor = lf.form == form_kind::rotor || lf.form == form_kind::rotor_x;
@@ -421,7 +425,7 @@ std::string description(const lowered_form& lf, const std::vector<function_stats
             "Singularities: none from the coordinates (unless a warning above says otherwise).");
     else
         desc += comment_block(singular_comment(angles));
-    desc += "//\n";
+    desc += "///\n";
     if (lf.runtime_parameters.empty()) {
         desc += comment_block("Parameters: none at run time; folded in: " + join(lf.folded, ", ") +
                               ".");
@@ -433,12 +437,12 @@ std::string description(const lowered_form& lf, const std::vector<function_stats
             "Parameters (params<T>, defaults from the model file): " + join(defaults, ", ") + "." +
             (lf.folded.empty() ? "" : " Folded in: " + join(lf.folded, ", ") + "."));
     }
-    desc += "//\n// Operations (+ - * / and calls), before lowering -> after:\n";
+    desc += "///\n/// Operations (+ - * / and calls), before lowering -> after:\n";
     for (const auto& s : stats)
         if (!s.summary.empty())
-            desc += "//   " + s.function + ": " + s.summary + "\n";
+            desc += "///   " + s.function + ": " + s.summary + "\n";
         else
-            desc += "//   " + s.function + ": " + std::to_string(s.before.total()) + " -> " +
+            desc += "///   " + s.function + ": " + std::to_string(s.before.total()) + " -> " +
                     std::to_string(s.after.total()) + " (" + std::to_string(s.temporaries) +
                     " temporaries)" +
                     (s.hoisted.total()

@@ -34,7 +34,8 @@ std::string prepared_text(const lowered_form& lf) {
         const std::string text = print_definition(prog, c.node);
         ops += definition_op_count(prog, c.node);
         const std::string member = c.name.substr(2); // p.c000 -> c000
-        members += "\n    T " + member + "{};";
+        members +=
+            "\n    T " + member + "{}; ///< a subexpression of the parameters, set by prepare()";
         definitions += "\n    p." + member + " = " + text + ";";
         calls_below(prog, c.node, true, calls);
         literals = literals || text.find("S(") != std::string::npos;

@@ -4,13 +4,14 @@ The module calls the stages the ``rotgen`` command calls (no second engine):
 
 - :class:`Model` -- a model file: ``.parameters``, ``.equations(format=)``, ``.inertia()``;
 - :class:`Scene` -- a scene file or dict: ``.with_(...)`` for a changed copy;
-- :func:`simulate` -- one run: ``.t``, ``.y``, ``.columns``, ``.to_pandas()``, ``.events``,
-  ``.summary``;
-- :func:`sweep` -- an ensemble on threads and SIMD lanes: ``.summary`` (summary.csv as a
-  DataFrame), ``.trajectories``;
+- :func:`simulate` -- one run, a :class:`SimulateResult`: ``.t``, ``.y``, ``.columns``,
+  ``.to_pandas()``, ``.events``, ``.summary``;
+- :func:`sweep` -- an ensemble on threads and SIMD lanes, a :class:`SweepResult`: ``.summary``
+  (summary.csv as a DataFrame), ``.trajectories``;
 - :func:`emit` -- the generated C++ header, as ``rotgen emit``;
 - :class:`InputError` (a ValueError with ``file``, ``line``, ``column``) and :class:`RunError`
-  (with the partial ``result``).
+  (with the partial ``result``);
+- ``__version__`` -- the version of the compiled core (the CLI's).
 """
 
 from ._errors import InputError, RunError

@@ -23,6 +23,23 @@ class Model:
     ------
     InputError
         When the model is rejected (the CLI's message, file, line and column).
+    TypeError
+        When neither or both of ``path`` and ``yaml_text`` are given.
+
+    Attributes
+    ----------
+    path : str
+        The model file, or ``<model>`` for a model given as text.
+    yaml_text : str or None
+        The YAML text of a model given as text (None for a file).
+    name : str
+        The model's ``name``.
+    rotor : bool
+        Whether the model is a linear rotor (``rotor: true``, two angles).
+    parameters : dict of str to float
+        The parameters and their values, in the file's order.
+    descriptions : dict of str to str
+        The parameters' descriptions, for those that have one.
 
     Examples
     --------
@@ -55,9 +72,20 @@ class Model:
         Parameters
         ----------
         format : {'json', 'text', 'latex'}
-            ``'json'`` returns the parsed object (a dict: ``lagrangian``, ``momenta``,
-            ``mass_matrix``, ``euler_lagrange``, ``hamiltonian``, ...; expressions are strings
-            SymPy can parse); ``'text'`` and ``'latex'`` return the text.
+            ``'json'`` (the default) returns the parsed object; ``'text'`` and ``'latex'`` return
+            the text.
+
+        Returns
+        -------
+        dict or str
+            For ``'json'`` a dict (``lagrangian``, ``momenta``, ``mass_matrix``,
+            ``euler_lagrange``, ``hamiltonian``, ...; expressions are strings SymPy can parse),
+            else the text. Derived once per format and kept.
+
+        Raises
+        ------
+        ValueError
+            An unknown format.
         """
         if format not in self._equations:
             self._equations[format] = _rotgen.inspect(self.path, self._text(), format, False)
@@ -65,11 +93,15 @@ class Model:
         return json.loads(text) if format == "json" else text
 
     def inertia(self):
-        """The inertia report of ``rotgen inspect --inertia --format json`` (a dict).
+        """The inertia report of ``rotgen inspect --inertia --format json``.
 
-        Keys: ``tensor`` (3x3), ``principal_moments`` (3), ``principal_axes`` (3x3, rows),
-        ``class`` (spherical, symmetric, asymmetric, rotor) and ``stability`` (one entry per
-        principal axis: ``axis``, ``stable``, ``rate`` per unit spin), and more (see the README).
+        Returns
+        -------
+        dict
+            Keys: ``tensor`` (3x3), ``principal_moments`` (3), ``principal_axes`` (3x3, rows),
+            ``class`` (spherical, symmetric, asymmetric, rotor) and ``stability`` (one entry per
+            principal axis: ``axis``, ``stable``, ``rate`` per unit spin), and more (see the
+            README).
         """
         text = _rotgen.inspect(self.path, self._text(), "json", True)
         return json.loads(text)["inertia"]
@@ -93,8 +125,8 @@ def emit(model, directory, form=None, outputs=None, specialise=None, name=None, 
     outputs : list of str, optional
         ``rhs``, ``jacobian``, ``energy``, ``momenta``, ... (default: all the form gives but
         ``taylor``).
-    specialise : True or list of str, optional
-        Fold parameter values into the code: all of them (True) or those named.
+    specialise : bool or list of str, optional
+        Fold parameter values into the code: all of them (``True``) or those named.
     name : str, optional
         The unit's name (file ``NAME.hpp``).
     strategy : {'explicit', 'solve'}, optional
@@ -104,6 +136,16 @@ def emit(model, directory, form=None, outputs=None, specialise=None, name=None, 
     -------
     str
         The path of the header written.
+
+    Raises
+    ------
+    InputError
+        The model or an option is rejected (the CLI's message).
+
+    Examples
+    --------
+    >>> rotgen.emit("models/heavy_top.yaml", "out", outputs=["rhs", "energy"])
+    'out/heavy_top.hpp'
     """
     if not isinstance(model, Model):
         model = Model(model)

@@ -18,21 +18,31 @@ def _pandas():
 class SimulateResult:
     """The samples of one run (what ``rotgen simulate`` writes to its CSV).
 
+    Made by :func:`simulate` (and held by :class:`RunError`), not by user code.
+
+    Parameters
+    ----------
+    d : dict
+        What the compiled core returns: ``rows``, ``columns``, ``events``, ``summary``, ``ok``,
+        ``message``.
+
     Attributes
     ----------
-    t : ndarray, shape (n,)
-        The sample times.
-    y : ndarray, shape (n, k)
-        One row per sample, one column per recorded quantity, in the CSV's order (``columns``).
-        ``t`` and ``y`` are views of one array the engine's rows were copied into once.
+    t : ndarray
+        The sample times, shape (n,).
+    y : ndarray
+        One row per sample, one column per recorded quantity, in the CSV's order (``columns``),
+        shape (n, k). ``t`` and ``y`` are views of one array the engine's rows were copied into
+        once.
     columns : list of str
         The names of y's columns (the CSV header after ``t``).
-    events : list of (str, float, ndarray)
-        The scene's events in time order: name, time, the recorded columns there.
+    events : list of tuple
+        The scene's events in time order, each a tuple (name, time, the recorded columns there as
+        an ndarray).
     summary : dict
         ``model``, ``form``, ``state_size``, ``method``, ``steps`` (accepted), ``rejected``,
-        ``rhs_evals``, ``jac_evals``, ``factorisations``, ``drifts`` (invariant name ->
-        max |v(t) - v(t0)|), ``chart`` (the chart switch, if any), ``integrate_seconds``,
+        ``rhs_evals``, ``jac_evals``, ``factorisations``, ``drifts`` (invariant name to
+        ``max |v(t) - v(t0)|``), ``chart`` (the chart switch, if any), ``integrate_seconds``,
         ``kernels_cached``.
     success : bool
         Whether the run reached the end time (or a terminal event).
@@ -51,19 +61,57 @@ class SimulateResult:
         self.message = d["message"]
 
     def __getitem__(self, column):
-        """The samples of one recorded column, by name (``r["theta"]``)."""
+        """The samples of one recorded column, by name (``r["theta"]``).
+
+        Parameters
+        ----------
+        column : str
+            One of :attr:`columns`.
+
+        Returns
+        -------
+        ndarray
+            The column of :attr:`y`, shape (n,) (a view).
+
+        Raises
+        ------
+        ValueError
+            When no column has that name.
+        """
         return self.y[:, self.columns.index(column)]
 
     def to_pandas(self):
-        """A DataFrame indexed by ``t``, one column per recorded quantity (needs pandas)."""
+        """The samples as a DataFrame (needs pandas).
+
+        Returns
+        -------
+        pandas.DataFrame
+            Indexed by ``t``, one column per recorded quantity (:attr:`columns`).
+
+        Raises
+        ------
+        ImportError
+            Without pandas (Debian: python3-pandas).
+        """
         pd = _pandas()
         if pd is None:
             raise ImportError("to_pandas() needs pandas (Debian: python3-pandas)")
         return pd.DataFrame(self.y, index=pd.Index(self.t, name="t"), columns=self.columns)
 
     def events_to_pandas(self):
-        """The events as a DataFrame: ``event``, ``t`` and the recorded columns (the rows of
-        ``rotgen simulate``'s events CSV)."""
+        """The events as a DataFrame (needs pandas).
+
+        Returns
+        -------
+        pandas.DataFrame
+            One row per event: ``event``, ``t`` and the recorded columns (the rows of
+            ``rotgen simulate``'s events CSV).
+
+        Raises
+        ------
+        ImportError
+            Without pandas (Debian: python3-pandas).
+        """
         pd = _pandas()
         if pd is None:
             raise ImportError("events_to_pandas() needs pandas (Debian: python3-pandas)")
@@ -92,6 +140,7 @@ def simulate(scene):
     Returns
     -------
     SimulateResult
+        The samples, the events and the run's summary.
 
     Raises
     ------
@@ -99,6 +148,12 @@ def simulate(scene):
         The scene is rejected (the CLI's exit status 2).
     RunError
         The run started but could not finish; ``e.result`` holds the samples so far.
+
+    Examples
+    --------
+    >>> r = rotgen.simulate("models/scenes/heavy_top_nutation.yaml")
+    >>> r.t.shape == r["theta"].shape
+    True
     """
     path, text = source_of(scene)
     result = SimulateResult(_rotgen.simulate(path, text))
@@ -159,6 +214,14 @@ def _summary_rows(text):
 class SweepResult:
     """The members of an ensemble (what ``rotgen sweep`` writes).
 
+    Made by :func:`sweep`, not by user code.
+
+    Parameters
+    ----------
+    d : dict
+        What the compiled core returns: ``summary_csv``, ``trajectories``, ``columns``, ``keys``,
+        ``info``.
+
     Attributes
     ----------
     summary : pandas.DataFrame or list of dict
@@ -167,19 +230,24 @@ class SweepResult:
         ``rhs_evals``, ``status``. A list of dicts when pandas is absent.
     summary_csv : str
         The text of summary.csv, the same bytes as the CLI's.
-    trajectories : ndarray, shape (members, samples, 1 + columns) or None
-        Every member's samples: ``t`` then the recorded columns (``columns``); NaN past the last
-        sample a member reached. None with ``trajectories=False``.
+    trajectories : ndarray or None
+        Every member's samples, shape (members, samples, 1 + columns): ``t`` then the recorded
+        columns (``columns``); NaN past the last sample a member reached. None with
+        ``trajectories=False``.
     columns : list of str
         The names along the last axis of ``trajectories`` (``t`` first).
     keys : list of str
         The varied keys, in the plan's order.
     seconds : float
         Wall time running the members (the CLI's "running the members").
-    threads, lanes : int
-        How they ran.
-    members, failed : int
-        Members, and those whose status is not ``ok``.
+    threads : int
+        The threads that ran the members.
+    lanes : int
+        Members per SIMD batch (1: one at a time).
+    members : int
+        The number of members.
+    failed : int
+        The members whose status is not ``ok``.
     info : dict
         ``members``, ``failed``, ``in_lanes`` (members that ran in a batch of lanes), ``steps``,
         ``rhs_evals`` (all members'), ``seconds``, ``threads``, ``lanes``, ``arch`` (the lanes'
@@ -229,7 +297,10 @@ def sweep(scene, vary=None, threads=0, lanes=1, trajectories=True):
     threads : int
         Threads running members (0: every core).
     lanes : int
-        Members per SIMD batch (> 1: ``--lanes``; rk4 and dop853 scenes without events).
+        Members per SIMD batch (> 1: ``--lanes``). The scene's method must be ``rk4``,
+        ``dop853`` or ``taylor`` (else InputError); each lane watches the scene's events on its
+        own state. A member a batch cannot carry (a chart switch, a failure) runs alone, as
+        without lanes.
     trajectories : bool
         Keep every member's samples (``.trajectories``).
 
@@ -243,6 +314,15 @@ def sweep(scene, vary=None, threads=0, lanes=1, trajectories=True):
     ------
     InputError
         The scene or a ``vary`` entry is rejected.
+    ValueError
+        A ``vary`` tuple of other than two or three entries.
+
+    Examples
+    --------
+    >>> s = rotgen.sweep("models/scenes/heavy_top_nutation.yaml",
+    ...                  vary={"initial.theta": (0.2, 1.2, 8)}, threads=2)
+    >>> s.members
+    8
     """
     path, text = source_of(scene)
     entries = [_vary_entry(k, v) for k, v in (vary or {}).items()]

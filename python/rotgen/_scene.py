@@ -63,6 +63,8 @@ class Scene:
     InputError
         When the scene (or its model) is rejected. A scene given as a dict or text is named
         ``<scene>`` in errors; the line and column are those of :attr:`yaml_text`.
+    TypeError
+        When neither or both of ``source`` and ``yaml_text`` are given.
 
     Attributes
     ----------
@@ -70,8 +72,31 @@ class Scene:
         The file, or ``<scene>``.
     yaml_text : str or None
         The YAML text of a scene given as a dict or text (None for a file).
-    model, form, method, t_start, t_end, samples, record, events
-        What the scene runs, as rotgen read it.
+    model : str
+        The model's name.
+    model_file : str
+        The model's file as the scene names it, joined to the scene's directory (``<scene>``
+        for a model given inline).
+    form : str
+        The form the scene runs (``lagrangian``, ``body``, ...).
+    method : str
+        The integrator's method.
+    t_start : float
+        The start time.
+    t_end : float
+        The end time.
+    samples : int
+        The number of samples.
+    record : list of str
+        The recorded columns.
+    events : list of str
+        The names of the scene's events.
+
+    Examples
+    --------
+    >>> s = rotgen.Scene("models/scenes/heavy_top_nutation.yaml")
+    >>> s.model, s.method
+    ('heavy_top', 'dop853')
     """
 
     def __init__(self, source=None, *, yaml_text=None):
@@ -94,8 +119,13 @@ class Scene:
         return self.yaml_text or ""
 
     def to_dict(self):
-        """The scene's keys as a dict (read with PyYAML), its model path relative to the current
-        directory."""
+        """The scene's keys as a dict (read with PyYAML).
+
+        Returns
+        -------
+        dict
+            The scene file's keys; a ``model`` path is made relative to the current directory.
+        """
         import yaml
 
         if self.yaml_text is not None:
@@ -112,6 +142,23 @@ class Scene:
 
         Mappings merge key by key (``initial={"theta": 0.7}`` changes theta alone), None removes
         a key, other values replace; a dotted key changes one entry (``{"time.end": 5}``).
+
+        Parameters
+        ----------
+        changes : dict, optional
+            Keys to change (dotted keys allowed).
+        **keys
+            More keys to change, applied over ``changes``.
+
+        Returns
+        -------
+        Scene
+            The changed scene, read and checked anew (named ``<scene>`` in errors).
+
+        Raises
+        ------
+        InputError
+            When the changed scene is rejected.
 
         Examples
         --------

@@ -1,21 +1,22 @@
-// rotgen runtime — the free rigid body's angular momentum in body axes, m(t), in Jacobi elliptic
-// functions, and the precession angle ψ(t) of the attitude formula (flow.hpp), for three distinct
-// principal moments. The sphere, the symmetric top and a spin about a principal axis are handled
-// apart in flow.hpp (the formulas here divide by moment differences and by the transverse
-// momentum).
-//
-// Frames: the body axes are first relabelled so that the moments increase, by a proper signed
-// permutation (an odd permutation also flips the middle axis, so that Euler's equations ṁ = m × ω
-// keep their form); then, when G² > 2T I2 (the polhode circles the axis of the largest moment), by
-// (I1, I2, I3) → (I3, I2, I1), (ω1, ω2, ω3) → (ω3, −ω2, ω1) (exact_free_top.hpp). In that frame j:
-//   ω1 = s1 A1 dn(u),  ω2 = σ A2 sn(u),  ω3 = A3 cn(u),  u = λ t + u0,
-//   A1² = h/(j1 (j3 − j1)),  A2² = l/(j2 (j2 − j1)),  A3² = l/(j3 (j3 − j1)),
-//   λ² = (j2 − j1) h/(j1 j2 j3),  m = k² = (j3 − j2) l/((j2 − j1) h),
-//   mc = 1 − k² = (j3 − j1) g/((j2 − j1) h),                       (Leroy; see flow.hpp)
-//   h = 2T j3 − G² = Σ j_i (j3 − j_i) ω_i²,  l = G² − 2T j1 = Σ j_i (j_i − j1) ω_i²,
-//   g = 2T j2 − G² = Σ j_i (j2 − j_i) ω_i²     (sums of terms of one sign: no cancellation),
-//   s1 = sgn ω1(0), σ = s1 sgn(j3 − j1), and u0 = F(φ0 | m) with φ0 = atan2(ω2/(σ A2), ω3/A3).
-// F is continued over half periods by F(jπ + r) = 2jK + F(r) (A&S 17.4.3).
+/// \file
+/// rotgen runtime — the free rigid body's angular momentum in body axes, m(t), in Jacobi elliptic
+/// functions, and the precession angle ψ(t) of the attitude formula (flow.hpp), for three distinct
+/// principal moments. The sphere, the symmetric top and a spin about a principal axis are handled
+/// apart in flow.hpp (the formulas here divide by moment differences and by the transverse
+/// momentum).
+///
+/// Frames: the body axes are first relabelled so that the moments increase, by a proper signed
+/// permutation (an odd permutation also flips the middle axis, so that Euler's equations ṁ = m × ω
+/// keep their form); then, when G² > 2T I2 (the polhode circles the axis of the largest moment), by
+/// (I1, I2, I3) → (I3, I2, I1), (ω1, ω2, ω3) → (ω3, −ω2, ω1) (exact_free_top.hpp). In that frame j:
+///   ω1 = s1 A1 dn(u),  ω2 = σ A2 sn(u),  ω3 = A3 cn(u),  u = λ t + u0,
+///   A1² = h/(j1 (j3 − j1)),  A2² = l/(j2 (j2 − j1)),  A3² = l/(j3 (j3 − j1)),
+///   λ² = (j2 − j1) h/(j1 j2 j3),  m = k² = (j3 − j2) l/((j2 − j1) h),
+///   mc = 1 − k² = (j3 − j1) g/((j2 − j1) h),                       (Leroy; see flow.hpp)
+///   h = 2T j3 − G² = Σ j_i (j3 − j_i) ω_i²,  l = G² − 2T j1 = Σ j_i (j_i − j1) ω_i²,
+///   g = 2T j2 − G² = Σ j_i (j2 − j_i) ω_i²     (sums of terms of one sign: no cancellation),
+///   s1 = sgn ω1(0), σ = s1 sgn(j3 − j1), and u0 = F(φ0 | m) with φ0 = atan2(ω2/(σ A2), ω3/A3).
+/// F is continued over half periods by F(jπ + r) = 2jK + F(r) (A&S 17.4.3).
 #pragma once
 
 #include <algorithm>
@@ -29,7 +30,7 @@
 
 namespace rotgen::detail {
 
-// The index of the moment that differs from the other two (0 for a sphere), −1 if all differ.
+/// The index of the moment that differs from the other two (0 for a sphere), −1 if all differ.
 template <class T> int distinct_axis(const std::array<T, 3>& in) {
     if (in[0] == in[1]) return in[1] == in[2] ? 0 : 2;
     if (in[1] == in[2]) return 0;
@@ -41,15 +42,15 @@ template <class T> bool all_equal(const std::array<T, 3>& in) {
     return in[0] == in[1] && in[1] == in[2];
 }
 
-// Two components exactly zero: m lies on a principal axis and stays there.
+/// Two components exactly zero: m lies on a principal axis and stays there.
 template <class V> bool on_principal_axis(const V& m) {
     using S = std::decay_t<decltype(m[0])>;
     return (m[0] == S(0)) + (m[1] == S(0)) + (m[2] == S(0)) >= 2;
 }
 
 template <class T> struct momentum_at {
-    std::array<T, 3> m;  // body angular momentum, original body axes
-    jacobi_values<T> jv; // at u = λ t + u0
+    std::array<T, 3> m;  ///< body angular momentum, original body axes
+    jacobi_values<T> jv; ///< at u = λ t + u0
 };
 
 template <class T> class free_body_momentum {
@@ -93,7 +94,7 @@ template <class T> class free_body_momentum {
         return r;
     }
 
-    // ψ(t) of flow.hpp, given the state at t from at(t).
+    /// ψ(t) of flow.hpp, given the state at t from at(t).
     T precession(T t, const momentum_at<T>& end) const {
         // Δ_e = G² − 2T I_e = Σ_i m_i² (I_i − I_e)/I_i = l, the invariant of the file comment
         const T g = this->g();
@@ -141,7 +142,7 @@ template <class T> class free_body_momentum {
         start_phase(atan2(v[1] / (m_sigma * m_a2), v[2] / m_a3));
     }
 
-    // W's constants: A = j1 A1, c = (j3 A3)², c + d = (j2 A2)², n = −d/c, d = A² k².
+    /// W's constants: A = j1 A1, c = (j3 A3)², c + d = (j2 A2)², n = −d/c, d = A² k².
     void carlson_constants(T big_a, T k2) {
         using std::sqrt;
         const std::array<T, 3>& j = m_j;
@@ -152,7 +153,7 @@ template <class T> class free_body_momentum {
         m_coef_atan = sqrt(m_g2) * big_a / sqrt(m_c * m_cd);
     }
 
-    // u0 = F(φ0) and W(u0) from the amplitude φ0 ∈ (−π, π] (one R_F serves both).
+    /// u0 = F(φ0) and W(u0) from the amplitude φ0 ∈ (−π, π] (one R_F serves both).
     void start_phase(T phi0) {
         using std::cos;
         using std::sin;
@@ -175,7 +176,7 @@ template <class T> class free_body_momentum {
 
     T delta2(T c) const { return m_amp.complement() + m_amp.parameter() * c * c; }
 
-    // W(2K j + r) = j W(2K) + W(r), from s = sin am r, c = cos am r and Π(am r; n | m).
+    /// W(2K j + r) = j W(2K) + W(r), from s = sin am r, c = cos am r and Π(am r; n | m).
     T w_of(long long j, T s, T c, T pi_incomplete) const {
         using std::atan2;
         using std::sqrt;
@@ -191,7 +192,7 @@ template <class T> class free_body_momentum {
         }
         return w;
     }
-    // The same from am(r) and r = F(am r) (jacobi_values): no R_F.
+    /// The same from am(r) and r = F(am r) (jacobi_values): no R_F.
     T w_of(long long j, T reduced_am, T reduced_u) const {
         using std::cos;
         using std::sin;
@@ -207,7 +208,7 @@ template <class T> class free_body_momentum {
     T m_a1 = 0, m_a2 = 0, m_a3 = 0, m_lambda = 0, m_s1 = 1, m_sigma = 1, m_u0 = 0;
     jacobi_amplitude<T> m_amp{T(0), T(1)};
     T m_c = 0, m_cd = 0, m_n = 0, m_coef_pi = 0, m_coef_atan = 0, m_w0 = 0;
-    bool m_use_series = false; // m <= small_parameter_limit: W and F by phase_series
+    bool m_use_series = false; ///< m <= small_parameter_limit: W and F by phase_series
     phase_series<T> m_series{T(0), T(1), T(1)};
     mutable T m_w_period = 0;
     mutable bool m_w_period_known = false;

@@ -1,20 +1,21 @@
-// rotgen runtime — the free body's phase integrals for a small parameter m = k² as power series in
-// m: F(φ | m) and the attitude's W (flow.hpp) without Carlson's R_F and R_J. A fast spin close to
-// a principal axis (a spinning top, a spin-stabilised satellite) has m of 1e-12 .. 1e-3, where two
-// or three terms reach rounding; elsewhere (m > small_parameter_limit) momentum.hpp keeps the
-// Carlson forms.
-//
-// With φ = am u, du = dφ/Δ and dn u = Δ = sqrt(1 − m sin²φ) (A&S 16.1.5, 17.2.2), x = m sin²φ:
-//   F(φ | m) = ∫₀^φ dθ/Δ = Σ_i c_i m^i S_i(φ),        c_i = C(2i, i)/4^i   ((1 − x)^(−1/2))
-//   W(u) = ∫₀ᵘ G du'/(G + A dn u') = G/(G + A) ∫₀^φ f(m sin²θ) dθ = G/(G + A) Σ_i b_i m^i S_i(φ),
-//   f(x) = 1/((1 − r (1 − sqrt(1 − x))) sqrt(1 − x)),  r = A/(G + A) ∈ (0, 1/2]
-// (G + A Δ = (G + A)(1 − r(1 − Δ))), b_i the Taylor coefficients of f, formed at run time by
-// series arithmetic from those of sqrt(1 − x), a_i = a_(i−1) (i − 3/2)/i. f is analytic for
-// |x| < 1 (1 − r(1 − Δ) >= 1 − r > 0 there), so b_i m^i falls like m^i; terms are kept while
-// m^i > 1e-18.
-//   S_i(φ) = ∫₀^φ sin^(2i)θ dθ = (2i − 1)/(2i) S_(i−1) − sin^(2i−1)φ cos φ/(2i),   S_0 = φ
-// (the reduction formula, G&R 2.511.2), evaluated at the reduced amplitude ρ ∈ [−π/2, π/2] of
-// φ = jπ + ρ, with S_i(jπ + ρ) = j S_i(π) + S_i(ρ) and S_i(π) = π Π_(k<=i) (2k − 1)/(2k).
+/// \file
+/// rotgen runtime — the free body's phase integrals for a small parameter m = k² as power series in
+/// m: F(φ | m) and the attitude's W (flow.hpp) without Carlson's R_F and R_J. A fast spin close to
+/// a principal axis (a spinning top, a spin-stabilised satellite) has m of 1e-12 .. 1e-3, where two
+/// or three terms reach rounding; elsewhere (m > small_parameter_limit) momentum.hpp keeps the
+/// Carlson forms.
+///
+/// With φ = am u, du = dφ/Δ and dn u = Δ = sqrt(1 − m sin²φ) (A&S 16.1.5, 17.2.2), x = m sin²φ:
+///   F(φ | m) = ∫₀^φ dθ/Δ = Σ_i c_i m^i S_i(φ),        c_i = C(2i, i)/4^i   ((1 − x)^(−1/2))
+///   W(u) = ∫₀ᵘ G du'/(G + A dn u') = G/(G + A) ∫₀^φ f(m sin²θ) dθ = G/(G + A) Σ_i b_i m^i S_i(φ),
+///   f(x) = 1/((1 − r (1 − sqrt(1 − x))) sqrt(1 − x)),  r = A/(G + A) ∈ (0, 1/2]
+/// (G + A Δ = (G + A)(1 − r(1 − Δ))), b_i the Taylor coefficients of f, formed at run time by
+/// series arithmetic from those of sqrt(1 − x), a_i = a_(i−1) (i − 3/2)/i. f is analytic for
+/// |x| < 1 (1 − r(1 − Δ) >= 1 − r > 0 there), so b_i m^i falls like m^i; terms are kept while
+/// m^i > 1e-18.
+///   S_i(φ) = ∫₀^φ sin^(2i)θ dθ = (2i − 1)/(2i) S_(i−1) − sin^(2i−1)φ cos φ/(2i),   S_0 = φ
+/// (the reduction formula, G&R 2.511.2), evaluated at the reduced amplitude ρ ∈ [−π/2, π/2] of
+/// φ = jπ + ρ, with S_i(jπ + ρ) = j S_i(π) + S_i(ρ) and S_i(π) = π Π_(k<=i) (2k − 1)/(2k).
 #pragma once
 
 #include <boost/math/constants/constants.hpp>
@@ -30,7 +31,7 @@ template <class T> class phase_series {
   public:
     static constexpr int max_terms = 13;
 
-    // m = k², G = |m_body|, A = the dn term's amplitude of the momentum (0 < A <= G).
+    /// m = k², G = |m_body|, A = the dn term's amplitude of the momentum (0 < A <= G).
     phase_series(T m, T g, T a) {
         const T r = a / (g + a);
         std::array<T, max_terms> sq{}, p{}, f{};
@@ -61,7 +62,7 @@ template <class T> class phase_series {
     struct sums {
         T f, w;
     };
-    // F and W at φ = jπ + ρ, |ρ| <= π/2.
+    /// F and W at φ = jπ + ρ, |ρ| <= π/2.
     sums at(long long j, T rho) const {
         using std::cos;
         using std::sin;
@@ -80,7 +81,7 @@ template <class T> class phase_series {
     }
 
   private:
-    std::array<T, max_terms> m_f{}, m_w{}; // c_i m^i and G/(G + A) b_i m^i
+    std::array<T, max_terms> m_f{}, m_w{}; ///< c_i m^i and G/(G + A) b_i m^i
     int m_terms = 0;
 };
 

@@ -1,14 +1,15 @@
-// rotgen runtime — the controlled loop of the adaptive methods (dopri5, dop853, rodas4 with
-// `fixed_step == 0`): error-controlled steps with the PI controller of step_control.hpp.
-//
-//   h0      method.h0 if > 0, else the HINIT guess (step_control.hpp, initial_step)
-//   each    |h| <= hmax (method.hmax if > 0, else |t_end − t0|); a step that would end within
-//           1% of h before t_end is stretched to end exactly there (no sliver step)
-//   err <= 1  accepted, h ← controller.accepted(h, err)
-//   err > 1   rejected, h ← controller.rejected(h, err)
-//   non-finite stage values: rejected, h ← h/4; the run ends with status::non_finite if the step
-//           then underflows
-// Guards: |h| < 16·eps·|t| → step_size_underflow; more than max_steps attempts → max_steps.
+/// \file
+/// rotgen runtime — the controlled loop of the adaptive methods (dopri5, dop853, rodas4 with
+/// `fixed_step == 0`): error-controlled steps with the PI controller of step_control.hpp.
+///
+///   h0      method.h0 if > 0, else the HINIT guess (step_control.hpp, initial_step)
+///   each    |h| <= hmax (method.hmax if > 0, else |t_end − t0|); a step that would end within
+///           1% of h before t_end is stretched to end exactly there (no sliver step)
+///   err <= 1  accepted, h ← controller.accepted(h, err)
+///   err > 1   rejected, h ← controller.rejected(h, err)
+///   non-finite stage values: rejected, h ← h/4; the run ends with status::non_finite if the step
+///           then underflows
+/// Guards: |h| < 16·eps·|t| → step_size_underflow; more than max_steps attempts → max_steps.
 #pragma once
 
 #include <algorithm>
@@ -25,8 +26,8 @@
 
 namespace rotgen::detail {
 
-// The controlled loop from (t0, y); y holds the final state on return. The stepper and the
-// counters are locals here (see fixed.hpp).
+/// The controlled loop from (t0, y); y holds the final state on return. The stepper and the
+/// counters are locals here (see fixed.hpp).
 template <class S, class Method, class Sampler, class T>
 ROTGEN_NOINLINE integration_result<T> run_adaptive(const S& sys, const Method& method, T t0,
                                                    T t_end, state_vector<T, S>& y,

@@ -1,26 +1,29 @@
-// rotgen runtime — where an event function may change sign on one step, proven or excluded
-// (events.hpp's search; the approach of Chebfun's root finder, Battles & Trefethen, SIAM J. Sci.
-// Comput. 25 (2004) 1743–1770, with the exclusion by a bound on the second derivative).
-//
-// g(theta), theta in [0, 1], is the event function on the step's interpolant. A piece [a, b] of the
-// step is fitted by the Chebyshev interpolant p of degree n = 8 on the points of the second kind
-//   theta_j = a + (b − a) (1 − cos(pi j / n)) / 2,  j = 0..n   (both ends among them),
-//   p(x) = sum_k c_k T_k(x),  x = 2 (theta − a) / (b − a) − 1.
-// The fit's error eps is the sum of its last three coefficients, or rounding (1e-13 of g's size
-// on the whole step) if that is larger; the fit counts as resolved when eps is below 1e-6 of g's
-// size on the piece, or at rounding. An unresolved piece is halved (its middle point is a node
-// already: 7 new values of g per half). On a resolved piece p's sign changes
-// are isolated by bisection in x, each part [u, v] (values pu, pv) ending as
-//   excluded  pu, pv of one sign and min(|pu|, |pv|) > M2 (v − u)² / 8 + eps, M2 = sum |c_k|
-//             k²(k² − 1)/3 >= max |p''| (|T_k''| <= T_k''(1)): p is above its chord minus
-//             M2 (v − u)² / 8, so g has no zero in [u, v];
-//   monotone  |p'((u + v)/2)| > M2 (v − u) / 2: p' keeps its sign, so p has one zero in [u, v] when
-//             pu and pv differ in sign and none otherwise;
-// or undecided after 12 halvings: the piece is then halved and fitted again, down to `min_width`,
-// and what stays undecided is reported as an interval where a pair of zeros may hide (a zero where
-// g only touches 0 ends so).
-// The result is a list of points (theta, p) whose consecutive sign changes are the zeros of g, and
-// the undecided intervals.
+/// \file
+/// rotgen runtime — where an event function may change sign on one step, proven or excluded
+/// (events.hpp's search; the approach of Chebfun's root finder, Battles & Trefethen, SIAM J. Sci.
+/// Comput. 25 (2004) 1743–1770, with the exclusion by a bound on the second derivative).
+///
+/// g(theta), theta in [0, 1], is the event function on the step's interpolant. A piece [a, b] of
+/// the step is fitted by the Chebyshev interpolant p of degree n = 8 on the points of the second
+/// kind
+///   theta_j = a + (b − a) (1 − cos(pi j / n)) / 2,  j = 0..n   (both ends among them),
+///   p(x) = sum_k c_k T_k(x),  x = 2 (theta − a) / (b − a) − 1.
+/// The fit's error eps is the sum of its last three coefficients, or rounding (1e-13 of g's size
+/// on the whole step) if that is larger; the fit counts as resolved when eps is below 1e-6 of g's
+/// size on the piece, or at rounding. An unresolved piece is halved (its middle point is a node
+/// already: 7 new values of g per half). On a resolved piece p's sign changes
+/// are isolated by bisection in x, each part [u, v] (values pu, pv) ending as
+///   excluded  pu, pv of one sign and min(|pu|, |pv|) > M2 (v − u)² / 8 + eps, M2 = sum |c_k|
+///             k²(k² − 1)/3 >= max |p''| (|T_k''| <= T_k''(1)): p is above its chord minus
+///             M2 (v − u)² / 8, so g has no zero in [u, v];
+///   monotone  |p'((u + v)/2)| > M2 (v − u) / 2: p' keeps its sign, so p has one zero in [u, v]
+///   when
+///             pu and pv differ in sign and none otherwise;
+/// or undecided after 12 halvings: the piece is then halved and fitted again, down to `min_width`,
+/// and what stays undecided is reported as an interval where a pair of zeros may hide (a zero where
+/// g only touches 0 ends so).
+/// The result is a list of points (theta, p) whose consecutive sign changes are the zeros of g, and
+/// the undecided intervals.
 #pragma once
 
 #include <algorithm>
@@ -42,11 +45,11 @@ template <class T> class event_roots {
         T from, to;
     };
 
-    // theta of node j of the piece [a, b]
+    /// theta of node j of the piece [a, b]
     static T node(T a, T b, int j) { return a + (b - a) * cosines()[j]; }
 
-    // Searches [0, 1] given g at the nodes of the whole step (`f`, n + 1 values), g(theta) for
-    // other points, the narrowest piece to fit and the most pieces to fit.
+    /// Searches [0, 1] given g at the nodes of the whole step (`f`, n + 1 values), g(theta) for
+    /// other points, the narrowest piece to fit and the most pieces to fit.
     template <class G>
     void run(const std::array<T, n + 1>& f, const G& g, T min_width, std::size_t max_pieces) {
         m_points.assign(1, {T(0), f[0]});
@@ -64,7 +67,7 @@ template <class T> class event_roots {
     const std::vector<point>& points() const { return m_points; }
     const std::vector<interval>& undecided() const { return m_undecided; }
     std::size_t pieces() const { return m_pieces; }
-    // max |g''| on the step as the fits bound it (per theta²)
+    /// max |g''| on the step as the fits bound it (per theta²)
     T curvature() const { return m_curvature; }
 
   private:
@@ -74,7 +77,7 @@ template <class T> class event_roots {
         int depth;
     };
 
-    // (1 − cos(pi j / n)) / 2
+    /// (1 − cos(pi j / n)) / 2
     static const std::array<T, n + 1>& cosines() {
         static const std::array<T, n + 1> c = [] {
             std::array<T, n + 1> v{};
@@ -87,8 +90,8 @@ template <class T> class event_roots {
         return c;
     }
 
-    // T_k(x_j) = cos(pi k (n − j) / n), weighted by 1/2 at j = 0, n and by (2/n), halved again
-    // for k = 0, n: c = W f
+    /// T_k(x_j) = cos(pi k (n − j) / n), weighted by 1/2 at j = 0, n and by (2/n), halved again
+    /// for k = 0, n: c = W f
     static const std::array<std::array<T, n + 1>, n + 1>& weights() {
         static const auto w = [] {
             std::array<std::array<T, n + 1>, n + 1> m{};
@@ -103,7 +106,7 @@ template <class T> class event_roots {
         return w;
     }
 
-    // c_k = (2/n) sum_j'' f_j T_k(x_j), halved for k = 0 and n (x_j = −cos(pi j / n) ascending)
+    /// c_k = (2/n) sum_j'' f_j T_k(x_j), halved for k = 0 and n (x_j = −cos(pi j / n) ascending)
     static coefficients fit(const std::array<T, n + 1>& f) {
         const auto& w = weights();
         coefficients c{};
@@ -116,7 +119,7 @@ template <class T> class event_roots {
         return c;
     }
 
-    // Clenshaw: sum_k c_k T_k(x)
+    /// Clenshaw: sum_k c_k T_k(x)
     template <std::size_t N> static T clenshaw(const std::array<T, N>& c, T x) {
         T b1 = T(0), b2 = T(0);
         for (std::size_t k = N - 1; k >= 1; --k) {
@@ -126,7 +129,7 @@ template <class T> class event_roots {
         return x * b1 - b2 + c[0];
     }
 
-    // p' = sum_k d_k T_k: d_{k−1} = d_{k+1} + 2 k c_k, d_0 halved
+    /// p' = sum_k d_k T_k: d_{k−1} = d_{k+1} + 2 k c_k, d_0 halved
     static coefficients derivative(const coefficients& c) {
         coefficients d{};
         for (int k = n; k >= 1; --k) {
@@ -184,8 +187,8 @@ template <class T> class event_roots {
         piece(m, b, right, g);
     }
 
-    // Bisection of the resolved piece [a, b] into excluded and monotone parts; pushes the parts'
-    // right ends (theta, p). False when a part stays undecided (then recorded in m_undecided).
+    /// Bisection of the resolved piece [a, b] into excluded and monotone parts; pushes the parts'
+    /// right ends (theta, p). False when a part stays undecided (then recorded in m_undecided).
     bool isolate(T a, T b, const coefficients& c, T m2, T eps) {
         const coefficients d = derivative(c);
         bool decided = true;
@@ -220,7 +223,7 @@ template <class T> class event_roots {
     std::vector<part> m_stack;
     std::size_t m_pieces = 0, m_max_pieces = 0;
     T m_min_width = T(0), m_curvature = T(0);
-    T m_floor = T(0); // rounding: 1e-13 of g's largest value at the step's nodes
+    T m_floor = T(0); ///< rounding: 1e-13 of g's largest value at the step's nodes
 };
 
 } // namespace rotgen::detail

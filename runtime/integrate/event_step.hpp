@@ -1,6 +1,7 @@
-// rotgen runtime — the events of an accepted step (events.hpp): g at the step's end, the search on
-// the interpolant when the step may hold a zero, and the zeros reported in time order, each after
-// the samples before it. Called by end_of_step (step_end.hpp) when integrate() was given events.
+/// \file
+/// rotgen runtime — the events of an accepted step (events.hpp): g at the step's end, the search on
+/// the interpolant when the step may hold a zero, and the zeros reported in time order, each after
+/// the samples before it. Called by end_of_step (step_end.hpp) when integrate() was given events.
 #pragma once
 
 #include <cmath>
@@ -15,7 +16,7 @@
 
 namespace rotgen::detail {
 
-// A sampler (sampling.hpp) that also watches an event_set.
+/// A sampler (sampling.hpp) that also watches an event_set.
 template <class Base, class Events> class event_sampler : public Base {
   public:
     static constexpr bool has_events = true;
@@ -31,10 +32,10 @@ template <class T> ROTGEN_COLD std::string event_message(const std::string& name
            " at t = " + format_time(t);
 }
 
-// Accepts the step [t, t_next] of size h (preparing the interpolant if samples or a search need it)
-// and reports its events. False when the run ends in the step: the observer asked to stop at a
-// sample before an event (status::stopped_by_observer), or a terminal event
-// (status::stopped_by_event); `t` and `y_now` are then at that sample or event.
+/// Accepts the step [t, t_next] of size h (preparing the interpolant if samples or a search need
+/// it) and reports its events. False when the run ends in the step: the observer asked to stop at a
+/// sample before an event (status::stopped_by_observer), or a terminal event
+/// (status::stopped_by_event); `t` and `y_now` are then at that sample or event.
 template <class S, class St, class Sampler, class T, class V>
 ROTGEN_ALWAYS_INLINE bool step_events(const S& sys, St& st, step_stats& stats, Sampler& samples,
                                       bool need_dense, bool& f_ok, T& t, T t_next, T h, V& y_now,

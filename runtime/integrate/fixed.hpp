@@ -1,11 +1,12 @@
-// rotgen runtime — the fixed-step loop (rk4, implicit_midpoint, and the adaptive methods with
-// `fixed_step > 0`, which then run without error control).
-//
-// Steps lie on the grid t_k = t0 + dir·k·h (computed from k, never accumulated by addition); the
-// last step is shortened to end exactly at the end time. When (t_end − t0)/h is within rounding
-// of an integer, that integer number of steps is taken (no sliver step).
-// Every step is accepted; a non-finite state ends the run with status::non_finite at the last
-// finite state, a failed Newton iteration with status::newton_failure.
+/// \file
+/// rotgen runtime — the fixed-step loop (rk4, implicit_midpoint, and the adaptive methods with
+/// `fixed_step > 0`, which then run without error control).
+///
+/// Steps lie on the grid t_k = t0 + dir·k·h (computed from k, never accumulated by addition); the
+/// last step is shortened to end exactly at the end time. When (t_end − t0)/h is within rounding
+/// of an integer, that integer number of steps is taken (no sliver step).
+/// Every step is accepted; a non-finite state ends the run with status::non_finite at the last
+/// finite state, a failed Newton iteration with status::newton_failure.
 #pragma once
 
 #include <algorithm>
@@ -21,7 +22,7 @@
 
 namespace rotgen::detail {
 
-// The grid t_k = t0 + dir·k·h, k = 0..steps(), with t_steps() = t_end.
+/// The grid t_k = t0 + dir·k·h, k = 0..steps(), with t_steps() = t_end.
 template <class T> class fixed_grid {
   public:
     fixed_grid(T t0, T t_end, T h, std::size_t max_steps)
@@ -43,7 +44,7 @@ template <class T> class fixed_grid {
     }
 
     std::size_t steps() const { return m_steps; }
-    // t_k; exactly t_end for k = steps()
+    /// t_k; exactly t_end for k = steps()
     T time(std::size_t k) const {
         return k == m_steps ? m_t_end : m_t0 + m_dir * (T(static_cast<long long>(k)) * m_h);
     }
@@ -53,10 +54,10 @@ template <class T> class fixed_grid {
     std::size_t m_steps = 1;
 };
 
-// The fixed-step loop from (t0, y) with nominal step h; y holds the final state on return.
-// The stepper and the counters are locals of the loop's function (not references from the
-// caller): the compiler then knows that the stepper's stores do not alias the system's parameters
-// and keeps them, and the counters, in registers.
+/// The fixed-step loop from (t0, y) with nominal step h; y holds the final state on return.
+/// The stepper and the counters are locals of the loop's function (not references from the
+/// caller): the compiler then knows that the stepper's stores do not alias the system's parameters
+/// and keeps them, and the counters, in registers.
 template <class S, class Method, class Sampler, class T>
 ROTGEN_NOINLINE integration_result<T> run_fixed(const S& sys, const Method& method, T t0, T t_end,
                                                 T h_nominal, state_vector<T, S>& y,

@@ -1,7 +1,8 @@
-// rotgen runtime — the messages of a stopped integration and the result of a failed one.
-//
-// They are out of line (ROTGEN_COLD): built once per run at most, and keeping them out of the
-// stepping loop keeps the loop small enough for the compiler to hold the state in registers.
+/// \file
+/// rotgen runtime — the messages of a stopped integration and the result of a failed one.
+///
+/// They are out of line (ROTGEN_COLD): built once per run at most, and keeping them out of the
+/// stepping loop keeps the loop small enough for the compiler to hold the state in registers.
 #pragma once
 
 #include <cstddef>
@@ -50,7 +51,7 @@ integration_result<T> fail(status code, std::string msg, T t, const step_stats& 
     return r;
 }
 
-// f(t0, y0) not finite: the stepper's start() failed.
+/// f(t0, y0) not finite: the stepper's start() failed.
 template <class T> ROTGEN_COLD integration_result<T> start_failure(T t0, const step_stats& s) {
     return fail<T>(status::non_finite, "f(t0, y0) is not finite at t = " + format_time(t0), t0, s);
 }

@@ -1,13 +1,14 @@
-// rotgen runtime — samples: delivering the requested sample times to the observer, at step
-// boundaries (the state itself) and inside steps (the stepper's interpolant).
-//
-// How samples between step boundaries are filled (St::dense_output, stepper.hpp):
-//   dopri5         4th-order continuous extension of Dormand–Prince (Shampine), free
-//   dop853         7th-order continuous extension, 3 extra f evaluations in steps holding samples
-//   rk4, implicit_midpoint, rodas4
-//                  cubic Hermite interpolation from y and f at both ends of the step (local
-//                  error O(h^4): consistent with RK4's and below the midpoint rule's accuracy;
-//                  for RODAS4 it is one order below the step, as documented in rosenbrock.hpp).
+/// \file
+/// rotgen runtime — samples: delivering the requested sample times to the observer, at step
+/// boundaries (the state itself) and inside steps (the stepper's interpolant).
+///
+/// How samples between step boundaries are filled (St::dense_output, stepper.hpp):
+///   dopri5         4th-order continuous extension of Dormand–Prince (Shampine), free
+///   dop853         7th-order continuous extension, 3 extra f evaluations in steps holding samples
+///   rk4, implicit_midpoint, rodas4
+///                  cubic Hermite interpolation from y and f at both ends of the step (local
+///                  error O(h^4): consistent with RK4's and below the midpoint rule's accuracy;
+///                  for RODAS4 it is one order below the step, as documented in rosenbrock.hpp).
 #pragma once
 
 #include <cstddef>
@@ -18,8 +19,8 @@
 
 namespace rotgen::detail {
 
-// Cubic Hermite interpolation on a step [t, t + h] at t + θh from y and f at both ends:
-//   y(θ) = (1+2θ)(1−θ)² y0 + θ(1−θ)² h f0 + θ²(3−2θ) y1 + θ²(θ−1) h f1
+/// Cubic Hermite interpolation on a step [t, t + h] at t + θh from y and f at both ends:
+///   y(θ) = (1+2θ)(1−θ)² y0 + θ(1−θ)² h f0 + θ²(3−2θ) y1 + θ²(θ−1) h f1
 template <class T, class V, class Out>
 void hermite(T theta, T h, const V& y0, const V& f0, const V& y1, const V& f1, Out& out) {
     const T one_m = T(1) - theta;
@@ -31,8 +32,8 @@ void hermite(T theta, T h, const V& y0, const V& f0, const V& y1, const V& f1, O
         out[static_cast<Eigen::Index>(i)] = h00 * y0[i] + h10 * f0[i] + h01 * y1[i] + h11 * f1[i];
 }
 
-// The state at t + θh inside the last accepted step: the stepper's own continuous extension, or
-// cubic Hermite from the data it exposes.
+/// The state at t + θh inside the last accepted step: the stepper's own continuous extension, or
+/// cubic Hermite from the data it exposes.
 template <class St, class T, class V> void interpolate(const St& st, T theta, V& out) {
     if constexpr (St::dense_output == dense_kind::continuous_extension) {
         st.dense(theta, out);
@@ -42,25 +43,26 @@ template <class St, class T, class V> void interpolate(const St& st, T theta, V&
     }
 }
 
-// The sample times still to deliver and the observer to deliver them to. `Times`: any container
-// with size() and operator[], validated by integrate() (monotone in the direction dir = ±1).
-// When the observer asks to stop, stop_time() is that sample's time. The loops keep a local copy
-// (a few scalars and two references: registers) and the scratch vector for interpolated states
-// apart, so that the compiler can keep both out of memory.
+/// The sample times still to deliver and the observer to deliver them to. `Times`: any container
+/// with size() and operator[], validated by integrate() (monotone in the direction dir = ±1).
+/// When the observer asks to stop, stop_time() is that sample's time. The loops keep a local copy
+/// (a few scalars and two references: registers) and the scratch vector for interpolated states
+/// apart, so that the compiler can keep both out of memory.
 template <class T, class Times, class Observer> class sampler {
   public:
-    static constexpr bool has_events = false; // event_step.hpp's event_sampler: true
+    static constexpr bool has_events = false; ///< event_step.hpp's event_sampler: true
 
     sampler(const Times& times, T dir, Observer& observer)
         : m_times(times), m_n(static_cast<std::size_t>(times.size())), m_dir(dir),
           m_observer(observer) {}
 
     bool done() const { return m_next == m_n; }
-    // A sample lies strictly before t (in the direction of integration): inside a step ending at t.
+    /// A sample lies strictly before t (in the direction of integration): inside a step ending at
+    /// t.
     bool before(T t) const { return m_next < m_n && m_dir * (next_time() - t) < T(0); }
     T stop_time() const { return m_stop_time; }
 
-    // Samples at exactly t, given the state y there; false when the observer asked to stop.
+    /// Samples at exactly t, given the state y there; false when the observer asked to stop.
     template <class V> ROTGEN_ALWAYS_INLINE bool deliver_at(T t, const V& y) {
         while (m_next < m_n && next_time() == t) {
             ++m_next;
@@ -69,8 +71,8 @@ template <class T, class Times, class Observer> class sampler {
         return true;
     }
 
-    // Samples inside the accepted step [t, t + h) of `st` (ending at t_next), interpolated into
-    // ys; false when the observer asked to stop (ys then holds the state at stop_time()).
+    /// Samples inside the accepted step [t, t + h) of `st` (ending at t_next), interpolated into
+    /// ys; false when the observer asked to stop (ys then holds the state at stop_time()).
     template <class St, class V>
     ROTGEN_ALWAYS_INLINE bool deliver_inside(const St& st, T t, T h, T t_next, V& ys) {
         while (before(t_next)) {

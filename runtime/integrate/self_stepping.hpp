@@ -1,11 +1,12 @@
-// rotgen runtime — the loop of the methods that choose their own step (the Taylor method,
-// steppers/taylor.hpp): the stepper expands the solution at (t, y) and says how far the expansion
-// reaches within the tolerance (choose_step); the loop takes that step, never rejected.
-//
-//   each    h = min(choose_step(), hmax) (hmax: method.hmax if > 0, else |t_end − t0|); a step
-//           that would end within 1% of h before t_end is stretched to end exactly there
-//   non-finite coefficients or state: the run ends with status::non_finite
-// Guards: |h| < 16·eps·|t| → step_size_underflow; more than max_steps steps → max_steps.
+/// \file
+/// rotgen runtime — the loop of the methods that choose their own step (the Taylor method,
+/// steppers/taylor.hpp): the stepper expands the solution at (t, y) and says how far the expansion
+/// reaches within the tolerance (choose_step); the loop takes that step, never rejected.
+///
+///   each    h = min(choose_step(), hmax) (hmax: method.hmax if > 0, else |t_end − t0|); a step
+///           that would end within 1% of h before t_end is stretched to end exactly there
+///   non-finite coefficients or state: the run ends with status::non_finite
+/// Guards: |h| < 16·eps·|t| → step_size_underflow; more than max_steps steps → max_steps.
 #pragma once
 
 #include <algorithm>
@@ -22,12 +23,12 @@
 
 namespace rotgen::detail {
 
-// True when the method's stepper chooses its own step (Method::chooses_step).
+/// True when the method's stepper chooses its own step (Method::chooses_step).
 template <class M, class = void> struct chooses_step : std::false_type {};
 template <class M> struct chooses_step<M, std::enable_if_t<M::chooses_step>> : std::true_type {};
 
-// (hi, lo) + h as (hi', lo'), |lo'| <= ulp(hi')/2: Knuth's two-sum of hi + h, its error joined
-// to lo, renormalised (the time of a long run of many steps keeps the steps' exact sum).
+/// (hi, lo) + h as (hi', lo'), |lo'| <= ulp(hi')/2: Knuth's two-sum of hi + h, its error joined
+/// to lo, renormalised (the time of a long run of many steps keeps the steps' exact sum).
 template <class T> void add_compensated(T hi, T lo, T h, T& hi_out, T& lo_out) {
     const T s = hi + h;
     const T b = s - hi;

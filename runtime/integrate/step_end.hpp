@@ -1,6 +1,7 @@
-// rotgen runtime — what the fixed-step and the controlled loop both do after an accepted step
-// [t, t_next] of size h: let the stepper prepare the next step (and the interpolant), deliver the
-// samples inside the step and at its end, move the state forward.
+/// \file
+/// rotgen runtime — what the fixed-step and the controlled loop both do after an accepted step
+/// [t, t_next] of size h: let the stepper prepare the next step (and the interpolant), deliver the
+/// samples inside the step and at its end, move the state forward.
 #pragma once
 
 #include "../combine.hpp"
@@ -10,9 +11,9 @@
 
 namespace rotgen::detail {
 
-// Returns true when the loop goes on. False when the run ends here, with `res` set: the last
-// step; the observer asked to stop (status::stopped_by_observer, `t` and `y_now` at that
-// sample); f at the new state not finite (status::non_finite).
+/// Returns true when the loop goes on. False when the run ends here, with `res` set: the last
+/// step; the observer asked to stop (status::stopped_by_observer, `t` and `y_now` at that
+/// sample); f at the new state not finite (status::non_finite).
 template <class S, class St, class Sampler, class T, class V>
 ROTGEN_ALWAYS_INLINE bool end_of_step(const S& sys, St& st, step_stats& stats, Sampler& samples,
                                       bool need_dense, T& t, T t_next, T h, bool last, V& y_now,

@@ -1,22 +1,24 @@
-// rotgen runtime — Dormand–Prince 8(5,3) (Hairer's DOP853) with 7th-order dense output.
-//
-// Method (Hairer, Nørsett & Wanner I, §II.10, and the code DOP853): 12 stages for the 8th-order
-// solution y1 = y0 + h Σ b_i k_i; f(t + h, y1) = k13 is computed after acceptance and is the next
-// step's k1 (FSAL), so 12 evaluations of f per accepted step.
-// Error estimate (DOP853's "stretched" 5th/3rd-order combination):
-//   e5_i = Σ er_j k_j,   e3_i = Σ b_j k_j − (bhh1 k1 + bhh2 k9 + bhh3 k12),
-//   sk_i = atol + rtol·max(|y0_i|, |y1_i|),   E5 = Σ (e5_i/sk_i)²,  E3 = Σ (e3_i/sk_i)²,
-//   err  = |h| · E5 / sqrt(n · (E5 + 0.01·E3)),
-// which behaves like O(h^8): controller exponent 1/8 (q = 8). Hairer's defaults: beta = 0
-// (I controller), facmin = 0.333, facmax = 6.
-// Dense output (DOP853's CONTD8): three more stages k14, k15, k16 (computed only in steps that
-// hold samples) give, with θ = (t − t_n)/h and θ1 = 1 − θ,
-//   y(θ) = r1 + θ(r2 + θ1(r3 + θ(r4 + θ1(r5 + θ(r6 + θ1(r7 + θ r8))))))
-//   r1 = y0, r2 = y1 − y0, r3 = h k1 − r2, r4 = r2 − h k13 − r3, r5..r8 = h Σ d_{4..7,j} k_j,
-// a continuous extension of order 7 (local error O(h^8)).
-// The coefficients are Hairer's published constants (30 digits); tests check the consistency
-// conditions Σ_j a_ij = c_i, Σ b = 1, Σ er = 0 and the orders 8 and 7 numerically.
-// Stepper concept (stepper.hpp): order 8, error estimate, own dense output of order 7, no Jacobian.
+/// \file
+/// rotgen runtime — Dormand–Prince 8(5,3) (Hairer's DOP853) with 7th-order dense output.
+///
+/// Method (Hairer, Nørsett & Wanner I, §II.10, and the code DOP853): 12 stages for the 8th-order
+/// solution y1 = y0 + h Σ b_i k_i; f(t + h, y1) = k13 is computed after acceptance and is the next
+/// step's k1 (FSAL), so 12 evaluations of f per accepted step.
+/// Error estimate (DOP853's "stretched" 5th/3rd-order combination):
+///   e5_i = Σ er_j k_j,   e3_i = Σ b_j k_j − (bhh1 k1 + bhh2 k9 + bhh3 k12),
+///   sk_i = atol + rtol·max(|y0_i|, |y1_i|),   E5 = Σ (e5_i/sk_i)²,  E3 = Σ (e3_i/sk_i)²,
+///   err  = |h| · E5 / sqrt(n · (E5 + 0.01·E3)),
+/// which behaves like O(h^8): controller exponent 1/8 (q = 8). Hairer's defaults: beta = 0
+/// (I controller), facmin = 0.333, facmax = 6.
+/// Dense output (DOP853's CONTD8): three more stages k14, k15, k16 (computed only in steps that
+/// hold samples) give, with θ = (t − t_n)/h and θ1 = 1 − θ,
+///   y(θ) = r1 + θ(r2 + θ1(r3 + θ(r4 + θ1(r5 + θ(r6 + θ1(r7 + θ r8))))))
+///   r1 = y0, r2 = y1 − y0, r3 = h k1 − r2, r4 = r2 − h k13 − r3, r5..r8 = h Σ d_{4..7,j} k_j,
+/// a continuous extension of order 7 (local error O(h^8)).
+/// The coefficients are Hairer's published constants (30 digits); tests check the consistency
+/// conditions Σ_j a_ij = c_i, Σ b = 1, Σ er = 0 and the orders 8 and 7 numerically.
+/// Stepper concept (stepper.hpp): order 8, error estimate, own dense output of order 7, no
+/// Jacobian.
 #pragma once
 
 #include <array>
@@ -32,7 +34,13 @@
 
 namespace rotgen {
 
+/// The coefficients of DOP853 (Hairer's published constants, 30 digits, in long double).
 struct dop853_tableau {
+    /// \name Coefficients
+    ///@{
+
+    /// The nodes c_i, the weights b_i, bhh_i and er_i of the error estimate, the stages' a_ij and
+    /// the dense output's d_ij (see the file's comment).
     static constexpr long double c2 = 0.526001519587677318785587544488e-01L;
     static constexpr long double c3 = 0.789002279381515978178381316732e-01L;
     static constexpr long double c4 = 0.118350341907227396726757197510e+00L;
@@ -192,15 +200,19 @@ struct dop853_tableau {
     static constexpr long double d714 = 0.96324553959188282948394950600e+02L;
     static constexpr long double d715 = -0.39177261675615439165231486172e+02L;
     static constexpr long double d716 = -0.14972683625798562581422125276e+03L;
+    ///@}
 };
 
 template <class T, class S> class dop853_stepper;
 
-// Options: adaptive_options with DOP853's defaults (safety 0.9, facmin 0.333, facmax 6, beta 0).
+/// Options: adaptive_options with DOP853's defaults (safety 0.9, facmin 0.333, facmax 6, beta 0).
 template <class T> struct dop853 : adaptive_options<T> {
-    using scalar = T;
+    using scalar = T; ///< the floating-point type of the run
+    /// Marks a method the driver accepts (stepper.hpp).
     static constexpr bool is_rotgen_method = true;
+    /// Error-controlled: the options are adaptive_options and the stepper has an error estimate.
     static constexpr bool adaptive = true;
+    /// The stepper for a system of type S.
     template <class S> using stepper = dop853_stepper<T, S>;
 
     dop853() {
@@ -208,30 +220,48 @@ template <class T> struct dop853 : adaptive_options<T> {
         this->facmax = T(6);
         this->beta = T(0);
     }
+    /// The defaults with the tolerances rtol, atol.
     dop853(T rtol, T atol) : dop853() {
         this->rtol = rtol;
         this->atol = atol;
     }
+    /// The method's name, as scene files and `rotgen simulate` spell it.
     std::string name() const { return "dop853"; }
+    /// An empty string when the options are valid, else the reason (one line).
     std::string check() const { return detail::check_adaptive_options<T>(*this); }
 };
 
+/// DOP853's working storage for one system type S (the stepper concept of stepper.hpp; the method
+/// in the file's comment).
 template <class T, class S> class dop853_stepper {
   public:
+    /// The floating-point type of the run.
     using scalar = T;
+    /// The system type S this stepper integrates.
     using system_type = S;
+    /// The state vector of S.
     using vector = state_vector<T, S>;
+    /// The work vector of the stage arithmetic (combine.hpp).
     using work = detail::work_vector<T, S>;
+    /// The method's coefficients.
     using tab = dop853_tableau;
 
+    /// What attempt() returns.
     using outcome = step_outcome<T>;
 
+    /// Order p of the step: local error O(h^(p+1)).
     static constexpr int order = 8;
+    /// attempt() returns a weighted error norm (step accepted when <= 1).
     static constexpr bool error_estimate = true;
+    /// Samples inside a step come from the stepper's own interpolant, dense().
     static constexpr dense_kind dense_output = dense_kind::continuous_extension;
+    /// Order of the interpolant (local error O(h^(dense_order+1))).
     static constexpr int dense_order = 7;
+    /// Never evaluates ∂f/∂y.
     static constexpr bool uses_jacobian = false;
 
+    /// Storage for n state components, with the tolerances of m (and a fixed step when
+    /// m.fixed_step > 0: no error control).
     dop853_stepper(const dop853<T>& m, std::size_t n)
         : m_atol(m.atol), m_rtol(m.rtol), m_fixed(m.fixed_step > T(0)) {
         const auto zero = detail::make_work_vector<work>(n);
@@ -240,9 +270,12 @@ template <class T, class S> class dop853_stepper {
         m_r.fill(zero);
     }
 
+    /// f(t0, y0), after start() (for the initial step selection).
     const work& f_start() const { return m_k1; }
+    /// The state at t + h of the last attempt().
     const work& y_new() const { return m_y1; }
 
+    /// Begins a run at (t0, y0): evaluates f(t0, y0); false when it is not finite.
     bool start(const S& sys, T t0, const vector& y0, step_stats& stats) {
         work y = m_y0;
         detail::assign(y, y0);
@@ -250,8 +283,8 @@ template <class T, class S> class dop853_stepper {
         return detail::all_finite(m_k1);
     }
 
-    // One step of size h from (t, y): stages 2..12, y1 and the error estimate (see combine.hpp
-    // for where the stages are kept).
+    /// One step of size h from (t, y): stages 2..12, y1 and the error estimate (see combine.hpp
+    /// for where the stages are kept).
     ROTGEN_ALWAYS_INLINE outcome attempt(const S& sys, T t, const vector& y, T h, step_stats& stats,
                                          bool need_dense) {
         m_t = t;
@@ -265,15 +298,15 @@ template <class T, class S> class dop853_stepper {
         }
     }
 
-    // After an accepted step: k13 = f(t + h, y1), the next step's k1 (FSAL), and the dense output
-    // if the step holds samples.
+    /// After an accepted step: k13 = f(t + h, y1), the next step's k1 (FSAL), and the dense output
+    /// if the step holds samples.
     ROTGEN_ALWAYS_INLINE bool accept(const S& sys, step_stats& stats, bool need_dense) {
         if (need_dense) return accept_dense(sys, stats);
         detail::eval_rhs(sys, m_t + m_h, m_y1, m_k1, stats);
         return detail::all_finite(m_k1);
     }
 
-    // y(θ) = r1 + θ(r2 + θ1(r3 + θ(r4 + θ1(r5 + θ(r6 + θ1(r7 + θ r8)))))), θ1 = 1 − θ
+    /// y(θ) = r1 + θ(r2 + θ1(r3 + θ(r4 + θ1(r5 + θ(r6 + θ1(r7 + θ r8)))))), θ1 = 1 − θ
     void dense(T s, vector& out) const {
         const T s1 = T(1) - s;
         for (std::size_t i = 0; i < detail::size_of(m_y0); ++i)
@@ -286,9 +319,9 @@ template <class T, class S> class dop853_stepper {
     }
 
   private:
-    using stages = std::array<work, 16>; // k1..k16
+    using stages = std::array<work, 16>; ///< k1..k16
 
-    // Stages 2..12, y1 and the error estimate, with the stages in k (k[0] receives k1).
+    /// Stages 2..12, y1 and the error estimate, with the stages in k (k[0] receives k1).
     ROTGEN_ALWAYS_INLINE outcome steps(const S& sys, T t, const vector& y, T h, step_stats& stats,
                                        stages& k) {
         if constexpr (static_state_size<S>() > 0) {
@@ -299,7 +332,7 @@ template <class T, class S> class dop853_stepper {
         }
     }
 
-    // The same, with y0 and the stage argument in `y0` and `arg`.
+    /// The same, with y0 and the stage argument in `y0` and `arg`.
     ROTGEN_ALWAYS_INLINE outcome stages_from(const S& sys, T t, const vector& y, T h,
                                              step_stats& stats, stages& k, work& y0, work& arg) {
         using detail::stage;
@@ -342,9 +375,9 @@ template <class T, class S> class dop853_stepper {
         return solution_and_error(sys, y0, h, k);
     }
 
-    // y1 = y0 + h Σ b_i k_i (8th order) and the error estimate:
-    //   e3 = Σ b k − (bhh1 k1 + bhh2 k9 + bhh3 k12),  e5 = Σ er_j k_j
-    // (for a lane system: the largest of the lanes' norms, lanes.hpp)
+    /// y1 = y0 + h Σ b_i k_i (8th order) and the error estimate:
+    ///   e3 = Σ b k − (bhh1 k1 + bhh2 k9 + bhh3 k12),  e5 = Σ er_j k_j
+    /// (for a lane system: the largest of the lanes' norms, lanes.hpp)
     ROTGEN_ALWAYS_INLINE outcome solution_and_error(const S& sys, const work& y0, T h,
                                                     const stages& k) {
         using std::abs;
@@ -453,12 +486,12 @@ template <class T, class S> class dop853_stepper {
     const work& r(int i) const { return m_r[static_cast<std::size_t>(i - 2)]; }
 
     T m_atol, m_rtol;
-    bool m_fixed; // fixed steps: no error estimate
+    bool m_fixed; ///< fixed steps: no error estimate
     T m_t = T(0), m_h = T(0);
-    work m_y0, m_y1, m_k1; // start and end of the step, f at the start
-    stages m_k;            // the stages of the last step (with a static size: steps with samples)
-    work m_y0_scratch, m_arg_scratch; // a run-time size's y0 and stage argument in a step
-    std::array<work, 7> m_r;          // r2..r8
+    work m_y0, m_y1, m_k1; ///< start and end of the step, f at the start
+    stages m_k;            ///< the stages of the last step (with a static size: steps with samples)
+    work m_y0_scratch, m_arg_scratch; ///< a run-time size's y0 and stage argument in a step
+    std::array<work, 7> m_r;          ///< r2..r8
 };
 
 static_assert(check_method<dop853<double>>());

@@ -1,34 +1,35 @@
-// rotgen runtime — the Taylor method of variable order and step (Jorba & Zou, "A software package
-// for the numerical integration of ODEs by means of high-order Taylor methods", Exp. Math. 14
-// (2005) 99-117; heyoka, Biscani & Izzo, MNRAS 504 (2021) 2614-2628).
-//
-// Each step expands the solution through (t, y) into its Taylor polynomial, from the system's
-// generated coefficient function (`rotgen emit --outputs taylor`; x^[k] = x^(k)/k!):
-//   y(t + h) = sum_{k=0..p} y^[k] h^k          (Estrin's scheme to order 16, split Horner above)
-// The order and the step come from the tolerance and the last two coefficients (Jorba & Zou,
-// section 3.2, as heyoka applies it, with rotgen's rtol/atol):
-//   control  relative (eps = rtol) when rtol ||y||_inf > atol, else absolute (eps = atol)
-//   order    p = ceil(-ln(eps)/2 + 1)                     (JZ (3.12): the cost per unit time
-//                                                           is smallest there)
-//   radius   rho_k = (s / ||y^[k]||_inf)^(1/k), s = ||y||_inf (relative) or 1 (absolute),
-//            rho = min(rho_{p-1}, rho_p)                   (an estimate of the radius of
-//                                                           convergence from the series' tail)
-//   step     h = rho / e^2 · exp(-0.7 / (p - 1))           (JZ (3.14): the truncation error
-//                                                           ~ eps s, with a safety factor)
-// For a double the rule's logarithm and exponential are taken to about 1e-7, not to the last bit
-// (detail::ln_step, detail::exp_step: each step waits on them).
-// There is no error estimate and no rejected step: the step is chosen before it is taken (the
-// driver asks choose_step(), integrate/self_stepping.hpp). With `step > 0` the method takes fixed
-// steps of order `order` (or the order of the tolerance) instead. Dense output is the step's own
-// polynomial at theta h: free, and of the step's accuracy.
-//
-// The system must provide, beyond the system concept (system.hpp),
-//   std::size_t taylor_series() const;            coefficient series taylor() fills
-//   void taylor(T t, T* c, int order) const;      the generated taylor(t, c, order, p)
-// (generated_taylor_system in taylor_system.hpp wraps a generated header). An expansion is
-// counted as one rhs evaluation in step_stats (its cost is about that of order/2 evaluations).
-// Stepper concept (stepper.hpp): nominal order 20, no error estimate, its own dense output, no
-// Jacobian, chooses_step.
+/// \file
+/// rotgen runtime — the Taylor method of variable order and step (Jorba & Zou, "A software package
+/// for the numerical integration of ODEs by means of high-order Taylor methods", Exp. Math. 14
+/// (2005) 99-117; heyoka, Biscani & Izzo, MNRAS 504 (2021) 2614-2628).
+///
+/// Each step expands the solution through (t, y) into its Taylor polynomial, from the system's
+/// generated coefficient function (`rotgen emit --outputs taylor`; x^[k] = x^(k)/k!):
+///   y(t + h) = sum_{k=0..p} y^[k] h^k          (Estrin's scheme to order 16, split Horner above)
+/// The order and the step come from the tolerance and the last two coefficients (Jorba & Zou,
+/// section 3.2, as heyoka applies it, with rotgen's rtol/atol):
+///   control  relative (eps = rtol) when rtol ||y||_inf > atol, else absolute (eps = atol)
+///   order    p = ceil(-ln(eps)/2 + 1)                     (JZ (3.12): the cost per unit time
+///                                                           is smallest there)
+///   radius   rho_k = (s / ||y^[k]||_inf)^(1/k), s = ||y||_inf (relative) or 1 (absolute),
+///            rho = min(rho_{p-1}, rho_p)                   (an estimate of the radius of
+///                                                           convergence from the series' tail)
+///   step     h = rho / e^2 · exp(-0.7 / (p - 1))           (JZ (3.14): the truncation error
+///                                                           ~ eps s, with a safety factor)
+/// For a double the rule's logarithm and exponential are taken to about 1e-7, not to the last bit
+/// (detail::ln_step, detail::exp_step: each step waits on them).
+/// There is no error estimate and no rejected step: the step is chosen before it is taken (the
+/// driver asks choose_step(), integrate/self_stepping.hpp). With `step > 0` the method takes fixed
+/// steps of order `order` (or the order of the tolerance) instead. Dense output is the step's own
+/// polynomial at theta h: free, and of the step's accuracy.
+///
+/// The system must provide, beyond the system concept (system.hpp),
+///   std::size_t taylor_series() const;            coefficient series taylor() fills
+///   void taylor(T t, T* c, int order) const;      the generated taylor(t, c, order, p)
+/// (generated_taylor_system in taylor_system.hpp wraps a generated header). An expansion is
+/// counted as one rhs evaluation in step_stats (its cost is about that of order/2 evaluations).
+/// Stepper concept (stepper.hpp): nominal order 20, no error estimate, its own dense output, no
+/// Jacobian, chooses_step.
 #pragma once
 
 #include <algorithm>
@@ -58,7 +59,7 @@ struct has_taylor<
     std::void_t<decltype(std::declval<const S&>().taylor(std::declval<T>(), std::declval<T*>(), 1)),
                 decltype(std::declval<const S&>().taylor_series())>> : std::true_type {};
 
-// x = 2^e m with m in [1, 2), for a normal double x > 0: m, and e into e (from the bits)
+/// x = 2^e m with m in [1, 2), for a normal double x > 0: m, and e into e (from the bits)
 inline double significand(double x, int& e) {
     std::uint64_t bits;
     std::memcpy(&bits, &x, sizeof bits);
@@ -69,9 +70,9 @@ inline double significand(double x, int& e) {
     return m;
 }
 
-// A lower bound of log2 x for a normal double x > 0, at most log2_width below it: the exponent
-// e plus m - 1 for the significand m in [1, 2) (log2 is concave, so above that chord, and at most
-// log2(1/ln 2) - (1/ln 2 - 1) = 0.0861 above it).
+/// A lower bound of log2 x for a normal double x > 0, at most log2_width below it: the exponent
+/// e plus m - 1 for the significand m in [1, 2) (log2 is concave, so above that chord, and at most
+/// log2(1/ln 2) - (1/ln 2 - 1) = 0.0861 above it).
 inline constexpr double log2_width = 0.0861;
 inline double log2_below(double x) {
     int e;
@@ -79,12 +80,12 @@ inline double log2_below(double x) {
     return e + (m - 1);
 }
 
-// e^x to a relative 1.7e-7, not to the last bit: 2^n 2^f with x log2(e) = n + f, n an integer,
-// |f| <= 1/2, 2^f by its Taylor polynomial of degree 6 in Estrin's form (largest relative error
-// 1.6e-7 over |f| <= 1/2), 2^n from its bits; libm's exp where 2^n would not be a normal double
-// or x is not a number. Jorba and Zou's step needs no more (its safety factor is a choice; the
-// step moves by 2e-7 at most, the count of steps not at all on the bench's scenes), and a step
-// waits on this (the next expansion needs it): glibc's exp took 4% more of the free top's step.
+/// e^x to a relative 1.7e-7, not to the last bit: 2^n 2^f with x log2(e) = n + f, n an integer,
+/// |f| <= 1/2, 2^f by its Taylor polynomial of degree 6 in Estrin's form (largest relative error
+/// 1.6e-7 over |f| <= 1/2), 2^n from its bits; libm's exp where 2^n would not be a normal double
+/// or x is not a number. Jorba and Zou's step needs no more (its safety factor is a choice; the
+/// step moves by 2e-7 at most, the count of steps not at all on the bench's scenes), and a step
+/// waits on this (the next expansion needs it): glibc's exp took 4% more of the free top's step.
 inline double exp_step(double x) {
     const double y = x * 1.4426950408889634; // log2(e)
     if (!(y > -1020.0 && y < 1020.0)) return std::exp(x);
@@ -105,11 +106,11 @@ inline double exp_step(double x) {
     return q * scale;
 }
 
-// ln x for a normal double x > 0 to 4e-8 (absolute), not to the last bit: (e + log2 m) ln 2 for
-// x = 2^e m, m in [1, 2), with log2 m by its polynomial of degree 8 in m - 3/2 through the
-// Chebyshev points of [1, 2] (largest error 5.6e-8 in log2 m). The step's size needs no more (its
-// h moves by a relative 1e-8 at most), and a step waits on this: glibc's log took 2.5% more of
-// the free top's step at orders 11 and 15.
+/// ln x for a normal double x > 0 to 4e-8 (absolute), not to the last bit: (e + log2 m) ln 2 for
+/// x = 2^e m, m in [1, 2), with log2 m by its polynomial of degree 8 in m - 3/2 through the
+/// Chebyshev points of [1, 2] (largest error 5.6e-8 in log2 m). The step's size needs no more (its
+/// h moves by a relative 1e-8 at most), and a step waits on this: glibc's log took 2.5% more of
+/// the free top's step at orders 11 and 15.
 inline double ln_step(double x) {
     int e;
     const double t = significand(x, e) - 1.5, t2 = t * t, t4 = t2 * t2;
@@ -122,10 +123,10 @@ inline double ln_step(double x) {
     return (e + q) * 0.6931471805599453;
 }
 
-// r_i = sum_{m=0..p-1} d(m, i) h^m for i < W, as E(h^2) + h O(h^2) with E the sum of the even m
-// and O of the odd: two independent chains of Horner's scheme at half the length, for each of the
-// W sums side by side (held in registers, the loop over i inside the loop over m): for the orders
-// above estrin()'s.
+/// r_i = sum_{m=0..p-1} d(m, i) h^m for i < W, as E(h^2) + h O(h^2) with E the sum of the even m
+/// and O of the odd: two independent chains of Horner's scheme at half the length, for each of the
+/// W sums side by side (held in registers, the loop over i inside the loop over m): for the orders
+/// above estrin()'s.
 template <std::size_t W, class T, class D>
 ROTGEN_ALWAYS_INLINE void split_horner(int p, T h, const D& d, T* r) {
     const T u = h * h;
@@ -146,8 +147,8 @@ ROTGEN_ALWAYS_INLINE void split_horner(int p, T h, const D& d, T* r) {
         r[i] = e[i] + h * o[i];
 }
 
-// sum_{m=Lo..Lo+N-1} d(m, i) h^(m-Lo) by Estrin's scheme: the lower half plus the upper half
-// times h^half, half the largest power of two below N, and hp[j] = h^(2^j).
+/// sum_{m=Lo..Lo+N-1} d(m, i) h^(m-Lo) by Estrin's scheme: the lower half plus the upper half
+/// times h^half, half the largest power of two below N, and hp[j] = h^(2^j).
 template <int Lo, int N, class T, class D>
 ROTGEN_ALWAYS_INLINE T estrin_sum(const T* hp, const D& d, std::size_t i) {
     if constexpr (N == 1) {
@@ -164,10 +165,10 @@ ROTGEN_ALWAYS_INLINE T estrin_sum(const T* hp, const D& d, std::size_t i) {
     }
 }
 
-// r_i = sum_{m=0..P-1} d(m, i) h^m for i < W with the order P a constant, by Estrin's scheme: a
-// tree of depth log2(P) where Horner's is a chain of P - 1 products and sums. A step waits on
-// these sums (the next expansion needs them): split_horner's two chains took 3% more of the free
-// top's step at orders 11 and 15.
+/// r_i = sum_{m=0..P-1} d(m, i) h^m for i < W with the order P a constant, by Estrin's scheme: a
+/// tree of depth log2(P) where Horner's is a chain of P - 1 products and sums. A step waits on
+/// these sums (the next expansion needs them): split_horner's two chains took 3% more of the free
+/// top's step at orders 11 and 15.
 template <int P, std::size_t W, class T, class D>
 ROTGEN_ALWAYS_INLINE void estrin(T h, const D& d, T* r) {
     T hp[5] = {h};
@@ -177,11 +178,11 @@ ROTGEN_ALWAYS_INLINE void estrin(T h, const D& d, T* r) {
         r[i] = estrin_sum<0, P>(hp, d, i);
 }
 
-// The orders estrin() sums: 2 .. 16, those of the tolerances down to 1e-13 (order_for), where the
-// truncation error is the larger. Above, where the roundings are, split_horner's sums round less
-// (over random series at most 2.3 units of the last place of sum |d(m)| h^m, Estrin's 3.8; the free
-// top's error at tol 1e-15 over 400 initial states, median and 90th percentile: 1.5e-15 and
-// 4.0e-15 with split_horner, 1.9e-15 and 4.6e-15 with Estrin).
+/// The orders estrin() sums: 2 .. 16, those of the tolerances down to 1e-13 (order_for), where the
+/// truncation error is the larger. Above, where the roundings are, split_horner's sums round less
+/// (over random series at most 2.3 units of the last place of sum |d(m)| h^m, Estrin's 3.8; the
+/// free top's error at tol 1e-15 over 400 initial states, median and 90th percentile: 1.5e-15 and
+/// 4.0e-15 with split_horner, 1.9e-15 and 4.6e-15 with Estrin).
 inline constexpr int estrin_orders = 15; // the orders 2 .. 16
 template <std::size_t W, class T, class D, int... Q>
 ROTGEN_ALWAYS_INLINE bool estrin_of_order(int p, T h, const D& d, T* r,
@@ -189,17 +190,17 @@ ROTGEN_ALWAYS_INLINE bool estrin_of_order(int p, T h, const D& d, T* r,
     return ((p == Q + 2 && (estrin<Q + 2, W>(h, d, r), true)) || ...);
 }
 
-// r_i = sum_{m=0..p-1} d(m, i) h^m for i < W: estrin() for its orders, else split_horner (the
-// same bits for any W: each sum is on its own).
+/// r_i = sum_{m=0..p-1} d(m, i) h^m for i < W: estrin() for its orders, else split_horner (the
+/// same bits for any W: each sum is on its own).
 template <std::size_t W, class T, class D>
 ROTGEN_ALWAYS_INLINE void series_sum(int p, T h, const D& d, T* r) {
     if (!estrin_of_order<W>(p, h, d, r, std::make_integer_sequence<int, estrin_orders>{}))
         split_horner<W>(p, h, d, r);
 }
 
-// The coefficients series_sums reads: d(m, i) = c[m dm + i di] (the sum i's coefficient m). A
-// view, not a lambda: at the sums' size GCC stopped inlining an accessor lambda in rotgen's own
-// build (a call per coefficient: a sweep's members took 18% longer).
+/// The coefficients series_sums reads: d(m, i) = c[m dm + i di] (the sum i's coefficient m). A
+/// view, not a lambda: at the sums' size GCC stopped inlining an accessor lambda in rotgen's own
+/// build (a call per coefficient: a sweep's members took 18% longer).
 template <class T> struct series_view {
     const T* c;
     std::size_t dm, di;
@@ -209,7 +210,7 @@ template <class T> struct series_view {
     series_view from(std::size_t i0) const { return {c + i0 * di, dm, di}; }
 };
 
-// series_sum over n sums: W = n when n is a small constant, else blocks of 4 and single ones.
+/// series_sum over n sums: W = n when n is a small constant, else blocks of 4 and single ones.
 template <int N, class T>
 ROTGEN_ALWAYS_INLINE void series_sums(int p, T h, std::size_t n, const series_view<T>& d, T* r) {
     if constexpr (N > 0 && N <= 8) {
@@ -224,28 +225,38 @@ ROTGEN_ALWAYS_INLINE void series_sums(int p, T h, std::size_t n, const series_vi
 }
 } // namespace detail
 
-// True when the system gives its Taylor coefficients (the taylor method can integrate it).
+/// True when the system gives its Taylor coefficients (the taylor method can integrate it).
 template <class S, class T> inline constexpr bool has_taylor_v = detail::has_taylor<S, T>::value;
 
+/// Options of the Taylor method of variable order and step (Jorba & Zou; the file's comment):
+/// tolerances, an optional fixed step, order and largest step, and a step budget. Integrates
+/// systems that give their Taylor coefficients (has_taylor_v; taylor_system.hpp, lanes.hpp).
 template <class T> struct taylor {
+    /// The floating-point type of the run.
     using scalar = T;
+    /// Marks a method the driver accepts (stepper.hpp).
     static constexpr bool is_rotgen_method = true;
-    static constexpr bool adaptive = false; // no error estimate: the step is chosen, not checked
+    static constexpr bool adaptive = false; ///< no error estimate: the step is chosen, not checked
+    /// Chooses its own step (choose_step(); integrate/self_stepping.hpp).
     static constexpr bool chooses_step = true;
-    template <class S> static constexpr bool supports = has_taylor_v<S, T>;
-    // a lane system (lanes.hpp) expands its lanes together and takes their smallest step
+    template <class S>
+    static constexpr bool supports =
+        has_taylor_v<S, T>; ///< true for a system it can integrate: one with Taylor coefficients
+    /// a lane system (lanes.hpp) expands its lanes together and takes their smallest step
     template <class S>
     using stepper = std::conditional_t<detail::is_lane_system_v<S>, taylor_lane_stepper<T, S>,
                                        taylor_stepper<T, S>>;
 
-    T rtol = T(1e-10); // relative tolerance (eps of the relative control)
-    T atol = T(1e-10); // absolute tolerance (eps of the absolute control)
-    T step = T(0);     // > 0: fixed steps of this size, no step-size choice
-    T hmax = T(0);     // largest step; 0: |t_end - t0|
-    int order = 0;     // 0: from the tolerance, per step; > 0: always this order
-    std::size_t max_steps = 1000000;
+    T rtol = T(1e-10);               ///< relative tolerance (eps of the relative control)
+    T atol = T(1e-10);               ///< absolute tolerance (eps of the absolute control)
+    T step = T(0);                   ///< > 0: fixed steps of this size, no step-size choice
+    T hmax = T(0);                   ///< largest step; 0: |t_end - t0|
+    int order = 0;                   ///< 0: from the tolerance, per step; > 0: always this order
+    std::size_t max_steps = 1000000; ///< step budget
 
+    /// The method's name, as scene files and `rotgen simulate` spell it.
     std::string name() const { return "taylor"; }
+    /// An empty string when the options are valid, else the reason (one line).
     std::string check() const {
         using std::isfinite;
         const T eps = std::numeric_limits<T>::epsilon();
@@ -260,32 +271,35 @@ template <class T> struct taylor {
         return "";
     }
 
-    // Jorba & Zou (3.12): the order for the tolerance eps.
+    /// Jorba & Zou (3.12): the order for the tolerance eps.
     static int order_for(T eps) {
         using std::ceil;
         using std::log;
         return std::max(2, static_cast<int>(ceil(-log(eps) / T(2) + T(1))));
     }
 
-    // The order of a step under the relative control (rtol's) or the absolute one (atol's).
+    /// The order of a step under the relative control (rtol's) or the absolute one (atol's).
     int order_of(bool relative) const {
         return order > 0 ? order : order_for(relative ? rtol : atol);
     }
 
-    // Jorba & Zou's step at order p from the norms of its last two coefficients, with what
-    // depends on p alone computed once: h = exp(c - m), m = max over k = p - 1, p of
-    // ln(||y^[k]|| / s) / k (-inf when both norms are 0: the series ends) and
-    // c = -2 - 0.7 / (p - 1). The step waits on this chain (the next expansion needs the step),
-    // so it holds no division: the reciprocals of k and of s are taken off the chain.
+    /// Jorba & Zou's step at order p from the norms of its last two coefficients, with what
+    /// depends on p alone computed once: h = exp(c - m), m = max over k = p - 1, p of
+    /// ln(||y^[k]|| / s) / k (-inf when both norms are 0: the series ends) and
+    /// c = -2 - 0.7 / (p - 1). The step waits on this chain (the next expansion needs the step),
+    /// so it holds no division: the reciprocals of k and of s are taken off the chain.
     struct step_rule {
-        int p = 2;
-        T inv_p1 = T(1), inv_p = T(0.5), c = T(-2.7);
+        int p = 2;        ///< the order p
+        T inv_p1 = T(1);  ///< 1/(p − 1)
+        T inv_p = T(0.5); ///< 1/p
+        T c = T(-2.7);    ///< −2 − 0.7/(p − 1)
+        /// The rule for order `order` (>= 2).
         explicit step_rule(int order = 2)
             : p(order), inv_p1(T(1) / T(order - 1)), inv_p(T(1) / T(order)),
               c(-T(2) - T(0.7) / T(order - 1)) {}
 
-        // m from the norms n1 = ||y^[p-1]||, n = ||y^[p]|| and inv_s = 1 / s, s = ||y||_inf
-        // (relative) or 1 (absolute): one logarithm where the quotients n / s are normal numbers
+        /// m from the norms n1 = ||y^[p-1]||, n = ||y^[p]|| and inv_s = 1 / s, s = ||y||_inf
+        /// (relative) or 1 (absolute): one logarithm where the quotients n / s are normal numbers
         T ln_inverse_radius(T n1, T n, T s, T inv_s) const {
             using std::log;
             const T a = n1 * inv_s, b = n * inv_s;
@@ -298,9 +312,9 @@ template <class T> struct taylor {
             return std::max(ln_ratio(n1, inv_p1, a), ln_ratio(n, inv_p, b));
         }
 
-        // max(ln(a) / (p - 1), ln(b) / p) for normal a, b > 0, with one logarithm where bounds on
-        // log2 from the bits of the two doubles already tell which is larger (else two): the same
-        // bits either way (the margin, 1e-3, covers ln's error, 4e-8, many times over).
+        /// max(ln(a) / (p - 1), ln(b) / p) for normal a, b > 0, with one logarithm where bounds on
+        /// log2 from the bits of the two doubles already tell which is larger (else two): the same
+        /// bits either way (the margin, 1e-3, covers ln's error, 4e-8, many times over).
         T max_ln_ratio(T a, T b) const {
             if constexpr (std::is_same_v<T, double>) {
                 constexpr double w = detail::log2_width + 1e-3;
@@ -313,7 +327,7 @@ template <class T> struct taylor {
             return std::max(ln(a) * inv_p1, ln(b) * inv_p);
         }
 
-        // the logarithm of a normal number > 0: for a double detail::ln_step
+        /// the logarithm of a normal number > 0: for a double detail::ln_step
         static T ln(T x) {
             using std::log;
             if constexpr (std::is_same_v<T, double>)
@@ -322,7 +336,7 @@ template <class T> struct taylor {
                 return log(x);
         }
 
-        // the step for m (+inf when m is -inf): exp(c - m), for a double by detail::exp_step
+        /// the step for m (+inf when m is -inf): exp(c - m), for a double by detail::exp_step
         T step(T m) const {
             using std::exp;
             if constexpr (std::is_same_v<T, double>)
@@ -332,7 +346,7 @@ template <class T> struct taylor {
         }
     };
 
-    // The highest order a step may take: `order` if fixed, else the larger of the tolerances'.
+    /// The highest order a step may take: `order` if fixed, else the larger of the tolerances'.
     int max_order() const {
         return order > 0
                    ? order
@@ -340,20 +354,33 @@ template <class T> struct taylor {
     }
 };
 
+/// The Taylor method's working storage for one system type S (the stepper concept of
+/// stepper.hpp, with choose_step()): the expansion at each step's start, its order and step from
+/// the tolerance, and the polynomial as the dense output.
 template <class T, class S> class taylor_stepper {
   public:
+    /// The floating-point type of the run.
     using scalar = T;
+    /// The system type S this stepper integrates.
     using system_type = S;
+    /// The state vector of S.
     using vector = state_vector<T, S>;
+    /// What attempt() returns.
     using outcome = step_outcome<T>;
 
-    static constexpr int order = 20; // nominal: the order of each step follows the tolerance
+    static constexpr int order = 20; ///< nominal: the order of each step follows the tolerance
+    /// No error estimate: attempt() returns err = 0.
     static constexpr bool error_estimate = false;
+    /// Samples inside a step come from the stepper's own interpolant, dense().
     static constexpr dense_kind dense_output = dense_kind::continuous_extension;
+    /// Order of the interpolant (local error O(h^(dense_order+1))).
     static constexpr int dense_order = 20;
+    /// Never evaluates ∂f/∂y.
     static constexpr bool uses_jacobian = false;
+    /// Chooses its own step (choose_step(); integrate/self_stepping.hpp).
     static constexpr bool chooses_step = true;
 
+    /// Storage for n state components, with the options of m.
     taylor_stepper(const taylor<T>& m, std::size_t n)
         : m_method(m), m_n(n), m_y1(vector::Zero(static_cast<Eigen::Index>(n))), m_f0(m_y1),
           m_comp(m_y1), m_comp_start(m_y1), m_tail(m_y1) {
@@ -362,6 +389,7 @@ template <class T, class S> class taylor_stepper {
         m_rule_abs = rule(m_order_abs), m_rule_rel = rule(m_order_rel);
     }
 
+    /// Begins a run at (t0, y0): evaluates f(t0, y0); false when it is not finite.
     bool start(const S& sys, T t0, const vector& y0, step_stats& stats) {
         if constexpr (has_taylor_v<S, T>) {
             m_c.assign(sys.taylor_series() * static_cast<std::size_t>(m_max_order + 1), T(0));
@@ -374,10 +402,11 @@ template <class T, class S> class taylor_stepper {
             return false;
         }
     }
+    /// f(t0, y0), after start() (for the initial step selection).
     const vector& f_start() const { return m_f0; }
 
-    // The step the tolerance allows from (t, y) (> 0; +inf when the series ends; NaN when the
-    // coefficients are not finite). Expands the solution there; attempt() uses the expansion.
+    /// The step the tolerance allows from (t, y) (> 0; +inf when the series ends; NaN when the
+    /// coefficients are not finite). Expands the solution there; attempt() uses the expansion.
     T choose_step(const S& sys, T t, const vector& y, step_stats& stats) {
         if (!m_expanded) expand(sys, t, y, stats);
         const int p = m_p;
@@ -391,9 +420,9 @@ template <class T, class S> class taylor_stepper {
         return sr.step(m);
     }
 
-    // y + sum_{k>=1} y^[k] h^k: the increment added with Kahan's compensation carried from step
-    // to step (m_comp: what the last addition rounded away, negated) while the run continues
-    // from the state this stepper returned, so that the state's rounding does not accumulate.
+    /// y + sum_{k>=1} y^[k] h^k: the increment added with Kahan's compensation carried from step
+    /// to step (m_comp: what the last addition rounded away, negated) while the run continues
+    /// from the state this stepper returned, so that the state's rounding does not accumulate.
     outcome attempt(const S& sys, T t, const vector& y, T h, step_stats& stats, bool) {
         if (!m_expanded) expand(sys, t, y, stats);
         m_h = h;
@@ -409,14 +438,16 @@ template <class T, class S> class taylor_stepper {
         return {m_y1.allFinite() ? status::ok : status::non_finite, T(0)};
     }
 
+    /// The next step expands anew; the coefficients stay for dense(). Always true.
     bool accept(const S&, step_stats&, bool) {
         m_expanded = false; // the coefficients stay for dense(): the next step expands anew
         return true;
     }
 
+    /// The state at t + h of the last attempt().
     const vector& y_new() const { return m_y1; }
 
-    // The step's polynomial at theta h (from the step's start, compensated as the step's end).
+    /// The step's polynomial at theta h (from the step's start, compensated as the step's end).
     void dense(T theta, vector& out) const {
         const T th = theta * m_h;
         tails(th, out);
@@ -426,11 +457,11 @@ template <class T, class S> class taylor_stepper {
         }
     }
 
-    int last_order() const { return m_p; } // the order of the last expansion
+    int last_order() const { return m_p; } ///< the order of the last expansion
 
   private:
-    // The state's size: a compile-time constant where the system's is (the loops over the
-    // components unroll: 8% of a step of the free top at order 11), else the run's.
+    /// The state's size: a compile-time constant where the system's is (the loops over the
+    /// components unroll: 8% of a step of the free top at order 11), else the run's.
     static constexpr Eigen::Index fixed_size = vector::RowsAtCompileTime;
     std::size_t size() const { return fixed_size > 0 ? std::size_t(fixed_size) : m_n; }
 
@@ -438,7 +469,7 @@ template <class T, class S> class taylor_stepper {
         return m_c[i * static_cast<std::size_t>(m_p + 1) + static_cast<std::size_t>(k)];
     }
 
-    // max_i |y_i^[k]|
+    /// max_i |y_i^[k]|
     T norm(int k) const {
         using std::abs;
         using std::max;
@@ -451,15 +482,15 @@ template <class T, class S> class taylor_stepper {
         return r;
     }
 
-    // r_i = sum_{k=1..p} y_i^[k] h^(k-1) for every component i (detail::series_sum, the
-    // components side by side).
+    /// r_i = sum_{k=1..p} y_i^[k] h^(k-1) for every component i (detail::series_sum, the
+    /// components side by side).
     template <class V> void tails(T h, V& r) const {
         const auto stride = static_cast<std::size_t>(m_p + 1);
         detail::series_sums<V::RowsAtCompileTime>(m_p, h, static_cast<std::size_t>(r.size()),
                                                   {m_c.data() + 1, 1, stride}, &r[0]);
     }
 
-    // The control and order at (t, y), then the coefficients up to that order.
+    /// The control and order at (t, y), then the coefficients up to that order.
     void expand(const S& sys, T t, const vector& y, step_stats& stats) {
         using std::abs;
         using std::max;
@@ -481,16 +512,16 @@ template <class T, class S> class taylor_stepper {
     taylor<T> m_method;
     std::size_t m_n;
     int m_max_order = 2, m_p = 2;
-    int m_order_abs = 2, m_order_rel = 2; // the order of each control (order_of: one log each)
+    int m_order_abs = 2, m_order_rel = 2; ///< the order of each control (order_of: one log each)
     using rule = typename taylor<T>::step_rule;
-    rule m_rule_abs, m_rule_rel; // the step rule of each control's order
+    rule m_rule_abs, m_rule_rel; ///< the step rule of each control's order
     bool m_expanded = false, m_relative = false;
     T m_norm0 = T(0), m_inv_s = T(1), m_h = T(0);
-    std::vector<T> m_c; // series s, coefficient k at s * (m_p + 1) + k
+    std::vector<T> m_c; ///< series s, coefficient k at s * (m_p + 1) + k
     vector m_y1, m_f0;
-    vector m_comp, m_comp_start; // Kahan's compensation of m_y1, and of the step's start
-    vector m_tail;               // tails(): the step's sum of y^[k] h^(k-1), k >= 1
-    bool m_stepped = false;      // m_y1 and m_comp hold a step's end
+    vector m_comp, m_comp_start; ///< Kahan's compensation of m_y1, and of the step's start
+    vector m_tail;               ///< tails(): the step's sum of y^[k] h^(k-1), k >= 1
+    bool m_stepped = false;      ///< m_y1 and m_comp hold a step's end
 };
 
 } // namespace rotgen

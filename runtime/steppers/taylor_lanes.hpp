@@ -1,20 +1,21 @@
-// rotgen runtime — the Taylor method in lanes (lanes.hpp): W members expanded together by one
-// batch call of their coefficient function, advanced by one shared step. Included by taylor.hpp,
-// whose method picks this stepper for a lane system with Taylor coefficients
-// (lane_taylor_system, lanes.hpp).
-//
-// Coefficient k of component i of lane l is c[(i (p + 1) + k) W + l]: the scalar layout of
-// taylor.hpp with every coefficient widened to the W lanes, so that each loop below runs over the
-// lanes innermost (contiguous, vectorised).
-//   control  per lane, as taylor.hpp: relative when rtol ||y_l||_inf > atol, else absolute
-//   order    one for all lanes: the largest of the live lanes' orders (equal when they share
-//            the control; JZ (3.12))
-//   step     the smallest of the live lanes' Jorba–Zou steps at that order (taylor.hpp's rule on
-//            each lane's own coefficients), so that every lane meets the tolerance: a lane's step
-//            is never longer than its scalar run's would be from the same state
-// Stopped and failed lanes (lanes.hpp) take no part: the system zeroes their coefficients beyond
-// order 0, so that they stay where they are, and they choose neither the order nor the step.
-// One expansion of all lanes counts as one rhs evaluation, as a scalar expansion does.
+/// \file
+/// rotgen runtime — the Taylor method in lanes (lanes.hpp): W members expanded together by one
+/// batch call of their coefficient function, advanced by one shared step. Included by taylor.hpp,
+/// whose method picks this stepper for a lane system with Taylor coefficients
+/// (lane_taylor_system, lanes.hpp).
+///
+/// Coefficient k of component i of lane l is c[(i (p + 1) + k) W + l]: the scalar layout of
+/// taylor.hpp with every coefficient widened to the W lanes, so that each loop below runs over the
+/// lanes innermost (contiguous, vectorised).
+///   control  per lane, as taylor.hpp: relative when rtol ||y_l||_inf > atol, else absolute
+///   order    one for all lanes: the largest of the live lanes' orders (equal when they share
+///            the control; JZ (3.12))
+///   step     the smallest of the live lanes' Jorba–Zou steps at that order (taylor.hpp's rule on
+///            each lane's own coefficients), so that every lane meets the tolerance: a lane's step
+///            is never longer than its scalar run's would be from the same state
+/// Stopped and failed lanes (lanes.hpp) take no part: the system zeroes their coefficients beyond
+/// order 0, so that they stay where they are, and they choose neither the order nor the step.
+/// One expansion of all lanes counts as one rhs evaluation, as a scalar expansion does.
 #pragma once
 
 #include <algorithm>
@@ -27,10 +28,10 @@
 namespace rotgen {
 
 namespace detail {
-// f(w) with the lane count as a compile-time constant where it is 4 or 8 (a whole number of AVX2
-// or AVX-512 batches, and the widths people use), so that the loops over the lanes below unroll;
-// as a plain number otherwise. The same operations in the same order either way: a lane's bits
-// do not depend on it.
+/// f(w) with the lane count as a compile-time constant where it is 4 or 8 (a whole number of AVX2
+/// or AVX-512 batches, and the widths people use), so that the loops over the lanes below unroll;
+/// as a plain number otherwise. The same operations in the same order either way: a lane's bits
+/// do not depend on it.
 template <class F> decltype(auto) with_lanes(std::size_t w, F&& f) {
     if (w == 8) return f(std::integral_constant<std::size_t, 8>{});
     if (w == 4) return f(std::integral_constant<std::size_t, 4>{});
@@ -38,20 +39,32 @@ template <class F> decltype(auto) with_lanes(std::size_t w, F&& f) {
 }
 } // namespace detail
 
+/// The Taylor method on a lane system (lanes.hpp): all lanes expanded together, one order and one
+/// step for all of them, the smallest of the lanes' Jorba–Zou steps.
 template <class T, class S> class taylor_lane_stepper {
   public:
+    /// The floating-point type of the run.
     using scalar = T;
+    /// The system type S this stepper integrates.
     using system_type = S;
+    /// The state vector of S.
     using vector = state_vector<T, S>;
+    /// What attempt() returns.
     using outcome = step_outcome<T>;
 
-    static constexpr int order = 20; // nominal, as taylor_stepper's
+    static constexpr int order = 20; ///< nominal, as taylor_stepper's
+    /// No error estimate: attempt() returns err = 0.
     static constexpr bool error_estimate = false;
+    /// Samples inside a step come from the stepper's own interpolant, dense().
     static constexpr dense_kind dense_output = dense_kind::continuous_extension;
+    /// Order of the interpolant (local error O(h^(dense_order+1))).
     static constexpr int dense_order = 20;
+    /// Never evaluates ∂f/∂y.
     static constexpr bool uses_jacobian = false;
+    /// Chooses its own step (choose_step(); integrate/self_stepping.hpp).
     static constexpr bool chooses_step = true;
 
+    /// Storage for n state components (all lanes), with the options of m.
     taylor_lane_stepper(const taylor<T>& m, std::size_t n)
         : m_method(m), m_size(n), m_y1(vector::Zero(static_cast<Eigen::Index>(n))), m_f0(m_y1),
           m_comp(m_y1), m_comp_start(m_y1) {
@@ -60,6 +73,7 @@ template <class T, class S> class taylor_lane_stepper {
         m_rule_abs = step_rule(m_order_abs), m_rule_rel = step_rule(m_order_rel);
     }
 
+    /// Begins a run at (t0, y0): evaluates f(t0, y0); false when it is not finite.
     bool start(const S& sys, T t0, const vector& y0, step_stats& stats) {
         m_w = sys.lanes();
         m_n = sys.components();
@@ -75,10 +89,11 @@ template <class T, class S> class taylor_lane_stepper {
                 m_f0[static_cast<Eigen::Index>(i * m_w + l)] = at(i, 1)[l];
         return m_f0.allFinite();
     }
+    /// f(t0, y0), after start() (for the initial step selection).
     const vector& f_start() const { return m_f0; }
 
-    // The smallest of the live lanes' steps from (t, y) (+inf when every series ends or no lane
-    // is live); expands the lanes there.
+    /// The smallest of the live lanes' steps from (t, y) (+inf when every series ends or no lane
+    /// is live); expands the lanes there.
     T choose_step(const S& sys, T t, const vector& y, step_stats& stats) {
         if (!m_expanded) expand(sys, t, y, stats);
         const int p = m_p;
@@ -117,9 +132,9 @@ template <class T, class S> class taylor_lane_stepper {
         return rule.step(m);
     }
 
-    // Each lane's y + sum_{k>=1} y^[k] h^k with Kahan's compensation carried from step to step,
-    // as taylor_stepper::attempt (a lane that did not continue from its last end, or is not live,
-    // starts it anew): one lane's run is its scalar run bit for bit.
+    /// Each lane's y + sum_{k>=1} y^[k] h^k with Kahan's compensation carried from step to step,
+    /// as taylor_stepper::attempt (a lane that did not continue from its last end, or is not live,
+    /// starts it anew): one lane's run is its scalar run bit for bit.
     outcome attempt(const S& sys, T t, const vector& y, T h, step_stats& stats, bool) {
         if (!m_expanded) expand(sys, t, y, stats);
         m_h = h;
@@ -145,13 +160,16 @@ template <class T, class S> class taylor_lane_stepper {
         return {m_y1.allFinite() ? status::ok : status::non_finite, T(0)};
     }
 
+    /// The next step expands anew; the coefficients stay for dense(). Always true.
     bool accept(const S&, step_stats&, bool) {
         m_expanded = false;
         return true;
     }
 
+    /// The state at t + h of the last attempt().
     const vector& y_new() const { return m_y1; }
 
+    /// The interpolant of the last accepted step at θ = (t − t_n)/h in [0, 1], into out.
     void dense(T theta, vector& out) const {
         const T th = theta * m_h;
         detail::with_lanes(m_w, [&](auto w) {
@@ -167,17 +185,18 @@ template <class T, class S> class taylor_lane_stepper {
         });
     }
 
+    /// The order of the last expansion.
     int last_order() const { return m_p; }
 
   private:
-    // Coefficient k of component i, all lanes.
+    /// Coefficient k of component i, all lanes.
     const T* at(std::size_t i, int k) const {
         return m_c.data() +
                (i * static_cast<std::size_t>(m_p + 1) + static_cast<std::size_t>(k)) * m_w;
     }
     T* at(std::size_t i, int k) { return const_cast<T*>(std::as_const(*this).at(i, k)); }
 
-    // Every lane's max_i |y_i^[k]| (NaN when one is not a number), into r.
+    /// Every lane's max_i |y_i^[k]| (NaN when one is not a number), into r.
     void norms(int k, std::vector<T>& r) const {
         using std::abs;
         r.assign(m_w, T(0));
@@ -193,17 +212,17 @@ template <class T, class S> class taylor_lane_stepper {
         });
     }
 
-    // Every lane's sum_{k>=1} y_i^[k] h^(k-1) (detail::series_sum, as taylor_stepper's), into
-    // r: a block of lanes at a time, its sums held in registers across the orders.
-    // w: the lane count, as with_lanes gives it (series_sums keeps a constant one's sums in
-    // registers).
+    /// Every lane's sum_{k>=1} y_i^[k] h^(k-1) (detail::series_sum, as taylor_stepper's), into
+    /// r: a block of lanes at a time, its sums held in registers across the orders.
+    /// w: the lane count, as with_lanes gives it (series_sums keeps a constant one's sums in
+    /// registers).
     template <class W> void tail(std::size_t i, T h, T* r, W w) const {
         constexpr int lanes = std::is_integral_v<W> ? -1 : static_cast<int>(W{});
         const T* c = at(i, 1); // coefficient m + 1 of the lanes at c[m w + l]
         detail::series_sums<lanes>(m_p, h, w, {c, w, 1}, r);
     }
 
-    // Whether lane l of y is the last step's end.
+    /// Whether lane l of y is the last step's end.
     bool continues(const vector& y, std::size_t l) const {
         for (std::size_t i = 0; i < m_n; ++i) {
             const auto e = static_cast<Eigen::Index>(i * m_w + l);
@@ -212,7 +231,7 @@ template <class T, class S> class taylor_lane_stepper {
         return true;
     }
 
-    // Each lane's control, the shared order, then the coefficients of every lane.
+    /// Each lane's control, the shared order, then the coefficients of every lane.
     void expand(const S& sys, T t, const vector& y, step_stats& stats) {
         using std::abs;
         const taylor<T>& m = m_method;
@@ -239,18 +258,18 @@ template <class T, class S> class taylor_lane_stepper {
     taylor<T> m_method;
     std::size_t m_size, m_n = 0, m_w = 1;
     int m_max_order = 2, m_p = 2;
-    int m_order_abs = 2, m_order_rel = 2; // the order of each control (taylor<T>::order_of)
+    int m_order_abs = 2, m_order_rel = 2; ///< the order of each control (taylor<T>::order_of)
     using step_rule = typename taylor<T>::step_rule;
-    step_rule m_rule_abs, m_rule_rel; // the step rule of each control's order
+    step_rule m_rule_abs, m_rule_rel; ///< the step rule of each control's order
     bool m_expanded = false;
     std::vector<T> m_c, m_norm0, m_inv_s;
-    std::vector<T> m_np1, m_np; // each lane's norm of y^[p-1] and y^[p] (choose_step)
+    std::vector<T> m_np1, m_np; ///< each lane's norm of y^[p-1] and y^[p] (choose_step)
     std::vector<char> m_relative;
-    mutable std::vector<T> m_acc; // Horner's running values, one per lane
+    mutable std::vector<T> m_acc; ///< Horner's running values, one per lane
     T m_h = T(0);
     vector m_y1, m_f0;
-    vector m_comp, m_comp_start;   // Kahan's compensation of m_y1, and of the step's start
-    std::vector<char> m_continued; // per lane: this step continues from the last step's end
+    vector m_comp, m_comp_start;   ///< Kahan's compensation of m_y1, and of the step's start
+    std::vector<char> m_continued; ///< per lane: this step continues from the last step's end
     bool m_stepped = false;
 };
 

@@ -90,15 +90,17 @@ TEST_CASE("oscillator: every method finds the zeros of cos t, with direction fil
     // g = y[0] = cos t: falling zeros at pi/2 + 2 j pi, rising at 3 pi/2 + 2 j pi.
     struct row {
         std::string method;
-        double step, bound;
+        double step, bound, state_bound;
     };
-    // rtol = atol = 1e-10: the bounds follow the integration's own phase error
-    const row r = GENERATE(values<row>({{"dop853", 0, 1e-9},               // observed 1.8e-10
-                                        {"dopri5", 0, 5e-10},              // observed 4.9e-11
-                                        {"rodas4", 0, 2e-9},               // observed 2.8e-10
-                                        {"rk4", 1e-2, 5e-9},               // observed 9.2e-10
-                                        {"implicit_midpoint", 1e-3, 5e-6}, // observed 9.2e-7
-                                        {"dop853", 0.25, 1e-10}}));        // fixed: 1.1e-11
+    // rtol = atol = 1e-10: the bounds follow the integration's own phase error; the state at the
+    // event, g there, is the root finder's and the interpolant's (observed beside each)
+    const row r =
+        GENERATE(values<row>({{"dop853", 0, 1e-9, 9e-15},                 // 1.8e-10, 9.2e-16
+                              {"dopri5", 0, 5e-10, 8e-15},                // 4.9e-11, 7.7e-16
+                              {"rodas4", 0, 2e-9, 3e-13},                 // 2.8e-10, 2.7e-14
+                              {"rk4", 1e-2, 5e-9, 9e-15},                 // 9.2e-10, 8.8e-16
+                              {"implicit_midpoint", 1e-3, 5e-6, 1.5e-14}, // 9.2e-7, 1.5e-15
+                              {"dop853", 0.25, 1e-10, 8e-13}}));          // 1.1e-11, 8.2e-14
     const auto direction =
         GENERATE(event_direction::rising, event_direction::falling, event_direction::both);
     CAPTURE(r.method, r.step, to_string(direction));
@@ -118,13 +120,14 @@ TEST_CASE("oscillator: every method finds the zeros of cos t, with direction fil
             expected.push_back(pi / 2 + j * pi);
     }
     REQUIRE(events.hits().size() == expected.size());
-    double worst = 0;
+    double worst = 0, worst_y = 0;
     for (std::size_t j = 0; j < expected.size(); ++j) {
         worst = std::max(worst, std::abs(events.hits()[j].t - expected[j]));
+        worst_y = std::max(worst_y, std::abs(events.hits()[j].y[0])); // the state at the event
         CHECK(events.hits()[j].sign == (std::abs(std::sin(expected[j]) - 1) < 1e-9 ? -1 : 1));
-        CHECK_THAT(events.hits()[j].y[0], WithinAbs(0.0, r.bound)); // the state at the event
     }
     CHECK(worst < r.bound);
+    CHECK(worst_y < r.state_bound);
 }
 
 TEST_CASE("two zeros inside one large fixed step are both found, in order", "[events]") {
@@ -174,7 +177,7 @@ TEST_CASE("no event at t0, a terminal event ends the run there, a record event a
         CHECK_THAT(h.t, WithinAbs(pi, 5e-12)); // observed 5.0e-13
     CHECK(r.t == events.hits()[1].t);
     CHECK_THAT(y[0], WithinAbs(-1.0, 1e-13)); // the state at the event: observed 1.3e-14
-    CHECK_THAT(y[1], WithinAbs(0.0, 1e-13));  // observed 6.4e-16
+    CHECK_THAT(y[1], WithinAbs(0.0, 6e-15));  // observed 6.4e-16
     REQUIRE(!seen.empty()); // samples before the event were delivered, none after it
     CHECK(seen.back() < pi);
     CHECK(seen.back() > pi - 0.1);

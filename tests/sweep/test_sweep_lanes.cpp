@@ -293,7 +293,8 @@ TEST_CASE("sweep --lanes: members a batch cannot carry give the scalar runs' row
     REQUIRE(a.size() == 6);
     CHECK(a[2] == b[2]);
     CHECK(a[3] == b[3]);
-    CHECK(largest_difference("lanes_chart", scalar, lanes) < 5e-15); // observed 0 here
+    // the three members in lanes differ from their runs alone by the lanes' rounding
+    CHECK(largest_difference("lanes_chart", scalar, lanes) < 2e-15); // observed 2.0e-16
     // a fast member exhausts max_steps for its whole batch (one batch of 4): every lane reruns
     // alone; theta = 0 cannot start without the chart switch (a user error of that member)
     const scratch_file failing(

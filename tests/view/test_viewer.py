@@ -6,7 +6,9 @@
 Simulates a heavy top recording its attitude, writes the page with `rotgen view`, and checks:
 the page makes no request to another host (no src/href/url()/import/fetch of one); Chromium loads
 it without a console error; the attitude it reports at three times (two samples and a time between
-samples) equals the CSV's (slerp between samples) to 1e-12; a screenshot is not blank.
+samples) equals the CSV's (slerp between samples) to 1e-15, and so does what three.js drew there:
+the world matrices of the body, its figure-axis arrow and the tip marker after the render, from
+the scene graph (against R(q) computed here); a screenshot is not blank.
 Exit status 0 when every check holds; each failure is printed."""
 import argparse, json, math, os, re, struct, subprocess, sys, tempfile, zlib
 
@@ -59,6 +61,33 @@ def expected_attitude(rows, t):
             f = (t - t0) / (t1 - t0)
             return slerp(rows[i][1:5], rows[i + 1][1:5], f) if f > 0 else rows[i][1:5]
     return rows[-1][1:5]
+
+def rotation(q):
+    """R(q), body to space, of the unit quaternion q = (w, x, y, z) (scalar first), row by row."""
+    w, x, y, z = q
+    return [[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+            [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+            [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]]
+
+def drawn_checks(drawn, want, t):
+    """What three.js drew (its scene graph's world matrices after the render) against R(q) of the
+    CSV's attitude: the body's matrix, the tip of its figure-axis arrow (1.15 along body z) and
+    the orange marker (on the unit sphere at the tip of body z)."""
+    check(drawn is not None, f"t = {t}: the page reports what the scene graph drew")
+    if drawn is None:
+        return
+    r = rotation(want)
+    m = drawn["body"]  # column-major 4x4
+    err = max(abs(m[4 * j + i] - r[i][j]) for i in range(3) for j in range(3))
+    # observed 4.4e-16
+    check(err <= 4e-15, f"t = {t}: the body is drawn at R(q) of the CSV ({err:.2e})")
+    axis = [r[i][2] for i in range(3)]
+    err = max(abs(p - 1.15 * a) for p, a in zip(drawn["axisTip"], axis))
+    # observed 3.3e-16
+    check(err <= 3e-15, f"t = {t}: the drawn figure axis ends at 1.15 R(q) e3 ({err:.2e})")
+    err = max(abs(p - a) for p, a in zip(drawn["marker"], axis))
+    # observed 5.6e-17
+    check(err <= 1e-15, f"t = {t}: the tip marker is drawn at R(q) e3 ({err:.2e})")
 
 def png_pixels(path):
     """(width, height, RGBA rows) of an 8-bit RGB(A) non-interlaced PNG, as Chromium writes."""
@@ -159,12 +188,15 @@ def main():
             continue
         want = expected_attitude(rows, t)
         err = max(abs(x - y) for x, y in zip(state["quaternion"], want))
-        check(err <= 1e-12, f"t = {t}: the attitude shown equals the CSV's (max error {err:.2e})")
+        # observed 1.1e-16
+        check(err <= 1e-15, f"t = {t}: the attitude shown equals the CSV's (max error {err:.2e})")
         tip = state["tip"]
         w, x, y, z = want
         want_tip = [2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)]
         err = max(abs(p - q) for p, q in zip(tip, want_tip))
-        check(err <= 1e-12, f"t = {t}: the figure axis's tip is the third column of R(q) ({err:.2e})")
+        # observed 5.6e-17
+        check(err <= 1e-15, f"t = {t}: the figure axis's tip is the third column of R(q) ({err:.2e})")
+        drawn_checks(state.get("drawn"), want, t)
 
     shot = os.path.join(work, "shot.png")
     chromium([f"--screenshot={shot}", "--window-size=900,650"], a.chromium, page, "?t=1", work,
