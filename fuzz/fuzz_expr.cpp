@@ -2,6 +2,7 @@
 // The name table is that of a torque: the angles, their rates, t, and a few parameters.
 // An accepted expression is also evaluated in double precision (as spec.cpp checks it): any value
 // will do, but the expression must consist of what the generated code knows (fuzz_support.hpp).
+#include "expr/angles.hpp"
 #include "expr/expr_parse.hpp"
 #include "fuzz_support.hpp"
 
@@ -13,8 +14,8 @@ const name_table& names() {
         name_table t;
         const auto& s = symbols();
         for (int i = 0; i < 3; ++i) {
-            t[coordinate_names()[i]] = s.q[i];
-            t[coordinate_names()[i] + "_dot"] = s.qd[i];
+            t[angle_convention{}.names[i]] = s.q[i];
+            t[angle_convention{}.names[i] + "_dot"] = s.qd[i];
         }
         t["t"] = s.t;
         for (const char* p : {"I1", "I2", "I3", "M", "g", "h", "a", "b", "c", "w"})

@@ -158,13 +158,13 @@ void bench_run::prepare(const bench_options& options) {
     c.src = find_bench_sources();
     c.dir = c.opt.dir;
     check_files(c.dir, c.scene);
-    c.euler_ok = chart_distance(c.scene.angles[1]) > 1e-10;
+    const angle_convention& angles = c.scene.model.angles;
+    c.euler_ok = chart_distance(sequence_of(angles), c.scene.angles[1]) > 1e-10;
     if (!c.euler_ok && c.scene.form != form_kind::body)
         throw user_error(c.scene.initial_where,
-                         "initial " + coordinate_names()[1] +
+                         "initial " + angles.names[1] +
                              " is the gimbal-lock singularity of the Euler-angle forms (" +
-                             distance_label().substr(1, distance_label().size() - 2) +
-                             " = 0); use form: body");
+                             distance_words(angles) + " = 0); use form: body");
     bench_cache_root(); // a cache that cannot be made is refused before any output
 }
 

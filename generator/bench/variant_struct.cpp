@@ -36,7 +36,7 @@ void write_data(std::ostream& s, const variant& v, std::size_t index, const std:
     s << "        return p;\n    }\n";
     s << "    static std::array<long double, " << n << "> initial() {\n        return {{";
     for (std::size_t i = 0; i < n; ++i)
-        s << (i ? ", " : "") << ld_literal(state_value(k, v.f.state[i].name));
+        s << (i ? ", " : "") << ld_literal(state_value(k, v.f.angles, v.f.state[i].name));
     s << "}};\n    }\n";
 }
 

@@ -49,7 +49,7 @@ std::string model_text(const model_spec& spec, output_format format, bool inerti
 // The report followed by the scene's event functions (in JSON: one more member of the object).
 std::string with_events(std::string text, const scene_spec& scene, output_format format) {
     if (scene.events.empty()) return text;
-    const std::string events = describe_events(scene.events, format);
+    const std::string events = describe_events(scene.events, scene.model.angles, format);
     if (format != output_format::json) return text + events;
     const auto close = text.rfind('}');
     const auto last = text.find_last_not_of(" \n", close - 1);

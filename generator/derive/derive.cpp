@@ -33,8 +33,8 @@ namespace {
 //   J = [[sin(theta) sin(psi),  cos(psi), 0],
 //        [sin(theta) cos(psi), -sin(psi), 0],
 //        [cos(theta),           0,        1]].
-matrix3 omega_jacobian() {
-    return omega_jacobian_of(active_angles());
+matrix3 omega_jacobian(const angle_convention& c) {
+    return omega_jacobian_of(c);
 }
 
 // sin^2 -> 1 - cos^2 of the last angle (J does not depend on the first), then expanded: what
@@ -132,7 +132,8 @@ derivation derive(const model_spec& spec) {
     refuse_rotor(spec);
     const auto& s = symbols();
     derivation d;
-    d.omega_jacobian = omega_jacobian();
+    d.angles = spec.angles;
+    d.omega_jacobian = omega_jacobian(spec.angles);
     d.inverse_omega_jacobian = inverse_omega_jacobian(d.omega_jacobian);
     d.inverse_inertia = inverse_inertia(spec);
 

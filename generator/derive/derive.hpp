@@ -29,6 +29,7 @@
 namespace rotgen {
 
 struct derivation {
+    angle_convention angles;        // the model's (spec.angles): what q[0..2] are and are named
     matrix3 omega_jacobian;         // J = d omega / d q_dot
     vector3 omega;                  // (5.30), in q and q_dot
     GiNaC::ex kinetic;              // T (5.38), in q and q_dot

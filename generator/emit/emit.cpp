@@ -221,8 +221,7 @@ std::string comment_block(const std::string& text, const std::string& indent = "
 // quaternion_from_angles and angles_from_quaternion: the chapter's z-x-z by half angles
 // (templates/quaternion.hpp.in), any other sequence through R = A^T
 // (templates/quaternion_sequence.hpp.in; the formulas of runtime/euler_sequence.hpp).
-std::string quaternion_functions() {
-    const angle_convention& c = active_angles();
+std::string quaternion_functions(const angle_convention& c) {
     if (c.is_zxz()) return fill_template("quaternion.hpp.in", {});
     const std::string s = c.sequence();
     const std::string extract =
@@ -261,8 +260,7 @@ std::string quaternion_functions() {
 }
 
 // The header's note on the angles: the chapter's words for z-x-z, the model's sequence otherwise.
-std::string angles_comment() {
-    const angle_convention& c = active_angles();
+std::string angles_comment(const angle_convention& c) {
     if (c.is_default())
         return "Angles: z-x-z Euler angles (5.3), phi about z, theta about the new x, psi about "
                "the "
@@ -273,8 +271,7 @@ std::string angles_comment() {
            " is passive, body <- space (as 5.25); omega is in body axes (as 5.30).";
 }
 
-std::string singular_comment() {
-    const angle_convention& c = active_angles();
+std::string singular_comment(const angle_convention& c) {
     if (c.is_default())
         return "Singular at theta = 0 and theta = pi (gimbal lock: det J = -sin(theta), J = d "
                "omega / d q_dot): rates and Jacobian grow like 1/sin(theta) there. Keep theta away "
@@ -401,7 +398,8 @@ std::string params_members(const lowered_form& lf) {
 
 // The description block of the header comment: form, state, angles, singularities, parameters,
 // operation counts.
-std::string description(const lowered_form& lf, const std::vector<function_stats>& stats) {
+std::string description(const lowered_form& lf, const std::vector<function_stats>& stats,
+                        const angle_convention& angles) {
     const std::size_t n = lf.state_names.size();
     std::string desc;
     desc += comment_block("Form: " + form_title(lf) + ".");
@@ -419,14 +417,14 @@ std::string description(const lowered_form& lf, const std::vector<function_stats
             "like 1/sin(theta) there; rotgen simulate continues in a chart with its pole "
             "elsewhere.");
     else if (lf.form != form_kind::body || n == 7)
-        desc += comment_block(angles_comment());
+        desc += comment_block(angles_comment(angles));
     if (rotor)
         ;
     else if (lf.form == form_kind::body)
         desc += comment_block(
             "Singularities: none from the coordinates (unless a warning above says otherwise).");
     else
-        desc += comment_block(singular_comment());
+        desc += comment_block(singular_comment(angles));
     desc += "///\n";
     if (lf.runtime_parameters.empty()) {
         desc += comment_block("Parameters: none at run time; folded in: " + join(lf.folded, ", ") +
@@ -515,7 +513,7 @@ emitted_header emit_header(const model_spec& spec, const lowered_form& lf,
         functions += function_text(lf, fn, b);
     }
     if (lf.form == form_kind::body && lf.state_names.size() == 7)
-        functions += quaternion_functions();
+        functions += quaternion_functions(spec.angles);
     const std::string params = fill_template("params.hpp.in", {{"model_file", one_line(spec.file)},
                                                                {"members", params_members(lf)}}) +
                                "\n" + prepared_text(lf);
@@ -527,7 +525,7 @@ emitted_header emit_header(const model_spec& spec, const lowered_form& lf,
                                         {"model_file", one_line(spec.file)},
                                         {"model_hash", "0x" + hex(fnv1a(spec.source))},
                                         {"command", one_line(o.command)},
-                                        {"description", description(lf, h.stats)},
+                                        {"description", description(lf, h.stats, spec.angles)},
                                         {"guard", guard_of(h.unit)},
                                         {"includes", includes},
                                         {"unit", h.unit},

@@ -370,7 +370,7 @@ std::string taylor_builder::order_zero(const series_op& op) const {
     case series_op::exp:
     case series_op::log:
     case series_op::sqrt: {
-        static const char* f[] = {"exp", "log", "sqrt"};
+        static const char* const f[] = {"exp", "log", "sqrt"};
         return out + f[op.kind - series_op::exp] + "(" + a() + ");";
     }
     case series_op::pow:

@@ -8,11 +8,6 @@ using GiNaC::ex;
 
 namespace {
 const char* const axis_letter = "xyz";
-
-angle_convention& active() {
-    static angle_convention c;
-    return c;
-}
 } // namespace
 
 std::string angle_convention::sequence() const {
@@ -75,14 +70,6 @@ std::optional<std::array<int, 3>> parse_sequence(const std::string& text) {
 std::array<std::string, 3> default_angle_names(const std::array<int, 3>& axes) {
     if (axes == std::array<int, 3>{2, 1, 0}) return {"yaw", "pitch", "roll"};
     return {"phi", "theta", "psi"};
-}
-
-const angle_convention& active_angles() {
-    return active();
-}
-
-void set_active_angles(const angle_convention& c) {
-    active() = c;
 }
 
 ex_matrix3 elementary_rotation(int axis, const ex& angle) {

@@ -9,9 +9,10 @@
 // Default names: phi, theta, psi for every sequence but zyx, whose angles are yaw, pitch, roll.
 //
 // The derivation keeps the one set of coordinate symbols of symbols.hpp (q[0..2] are α, β, γ of
-// whatever sequence); the names the model chose are the process's active convention: set once,
-// when the model is read (a process derives one model; GiNaC itself is one thread per process),
-// and read wherever a name meets the user: parsing, printing, records, initial keys, messages.
+// whatever sequence); the convention is a value of the model (model_spec::angles), carried by the
+// derivation, the forms, the scene and the run, and passed to every function that parses or
+// prints a name or converts angles: two models with two conventions can be derived and run at
+// once in one process (as Pinocchio's algorithms take the model they work on).
 #pragma once
 
 #include <ginac/ginac.h>
@@ -54,19 +55,14 @@ std::optional<std::array<int, 3>> parse_sequence(const std::string& text);
 
 std::array<std::string, 3> default_angle_names(const std::array<int, 3>& axes);
 
-// "p_phi", "p_theta", "p_psi" in the model's names (expr/symbols.hpp's coordinate_names()).
-std::vector<std::string> momentum_names();
+// "p_phi", "p_theta", "p_psi" in c's names.
+std::vector<std::string> momentum_names(const angle_convention& c);
 
 // The name a coordinate, rate, acceleration or momentum symbol of expr/symbols.hpp is shown by
-// (the model's angle names: q[0] -> "yaw", qd[0] -> "yaw_dot", p[0] -> "p_yaw"); any other
-// symbol's own name. Its TeX name: the symbol's own for the chapter's names, else built from the
-// model's names.
-std::string display_name(const GiNaC::symbol& x);
-std::string display_tex_name(const GiNaC::symbol& x);
-
-// The convention of the model being derived (z-x-z, phi theta psi until a model sets another).
-const angle_convention& active_angles();
-void set_active_angles(const angle_convention& c);
+// (c's angle names: q[0] -> "yaw", qd[0] -> "yaw_dot", p[0] -> "p_yaw"); any other symbol's own
+// name. Its TeX name: the symbol's own for the chapter's names, else built from c's names.
+std::string display_name(const GiNaC::symbol& x, const angle_convention& c);
+std::string display_tex_name(const GiNaC::symbol& x, const angle_convention& c);
 
 using ex_matrix3 = std::array<std::array<GiNaC::ex, 3>, 3>;
 

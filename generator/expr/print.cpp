@@ -38,14 +38,15 @@ bool has_negative_coefficient(const ex& term) {
 
 // GiNaC holds 1/(a - b) as -1/(b - a) or not, by hash order, which changes from run to run. The
 // printers therefore choose the sign of a sum in a denominator themselves: its first term in
-// printed order is made positive. True when `sum` must be negated for that.
-bool denominator_needs_flip(const ex& sum) {
+// printed order (the coordinates named by c) is made positive. True when `sum` must be negated
+// for that.
+bool denominator_needs_flip(const ex& sum, const angle_convention& c) {
     std::string first;
     bool negative = false;
     for (std::size_t i = 0; i < sum.nops(); ++i) {
         const ex term = sum.op(i);
         const bool neg = has_negative_coefficient(term);
-        const std::string text = text_printer()(neg ? ex(-term) : term);
+        const std::string text = text_printer(c)(neg ? ex(-term) : term);
         if (i == 0 || text < first) {
             first = text;
             negative = neg;
@@ -55,28 +56,28 @@ bool denominator_needs_flip(const ex& sum) {
 }
 
 // True when f is 1/(sum)^n whose sum the printers negate; `odd` tells if the sign changes.
-bool flipped_denominator(const ex& f, bool* odd = nullptr) {
+bool flipped_denominator(const ex& f, const angle_convention& c, bool* odd = nullptr) {
     if (is_negative_power(f) && is_a<GiNaC::add>(f.op(0)) &&
-        ex_to<GiNaC::numeric>(f.op(1)).is_integer() && denominator_needs_flip(f.op(0))) {
+        ex_to<GiNaC::numeric>(f.op(1)).is_integer() && denominator_needs_flip(f.op(0), c)) {
         if (odd) *odd = ex_to<GiNaC::numeric>(f.op(1)).is_odd();
         return true;
     }
     return false;
 }
 
-bool flips_sign(const ex& f) {
+bool flips_sign(const ex& f, const angle_convention& c) {
     bool odd = false;
-    return flipped_denominator(f, &odd) && odd;
+    return flipped_denominator(f, c, &odd) && odd;
 }
 
 // A term of a sum, split into sign and magnitude as printed: -3*x -> (true, 3*x).
-std::pair<bool, ex> split_sign(const ex& term) {
+std::pair<bool, ex> split_sign(const ex& term, const angle_convention& c) {
     bool negative = has_negative_coefficient(term);
     if (is_a<GiNaC::mul>(term)) {
         for (std::size_t i = 0; i < term.nops(); ++i)
-            negative ^= flips_sign(term.op(i));
+            negative ^= flips_sign(term.op(i), c);
     } else {
-        negative ^= flips_sign(term);
+        negative ^= flips_sign(term, c);
     }
     return {negative, negative ? ex(-term) : term};
 }
@@ -119,7 +120,7 @@ std::string expression_printer::number(const GiNaC::numeric& n, int context) con
 }
 
 std::string expression_printer::symbol(const GiNaC::symbol& s) const {
-    return display_name(s);
+    return display_name(s, angles());
 }
 
 std::string expression_printer::constant(const GiNaC::constant& c) const {
@@ -132,7 +133,7 @@ std::string expression_printer::constant(const GiNaC::constant& c) const {
 std::string expression_printer::sum(const ex& e, int context, bool negate) const {
     std::vector<std::pair<std::string, bool>> terms;
     for (std::size_t i = 0; i < e.nops(); ++i) {
-        const auto [negative, magnitude] = split_sign(e.op(i));
+        const auto [negative, magnitude] = split_sign(e.op(i), angles());
         terms.emplace_back(print(magnitude, 1), negative != negate);
     }
     std::sort(terms.begin(), terms.end());
@@ -152,7 +153,7 @@ std::string expression_printer::product(const ex& e, int context) const {
     const std::size_t count = is_a<GiNaC::mul>(e) ? e.nops() : 1;
     for (std::size_t i = 0; i < count; ++i) {
         const ex f = is_a<GiNaC::mul>(e) ? e.op(i) : e;
-        if (flipped_denominator(f)) {
+        if (flipped_denominator(f, angles())) {
             // 1/(sum)^n printed as (-1)^n / (-sum)^n, the negated sum's terms printed negated.
             const int n = -ex_to<GiNaC::numeric>(f.op(1)).to_int();
             if (n % 2) coeff = -coeff;
@@ -243,7 +244,7 @@ std::string latex_printer::number(const GiNaC::numeric& n, int context) const {
 }
 
 std::string latex_printer::symbol(const GiNaC::symbol& s) const {
-    const std::string tex = display_tex_name(s);
+    const std::string tex = display_tex_name(s, angles());
     if (!tex.empty() && tex != s.get_name()) return tex;
     // Parameters: trailing digits become a subscript, multi-letter names upright.
     static const std::regex with_index("([A-Za-z]+)_?([0-9]+)");
@@ -305,11 +306,11 @@ std::string latex_printer::fraction(const std::string& num, const std::string& d
     return "\\frac{" + num + "}{" + den + "}";
 }
 
-std::string to_text(const ex& e) {
-    return text_printer()(e);
+std::string to_text(const ex& e, const angle_convention& angles) {
+    return text_printer(angles)(e);
 }
-std::string to_latex(const ex& e) {
-    return latex_printer()(e);
+std::string to_latex(const ex& e, const angle_convention& angles) {
+    return latex_printer(angles)(e);
 }
 
 } // namespace rotgen

@@ -10,6 +10,7 @@
 //   (C++ is printed from lowered programs by emit/printer.hpp, the one C++ printer.)
 #pragma once
 
+#include "expr/angles.hpp"    // angle_convention: the names the coordinates are shown by
 #include "support/format.hpp" // format_double
 
 #include <ginac/ginac.h>
@@ -20,8 +21,11 @@
 
 namespace rotgen {
 
+// A printer shows the coordinate, rate and momentum symbols by the names of the model's angle
+// convention (expr/angles.hpp's display_name), which it is built with.
 class expression_printer {
   public:
+    explicit expression_printer(angle_convention angles) : m_angles(std::move(angles)) {}
     virtual ~expression_printer() = default;
     std::string operator()(const GiNaC::ex& e) const { return print(e, 0); }
 
@@ -47,11 +51,22 @@ class expression_printer {
     virtual std::string function_name(const std::string& ginac_name) const { return ginac_name; }
 
     static std::string parenthesise(const std::string& s) { return "(" + s + ")"; }
+
+    const angle_convention& angles() const { return m_angles; }
+
+  private:
+    angle_convention m_angles;
 };
 
-class text_printer : public expression_printer {};
+class text_printer : public expression_printer {
+  public:
+    using expression_printer::expression_printer;
+};
 
 class latex_printer : public expression_printer {
+  public:
+    using expression_printer::expression_printer;
+
   protected:
     std::string number(const GiNaC::numeric& n, int context) const override;
     std::string symbol(const GiNaC::symbol& s) const override;
@@ -64,7 +79,8 @@ class latex_printer : public expression_printer {
     std::string fraction(const std::string& num, const std::string& den) const override;
 };
 
-std::string to_text(const GiNaC::ex& e);
-std::string to_latex(const GiNaC::ex& e);
+// e printed with the coordinates named by `angles` (the model's convention).
+std::string to_text(const GiNaC::ex& e, const angle_convention& angles);
+std::string to_latex(const GiNaC::ex& e, const angle_convention& angles);
 
 } // namespace rotgen

@@ -30,18 +30,14 @@ const coordinate_symbols& symbols() {
     return s;
 }
 
-const std::array<std::string, 3>& coordinate_names() {
-    return active_angles().names;
-}
-
-std::vector<std::string> momentum_names() {
-    const auto& n = coordinate_names();
+std::vector<std::string> momentum_names(const angle_convention& c) {
+    const auto& n = c.names;
     return {"p_" + n[0], "p_" + n[1], "p_" + n[2]};
 }
 
-std::string display_name(const GiNaC::symbol& x) {
+std::string display_name(const GiNaC::symbol& x, const angle_convention& c) {
     const auto& s = symbols();
-    const auto& n = coordinate_names();
+    const auto& n = c.names;
     for (int i = 0; i < 3; ++i) {
         if (x.is_equal(s.q[i])) return n[i];
         if (x.is_equal(s.qd[i])) return n[i] + "_dot";
@@ -51,10 +47,10 @@ std::string display_name(const GiNaC::symbol& x) {
     return x.get_name();
 }
 
-std::string display_tex_name(const GiNaC::symbol& x) {
-    if (active_angles().is_default()) return x.get_TeX_name();
+std::string display_tex_name(const GiNaC::symbol& x, const angle_convention& c) {
+    if (c.is_default()) return x.get_TeX_name();
     const auto& s = symbols();
-    const auto& n = coordinate_names();
+    const auto& n = c.names;
     static const std::vector<std::string> greek{"alpha", "beta", "gamma", "delta", "eta",
                                                 "theta", "phi",  "psi",   "chi",   "xi"};
     for (int i = 0; i < 3; ++i) {
@@ -78,14 +74,14 @@ const std::vector<std::string>& known_functions() {
     return f;
 }
 
-std::string reserved_reason(const std::string& name) {
+std::string reserved_reason(const std::string& name, const angle_convention& c) {
     static const std::vector<std::string> state{
         "phi",      "theta",      "psi",      "phi_dot", "theta_dot", "psi_dot",
         "phi_ddot", "theta_ddot", "psi_ddot", "p_phi",   "p_theta",   "p_psi",
         "omega1",   "omega2",     "omega3",   "t",       "energy"};
     if (std::find(state.begin(), state.end(), name) != state.end())
         return "it names a coordinate, rate, momentum or output";
-    for (const auto& q : coordinate_names())
+    for (const auto& q : c.names)
         if (name == q || name == q + "_dot" || name == q + "_ddot" || name == "p_" + q)
             return "it names a coordinate, rate, momentum or output";
     static const std::vector<std::string> ginac{"I",       "Pi",   "pi",   "Euler",
@@ -101,7 +97,7 @@ std::string reserved_reason(const std::string& name) {
         return "it is used by the generated code";
     static const std::regex temporary("t[0-9]+|(sin|cos)_(phi|theta|psi)|rg_.*");
     if (std::regex_match(name, temporary)) return "it is used by the generated code";
-    for (const auto& q : coordinate_names())
+    for (const auto& q : c.names)
         if (name == "sin_" + q || name == "cos_" + q) return "it is used by the generated code";
     static const std::vector<std::string> keywords{
         "auto",      "bool",      "break",    "case",     "char",      "class",    "const",

@@ -28,12 +28,11 @@ struct coordinate_symbols {
 // The process-wide symbols (created once, on first use).
 const coordinate_symbols& symbols();
 
-// Index 0, 1, 2 -> "phi", "theta", "psi".
-const std::array<std::string, 3>& coordinate_names();
+struct angle_convention; // expr/angles.hpp: the model's sequence and the angles' names
 
 // Names a model may not use for a parameter, with the reason ("a coordinate", "a GiNaC constant",
-// ...); empty when the name is free.
-std::string reserved_reason(const std::string& name);
+// ...); empty when the name is free. The angles' names are c's (and always phi, theta, psi).
+std::string reserved_reason(const std::string& name, const angle_convention& c);
 
 // Functions the expression language knows, as written in model files.
 const std::vector<std::string>& known_functions();

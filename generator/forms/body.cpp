@@ -45,7 +45,7 @@ class euler_chart {
   public:
     euler_chart(const std::array<ex, 9>& R, const derivation& d, const vec& w) {
         const auto& s = symbols();
-        const angle_convention& c = active_angles();
+        const angle_convention& c = d.angles;
         const auto r = [&R](int i, int j) { return R[3 * i + j]; };
         const int a = c.axes[0], b = c.axes[1], cc = c.axes[2], o = 3 - a - b;
         const ex e = (b - a + 3) % 3 == 1 ? 1 : -1;
@@ -61,7 +61,7 @@ class euler_chart {
             scale = {cb, 1, cb};
         }
         for (int i = 0; i < 3; ++i) {
-            const std::string n = coordinate_names()[i];
+            const std::string n = c.names[i];
             const GiNaC::realsymbol ps("rg_sin_" + n), pc("rg_cos_" + n);
             m_trig_value[ps] = yx[2 * i] / scale[i];
             m_trig_value[pc] = yx[2 * i + 1] / scale[i];
@@ -95,7 +95,7 @@ class euler_chart {
 // column of A ((sin theta sin psi, sin theta cos psi, cos theta) for z-x-z).
 ex gravity_potential(const model_spec& spec) {
     if (!spec.gravity) return 0;
-    const ex_matrix3 A = rotation_of_angles(active_angles());
+    const ex_matrix3 A = rotation_of_angles(spec.angles);
     ex h = 0;
     for (int i = 0; i < 3; ++i)
         h += spec.gravity->com[i] * A[i][2];
@@ -214,8 +214,7 @@ void body_state_and_rates(const model_spec& spec, const derivation& d, const vec
 }
 
 // "qz(phi) (x) qx(theta) (x) qz(psi)" for the model's sequence and names.
-std::string quaternion_of_angles_text() {
-    const angle_convention& c = active_angles();
+std::string quaternion_of_angles_text(const angle_convention& c) {
     std::string t;
     for (int i = 0; i < 3; ++i)
         t += (i ? " (x) q" : "q") + std::string(1, "xyz"[c.axes[i]]) + "(" + c.names[i] + ")";
@@ -231,7 +230,7 @@ void body_notes(const model_spec& spec, bool quaternion, bool chart_used, form_e
         f.notes.push_back(
             "q = (qw, qx, qy, qz) rotates body axes into space axes: R(q) = A^T with A of "
             "(5.25); from Euler angles q = " +
-            quaternion_of_angles_text() +
+            quaternion_of_angles_text(spec.angles) +
             ". Every use divides by |q|^2, so q need not stay normalised.");
     if (spec.gravity)
         f.notes.push_back(
@@ -241,7 +240,7 @@ void body_notes(const model_spec& spec, bool quaternion, bool chart_used, form_e
         f.notes.push_back(
             "WARNING: part of the torque or potential is known only in Euler angles and is "
             "evaluated through the chart (angles from q): singular at " +
-            active_angles().singular_text() + ".");
+            spec.angles.singular_text() + ".");
 }
 
 // energy T + V with T = 1/2 omega . I omega; l = I omega; omega; I; A = R^T if q is kept.

@@ -30,11 +30,11 @@ const std::vector<std::string>& output_names() {
     return names;
 }
 
-std::array<ex, 9> rotation_matrix() {
+std::array<ex, 9> rotation_matrix(const angle_convention& c) {
     // (5.25): A = A_c(gamma) A_b(beta) A_a(alpha) for the model's sequence a-b-c, Az(psi) Ax(theta)
     // Az(phi) for z-x-z, Az(a) = [[c, s, 0], [-s, c, 0], [0, 0, 1]], Ax(a) = [[1, 0, 0], [0, c, s],
     // [0, -s, c]] (5.8, 5.9); expr/angles.hpp.
-    const ex_matrix3 A = rotation_of_angles(active_angles());
+    const ex_matrix3 A = rotation_of_angles(c);
     std::array<ex, 9> r;
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j)
@@ -100,6 +100,7 @@ std::vector<ex> jacobian(const form_expressions& f, const std::vector<ex>& rates
 form_expressions build_form(const model_spec& spec, const derivation& d, form_kind form,
                             lagrangian_strategy strategy, bool orientation) {
     form_expressions f;
+    f.angles = spec.angles;
     f.form = form;
     f.strategy = strategy;
     f.time = symbols().t;
@@ -124,7 +125,7 @@ form_expressions build_form(const model_spec& spec, const derivation& d, form_ki
     }
     if (form == form_kind::lagrangian || form == form_kind::hamiltonian) {
         add_output(f, "mass_matrix", flat(d.mass_matrix), matrix_names("M"));
-        const auto A = rotation_matrix();
+        const auto A = rotation_matrix(spec.angles);
         add_output(f, "rotation", std::vector<ex>(A.begin(), A.end()), matrix_names("A"));
         f.unavailable["ignored_rates"] = "only the reduced form ignores coordinates";
     }

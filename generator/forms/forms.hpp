@@ -77,6 +77,7 @@ struct form_output {
 };
 
 struct form_expressions {
+    angle_convention angles; // the model's (spec.angles): the state's angle names and sequence
     form_kind form = form_kind::lagrangian;
     lagrangian_strategy strategy = lagrangian_strategy::explicit_inverse;
     std::vector<state_variable> state;
@@ -116,7 +117,7 @@ std::vector<GiNaC::ex> jacobian(const form_expressions& f);
 // The same for other rates of the same form (one of f.alternative_rates).
 std::vector<GiNaC::ex> jacobian(const form_expressions& f, const std::vector<GiNaC::ex>& rates);
 
-// The rotation matrix A(phi, theta, psi) of (5.25), row-major.
-std::array<GiNaC::ex, 9> rotation_matrix();
+// The rotation matrix A(q) of the sequence c ((5.25) for z-x-z), row-major.
+std::array<GiNaC::ex, 9> rotation_matrix(const angle_convention& c);
 
 } // namespace rotgen

@@ -10,7 +10,7 @@ namespace rotgen::form_detail {
 
 void build_hamiltonian(const derivation& d, form_expressions& f) {
     const auto& s = symbols();
-    const auto& q_names = coordinate_names();
+    const auto& q_names = f.angles.names;
     for (int i = 0; i < 3; ++i)
         f.state.push_back({q_names[i], s.q[i], "Euler angle (z-x-z), rad"});
     for (int i = 0; i < 3; ++i)
@@ -29,10 +29,10 @@ void build_hamiltonian(const derivation& d, form_expressions& f) {
     f.notes.push_back(
         "l = J^{-T} p (body angular momentum), omega = I^{-1} l, q_dot = J^{-1} omega = dH/dp, "
         "p_dot = -dH/dq + Q; " +
-        active_angles().singular_clause() + ".");
+        f.angles.singular_clause() + ".");
     add_output(f, "energy", {dot(h.w, h.l) / 2 + d.potential}, {"energy"});
     f.outputs["energy"].alternatives.push_back({d.hamiltonian});
-    add_output(f, "momenta", {s.p[0], s.p[1], s.p[2]}, momentum_names());
+    add_output(f, "momenta", {s.p[0], s.p[1], s.p[2]}, momentum_names(f.angles));
     add_output(f, "omega", {h.w[0], h.w[1], h.w[2]}, {"omega1", "omega2", "omega3"});
 }
 

@@ -74,7 +74,7 @@ void explicit_rates(const model_spec& spec, const derivation& d, form_expression
     f.notes.push_back(
         "q_ddot = J^{-1} I^{-1} J^{-T} f (M^{-1} = J^{-1} I^{-1} J^{-T}, M = J^T I J, "
         "J = d omega/d q_dot of (5.30)); " +
-        active_angles().singular_clause() + ".");
+        f.angles.singular_clause() + ".");
 }
 
 void solve_rates(const derivation& d, form_expressions& f) {
@@ -87,15 +87,14 @@ void solve_rates(const derivation& d, form_expressions& f) {
     f.notes.push_back(
         "M(q) q_ddot = f(t, q, q_dot) solved by an inline LDL^T (no pivoting; M = J^T I J "
         "is positive definite for " +
-        active_angles().regular_range() + ", singular at " + active_angles().singular_text() +
-        ").");
+        f.angles.regular_range() + ", singular at " + f.angles.singular_text() + ").");
 }
 
 } // namespace
 
 void build_lagrangian(const model_spec& spec, const derivation& d, form_expressions& f) {
     const auto& s = symbols();
-    const auto& q_names = coordinate_names();
+    const auto& q_names = f.angles.names;
     for (int i = 0; i < 3; ++i)
         f.state.push_back({q_names[i], s.q[i], "Euler angle (z-x-z), rad"});
     for (int i = 0; i < 3; ++i)
@@ -117,7 +116,7 @@ void build_lagrangian(const model_spec& spec, const derivation& d, form_expressi
     add_output(f, "energy", {dot(w, Iw) / 2 + d.potential}, {"energy"});
     f.outputs["energy"].alternatives.push_back({d.energy});
     const vec p = mat_t_vec(d.omega_jacobian, Iw);
-    add_output(f, "momenta", {p[0], p[1], p[2]}, momentum_names());
+    add_output(f, "momenta", {p[0], p[1], p[2]}, momentum_names(f.angles));
     f.outputs["momenta"].alternatives.push_back({d.momenta[0], d.momenta[1], d.momenta[2]});
     add_output(f, "omega", {w[0], w[1], w[2]}, {"omega1", "omega2", "omega3"});
 }

@@ -43,11 +43,12 @@ bool contains(const std::vector<int>& v, int i) {
 }
 
 // The name of the first ignored coordinate that one of `values` mentions, or "".
-std::string mentioned_ignored(const std::vector<ex>& values, const std::vector<int>& dropped) {
+std::string mentioned_ignored(const std::vector<ex>& values, const std::vector<int>& dropped,
+                              const angle_convention& c) {
     const auto& s = symbols();
     for (const ex& e : values)
         for (int i : dropped)
-            if (e.has(s.q[i])) return coordinate_names()[i];
+            if (e.has(s.q[i])) return c.names[i];
     return std::string();
 }
 
@@ -56,7 +57,7 @@ std::string mentioned_ignored(const std::vector<ex>& values, const std::vector<i
 std::vector<ex> reduced_state_and_rates(const derivation& d, const hamilton_parts& h,
                                         const std::vector<int>& dropped, form_expressions& f) {
     const auto& s = symbols();
-    const auto& q_names = coordinate_names();
+    const auto& q_names = f.angles.names;
     for (int i = 0; i < 3; ++i)
         if (!contains(dropped, i))
             f.state.push_back({q_names[i], s.q[i], "Euler angle (z-x-z), rad"});
@@ -82,7 +83,7 @@ std::vector<ex> reduced_state_and_rates(const derivation& d, const hamilton_part
 // The conserved momenta of the ignored coordinates as parameters, and the note that says so.
 void ignored_momenta(const std::vector<int>& dropped, form_expressions& f) {
     const auto& s = symbols();
-    const auto& q_names = coordinate_names();
+    const auto& q_names = f.angles.names;
     std::string gone;
     for (int i : dropped) {
         gone += (gone.empty() ? "" : ", ") + q_names[i];
@@ -104,7 +105,7 @@ std::string depends_on_ignored(const std::string& q) {
 // An output, or the reason it is unavailable: it mentions an ignored angle.
 void offer(form_expressions& f, const std::vector<int>& dropped, const std::string& name,
            std::vector<ex> values, std::vector<std::string> names) {
-    const std::string q = mentioned_ignored(values, dropped);
+    const std::string q = mentioned_ignored(values, dropped, f.angles);
     if (q.empty())
         add_output(f, name, std::move(values), std::move(names));
     else
@@ -123,17 +124,17 @@ void reduced_outputs(const derivation& d, const hamilton_parts& h, const std::ve
     std::vector<std::string> names;
     for (int i : dropped) {
         rates.push_back(d.hamilton_qdot[i]);
-        names.push_back(coordinate_names()[i] + "_dot");
+        names.push_back(f.angles.names[i] + "_dot");
     }
     add_output(f, "ignored_rates", rates, names);
     offer(f, dropped, "energy", {d.hamiltonian}, {"energy"});
     const ex energy = dot(h.w, h.l) / 2 + d.potential;
-    if (f.outputs.count("energy") && mentioned_ignored({energy}, dropped).empty())
+    if (f.outputs.count("energy") && mentioned_ignored({energy}, dropped, f.angles).empty())
         f.outputs["energy"].alternatives.push_back({energy});
-    add_output(f, "momenta", {s.p[0], s.p[1], s.p[2]}, momentum_names());
+    add_output(f, "momenta", {s.p[0], s.p[1], s.p[2]}, momentum_names(f.angles));
     offer(f, dropped, "omega", {h.w[0], h.w[1], h.w[2]}, {"omega1", "omega2", "omega3"});
     offer(f, dropped, "mass_matrix", flat(d.mass_matrix), matrix_names("M"));
-    f.unavailable["rotation"] = depends_on_ignored(coordinate_names()[dropped.front()]);
+    f.unavailable["rotation"] = depends_on_ignored(f.angles.names[dropped.front()]);
 }
 
 } // namespace
@@ -143,7 +144,8 @@ void build_reduced(const model_spec& spec, const derivation& d, form_expressions
     const std::vector<int> dropped = ignored_coordinates(spec, d);
     const std::vector<ex> structured = reduced_state_and_rates(d, h, dropped, f);
     ignored_momenta(dropped, f);
-    if (mentioned_ignored(structured, dropped).empty()) f.alternative_rates.push_back(structured);
+    if (mentioned_ignored(structured, dropped, f.angles).empty())
+        f.alternative_rates.push_back(structured);
     reduced_outputs(d, h, dropped, f);
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "derive/derive.hpp"
+#include "expr/angles.hpp"
 #include "expr/symbols.hpp"
 #include "spec/spec.hpp"
 
@@ -15,6 +16,7 @@
 namespace rotgen {
 
 struct equations {
+    angle_convention angles;        // the model's: the names the printers show the symbols by
     std::vector<std::string> names; // the coordinates: phi, theta[, psi]
     std::vector<GiNaC::ex> q, p;    // their symbols and their momenta's (for LaTeX)
     std::string coordinates_note;   // the text's "coordinates:" line
@@ -28,14 +30,15 @@ struct equations {
     std::vector<int> cyclic; // indices into names
 };
 
-// What a derivation with n coordinates (the first n of phi, theta, psi; symbols q, momenta's
-// symbols p) gives every model: a top's `derivation` or a rotor's `rotor_derivation`.
+// What a derivation with n coordinates (the first n of the angles, named by `angles`; symbols q,
+// momenta's symbols p) gives every model: a top's `derivation` or a rotor's `rotor_derivation`.
 template <class Derivation>
 equations equations_of(const Derivation& d, std::size_t n, const std::vector<GiNaC::ex>& q,
-                       const std::vector<GiNaC::ex>& p) {
+                       const std::vector<GiNaC::ex>& p, const angle_convention& angles) {
     equations e;
+    e.angles = angles;
     for (std::size_t i = 0; i < n; ++i) {
-        e.names.push_back(coordinate_names()[i]);
+        e.names.push_back(angles.names[i]);
         e.q.push_back(q[i]);
         e.p.push_back(p[i]);
         e.momenta.push_back(d.momenta[i]);

@@ -8,7 +8,7 @@ namespace rotgen {
 equations rotor_equations(const model_spec& spec) {
     const rotor_derivation d = derive_rotor(spec, 1);
     const auto& s = symbols();
-    equations e = equations_of(d, 2, {d.q[0], d.q[1]}, {s.p[0], s.p[1]});
+    equations e = equations_of(d, 2, {d.q[0], d.q[1]}, {s.p[0], s.p[1]}, spec.angles);
     const GiNaC::ex phi = d.q[0], theta = d.q[1];
     // n = (sin theta sin phi, -sin theta cos phi, cos theta): the third row of A (5.25)
     e.direction = {GiNaC::sin(theta) * GiNaC::sin(phi), -GiNaC::sin(theta) * GiNaC::cos(phi),

@@ -77,8 +77,8 @@ start_row read_last_row(const std::string& csv) {
 
 // The recorded columns that make a state of the scene's form (reduced: those every reduced form
 // needs; check_start_row checks the angles it keeps).
-std::vector<std::string> required_names(form_kind form) {
-    const auto& q = coordinate_names();
+std::vector<std::string> required_names(form_kind form, const angle_convention& c) {
+    const auto& q = c.names;
     switch (form) {
     case form_kind::lagrangian:
         return {q[0], q[1], q[2], q[0] + "_dot", q[1] + "_dot", q[2] + "_dot"};
@@ -120,7 +120,8 @@ void set_initial(scene_spec& scene, const start_row& row) {
         const double x = row_value(row, name);
         return std::isnan(x) ? 0.0 : x; // an angle the reduced form ignores
     };
-    const auto& q = coordinate_names();
+    const angle_convention& c = scene.model.angles;
+    const auto& q = c.names;
     std::array<std::string, 3> rates{q[0] + "_dot", q[1] + "_dot", q[2] + "_dot"};
     scene.initial = initial_kind::rates;
     if (scene.form == form_kind::hamiltonian || scene.form == form_kind::reduced)
@@ -130,21 +131,20 @@ void set_initial(scene_spec& scene, const start_row& row) {
     std::array<double, 3> angles{0, 0, 0};
     if (scene.form == form_kind::body)
         angles = angles_of_quaternion(
-            Eigen::Quaterniond(v("q0"), v("q1"), v("q2"), v("q3")).normalized());
+            sequence_of(c), Eigen::Quaterniond(v("q0"), v("q1"), v("q2"), v("q3")).normalized());
     else
         angles = {v(q[0]), v(q[1]), v(q[2])};
     for (std::size_t i = 0; i < 3; ++i) {
         scene.angles[i] = angles[i], scene.angles_written[i] = plain(angles[i]);
         scene.initial_rates[i] = v(rates[i]), scene.rates_written[i] = plain(v(rates[i]));
     }
-    const bool proper = active_angles().proper();
+    const bool proper = c.proper();
     const double lo = proper ? 0 : -1.570796326794896619,
                  hi = proper ? 3.141592653589793238 : 1.570796326794896619;
     if (!(angles[1] >= lo && angles[1] <= hi))
-        throw user_error({row.file, row.line, 1}, q[1] + " = " + format_number(angles[1]) +
-                                                      " is outside " +
-                                                      (proper ? "[0, pi]" : "[-pi/2, pi/2]") +
-                                                      " (" + active_angles().description() + ")");
+        throw user_error({row.file, row.line, 1},
+                         q[1] + " = " + format_number(angles[1]) + " is outside " +
+                             (proper ? "[0, pi]" : "[-pi/2, pi/2]") + " (" + c.description() + ")");
 }
 
 } // namespace
@@ -157,7 +157,7 @@ double row_value(const start_row& row, const std::string& name) {
 
 void continue_from(scene_spec& scene, const std::string& csv) {
     start_row row = read_last_row(csv);
-    require(row, required_names(scene.form), scene.form);
+    require(row, required_names(scene.form, scene.model.angles), scene.form);
     scene.t_start = row.values[0];
     if (scene.t_end == scene.t_start)
         throw user_error(scene.time_where,
@@ -184,7 +184,7 @@ void check_start_row(const start_row& row, const form_expressions& f) {
                                     : n);
     }
     for (const auto& p : f.parameters)
-        for (const auto& m : momentum_names())
+        for (const auto& m : momentum_names(f.angles))
             if (p.name == m) names.push_back(p.name);
     require(row, names, f.form);
 }

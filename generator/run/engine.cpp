@@ -48,7 +48,8 @@ class scene_run {
   public:
     scene_run(const prepared_scene& prepared, const member_values& values, stage_timings& timings,
               const sample_callback& on_sample)
-        : m_prepared(prepared), m_scene(prepared.scene()), m_values(values), m_timings(timings),
+        : m_prepared(prepared), m_scene(prepared.scene()), m_angles(m_scene.model.angles),
+          m_sequence(sequence_of(m_angles)), m_values(values), m_timings(timings),
           m_on_sample(on_sample) {}
     run_result run();
     // The run in parts (member_parts): the start, the chart test of a sample, the records.
@@ -84,6 +85,8 @@ class scene_run {
 
     const prepared_scene& m_prepared;
     const scene_spec& m_scene; // the prepared scene (shared): read, never copied outside the lock
+    const angle_convention& m_angles; // the model's (m_scene.model.angles): names, sequence
+    const euler_sequence m_sequence;  // its sequence, for the runtime's conversions
     const member_values& m_values;
     stage_timings& m_timings;
     const sample_callback& m_on_sample;
@@ -116,7 +119,7 @@ initial_kinematics scene_run::exact_start() {
     m_model_parameters = std::move(start.model_parameters);
     if (m_scene.initial == initial_kind::momenta && !start.k0.have_rates)
         throw user_error(m_scene.initial_where,
-                         "momenta cannot give the rates at " + singular_words() +
+                         "momenta cannot give the rates at " + singular_words(m_angles) +
                              " (the mass matrix is singular there); give body omega1..3 "
                              "instead");
     return start.k0;
@@ -166,22 +169,22 @@ void scene_run::decide_chart() {
     const form_kind form = m_scene.form;
     const bool euler_form = form != form_kind::body;
     const double sin_theta0 = is_rotor_form(form) ? std::abs(std::sin(m_values.angles[1]))
-                                                  : chart_distance(m_values.angles[1]);
+                                                  : chart_distance(m_sequence, m_values.angles[1]);
     if (euler_form && sin_theta0 < 1e-10 && !m_prepared.can_switch() && is_rotor_form(form))
         throw user_error(m_scene.initial_where, rotor_pole_message(m_values.angles[1]));
     if (euler_form && sin_theta0 < 1e-10 && !m_prepared.can_switch())
         throw user_error(
             m_scene.initial_where,
-            "initial " + coordinate_names()[1] + " = " + format_number(m_values.angles[1]) +
+            "initial " + m_angles.names[1] + " = " + format_number(m_values.angles[1]) +
                 " is the gimbal-lock singularity of the Euler-angle forms (" +
-                distance_label().substr(1, distance_label().size() - 2) + " = 0); use form: body" +
+                distance_words(m_angles) + " = 0); use form: body" +
                 (form == form_kind::reduced || !m_scene.switch_chart
                      ? ""
                      : " (this model's body form goes through the Euler-angle chart too)"));
     m_start_in_body = euler_form && m_prepared.can_switch() && sin_theta0 < switch_below;
     if (m_start_in_body)
         m_result.chart_note = "started in the " + std::string(to_string(other_chart(form))) +
-                              " form (initial " + distance_label() + " = " +
+                              " form (initial " + distance_label(m_angles) + " = " +
                               short_number(sin_theta0) + " < " + short_number(switch_below) + ")";
 }
 
@@ -212,7 +215,7 @@ Eigen::VectorXd scene_run::state_of(const form_expressions& f, const initial_kin
         if (needs_rates && !k.have_rates)
             throw std::logic_error("run: the " + std::string(to_string(m_scene.form)) +
                                    " form was started at the singularity from body omega");
-        y[static_cast<Eigen::Index>(s)] = static_cast<double>(state_value(k, name));
+        y[static_cast<Eigen::Index>(s)] = static_cast<double>(state_value(k, m_angles, name));
     }
     return y;
 }
@@ -227,7 +230,7 @@ std::vector<double> scene_run::parameters_of(const form_expressions& f,
         for (std::size_t i = 0; i < spec.parameters.size() && !v; ++i)
             if (spec.parameters[i].name == fp.name) v = m_model_parameters[i];
         for (int i = 0; i < 3 && !v; ++i)
-            if (fp.name == "p_" + coordinate_names()[i]) {
+            if (fp.name == "p_" + m_angles.names[i]) {
                 if (!k.have_rates)
                     throw user_error(m_scene.initial_where,
                                      "the reduced form needs the initial momenta");
@@ -271,7 +274,7 @@ void scene_run::check_finite_start(const initial_kinematics& k, const compiled_f
                              "; give smaller initial rates or momenta, or rescale the model's "
                              "units");
     };
-    const auto& q = coordinate_names();
+    const auto& q = m_angles.names;
     if (k.have_rates)
         for (std::size_t i = 0; i < 3; ++i) {
             check(q[i] + "_dot", static_cast<double>(k.qd[i]));
@@ -292,7 +295,7 @@ void scene_run::check_finite_start(const initial_kinematics& k, const compiled_f
     std::optional<std::array<double, 3>> e;
     const std::vector<invariant>& invariants = m_prepared.invariants();
     for (std::size_t i = 0; i < invariants.size(); ++i)
-        check(invariants[i].name, source_value(cf.invariants[i], y, out, m_inertia, e));
+        check(invariants[i].name, source_value(m_sequence, cf.invariants[i], y, out, m_inertia, e));
 }
 
 // Integrates the current form from t_from over the remaining sample times, and says where to go
@@ -315,8 +318,8 @@ scene_run::next scene_run::integrate_segment(Eigen::VectorXd& y, double t_from) 
         if (m_on_sample) m_on_sample(t);
         if (!can_switch || m_samples.size() <= first_sample + 1 || reached_end(m_scene, t))
             return true;
-        return euler_chart ? !sin_theta_below(cf.form, yt, switch_below)
-                           : !(sin_theta_of(cf.form, yt) > switch_back_above);
+        return euler_chart ? !sin_theta_below(m_sequence, cf.form, yt, switch_below)
+                           : !(sin_theta_of(m_sequence, cf.form, yt) > switch_back_above);
     };
     const std::size_t first_hit = m_events.hits().size();
     if (m_events.size() > 0) use_event_functions(cf);
@@ -334,8 +337,9 @@ scene_run::next scene_run::integrate_segment(Eigen::VectorXd& y, double t_from) 
     if (!can_switch || m_samples.empty() || reached_end(m_scene, m_samples.last_t()))
         return next::done;
     if (m_left_chart) return euler_chart ? next::body : next::euler;
-    return euler_chart && !m_last.ok() && sin_theta_of(cf.form, y) < switch_below ? next::body
-                                                                                  : next::done;
+    return euler_chart && !m_last.ok() && sin_theta_of(m_sequence, cf.form, y) < switch_below
+               ? next::body
+               : next::done;
 }
 
 // Continues from the last sample in the other chart.
@@ -348,11 +352,11 @@ void scene_run::switch_chart(next to, Eigen::VectorXd& y, double& t_from) {
     if (!is_rotor_form(target) && to == next::body) {
         Eigen::VectorXd dydt(last.y.size());
         from.system(m_parameters[m_current]).rhs(last.t, last.y.data(), dydt.data());
-        k = continuation(last.y, dydt);
+        k = continuation(m_sequence, last.y, dydt);
     } else if (!is_rotor_form(target)) {
-        k = from_body(last.y, m_inertia);
+        k = from_body(m_sequence, last.y, m_inertia);
     }
-    const double st = sin_theta_of(from.form, last.y);
+    const double st = sin_theta_of(m_sequence, from.form, last.y);
     const std::string failed = is_rotor_form(target) ? "; the run in the first chart failed: "
                                                      : "; the Euler-angle run failed: ";
     const std::string why = !m_left_chart      ? failed + m_last.message
@@ -363,7 +367,7 @@ void scene_run::switch_chart(next to, Eigen::VectorXd& y, double& t_from) {
             std::string(m_result.chart_note.empty() ? "" : "; ") + "switched to the " +
             to_string(target) + " form at t = " + short_number(last.t) + " (" +
             (is_rotor_form(target) || is_rotor_form(from.form) ? std::string("|sin theta|")
-                                                               : distance_label()) +
+                                                               : distance_label(m_angles)) +
             " = " + short_number(st) + why + ")";
     const compiled_form& next_form = compile(target);
     y = is_rotor_form(target) ? rotor_other_chart(from.form, last.y) : state_of(next_form.f, k);
@@ -381,7 +385,7 @@ std::vector<double> scene_run::record_row(double t, Eigen::Ref<const Eigen::Vect
     row.reserve(cf.columns.size() + 1);
     row.push_back(t);
     for (const auto& src : cf.columns)
-        row.push_back(source_value(src, y, out, m_inertia, e));
+        row.push_back(source_value(m_sequence, src, y, out, m_inertia, e));
     return row;
 }
 
@@ -416,7 +420,7 @@ void scene_run::record() {
         std::optional<std::array<double, 3>> e;
         for (std::size_t i = 0; i < invariants.size(); ++i) {
             invariant_drift& d = m_result.invariants[i];
-            const double v = source_value(cf.invariants[i], ys, out, m_inertia, e);
+            const double v = source_value(m_sequence, cf.invariants[i], ys, out, m_inertia, e);
             if (k == 0) d.first = v;
             d.drift = std::max(d.drift, std::abs(v - d.first));
             d.largest = std::max(d.largest, std::abs(v));
@@ -492,7 +496,7 @@ bool scene_run::keeps_chart(std::size_t sample, double t, const Eigen::VectorXd&
     if (!m_prepared.can_switch() || sample == 0 || reached_end(m_scene, t)) return true;
     const form_kind form = m_compiled[m_current]->form;
     const bool euler_chart = form == form_kind::lagrangian || form == form_kind::hamiltonian;
-    const double st = sin_theta_of(form, y);
+    const double st = sin_theta_of(m_sequence, form, y);
     return !(euler_chart ? st < switch_below : st > switch_back_above);
 }
 
@@ -584,9 +588,9 @@ run_result run_scene(const scene_spec& scene, stage_timings& timings,
 
 bool needs_orientation(const scene_spec& scene, bool chart_switch) {
     bool orientation = chart_switch;
+    const auto& q = scene.model.angles.names;
     for (const auto& name : scene.record)
-        orientation = orientation || name == coordinate_names()[0] ||
-                      name == coordinate_names()[1] || name == coordinate_names()[2] ||
+        orientation = orientation || name == q[0] || name == q[1] || name == q[2] ||
                       name.rfind("body_", 0) == 0 || name.find("_dot") != std::string::npos ||
                       name.rfind("p_", 0) == 0 || (name.size() == 2 && name[0] == 'q') ||
                       name == "Lx" || name == "Ly" || name == "Lz";

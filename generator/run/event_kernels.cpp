@@ -21,7 +21,7 @@ std::optional<ex> sequence_euler_value(const scene_spec& scene, const std::vecto
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j)
             A[i][j] = a[static_cast<std::size_t>(3 * i + j)];
-    const angle_convention& c = active_angles();
+    const angle_convention& c = scene.model.angles;
     const std::array<ex, 3> q = angles_of_matrix(A, c);
     GiNaC::exmap at;
     for (int i = 0; i < 3; ++i)
@@ -31,7 +31,7 @@ std::optional<ex> sequence_euler_value(const scene_spec& scene, const std::vecto
         for (auto& x : row)
             x = x.subs(at);
     const auto& I = scene.model.inertia;
-    const auto& n = coordinate_names();
+    const auto& n = c.names;
     const ex det = J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) -
                    J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
                    J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
@@ -65,7 +65,7 @@ std::optional<ex> body_euler_value(const scene_spec& scene, const form_expressio
     if (f.form != form_kind::body || rot == f.outputs.end() || !w1 || !w2 || !w3)
         return std::nullopt;
     const std::vector<ex>& a = rot->second.values; // row-major A
-    if (!active_angles().is_zxz()) return sequence_euler_value(scene, a, {*w1, *w2, *w3}, name);
+    if (!scene.model.angles.is_zxz()) return sequence_euler_value(scene, a, {*w1, *w2, *w3}, name);
     const ex a13 = a[2], a23 = a[5], a31 = a[6], a32 = a[7], a33 = a[8];
     const ex sin2 = a13 * a13 + a23 * a23, sin_theta = GiNaC::sqrt(sin2);
     const ex phi_dot = (*w1 * a13 + *w2 * a23) / sin2;

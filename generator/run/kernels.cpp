@@ -51,7 +51,7 @@ class source_finder {
                     return {value_source::quaternion_of_angles, i};
             }
         for (int i = 0; i < 3 && m_body_with_angles; ++i) {
-            const std::string& q = coordinate_names()[i];
+            const std::string& q = m_spec.angles.names[i];
             if (name == q) return {value_source::angle, i};
             if (name == q + "_dot") return {value_source::euler_rate, i};
             if (name == "p_" + q) return {value_source::canonical_momentum, i};
@@ -265,24 +265,24 @@ compiled_form compile_form(const scene_spec& scene, form_expressions f, bool ori
     return c;
 }
 
-double source_value(const value_source& src, Eigen::Ref<const Eigen::VectorXd> y,
-                    const std::vector<double>& out, const Eigen::Matrix3d& inertia,
-                    std::optional<std::array<double, 3>>& e) {
+double source_value(const euler_sequence& s, const value_source& src,
+                    Eigen::Ref<const Eigen::VectorXd> y, const std::vector<double>& out,
+                    const Eigen::Matrix3d& inertia, std::optional<std::array<double, 3>>& e) {
     if (src.kind == value_source::compiled) return out[static_cast<std::size_t>(src.index)];
     if (src.kind == value_source::quaternion_of_state ||
         src.kind == value_source::quaternion_of_angles) {
         Eigen::Quaterniond q = src.kind == value_source::quaternion_of_state
                                    ? Eigen::Quaterniond(y[0], y[1], y[2], y[3]).normalized()
-                                   : quaternion_of_angles(y[0], y[1], y[2]);
+                                   : quaternion_of_angles(s, y[0], y[1], y[2]);
         if (q.w() < 0) q.coeffs() = -q.coeffs(); // q and -q: the same attitude
         const double c[4] = {q.w(), q.x(), q.y(), q.z()};
         return c[src.index];
     }
-    if (!e) e = angles_of_quaternion(Eigen::Quaterniond(y[0], y[1], y[2], y[3]));
+    if (!e) e = angles_of_quaternion(s, Eigen::Quaterniond(y[0], y[1], y[2], y[3]));
     const Eigen::Vector3d w(y[4], y[5], y[6]);
     if (src.kind == value_source::angle) return (*e)[static_cast<std::size_t>(src.index)];
-    if (!active_sequence().is_zxz()) {
-        const Eigen::Matrix3d J = omega_jacobian_at(*e); // undefined on the singular set
+    if (!s.is_zxz()) {
+        const Eigen::Matrix3d J = omega_jacobian_at(s, *e); // undefined on the singular set
         const Eigen::Vector3d v = src.kind == value_source::euler_rate
                                       ? Eigen::Vector3d(J.lu().solve(w))
                                       : Eigen::Vector3d(J.transpose() * (inertia * w));

@@ -13,7 +13,8 @@
 #include "scene/scene.hpp"
 #include "support/timings.hpp"
 
-#include <rotgen.hpp> // runtime
+#include <euler_sequence.hpp> // runtime
+#include <rotgen.hpp>         // runtime
 
 #include <Eigen/Dense>
 
@@ -122,9 +123,10 @@ std::optional<GiNaC::ex> form_value(const form_expressions& f, const std::string
 // record program, or in the body form from the quaternion and omega: the Euler angles, their
 // rates q_dot = J^{-1} omega (5.30, undefined at theta = 0, pi), p = J^T I omega; or the unit
 // quaternion of the attitude (body -> space, scalar first, the sign with q0 >= 0: the same in
-// every form and across a chart switch). `e` caches the angles between calls at one sample.
-double source_value(const value_source& src, Eigen::Ref<const Eigen::VectorXd> y,
-                    const std::vector<double>& out, const Eigen::Matrix3d& inertia,
-                    std::optional<std::array<double, 3>>& e);
+// every form and across a chart switch), all in the model's sequence s. `e` caches the angles
+// between calls at one sample.
+double source_value(const euler_sequence& s, const value_source& src,
+                    Eigen::Ref<const Eigen::VectorXd> y, const std::vector<double>& out,
+                    const Eigen::Matrix3d& inertia, std::optional<std::array<double, 3>>& e);
 
 } // namespace rotgen

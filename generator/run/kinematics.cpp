@@ -88,7 +88,8 @@ initial_kinematics initial_kinematics_of(const scene_spec& scene, const derivati
         at[s.q[i]] = exact_scene_value(scene.angles[i], scene.angles_written[i]);
         k.q[i] = to_long_double(at[s.q[i]]);
     }
-    k.have_rates = chart_distance(scene.angles[1]) >= 1e-12;
+    const euler_sequence sequence = sequence_of(scene.model.angles);
+    k.have_rates = chart_distance(sequence, scene.angles[1]) >= 1e-12;
     std::array<ex, 3> qd;
     if (scene.initial == initial_kind::rates)
         for (int i = 0; i < 3; ++i)
@@ -110,7 +111,7 @@ initial_kinematics initial_kinematics_of(const scene_spec& scene, const derivati
         for (int i = 0; i < 3; ++i)
             k.omega[i] =
                 to_long_double(exact_scene_value(scene.initial_rates[i], scene.rates_written[i]));
-    k.quat = quaternion_of_angles<long double>(k.q[0], k.q[1], k.q[2]);
+    k.quat = quaternion_of_angles<long double>(sequence, k.q[0], k.q[1], k.q[2]);
     return k;
 }
 
@@ -124,7 +125,7 @@ void check_double_range(const scene_spec& scene, const initial_kinematics& k) {
                 std::to_string(static_cast<double>(v)) +
                 "; give smaller initial rates or momenta, or rescale the model's units");
     };
-    const auto& q = coordinate_names();
+    const auto& q = scene.model.angles.names;
     long double twice_kinetic = 0;
     for (std::size_t i = 0; i < 3; ++i) {
         check("omega" + std::to_string(i + 1), k.omega[i]);
@@ -160,7 +161,7 @@ long double scene_parameter_value(const scene_spec& scene, const initial_kinemat
             return to_long_double(written_at(scene.parameters_written, i, scene.parameters[i]));
         }
     for (int i = 0; i < 3; ++i)
-        if (name == "p_" + coordinate_names()[i]) {
+        if (name == "p_" + spec.angles.names[i]) {
             // Unreachable from a scene: the reduced form never starts at |sin theta| < 1e-10
             // (run/engine.cpp decide_chart and bench's prepare refuse it; bench adds reduced
             // alternatives only with rates), so the momenta are always known here.
@@ -171,9 +172,10 @@ long double scene_parameter_value(const scene_spec& scene, const initial_kinemat
     throw std::logic_error("no value for the form parameter " + name);
 }
 
-long double state_value(const initial_kinematics& k, const std::string& name) {
+long double state_value(const initial_kinematics& k, const angle_convention& c,
+                        const std::string& name) {
     for (int i = 0; i < 3; ++i) {
-        const std::string& q = coordinate_names()[i];
+        const std::string& q = c.names[i];
         const auto u = static_cast<std::size_t>(i);
         if (name == q) return k.q[u];
         if (name == q + "_dot") return k.qd[u];

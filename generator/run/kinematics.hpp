@@ -54,7 +54,8 @@ long double scene_parameter_value(const scene_spec& scene, const initial_kinemat
                                   const std::string& name);
 
 // A state variable of any form (phi .. psi, phi_dot .., p_phi .., omega1..3, qw qx qy qz) from
-// the initial kinematics. std::logic_error for another name.
-long double state_value(const initial_kinematics& k, const std::string& name);
+// the initial kinematics, the angles named by c. std::logic_error for another name.
+long double state_value(const initial_kinematics& k, const angle_convention& c,
+                        const std::string& name);
 
 } // namespace rotgen

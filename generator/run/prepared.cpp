@@ -79,7 +79,7 @@ void prepared_scene::list_invariants() {
     m_invariants = {{"energy", !spec.has_damping && !spec.has_torque}};
     for (int i : m_d.cyclic)
         if (m_scene.form != form_kind::reduced)
-            m_invariants.push_back({"p_" + coordinate_names()[i], true});
+            m_invariants.push_back({"p_" + spec.angles.names[i], true});
     m_orientation = needs_orientation(m_scene, m_can_switch) ||
                     (m_scene.form == form_kind::body && m_invariants.size() > 1);
 }

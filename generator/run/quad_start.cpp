@@ -151,7 +151,7 @@ std::unique_ptr<quad_start::programs> build(const scene_spec& scene, const deriv
                                             const std::vector<char>& in_effect,
                                             const std::vector<written_value>& written) {
     const auto& s = symbols();
-    const auto& names = coordinate_names();
+    const auto& names = scene.model.angles.names;
     std::vector<slot_source> angles, parameters;
     for (int i = 0; i < 3; ++i)
         angles.push_back({s.q[i], names[i], i});
@@ -238,7 +238,9 @@ initial_kinematics quad_start::kinematics(const programs& p, const start_values&
     initial_kinematics k;
     for (std::size_t i = 0; i < 3; ++i)
         k.q[i] = value(i);
-    k.have_rates = m_scene.initial == initial_kind::rates || chart_distance(v.angles[1]) >= 1e-12;
+    const euler_sequence sequence = sequence_of(m_scene.model.angles);
+    k.have_rates =
+        m_scene.initial == initial_kind::rates || chart_distance(sequence, v.angles[1]) >= 1e-12;
     std::array<quad, 3> qd{};
     if (m_scene.initial == initial_kind::rates) {
         for (std::size_t i = 0; i < 3; ++i) {
@@ -277,7 +279,7 @@ initial_kinematics quad_start::kinematics(const programs& p, const start_values&
     if (m_scene.initial == initial_kind::omega)
         for (std::size_t i = 0; i < 3; ++i)
             k.omega[i] = value(first_rate + i);
-    k.quat = quaternion_of_angles<long double>(k.q[0], k.q[1], k.q[2]);
+    k.quat = quaternion_of_angles<long double>(sequence, k.q[0], k.q[1], k.q[2]);
     return k;
 }
 

@@ -13,12 +13,17 @@ namespace rotgen {
 
 namespace {
 
-// One symbol per record name that is not a coordinate, rate, momentum or omega (energy, ...).
-const GiNaC::ex& record_symbol(const std::string& name) {
-    static std::map<std::string, GiNaC::ex> table;
-    auto it = table.find(name);
-    if (it == table.end()) it = table.emplace(name, GiNaC::realsymbol(name)).first;
-    return it->second;
+// One symbol per record name that is the same for every convention (energy, Lx, ...): made once,
+// on first use, and never changed after (the scene parses events in these symbols, the run
+// evaluates them by the same ones).
+const std::map<std::string, GiNaC::ex>& record_symbols() {
+    static const std::map<std::string, GiNaC::ex> table = [] {
+        std::map<std::string, GiNaC::ex> t;
+        for (const auto& r : convention_free_records())
+            t.emplace(r, GiNaC::realsymbol(r));
+        return t;
+    }();
+    return table;
 }
 
 bool is_name(const std::string& s) {
@@ -88,7 +93,7 @@ class event_reader {
 name_table event_names(const model_spec& model) {
     name_table names = model.parameter_names();
     const coordinate_symbols& s = symbols();
-    const auto& q = coordinate_names();
+    const auto& q = model.angles.names;
     for (int i = 0; i < 3; ++i) {
         names[q[i]] = s.q[i];
         names[q[i] + "_dot"] = s.qd[i];
@@ -96,8 +101,8 @@ name_table event_names(const model_spec& model) {
         names["omega" + std::to_string(i + 1)] = s.omega[i];
     }
     names["t"] = s.t;
-    for (const auto& r : recordable_names())
-        if (names.count(r) == 0 && record_columns(r).size() == 1) names[r] = record_symbol(r);
+    for (const auto& [r, symbol] : record_symbols())
+        if (names.count(r) == 0 && record_columns(r).size() == 1) names[r] = symbol;
     return names;
 }
 
@@ -118,15 +123,16 @@ const char* direction_name(int direction) {
     return direction > 0 ? "rising" : direction < 0 ? "falling" : "both";
 }
 
-std::string describe_events(const std::vector<event_spec>& events, output_format format) {
+std::string describe_events(const std::vector<event_spec>& events, const angle_convention& angles,
+                            output_format format) {
     std::ostringstream os;
     if (format == output_format::json) {
         os << "\"events\": [";
         for (std::size_t i = 0; i < events.size(); ++i)
             os << (i ? ", " : "") << "{\"name\": " << json_quote(events[i].name)
-               << ", \"when\": " << json_quote(to_text(events[i].when)) << ", \"direction\": \""
-               << direction_name(events[i].direction) << "\", \"action\": \""
-               << (events[i].stop ? "stop" : "record") << "\"}";
+               << ", \"when\": " << json_quote(to_text(events[i].when, angles))
+               << ", \"direction\": \"" << direction_name(events[i].direction)
+               << "\", \"action\": \"" << (events[i].stop ? "stop" : "record") << "\"}";
         os << "]";
         return os.str();
     }
@@ -134,8 +140,8 @@ std::string describe_events(const std::vector<event_spec>& events, output_format
     os << (latex ? "\n\\section*{Events}\n\\begin{itemize}\n" : "\nEvents (zeros of g, scene)\n");
     for (const event_spec& e : events)
         os << (latex ? "\\item " : "  ") << e.name << ": "
-           << (latex ? "$" + to_latex(e.when) + " = 0$" : to_text(e.when) + " = 0") << ", "
-           << direction_name(e.direction) << ", " << (e.stop ? "stop" : "record") << "\n";
+           << (latex ? "$" + to_latex(e.when, angles) + " = 0$" : to_text(e.when, angles) + " = 0")
+           << ", " << direction_name(e.direction) << ", " << (e.stop ? "stop" : "record") << "\n";
     if (latex) os << "\\end{itemize}\n";
     return os.str();
 }

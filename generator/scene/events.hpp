@@ -33,7 +33,8 @@ struct event_spec {
 
 // The names an event expression may use for `model`, with their symbols: the coordinate, rate,
 // momentum and omega symbols of expr/symbols, t, the model's parameters, and one symbol per other
-// scalar record name (process-wide, so that run/ substitutes the form's expression for it).
+// scalar record name (made once and never changed, so that run/ substitutes the form's expression
+// for it).
 name_table event_names(const model_spec& model);
 
 // Reads the scene's `events:` list (absent: none). Throws user_error with the location.
@@ -44,7 +45,9 @@ std::vector<event_spec> read_events(const YAML::Node& n, const model_spec& model
 const char* direction_name(int direction);
 
 // The events for `rotgen inspect SCENE`: text and LaTeX, a section to print after the model's;
-// JSON, the members `"events": [{name, when, direction, action}]` to add to inspect's object.
-std::string describe_events(const std::vector<event_spec>& events, output_format format);
+// JSON, the members `"events": [{name, when, direction, action}]` to add to inspect's object. The
+// coordinates are shown by the names of `angles`, the model's convention.
+std::string describe_events(const std::vector<event_spec>& events, const angle_convention& angles,
+                            output_format format);
 
 } // namespace rotgen

@@ -20,7 +20,7 @@ class initial_reader {
     initial_reader(scene_spec& scene, const YAML::Node& n, const value_reader& values,
                    const std::string& file)
         : m_scene(scene), m_n(n), m_values(values), m_file(file) {
-        const auto& q = coordinate_names();
+        const auto& q = m_scene.model.angles.names;
         m_attitude = {{{q[0], q[1], q[2]}, {"q0", "q1", "q2", "q3"}, {"A"}}};
         m_rates = {{{q[0] + "_dot", q[1] + "_dot", q[2] + "_dot"},
                     {"p_" + q[0], "p_" + q[1], "p_" + q[2]},
@@ -52,7 +52,7 @@ class initial_reader {
     source_location at(const YAML::Node& x) const { return location_of(x, m_file); }
 
     std::string angle_list() const {
-        const auto& q = coordinate_names();
+        const auto& q = m_scene.model.angles.names;
         return q[0] + ", " + q[1] + ", " + q[2];
     }
 
@@ -110,10 +110,10 @@ class initial_reader {
     }
 
     ex_matrix3 attitude(attitude_kind kind) {
-        const angle_convention& c = active_angles();
+        const angle_convention& c = m_scene.model.angles;
         if (kind == by_angles) {
             GiNaC::exmap at;
-            const auto& q = coordinate_names();
+            const auto& q = c.names;
             for (std::size_t i = 0; i < 3; ++i) {
                 m_scene.angles_written[i] = m_values.value(m_n[q[i]], "initial " + q[i]);
                 m_scene.angles[i] = m_scene.angles_written[i].value;
@@ -138,7 +138,7 @@ class initial_reader {
     // The middle angle of angles written by hand: [0, pi] (proper Euler), [-pi/2, pi/2]
     // (Tait-Bryan).
     void check_middle_angle() const {
-        const angle_convention& c = active_angles();
+        const angle_convention& c = m_scene.model.angles;
         const double b = m_scene.angles[1], pi = 3.141592653589793238;
         const bool ok = c.proper() ? b >= 0 && b <= pi : b >= -pi / 2 && b <= pi / 2;
         if (!ok)

@@ -20,16 +20,21 @@
 
 namespace rotgen {
 
-// The model's angles, their rates and momenta (the active convention's names), then the rest.
-const std::vector<std::string>& recordable_names() {
-    static std::vector<std::string> names;
-    const auto& q = coordinate_names();
-    names = {q[0],          q[1],        q[2],        q[0] + "_dot", q[1] + "_dot",
-             q[2] + "_dot", "p_" + q[0], "p_" + q[1], "p_" + q[2],   "omega1",
-             "omega2",      "omega3",    "energy",    "body_x",      "body_y",
-             "body_z",      "q0",        "q1",        "q2",          "q3",
-             "Lx",          "Ly",        "Lz",        "L1",          "L2",
-             "L3",          "T",         "V"};
+const std::vector<std::string>& convention_free_records() {
+    static const std::vector<std::string> names{
+        "omega1", "omega2", "omega3", "energy", "body_x", "body_y", "body_z", "q0", "q1", "q2",
+        "q3",     "Lx",     "Ly",     "Lz",     "L1",     "L2",     "L3",     "T",  "V"};
+    return names;
+}
+
+// The model's angles, their rates and momenta (in c's names), then the rest.
+std::vector<std::string> recordable_names(const angle_convention& c) {
+    const auto& q = c.names;
+    std::vector<std::string> names{q[0],          q[1],          q[2],
+                                   q[0] + "_dot", q[1] + "_dot", q[2] + "_dot",
+                                   "p_" + q[0],   "p_" + q[1],   "p_" + q[2]};
+    const auto& rest = convention_free_records();
+    names.insert(names.end(), rest.begin(), rest.end());
     return names;
 }
 
@@ -283,18 +288,18 @@ class scene_reader {
 
     void read_record(const YAML::Node& n) {
         if (!n) {
-            m_scene.record =
-                m_scene.model.rotor
-                    ? std::vector<std::string>{"phi", "theta", "energy"}
-                    : std::vector<std::string>{coordinate_names()[0], coordinate_names()[1],
-                                               coordinate_names()[2], "energy"};
+            m_scene.record = m_scene.model.rotor
+                                 ? std::vector<std::string>{"phi", "theta", "energy"}
+                                 : std::vector<std::string>{
+                                       m_scene.model.angles.names[0], m_scene.model.angles.names[1],
+                                       m_scene.model.angles.names[2], "energy"};
             m_scene.record_default = true;
             m_scene.record_where.assign(m_scene.record.size(), m_scene.where);
             return;
         }
         if (!n.IsSequence()) throw user_error(at(n), "'record' must be a list of quantities");
         if (n.size() == 0) throw user_error(at(n), "'record' must list at least one quantity");
-        const auto& allowed = recordable_names();
+        const std::vector<std::string> allowed = recordable_names(m_scene.model.angles);
         for (const auto& item : n) {
             const std::string name = item.IsScalar() ? item.Scalar() : "";
             if (std::find(allowed.begin(), allowed.end(), name) == allowed.end()) {

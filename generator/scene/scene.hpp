@@ -91,8 +91,10 @@ struct scene_spec {
     std::vector<source_location> record_where;
 };
 
-// The names `record` accepts, with the columns each one expands to.
-const std::vector<std::string>& recordable_names();
+// The names `record` accepts (the angles' names c's), with the columns each one expands to; those
+// that are the same for every convention (omega1, energy, q0, Lx, T, ...).
+std::vector<std::string> recordable_names(const angle_convention& c);
+const std::vector<std::string>& convention_free_records();
 std::vector<std::string> record_columns(const std::string& name);
 
 // The scene recording also `extra` (those it does not record already), each located at the scene

@@ -2,9 +2,9 @@
 // (expr/angles.hpp):
 //   angles: zyx                                       # default names for the sequence
 //   angles: {sequence: zyx, names: [yaw, pitch, roll]}
-// Absent: the chapter's z-x-z (phi, theta, psi). The convention read becomes the process's active
-// one (the names every later stage parses and prints); it is set before the parameters are read,
-// so that a parameter cannot take an angle's name.
+// Absent: the chapter's z-x-z (phi, theta, psi). The convention read is the model's
+// (model_spec::angles: the names every later stage parses and prints, passed down with the
+// model); it is read before the parameters, so that a parameter cannot take an angle's name.
 #include "spec/spec_detail.hpp"
 
 #include "expr/angles.hpp"
@@ -20,8 +20,8 @@ const char* const sequences = "zxz zyz xyx xzx yxy yzy (proper Euler) or zyx zxy
 } // namespace
 
 void model_reader::read_angles(const YAML::Node& root) {
-    angle_convention c;
-    set_active_angles(c); // the chapter's unless this model says otherwise
+    angle_convention c; // the chapter's unless this model says otherwise
+    m_spec.angles = c;
     const YAML::Node n = root["angles"];
     if (!n) return;
     // (no Node is assigned twice: yaml-cpp's assignment writes through to the node it refers to)
@@ -61,11 +61,11 @@ void model_reader::read_angles(const YAML::Node& root) {
         // reserved name (a function, a constant, a C++ keyword, omega1, t) is refused
         const std::string& name = c.names[i];
         if (name == "phi" || name == "theta" || name == "psi") continue;
-        if (const std::string why = reserved_reason(name); !why.empty())
+        if (const std::string why = reserved_reason(name, angle_convention{}); !why.empty())
             throw user_error(at(named ? names[i] : seq),
                              "'" + name + "' cannot name an angle: " + why);
     }
-    set_active_angles(c);
+    m_spec.angles = c;
 }
 
 } // namespace rotgen::spec_detail

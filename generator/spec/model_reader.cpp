@@ -40,7 +40,7 @@ model_spec model_reader::read(const YAML::Node& root) {
                          "missing field 'inertia' (or 'body', the inertia from parts)");
     read_potential(root);
     read_forces(root);
-    if (m_spec.rotor && !active_angles().is_default())
+    if (m_spec.rotor && !m_spec.angles.is_default())
         throw user_error(at(root["angles"]), "model '" + m_spec.name +
                                                  "' is a linear rotor (Example 5.4): its two "
                                                  "angles are the z-x-z phi and theta; leave "
@@ -88,7 +88,7 @@ void model_reader::read_name(const YAML::Node& root) {
     const YAML::Node n = root["name"];
     if (!n.IsScalar() || !is_identifier(n.Scalar()))
         throw user_error(at(n), "the model name must be a C++ identifier (letters, digits, _)");
-    if (const std::string why = reserved_reason(n.Scalar());
+    if (const std::string why = reserved_reason(n.Scalar(), angle_convention{});
         !why.empty() && why.find("keyword") != std::string::npos)
         throw user_error(at(n), "the model name '" + n.Scalar() + "' is reserved: " + why);
     m_spec.name = n.Scalar();
@@ -105,7 +105,7 @@ void model_reader::read_parameters(const YAML::Node& params) {
         p.where = at(kv.first);
         if (!is_identifier(p.name))
             throw user_error(p.where, "parameter name '" + p.name + "' is not an identifier");
-        if (const std::string why = reserved_reason(p.name); !why.empty())
+        if (const std::string why = reserved_reason(p.name, m_spec.angles); !why.empty())
             throw user_error(p.where, "'" + p.name + "' cannot be a parameter name: " + why);
         YAML::Node value = kv.second;
         if (value.IsMap()) {
@@ -141,7 +141,7 @@ name_table model_reader::angle_names() const {
     name_table names = m_names;
     const auto& s = symbols();
     for (int i = 0; i < 3; ++i)
-        names[coordinate_names()[i]] = s.q[i];
+        names[m_spec.angles.names[i]] = s.q[i];
     return names;
 }
 
@@ -161,7 +161,7 @@ void model_reader::read_potential(const YAML::Node& root) {
         const gravity_spec grav = read_gravity(g);
         // e_z, the space vertical in body axes: the third column of A (5.25; for z-x-z
         // (sin theta sin psi, sin theta cos psi, cos theta)).
-        const ex_matrix3 A = rotation_of_angles(active_angles());
+        const ex_matrix3 A = rotation_of_angles(m_spec.angles);
         ex height = 0;
         for (int i = 0; i < 3; ++i)
             height += grav.com[i] * A[i][2];
@@ -237,7 +237,7 @@ void model_reader::read_forces(const YAML::Node& root) {
         const auto& s = symbols();
         names["t"] = s.t;
         for (int i = 0; i < 3; ++i) {
-            names[coordinate_names()[i] + "_dot"] = s.qd[i];
+            names[m_spec.angles.names[i] + "_dot"] = s.qd[i];
             names["omega" + std::to_string(i + 1)] = s.omega[i];
         }
         for (std::size_t i = 0; i < 3; ++i)

@@ -12,6 +12,7 @@
 // default, the centre of mass).
 #pragma once
 
+#include "expr/angles.hpp"
 #include "expr/expr_parse.hpp"
 #include "inertia/inertia.hpp"
 #include "support/error.hpp"
@@ -44,9 +45,13 @@ struct gravity_spec {
 // matrix3, vector3: inertia.hpp
 
 struct model_spec {
-    std::string name;                  // a C++ identifier: names the header and the namespace
-    std::string file;                  // the path it was read from (as given)
-    std::string source;                // the file's text, hashed into generated headers
+    std::string name;   // a C++ identifier: names the header and the namespace
+    std::string file;   // the path it was read from (as given)
+    std::string source; // the file's text, hashed into generated headers
+    // `angles:` (expr/angles.hpp): the Euler sequence and the angles' names, z-x-z phi theta psi
+    // by default. Every later stage takes it from here (or from the derivation, form, scene or
+    // run that carries it): the names it parses and prints, the sequence it converts by.
+    angle_convention angles;
     std::vector<parameter> parameters; // in file order
     matrix3 inertia;                   // body axes, symmetric
     bool inertia_diagonal = true;

@@ -19,7 +19,7 @@ constexpr double pi = 3.141592653589793238;
 
 // The names `initial.<name>` may use in this scene: the angles and the rates it gives.
 std::vector<std::string> initial_names(const scene_spec& scene) {
-    const auto& q = coordinate_names();
+    const auto& q = scene.model.angles.names;
     const std::array<std::array<std::string, 3>, 3> rates{
         {{q[0] + "_dot", q[1] + "_dot", q[2] + "_dot"},
          {"p_" + q[0], "p_" + q[1], "p_" + q[2]},
@@ -173,9 +173,8 @@ sweep_key read_cli(const std::string& arg, sweep_mode mode) {
 
 // The middle angle in [0, pi] (proper Euler; theta of z-x-z) or [-pi/2, pi/2] (Tait-Bryan), as
 // the scene requires of its own value.
-void check_values(const sweep_key& k) {
+void check_values(const sweep_key& k, const angle_convention& c) {
     if (k.target != sweep_key::angle || k.index != 1) return;
-    const angle_convention& c = active_angles();
     const double lo = c.proper() ? 0 : -pi / 2, hi = c.proper() ? pi : pi / 2;
     std::vector<double> v = k.values;
     if (v.empty()) v = {k.from, k.to};
@@ -251,7 +250,8 @@ sweep_plan read_sweep_plan(const scene_spec& scene, const std::vector<std::strin
                                      "--vary KEY=FROM:TO:COUNT");
     for (auto& k : plan.keys) {
         resolve(scene, k);
-        check_values(k); // distinct keys set distinct values: each value has one name
+        check_values(
+            k, scene.model.angles); // distinct keys set distinct values: each value has one name
     }
     if (plan.mode == sweep_mode::zip)
         for (const auto& k : plan.keys)

@@ -93,10 +93,10 @@ int column_of(const std::vector<std::string>& columns, const std::string& name) 
 
 // q = q_z(phi) (x) q_x(theta) (x) q_z(psi): R(q) = Rz(phi) Rx(theta) Rz(psi) = A^T (5.25); any
 // other sequence by runtime/euler_sequence.hpp.
-std::array<double, 4> quaternion_of_angles(double phi, double theta, double psi) {
-    if (!active_angles().is_zxz()) {
-        const Eigen::Quaterniond q =
-            sequence_quaternion<double>(euler_sequence{active_angles().axes}, {phi, theta, psi});
+std::array<double, 4> quaternion_of_angles(const angle_convention& c, double phi, double theta,
+                                           double psi) {
+    if (!c.is_zxz()) {
+        const Eigen::Quaterniond q = sequence_quaternion<double>(sequence_of(c), {phi, theta, psi});
         return {q.w(), q.x(), q.y(), q.z()};
     }
     const double cp = std::cos(phi / 2), sp = std::sin(phi / 2);
@@ -114,7 +114,7 @@ view_data view_of_rows(const scene_spec& scene, const std::vector<std::string>& 
     for (int k = 0; k < 4; ++k)
         q[k] = column_of(columns, "q" + std::to_string(k));
     const bool quaternion = *std::min_element(q.begin(), q.end()) > 0;
-    const auto& names = coordinate_names();
+    const auto& names = scene.model.angles.names;
     const std::array<int, 3> angles{column_of(columns, names[0]), column_of(columns, names[1]),
                                     column_of(columns, names[2])};
     const bool rotor = scene.model.rotor;
@@ -138,8 +138,8 @@ view_data view_of_rows(const scene_spec& scene, const std::vector<std::string>& 
         d.t.push_back(row[0]);
         const auto a = quaternion
                            ? std::array<double, 4>{row[q[0]], row[q[1]], row[q[2]], row[q[3]]}
-                           : quaternion_of_angles(row[angles[0]], row[angles[1]],
-                                                  rotor ? 0.0 : row[angles[2]]);
+                           : quaternion_of_angles(scene.model.angles, row[angles[0]],
+                                                  row[angles[1]], rotor ? 0.0 : row[angles[2]]);
         d.q.insert(d.q.end(), a.begin(), a.end());
         if (has_L)
             for (int k : L)

@@ -35,7 +35,8 @@ class Model:
     name : str
         The model's ``name``.
     rotor : bool
-        Whether the model is a linear rotor (``rotor: true``, two angles).
+        Whether the model is a linear rotor (a body on a line: one principal moment
+        zero, the other two equal; two angles), found from its inertia.
     parameters : dict
         The parameters (str) and their values (float), in the file's order.
     descriptions : dict

@@ -44,6 +44,13 @@ class ROTGEN_PYTHON_LOCAL symbolic_scope {
 // throws is rethrown here, with the GIL held. No signal handler of the module's own is installed.
 void run_released(const std::function<void()>& work, std::atomic<bool>& stop);
 
+// The tests' hook (tests/python/module/test_threads.py): with ROTGEN_TEST_INTERLEAVE=1 in the
+// environment, a simulate or sweep that has read its scene (and model) waits here, the GIL
+// released, until another call has read its own after it (at most 2 s), so that the runs of two
+// threads alternate: each integrates after the other thread has read another model. Without the
+// variable it returns at once.
+void interleave_test_hook();
+
 void init_errors(py::module_& m);
 void init_model(py::module_& m);
 void init_simulate(py::module_& m);

@@ -7,7 +7,10 @@
 
 #include <chrono>
 #include <condition_variable>
+#include <cstdint>
+#include <cstdlib>
 #include <exception>
+#include <string>
 #include <thread>
 
 namespace rotgen::python {
@@ -58,6 +61,20 @@ void run_released(const std::function<void()>& work, std::atomic<bool>& stop) {
     }
     if (raised) throw py::error_already_set();
     if (failure) std::rethrow_exception(failure);
+}
+
+void interleave_test_hook() {
+    const char* on = std::getenv("ROTGEN_TEST_INTERLEAVE");
+    if (!on || std::string(on) != "1") return;
+    // the hook's own count of reads, under its own lock (a test hook: no run reads it)
+    static std::mutex m;
+    static std::condition_variable read;
+    static std::uint64_t reads = 0;
+    py::gil_scoped_release released;
+    std::unique_lock<std::mutex> lock(m);
+    const std::uint64_t mine = ++reads;
+    read.notify_all();
+    read.wait_for(lock, std::chrono::seconds(2), [&] { return reads > mine; });
 }
 
 } // namespace rotgen::python

@@ -95,6 +95,7 @@ py::dict simulate_scene(const std::string& path, const std::string& text) {
         run.scene = std::make_unique<scene_spec>(load_scene(path, "simulate"));
         run.prepared = std::make_unique<prepared_scene>(*run.scene, timings);
     }
+    interleave_test_hook();
     struct interrupted {};
     std::atomic<bool> stop{false};
     run_result r;

@@ -64,6 +64,7 @@ void prepare(ensemble& e, const std::string& text, const sweep_options& o) {
         e.prepared = std::make_unique<prepared_scene>(*e.scene, timings);
         if (!o.trajectories) e.prepared->keep_last_row_only();
     }
+    interleave_test_hook();
     py::gil_scoped_release released; // compiling locks by itself
     e.prepared->compile_all(timings);
     e.layout = layout_of(*e.prepared);

@@ -18,11 +18,6 @@ using GiNaC::ex;
 
 namespace {
 
-// Restores the chapter's convention when a test that reads another model ends.
-struct default_angles_after {
-    ~default_angles_after() { set_active_angles(angle_convention{}); }
-};
-
 model_spec read(const std::string& name, const std::string& text) {
     const scratch_file f(name + ".yaml", text);
     return load_model(f.path);
@@ -35,7 +30,6 @@ double value(const ex& e, const GiNaC::exmap& at) {
 } // namespace
 
 TEST_CASE("the derived J of zxz is the chapter's (5.30)", "[derive]") {
-    const default_angles_after restore;
     const model_spec spec = read("seq_zxz", "name: t\ninertia: [1, 2, 3]\n");
     const derivation d = derive(spec);
     const auto& s = symbols();
@@ -52,7 +46,6 @@ TEST_CASE("the derived J of zxz is the chapter's (5.30)", "[derive]") {
 
 TEST_CASE("J of all twelve sequences: det J is sin or cos of the middle angle, J^-1 J = 1",
           "[derive]") {
-    const default_angles_after restore;
     const auto& s = symbols();
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> angle(0.2, 1.3);
@@ -88,7 +81,6 @@ TEST_CASE("J of all twelve sequences: det J is sin or cos of the middle angle, J
 }
 
 TEST_CASE("a model's angle names are parsed and printed, the chapter's refused", "[derive]") {
-    const default_angles_after restore;
     const model_spec spec = read("seq_names", "name: sat\nangles: {sequence: zyx, names: [yaw, "
                                               "pitch, roll]}\ninertia: [1.2, 1, 0.4]\n"
                                               "potential: cos(pitch)*sin(roll)\n");
@@ -111,4 +103,25 @@ TEST_CASE("a model's angle names are parsed and printed, the chapter's refused",
     CHECK_THROWS_WITH(read("seq_bad", "name: sat\nangles: {sequence: xyz, names: [u, v, w]}\n"
                                       "parameters: {v_dot: 1}\ninertia: [1, 1, 1]\n"),
                       Catch::Contains("cannot be a parameter name"));
+}
+
+// The convention is the model's, not the process's: a model read after another (or derived while
+// another is read, on another thread) leaves the first one's names and sequence as they were.
+TEST_CASE("two models keep their own conventions whichever was read last", "[derive]") {
+    const model_spec sat = read("seq_two_sat", "name: sat\nangles: zyx\ninertia: [1.2, 1, 0.4]\n"
+                                               "potential: cos(pitch)*sin(roll)\n");
+    const model_spec top = read("seq_two_top", "name: top\ninertia: [1, 1, 0.5]\n"
+                                               "potential: cos(theta)\n");
+    const derivation d_sat = derive(sat), d_top = derive(top);
+    CHECK(sat.angles.sequence() == "zyx");
+    CHECK(d_sat.angles.names == std::array<std::string, 3>{"yaw", "pitch", "roll"});
+    CHECK(d_top.angles.sequence() == "zxz");
+    const std::string text = inspect(sat, d_sat, output_format::text);
+    CHECK(text.find("yaw, pitch, roll (z-y-x Tait-Bryan angles") != std::string::npos);
+    CHECK(text.find("theta") == std::string::npos);
+    // the z-y-x J, not z-x-z's: its (3, 1) entry is -sin(pitch) (z-x-z: cos(theta))
+    const auto& s = symbols();
+    CHECK((d_sat.omega_jacobian[0][0] + GiNaC::sin(s.q[1])).expand().is_zero());
+    CHECK((d_top.omega_jacobian[2][0] - GiNaC::cos(s.q[1])).expand().is_zero());
+    CHECK(inspect(top, d_top, output_format::text).find("phi, theta, psi") != std::string::npos);
 }

@@ -1,8 +1,9 @@
 // run/chart_kinematics.cpp's sin_theta_below, the chart check a run makes at every sample: it
 // answers without a sine where the middle angle is plainly far from the singular set, and must
-// give sin_theta_of(form, y) < bound's answer everywhere, for proper and Tait-Bryan sequences,
+// give sin_theta_of(s, form, y) < bound's answer everywhere, for proper and Tait-Bryan sequences,
 // near the bound and far from it.
 #include "expr/angles.hpp"
+#include "run/angle_chart.hpp"
 #include "run/chart_kinematics.hpp"
 
 #include <catch2/catch.hpp>
@@ -14,11 +15,6 @@
 using namespace rotgen;
 
 namespace {
-
-// Restores the chapter's convention when the test ends.
-struct default_angles_after {
-    ~default_angles_after() { set_active_angles(angle_convention{}); }
-};
 
 // The middle angles to try: random ones over many turns, and ones within 1e-9 of where the
 // chart distance crosses each bound (asin(bound) and its images under beta -> pi - beta, + k pi).
@@ -40,11 +36,10 @@ std::vector<double> angles(bool proper, const std::vector<double>& bounds) {
 } // namespace
 
 TEST_CASE("the chart check at a sample gives the sine's answer", "[run]") {
-    const default_angles_after restore;
     const bool proper = GENERATE(true, false);
     angle_convention c;
     if (!proper) c.axes = {2, 1, 0}; // z-y-x: |cos pitch|
-    set_active_angles(c);
+    const euler_sequence s = sequence_of(c);
     const std::vector<double> bounds{0.1, 0.3, 0.9};
     const form_kind form = GENERATE(form_kind::lagrangian, form_kind::hamiltonian);
     CAPTURE(proper, to_string(form));
@@ -53,9 +48,9 @@ TEST_CASE("the chart check at a sample gives the sine's answer", "[run]") {
     for (double beta : angles(proper, bounds))
         for (double b : bounds) {
             y[1] = beta;
-            const double d = sin_theta_of(form, y);
+            const double d = sin_theta_of(s, form, y);
             near += std::abs(d - b) < 1e-8;
-            differ += sin_theta_below(form, y, b) != (d < b);
+            differ += sin_theta_below(s, form, y, b) != (d < b);
         }
     CHECK(near > 1000); // the angles do test the bound's neighbourhood (observed 2,100)
     CHECK(differ == 0);

@@ -5,6 +5,7 @@
 // (expressions, in process) — never a crash, an abort, a hang or another exception. Every case
 // names its expected outcome: the error message (with its place), or the value parsed; a kept
 // input without an expected outcome in the tables below fails the test.
+#include "expr/angles.hpp"
 #include "expr/expr_parse.hpp"
 #include "support.hpp"
 
@@ -44,8 +45,8 @@ const rotgen::name_table& fuzz_names() {
         rotgen::name_table t;
         const auto& s = rotgen::symbols();
         for (int i = 0; i < 3; ++i) {
-            t[rotgen::coordinate_names()[i]] = s.q[i];
-            t[rotgen::coordinate_names()[i] + "_dot"] = s.qd[i];
+            t[rotgen::angle_convention{}.names[i]] = s.q[i];
+            t[rotgen::angle_convention{}.names[i] + "_dot"] = s.qd[i];
         }
         t["t"] = s.t;
         for (const char* p : {"I1", "I2", "I3", "M", "g", "h", "a", "b", "c", "w"})
