@@ -92,7 +92,14 @@ inline run_result run_rotgen(const std::string& args, const std::string& dir = "
     return r;
 }
 
-// A CSV of numbers with a header line, as `rotgen simulate` writes it.
+// A CSV's text without its provenance line (run/provenance.hpp: "# rotgen VERSION model ..."),
+// which must be there: the text from the header on.
+inline std::string without_provenance(const std::string& text) {
+    if (text.rfind("# rotgen ", 0) != 0) return "(no provenance line) " + text;
+    return text.substr(text.find('\n') + 1);
+}
+
+// A CSV of numbers with a header line, as `rotgen simulate` writes it (after its provenance line).
 struct csv_table {
     std::vector<std::string> header;
     std::vector<std::vector<double>> rows;
@@ -109,11 +116,13 @@ struct csv_table {
     }
 };
 
+// Lines starting with '#' before the header (the provenance line, run/provenance.hpp) are skipped.
 inline csv_table read_csv(const std::string& path) {
     csv_table t;
     std::istringstream in(read_file(path));
     std::string line, cell;
-    std::getline(in, line);
+    while (std::getline(in, line) && !line.empty() && line[0] == '#') {
+    }
     std::istringstream h(line);
     while (std::getline(h, cell, ','))
         t.header.push_back(cell);

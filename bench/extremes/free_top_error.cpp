@@ -56,11 +56,14 @@ static real data_floor(const std::array<real, 3>& I, const std::array<real, 3>& 
     return worst;
 }
 
-// The CSV's rows after its header: t, omega1, omega2, omega3; false if it cannot be read.
+// The CSV's rows after its provenance line and header: t, omega1, omega2, omega3; false if it
+// cannot be read.
 static bool read_rows(const char* path, std::vector<std::array<real, 4>>& rows) {
     std::ifstream in(path);
     std::string line;
-    if (!std::getline(in, line)) return false;
+    do // the provenance line ("# rotgen ..."), then the header
+        if (!std::getline(in, line)) return false;
+    while (!line.empty() && line[0] == '#');
     while (std::getline(in, line)) {
         std::istringstream row(line);
         std::string cell;

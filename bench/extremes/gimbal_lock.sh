@@ -30,7 +30,7 @@ record: [omega1, omega2, omega3]
 YAML
   if out=$("$rotgen" simulate "$work/scene.yaml" -o "$work/out.csv" 2>&1); then
     evals=$(echo "$out" | sed -n 's/.*; \([0-9]*\) RHS.*/\1/p')
-    err=$(awk -F, 'NR > 1 { e1 = $2 - 0.3*cos(-0.5*$1); e2 = $3 - 0.3*sin(-0.5*$1); e3 = $4 - 1;
+    err=$(awk -F, 'NR > 2 { e1 = $2 - 0.3*cos(-0.5*$1); e2 = $3 - 0.3*sin(-0.5*$1); e3 = $4 - 1;
                    m = sqrt(e1*e1) > m ? sqrt(e1*e1) : m; m = sqrt(e2*e2) > m ? sqrt(e2*e2) : m;
                    m = sqrt(e3*e3) > m ? sqrt(e3*e3) : m } END { printf "%.2e", m }' "$work/out.csv")
     echo "$err ($evals)"

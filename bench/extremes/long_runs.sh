@@ -41,9 +41,9 @@ YAML
     evals=$(sed -n 's/.*; \([0-9]*\) RHS.*/\1/p' "$work/summary")
     drift=$(awk -F, 'function a(x) { return x < 0 ? -x : x }
       function cell(c, k) { return m[c, k] == 0 ? "0" : sprintf("%.1e", m[c, k] / a(v0[c])) }
-      NR == 2 { for (c = 2; c <= 4; c++) v0[c] = $c }
-      NR > 1 { for (c = 2; c <= 4; c++) { d = a($c - v0[c]); if (d > cur[c]) cur[c] = d }
-               if (NR == 12 || NR == 102 || NR == 1002) for (c = 2; c <= 4; c++) m[c, NR] = cur[c] }
+      NR == 3 { for (c = 2; c <= 4; c++) v0[c] = $c }
+      NR > 2 { for (c = 2; c <= 4; c++) { d = a($c - v0[c]); if (d > cur[c]) cur[c] = d }
+               if (NR == 13 || NR == 103 || NR == 1003) for (c = 2; c <= 4; c++) m[c, NR - 1] = cur[c] }
       END { for (c = 2; c <= 4; c++) printf "%s / %s / %s%s", cell(c, 12), cell(c, 102), cell(c, 1002), c < 4 ? " | " : "" }' \
       "$work/out.csv")
     echo "| $name | $form | $T | $steps | $evals | $drift |"

@@ -2,6 +2,7 @@
 
 #include "cli/commands.hpp"
 #include "support/error.hpp"
+#include "support/standard_output.hpp"
 
 #include <cstdio>
 #include <iostream>
@@ -52,37 +53,60 @@ std::string one_line(const std::string& text) {
     return out;
 }
 
+bool is_help_word(const std::string& word) {
+    return word == "help" || word == "--help" || word == "-h";
+}
+
+// Runs the command `args` names; returns its exit status.
+int run_command(std::vector<std::string> args) {
+    if (!args.empty() && args[0] == "help") { // rotgen help [COMMAND] = rotgen COMMAND --help
+        if (args.size() == 1 || is_help_word(args[1]))
+            args = {"--help"};
+        else
+            args = {args[1], "--help"};
+    }
+    if (args.empty() || args[0] == "--help" || args[0] == "-h") {
+        std::cout << usage;
+        return args.empty() ? 2 : 0;
+    }
+    if (args[0] == "--version") {
+        std::cout << "rotgen " << ROTGEN_VERSION << "\n";
+        return 0;
+    }
+    const std::string command = args[0];
+    args.erase(args.begin());
+    if (command == "inspect") return cmd_inspect(args);
+    if (command == "emit") return cmd_emit(args);
+    if (command == "simulate") return cmd_simulate(args);
+    if (command == "bench") return cmd_bench(args);
+    if (command == "sweep") return cmd_sweep(args);
+    if (command == "view") return cmd_view(args);
+    const std::string best =
+        closest_name(command, {"inspect", "emit", "simulate", "bench", "sweep", "view", "help"});
+    throw user_error({}, "unknown command '" + command + "'" +
+                             (best.empty() ? "" : "; did you mean '" + best + "'?") +
+                             " (expected inspect, emit, simulate, bench, sweep or view; see "
+                             "rotgen --help)");
+}
+
+void report(const user_error& e) {
+    std::cerr << "rotgen: error: " << one_line(e.message()) << "\n";
+}
+
 } // namespace
 
 int run_cli(int argc, char** argv) {
-    std::vector<std::string> args(argv + 1, argv + argc);
     try {
-        if (args.empty() || args[0] == "--help" || args[0] == "-h" ||
-            (args[0] == "help" && args.size() == 1)) {
-            std::cout << usage;
-            return args.empty() ? 2 : 0;
+        const int status = run_command(std::vector<std::string>(argv + 1, argv + argc));
+        try {
+            flush_standard_output(); // a full disk behind standard output is an error too
+        } catch (const user_error& e) {
+            report(e);
+            return status == 0 ? 2 : status; // 3: the partial rows were written
         }
-        if (args[0] == "help") args = {args[1], "--help"}; // rotgen help CMD = rotgen CMD --help
-        if (args[0] == "--version") {
-            std::cout << "rotgen " << ROTGEN_VERSION << "\n";
-            return 0;
-        }
-        const std::string command = args[0];
-        args.erase(args.begin());
-        if (command == "inspect") return cmd_inspect(args);
-        if (command == "emit") return cmd_emit(args);
-        if (command == "simulate") return cmd_simulate(args);
-        if (command == "bench") return cmd_bench(args);
-        if (command == "sweep") return cmd_sweep(args);
-        if (command == "view") return cmd_view(args);
-        const std::string best = closest_name(
-            command, {"inspect", "emit", "simulate", "bench", "sweep", "view", "help"});
-        throw user_error({}, "unknown command '" + command + "'" +
-                                 (best.empty() ? "" : "; did you mean '" + best + "'?") +
-                                 " (expected inspect, emit, simulate, bench, sweep or view; see "
-                                 "rotgen --help)");
+        return status;
     } catch (const user_error& e) {
-        std::cerr << "rotgen: error: " << one_line(e.message()) << "\n";
+        report(e);
         return 2;
     } catch (const std::exception& e) {
         std::cerr << "rotgen: internal error: " << one_line(e.what()) << "\n";

@@ -15,6 +15,7 @@
 #include "support/atomic_file.hpp"
 #include "support/error.hpp"
 #include "support/output_paths.hpp"
+#include "support/standard_output.hpp"
 #include "support/timings.hpp"
 
 #include <unistd.h>
@@ -112,13 +113,16 @@ std::string header_path(const std::string& dir, const std::string& file, const s
 }
 
 // The header at `path` (DIR created if missing) through support/'s atomic writer (never a
-// partial header), or on standard output.
-void write_header(const std::string& dir, const std::string& path, const std::string& text) {
+// partial header), or on standard output, handed to `outputs`.
+void write_header(const std::string& dir, const std::string& path, const std::string& text,
+                  output_set& outputs) {
     namespace fs = std::filesystem;
     std::error_code ec;
     if (path != "-") fs::create_directories(dir, ec);
     if (ec) throw user_error({dir}, "cannot create the output directory: " + ec.message());
-    write_file_atomically(path, text);
+    atomic_file out(path);
+    out.stream() << text;
+    out.commit(outputs);
 }
 
 form_kind form_of(const std::string& f) {
@@ -232,8 +236,12 @@ int cmd_emit(const std::vector<std::string>& args) {
                                                     "; leave taylor out of --outputs");
         }
     });
-    timings.time("write", h.file_name, [&] { write_header(dir, path, h.text); });
+    output_set outputs;
+    timings.time("write", h.file_name, [&] { write_header(dir, path, h.text, outputs); });
+    outputs.commit_streams(); // -o -: the header, checked before the line that says so
     print_written(path, h);
+    flush_standard_output(); // that line, checked before the header appears
+    outputs.commit_files();
     if (o.has("--timings")) timings.print(std::cerr);
     return 0;
 }

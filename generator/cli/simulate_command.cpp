@@ -20,13 +20,16 @@ const command_spec simulate_command{
     "(cached), integrates it and records the scene's quantities at its sample times. Prints a\n"
     "summary (steps, evaluations, invariant drifts) on standard output. A run that cannot finish\n"
     "exits 3 with its rows in <output>.partial.csv (its events in <output>.partial.events.csv).\n"
-    "Outputs must be distinct files, none of them the scene or the model (exit 2 otherwise).\n\n"
+    "Outputs must be distinct files, none of them the scene or the model (exit 2 otherwise).\n"
+    "They appear together once all are complete: exit 2 leaves no file (standard output and\n"
+    "devices, written first, keep what they got before a later output failed).\n\n"
     "example: rotgen simulate models/scenes/heavy_top_nutation.yaml -o nutation.csv --plot "
     "nutation.png",
     {{"-o",
       "FILE",
       "the samples as CSV (header t,<recorded columns>); - for standard output;\n"
-      "                     default <scene name>.csv",
+      "                     default <scene name>.csv. Every CSV starts with the line\n"
+      "                     # rotgen VERSION model NAME sha256 HASH form FORM",
       {"--output"}},
      {"--events",
       "FILE",
@@ -48,8 +51,9 @@ const command_spec simulate_command{
       {}},
      {"--from",
       "FILE",
-      "start from the last row of an earlier run of the same model: its t and\n"
-      "                     state (the scene's form's, recorded); the scene gives the rest",
+      "start from the last row of an earlier run of the same model and form\n"
+      "                     (its line 1 says which): its t and state (the scene's form's,\n"
+      "                     recorded); the scene gives the rest",
       {}},
      {"--timings", "", "print the wall time of each pipeline stage to standard error", {}},
      {"--quiet", "", "no summary and no progress line (errors are still reported)", {"-q"}}}};

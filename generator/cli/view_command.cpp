@@ -1,9 +1,13 @@
 // rotgen view RUN.csv (--scene SCENE.yaml | --model MODEL.yaml) [-o run.html]
 #include "cli/commands.hpp"
 #include "cli/options.hpp"
+#include "run/provenance.hpp"
+#include "support/error.hpp"
+#include "support/standard_output.hpp"
 #include "view/view.hpp"
 
 #include <iostream>
+#include <optional>
 
 namespace rotgen {
 
@@ -43,6 +47,21 @@ scene_spec scene_of(const parsed_options& o) {
     return scene;
 }
 
+// Refuses a run whose provenance line (run/provenance.hpp) names another model than the one given:
+// the page would draw another body. A CSV without the line is drawn as it is.
+void check_model(const csv_table& table, const std::string& csv, const scene_spec& scene,
+                 const std::string& option) {
+    const std::optional<csv_provenance> run = parse_provenance(table.provenance);
+    const csv_provenance here = provenance_of(scene.model, scene.form);
+    if (!run || (run->model == here.model && run->sha256 == here.sha256)) return;
+    throw user_error({csv, 1, 1}, "the run is of model '" + run->model + "' (sha256 " +
+                                      run->sha256.substr(0, 12) + "), not of the model '" +
+                                      here.model + "' (sha256 " + here.sha256.substr(0, 12) +
+                                      ") that " + option +
+                                      " gives: the page would draw another "
+                                      "body");
+}
+
 } // namespace
 
 int cmd_view(const std::vector<std::string>& args) {
@@ -53,12 +72,18 @@ int cmd_view(const std::vector<std::string>& args) {
     }
     const scene_spec scene = scene_of(o);
     const csv_table table = read_run_csv(o.operand);
-    view_data data = view_of_rows(scene, table.columns, table.rows, {o.operand, 1, 1});
+    check_model(table, o.operand, scene, o.has("--scene") ? "--scene" : "--model");
+    view_data data =
+        view_of_rows(scene, table.columns, table.rows, {o.operand, table.header_line, 1});
     data.title = scene.model.name + " (" + o.operand + ")";
     data.source = o.operand + " and " + scene.file;
     const std::string page = o.value("-o", default_page(o.operand));
-    write_view(page, data, {o.operand, scene.file, scene.model.file});
+    output_set outputs;
+    write_view(page, data, {o.operand, scene.file, scene.model.file}, &outputs);
+    outputs.commit_streams();
     std::cout << "wrote " << page << " (" << table.rows.size() << " samples)\n";
+    flush_standard_output(); // that line, checked before the page appears
+    outputs.commit_files();
     return 0;
 }
 

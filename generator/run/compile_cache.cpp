@@ -123,11 +123,24 @@ void* loaded_library::symbol(const std::string& name) const {
     return p;
 }
 
+std::string without_comment_lines(const std::string& source) {
+    std::string code;
+    code.reserve(source.size());
+    for (std::size_t at = 0; at < source.size();) {
+        std::size_t end = source.find('\n', at);
+        end = end == std::string::npos ? source.size() : end + 1;
+        const std::size_t first = source.find_first_not_of(" \t", at);
+        if (first >= end || source.compare(first, 2, "//") != 0) code.append(source, at, end - at);
+        at = end;
+    }
+    return code;
+}
+
 loaded_library compile_and_load(const std::string& source, const std::string& name,
                                 const std::string& extra_flags) {
     const std::string all_flags = extra_flags.empty() ? flags : flags + (" " + extra_flags);
-    const std::string key =
-        hex(fnv1a(source + '\0' + compiler_identity() + '\0' + all_flags + '\0' + ROTGEN_VERSION));
+    const std::string key = hex(fnv1a(without_comment_lines(source) + '\0' + compiler_identity() +
+                                      '\0' + all_flags + '\0' + ROTGEN_VERSION));
     const std::string dir = usable_cache_directory();
     const std::string base = dir + "/" + name + "-" + key;
     loaded_library lib;

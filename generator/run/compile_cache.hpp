@@ -1,8 +1,10 @@
 // rotgen — compile generated C++ with the system compiler into a cached shared object and load it.
 //
-// The cache key is a hash of the source, the compiler's identity (`$CXX --version`) and the flags,
-// so a changed model, option, generator or compiler builds anew. Cache directory:
-// $ROTGEN_CACHE_DIR, else $XDG_CACHE_HOME/rotgen, else ~/.cache/rotgen.
+// The cache key is a hash of the source without its comment lines, the compiler's identity
+// (`$CXX --version`) and the flags, so a changed model, option, generator or compiler builds anew,
+// while the same code compiles once however its comments differ (a generated header's comments
+// name the model file as its path was spelt: `sat.yaml` and `/abs/sat.yaml` share one library).
+// Cache directory: $ROTGEN_CACHE_DIR, else $XDG_CACHE_HOME/rotgen, else ~/.cache/rotgen.
 #pragma once
 
 #include <cstdint>
@@ -65,6 +67,9 @@ std::string host_lane_vector_flags(std::string* target, bool wide);
 // (one heavy-top expansion 281 against 551 ns). The other methods' kernels stay portable: a
 // DOP853 sweep took 25% longer with any VEX-encoded code (docs/design-notes.md).
 std::string host_exact_vector_flags();
+
+// `source` without the lines whose first non-blank characters are "//": what the cache keys on.
+std::string without_comment_lines(const std::string& source);
 
 // Compiles `source` (a complete translation unit) unless the cache has it, then loads it.
 // `name` labels the files in the cache; `extra_flags` are added to the compiler's (and the key).

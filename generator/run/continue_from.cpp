@@ -5,6 +5,7 @@
 
 #include "expr/symbols.hpp"
 #include "run/angle_chart.hpp"
+#include "run/provenance.hpp"
 
 #include <Eigen/Geometry>
 
@@ -14,6 +15,7 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <optional>
 
 namespace rotgen {
 
@@ -34,29 +36,54 @@ std::vector<std::string> split(const std::string& line, std::vector<int>& starts
     return cells;
 }
 
-// The header and the last non-empty row of `csv`, its numbers read back exactly (strtod).
-start_row read_last_row(const std::string& csv) {
+// Refuses a run that another model or form made, or one without a provenance line (line 1).
+void check_provenance(const std::string& csv, const std::string& first_line,
+                      const scene_spec& scene) {
+    const std::optional<csv_provenance> run = parse_provenance(first_line);
+    if (!run)
+        throw user_error({csv, 1, 1}, "line 1 is not rotgen's provenance line ('# rotgen VERSION "
+                                      "model NAME sha256 HASH form FORM'): --from continues only "
+                                      "a run that rotgen simulate wrote");
+    const csv_provenance here = provenance_of(scene.model, scene.form);
+    if (run->model == here.model && run->sha256 == here.sha256 && run->form == here.form) return;
+    const auto which = [](const csv_provenance& p) {
+        return "'" + p.model + "' (sha256 " + p.sha256.substr(0, 12) + ", " + p.form + " form)";
+    };
+    throw user_error({csv, 1, 1}, "the run is of model " + which(*run) +
+                                      ", not of this scene's "
+                                      "model " +
+                                      which(here) +
+                                      ": --from continues a run of the same "
+                                      "model and form");
+}
+
+// The header and the last non-empty row of `csv`, its numbers read back exactly (strtod); line 1
+// is the provenance line.
+start_row read_last_row(const std::string& csv, const scene_spec& scene) {
     std::ifstream in(csv, std::ios::binary);
     if (!in)
         throw user_error({csv, 0, 0}, std::string("cannot read the run to continue from: ") +
                                           std::strerror(errno));
-    std::string line, header, last;
+    std::string line, first, header, last;
     int n = 0;
     start_row row;
     row.file = csv;
     while (std::getline(in, line)) {
         if (!line.empty() && line.back() == '\r') line.pop_back();
         if (++n == 1)
+            first = line;
+        else if (n == 2)
             header = line;
         else if (!line.empty())
             last = line, row.line = n;
     }
+    check_provenance(csv, first, scene);
     std::vector<int> starts;
     row.names = split(header, starts);
     if (row.names[0] != "t")
-        throw user_error({csv, 1, 1}, "not a CSV written by rotgen simulate (its header does not "
+        throw user_error({csv, 2, 1}, "not a CSV written by rotgen simulate (its header does not "
                                       "start with t): nothing to continue from");
-    if (row.line == 0) throw user_error({csv, 1, 1}, "the run has no rows to continue from");
+    if (row.line == 0) throw user_error({csv, 2, 1}, "the run has no rows to continue from");
     const std::vector<std::string> cells = split(last, starts);
     if (cells.size() != row.names.size())
         throw user_error({csv, row.line, 1}, "the last row has " + std::to_string(cells.size()) +
@@ -102,7 +129,7 @@ void require(const start_row& row, const std::vector<std::string>& names, form_k
     std::string all;
     for (const auto& name : names)
         all += (all.empty() ? "" : ", ") + name;
-    throw user_error({row.file, 1, 1}, "the last row (line " + std::to_string(row.line) +
+    throw user_error({row.file, 2, 1}, "the last row (line " + std::to_string(row.line) +
                                            ") is not a complete state of the " + to_string(form) +
                                            " form: it lacks " + missing + " (record " + all +
                                            " in the run to continue)");
@@ -156,7 +183,7 @@ double row_value(const start_row& row, const std::string& name) {
 }
 
 void continue_from(scene_spec& scene, const std::string& csv) {
-    start_row row = read_last_row(csv);
+    start_row row = read_last_row(csv, scene);
     require(row, required_names(scene.form, scene.model.angles), scene.form);
     scene.t_start = row.values[0];
     if (scene.t_end == scene.t_start)

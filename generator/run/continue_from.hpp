@@ -9,8 +9,9 @@
 //   body         q0 q1 q2 q3 omega1 omega2 omega3 (q0..q3 normalised: the attitude, scalar first)
 //   rotor        phi theta phi_dot theta_dot
 // The CSV's numbers are written with 17 significant digits (support/format.hpp), so a state that
-// the CSV holds whole reads back exactly. Whether the earlier run used the same model cannot be
-// told from its CSV: that is the caller's to keep.
+// the CSV holds whole reads back exactly. Line 1, the provenance line (run/provenance.hpp), must
+// name the scene's model (its name and the SHA-256 of its file) and the scene's form: a run of
+// another model or form is refused there.
 #pragma once
 
 #include "forms/forms.hpp"
@@ -22,8 +23,9 @@ namespace rotgen {
 
 // Reads the last row of `csv` into `scene`: scene.from, the start time, the initial angles and
 // rates (as plain numbers). Throws user_error located in the CSV for a file that is not a run's
-// CSV, a row that lacks a name of the form's state (all the missing ones are named), a value that
-// is not a finite number; or at the scene's time `end` when it equals the row's time.
+// CSV, a run of another model or form (at line 1, naming both), a row that lacks a name of the
+// form's state (all the missing ones are named), a value that is not a finite number; or at the
+// scene's time `end` when it equals the row's time.
 void continue_from(scene_spec& scene, const std::string& csv);
 
 // Refuses (user_error at the row) a start row that lacks a state variable of the form `f` or one

@@ -409,11 +409,12 @@ void scene_run::record() {
     for (const sample& s : m_event_samples)
         m_result.event_rows.push_back(record_row(s.t, s.y, s.form, out));
     const bool every = m_prepared.every_row();
-    m_result.rows.reserve(every ? m_samples.size() : 1);
+    const std::size_t n = m_samples.size() - (m_result.ok ? 0 : 1); // !ok: the last, no row
+    m_result.rows.reserve(every ? n : 1);
     for (std::size_t k = 0; k < m_samples.size(); ++k) {
         const compiled_form& cf = *m_compiled[m_samples.form(k)];
         const Eigen::Map<const Eigen::VectorXd> ys = m_samples.y(k);
-        if (every || k + 1 == m_samples.size())
+        if (k < n && (every || k + 1 == n))
             m_result.rows.push_back(record_row(m_samples.t(k), ys, m_samples.form(k), out));
         else
             record_outputs(m_samples.t(k), ys, m_samples.form(k), out);
@@ -487,6 +488,8 @@ run_result scene_run::run() {
         to = integrate_segment(y, t_from);
         if (to != next::done) switch_chart(to, y, t_from);
     }
+    if (!m_last.ok() && m_last.code != status::stopped_by_event) // where it stopped: its drifts
+        m_samples.add(m_last.t, y, m_current);                   // count, no row (record())
     return finish();
 }
 
@@ -526,6 +529,7 @@ run_result scene_run::finish() {
     m_result.ok = m_last.ok() || m_last.code == status::stopped_by_event;
     m_result.message = m_last.message;
     m_result.integrate_seconds = m_timings.total("integrate");
+    m_result.t_reached = m_samples.empty() ? m_scene.t_start : m_samples.last_t();
     record();
     return std::move(m_result); // the run's last act: its rows are not copied
 }

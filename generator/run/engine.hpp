@@ -28,7 +28,8 @@ namespace rotgen {
 struct invariant_drift {
     invariant what;
     double first = 0;   // at the first sample
-    double drift = 0;   // max |v(t) - v(t0)| over the samples
+    double drift = 0;   // max |v(t) - v(t0)| over the samples (and the state where a run
+                        // that could not finish stopped)
     double largest = 0; // max |v(t)| over the samples: the scale `first` is compared with
 };
 
@@ -56,6 +57,8 @@ struct run_result {
     std::vector<event_doubt> event_doubts;
     std::string chart_note; // the chart switch, if one happened (empty otherwise)
     bool ok = true;         // the integration reached the end time
+    double t_reached = 0;   // where the steps taken ended: the last row's t, or (!ok) the time
+                            // the run stopped at, after it (`invariants` include that state)
     std::string message;    // why not, when !ok
     double integrate_seconds = 0;
     bool kernels_cached = true; // every compiled form came from the cache

@@ -122,7 +122,7 @@ void check_double_range(const scene_spec& scene, const initial_kinematics& k) {
         throw user_error(
             scene.initial_where,
             "initial values too large for double precision: " + what + " = " +
-                std::to_string(static_cast<double>(v)) +
+                short_wide_number(v) +
                 "; give smaller initial rates or momenta, or rescale the model's units");
     };
     const auto& q = scene.model.angles.names;

@@ -4,6 +4,7 @@
 #include "expr/numbers.hpp"
 #include "expr/symbols.hpp"
 #include "lower/lower_form.hpp" // exact_decimal
+#include "support/format.hpp"
 
 #include <cmath>
 
@@ -143,7 +144,7 @@ class initial_reader {
         const bool ok = c.proper() ? b >= 0 && b <= pi : b >= -pi / 2 && b <= pi / 2;
         if (!ok)
             throw user_error(at(m_n[c.names[1]]), "initial " + c.names[1] + " = " +
-                                                      std::to_string(b) + " is outside " +
+                                                      format_double(b) + " is outside " +
                                                       (c.proper() ? "[0, pi]" : "[-pi/2, pi/2]") +
                                                       " (" + c.description() + ")");
     }
@@ -172,7 +173,7 @@ ex_matrix3 initial_reader::quaternion_matrix() const {
     const double norm = std::sqrt(GiNaC::ex_to<GiNaC::numeric>(n2.evalf()).to_double());
     if (!(std::abs(norm - 1) <= 1e-6))
         throw user_error(at(m_n["q0"]), "the initial quaternion (q0, q1, q2, q3) has norm " +
-                                            std::to_string(norm) +
+                                            short_number(norm, 10) +
                                             ", not 1 (to 1e-6): give a unit quaternion");
     const ex w = q[0], x = q[1], y = q[2], z = q[3];
     const ex R[3][3] = {{w * w + x * x - y * y - z * z, 2 * (x * y - w * z), 2 * (x * z + w * y)},
@@ -214,7 +215,7 @@ ex_matrix3 initial_reader::given_matrix() const {
                        v[0][2] * (v[1][0] * v[2][1] - v[1][1] * v[2][0]);
     if (!(worst <= 1e-9) || !(det > 0))
         throw user_error(at(a), "initial A is not a rotation (|A A^T - 1| = " +
-                                    std::to_string(worst) + ", det A = " + std::to_string(det) +
+                                    short_number(worst) + ", det A = " + short_number(det) +
                                     "; it must be orthonormal to 1e-9 with det +1)");
     return A;
 }

@@ -24,18 +24,22 @@ std::size_t column_of(const run_result& run, const std::string& name) {
     return static_cast<std::size_t>(it - run.columns.begin()) + 1;
 }
 
-// Writes `header` and `rows` to the figure's data file.
-void write_data(const std::string& figure, const std::string& kind, const std::string& header,
-                const std::vector<std::vector<double>>& rows,
-                const std::vector<std::string>& inputs) {
+// Writes the provenance line, `header` and `rows` to the figure's data file, handed to `outputs`;
+// returns the file gnuplot reads meanwhile (its temporary).
+std::string write_data(const std::string& figure, const std::string& kind,
+                       const std::string& header, const std::vector<std::vector<double>>& rows,
+                       const std::vector<std::string>& inputs, const std::string& provenance,
+                       output_set& outputs) {
     atomic_file out(figure_data_path(figure, kind), inputs);
-    out.stream() << header << "\n";
+    const std::string written = out.temporary().empty() ? out.path() : out.temporary();
+    out.stream() << provenance << "\n" << header << "\n";
     for (const auto& row : rows) {
         for (std::size_t i = 0; i < row.size(); ++i)
             out.stream() << (i ? "," : "") << format_number(row[i]);
         out.stream() << "\n";
     }
-    out.commit();
+    out.commit(outputs);
+    return written;
 }
 
 // t, the tip of the figure axis (x, y, z), its polar angle from the vertical and its azimuth,
@@ -157,24 +161,33 @@ std::vector<std::string> figure_records(const figure_request& q, const scene_spe
 }
 
 void draw_axis_figure(const std::string& file, const scene_spec& scene, const run_result& run,
-                      const std::vector<std::string>& inputs) {
-    const std::string data = figure_data_path(file, "axis");
-    write_data(file, "axis", "t,x,y,z,polar,azimuth", axis_rows(scene, run), inputs);
-    draw_with_gnuplot(file, [&](const std::string& output) {
-        return axis_script(output, file, data,
-                           scene.model.name + ": the figure axis on the unit sphere");
-    });
+                      const std::vector<std::string>& inputs, const std::string& provenance,
+                      output_set& outputs) {
+    const std::string data = write_data(file, "axis", "t,x,y,z,polar,azimuth",
+                                        axis_rows(scene, run), inputs, provenance, outputs);
+    draw_with_gnuplot(
+        file,
+        [&](const std::string& output) {
+            return axis_script(output, file, data,
+                               scene.model.name + ": the figure axis on the unit sphere");
+        },
+        &outputs);
 }
 
 void draw_polhode(const std::string& file, const scene_spec& scene, const run_result& run,
-                  const std::vector<std::string>& inputs) {
+                  const std::vector<std::string>& inputs, const std::string& provenance,
+                  output_set& outputs) {
     const auto rows = polhode_rows(run);
-    write_data(file, "polhode", "t,omega1,omega2,omega3,L1,L2,L3,two_T,L_squared", rows, inputs);
+    const std::string data =
+        write_data(file, "polhode", "t,omega1,omega2,omega3,L1,L2,L3,two_T,L_squared", rows, inputs,
+                   provenance, outputs);
     const double radius = rows.empty() ? 1.0 : std::sqrt(rows.front()[8]);
-    draw_with_gnuplot(file, [&](const std::string& output) {
-        return polhode_script(output, file, figure_data_path(file, "polhode"), scene.model.name,
-                              radius);
-    });
+    draw_with_gnuplot(
+        file,
+        [&](const std::string& output) {
+            return polhode_script(output, file, data, scene.model.name, radius);
+        },
+        &outputs);
 }
 
 } // namespace rotgen

@@ -21,6 +21,8 @@
 
 namespace rotgen {
 
+class output_set; // support/atomic_file.hpp
+
 struct figure_request {
     std::string axis;    // --plot-axis FILE; empty: none
     std::string polhode; // --plot-polhode FILE; empty: none
@@ -36,12 +38,15 @@ void check_figures(const figure_request& q, const scene_spec& scene);
 // The scene's records plus what the figures need.
 std::vector<std::string> figure_records(const figure_request& q, const scene_spec& scene);
 
-// Writes the axis figure and its data from a run that recorded figure_records.
+// Draws the axis figure and writes its data from a run that recorded figure_records; both appear
+// with `outputs` (support/atomic_file.hpp). The data file starts with `provenance` (a line).
 void draw_axis_figure(const std::string& file, const scene_spec& scene, const run_result& run,
-                      const std::vector<std::string>& inputs);
+                      const std::vector<std::string>& inputs, const std::string& provenance,
+                      output_set& outputs);
 
-// Writes the polhode and its data from a run that recorded figure_records.
+// The same for the polhode.
 void draw_polhode(const std::string& file, const scene_spec& scene, const run_result& run,
-                  const std::vector<std::string>& inputs);
+                  const std::vector<std::string>& inputs, const std::string& provenance,
+                  output_set& outputs);
 
 } // namespace rotgen

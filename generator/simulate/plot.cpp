@@ -94,10 +94,13 @@ std::string plot_script(const std::string& output, const std::string& terminal_f
 
 void plot_run(const std::string& png, const std::string& csv,
               const std::vector<std::string>& record, const std::string& title,
-              const std::map<std::string, double>& drifts) {
-    draw_with_gnuplot(png, [&](const std::string& output) {
-        return plot_script(output, png, csv, record, title, drifts);
-    });
+              const std::map<std::string, double>& drifts, output_set* outputs) {
+    draw_with_gnuplot(
+        png,
+        [&](const std::string& output) {
+            return plot_script(output, png, csv, record, title, drifts);
+        },
+        outputs);
 }
 
 } // namespace rotgen

@@ -2,6 +2,7 @@
 
 #include "run/continue_from.hpp"
 #include "run/engine.hpp"
+#include "run/provenance.hpp"
 #include "scene/scene.hpp"
 #include "simulate/figures.hpp"
 #include "simulate/plot.hpp"
@@ -10,6 +11,7 @@
 #include "support/format.hpp"
 #include "support/output_paths.hpp"
 #include "support/progress.hpp"
+#include "support/standard_output.hpp"
 #include "support/timings.hpp"
 #include "view/view.hpp"
 
@@ -31,20 +33,28 @@ void write_rows(std::ostream& os, const std::vector<std::vector<double>>& rows) 
     }
 }
 
-void write_csv(atomic_file& out, const run_result& r) {
+// The CSV's first line: which rotgen, model and form made it (run/provenance.hpp).
+std::string provenance(const scene_spec& scene) {
+    return provenance_line(provenance_of(scene.model, scene.form));
+}
+
+// The samples, handed to `outputs`.
+void write_csv(atomic_file& out, const scene_spec& scene, const run_result& r,
+               output_set& outputs) {
     std::ostream& os = out.stream();
-    os << "t";
+    os << provenance(scene) << "\nt";
     for (const auto& c : r.columns)
         os << "," << c;
     os << "\n";
     write_rows(os, r.rows);
-    out.commit();
+    out.commit(outputs);
 }
 
 // One row per event in time order: its name, t, the recorded columns at the event.
-void write_events(atomic_file& out, const run_result& r) {
+void write_events(atomic_file& out, const scene_spec& scene, const run_result& r,
+                  output_set& outputs) {
     std::ostream& os = out.stream();
-    os << "event,t";
+    os << provenance(scene) << "\nevent,t";
     for (const auto& c : r.columns)
         os << "," << c;
     os << "\n";
@@ -54,7 +64,7 @@ void write_events(atomic_file& out, const run_result& r) {
             os << "," << format_number(v);
         os << "\n";
     }
-    out.commit();
+    out.commit(outputs);
 }
 
 // Where a pair of zeros of event i may hide (g neither changes sign nor stays away from 0 there).
@@ -85,8 +95,9 @@ void print_events(std::ostream& os, const run_result& r) {
     }
 }
 
-// max |v(t) - v(0)|, relative to |v(0)| unless v starts near 0 (below 1e-9 of its largest value
-// along the run): a relative drift of a momentum that starts at 0 means nothing.
+// max |v(t) - v(0)| over the samples and, for a run that stopped between samples, the state it
+// stopped at; relative to |v(0)| unless v starts near 0 (below 1e-9 of its largest value along
+// the run): a relative drift of a momentum that starts at 0 means nothing.
 void print_invariants(std::ostream& os, const run_result& r) {
     for (const auto& inv : r.invariants) {
         const std::string& name = inv.what.name;
@@ -126,8 +137,12 @@ void print_summary(std::ostream& os, const simulate_request& q, const scene_spec
         os << " step " << format_double(ig.step);
     else
         os << " rtol " << format_double(ig.rtol) << " atol " << format_double(ig.atol);
-    os << ", t " << format_double(scene.t_start) << " .. "
-       << format_double(r.rows.empty() ? scene.t_start : r.rows.back()[0]) << "\n"
+    // the span the steps covered: a run that stopped between samples went past its last row
+    const double last_row = r.rows.empty() ? scene.t_start : r.rows.back()[0];
+    os << ", t " << format_double(scene.t_start) << " .. " << format_double(r.t_reached);
+    if (r.t_reached != last_row)
+        os << " (stopped there; the last sample is at t = " << format_double(last_row) << ")";
+    os << "\n"
        << "  steps   " << r.stats.accepted << " accepted, " << r.stats.rejected << " rejected; "
        << r.stats.rhs_evals << " RHS and " << r.stats.jac_evals << " Jacobian evaluations, "
        << r.stats.factorisations << " factorisations\n"
@@ -140,11 +155,12 @@ void print_summary(std::ostream& os, const simulate_request& q, const scene_spec
     print_events(os, r);
 }
 
-// The plot, from the CSV written (or from a scratch CSV beside the PNG when none was asked for).
+// The plot, from the CSV written (its temporary, `csv`), or from a scratch CSV beside the PNG when
+// the CSV is a stream; it appears with `outputs`.
 void draw_plot(const simulate_request& q, std::string csv, const scene_spec& scene,
-               const run_result& r) {
+               const run_result& r, output_set& outputs) {
     std::optional<atomic_file> scratch;
-    if (csv.empty() || is_stream_output(csv)) { // a stream cannot be read back
+    if (csv.empty()) { // a stream cannot be read back
         scratch.emplace(q.plot + ".csv");
         write_rows(scratch->stream(), r.rows);
         scratch->stream().flush();
@@ -160,7 +176,7 @@ void draw_plot(const simulate_request& q, std::string csv, const scene_spec& sce
     plot_run(q.plot, csv, r.record,
              scene.model.name + " (" + to_string(r.form) + " form, " + scene.integrator.method +
                  ")",
-             drifts);
+             drifts, &outputs);
 }
 
 // Where the samples go: the requested file, "-" for standard output, or by default
@@ -218,25 +234,41 @@ void check_files(const simulate_request& q, const scene_spec& scene, const run_f
     check_distinct_files(outputs, inputs);
 }
 
+// Standard output and devices first (they cannot be renamed), then the summary (on standard
+// output: checked), then the files: exit 2 leaves no file.
+void commit_outputs(output_set& outputs, const std::string& summary, const simulate_request& q,
+                    const std::string& csv) {
+    outputs.commit_streams();
+    if (!q.quiet && is_standard_output(csv)) {
+        std::cerr << summary;
+    } else if (!q.quiet) {
+        std::cout << summary;
+        flush_standard_output();
+    }
+    outputs.commit_files();
+}
+
 // A run that could not finish: the rows so far go to <output stem>.partial.csv (never under the
 // requested name), its events to <output stem>.partial.events.csv; exit status 3.
 int report_partial(const std::vector<std::string>& inputs, const run_files& f,
-                   const scene_spec& scene, const run_result& r, std::ostream& summary) {
+                   const simulate_request& q, const scene_spec& scene, const run_result& r,
+                   std::ostringstream& summary) {
+    output_set outputs;
     atomic_file out(f.partial, inputs);
-    write_csv(out, r);
+    write_csv(out, scene, r, outputs);
     summary << "  wrote   " << f.partial << " (" << r.rows.size() << " samples, partial)\n";
     std::string events;
+    std::optional<atomic_file> ev;
     if (!f.partial_events.empty()) {
-        atomic_file ev(f.partial_events, inputs);
-        write_events(ev, r);
+        write_events(ev.emplace(f.partial_events, inputs), scene, r, outputs);
         summary << "  wrote   " << f.partial_events << " (" << r.event_rows.size()
                 << " events, partial)\n";
         events =
             " and its " + std::to_string(r.event_rows.size()) + " events in " + f.partial_events;
     }
-    const double t = r.rows.empty() ? scene.t_start : r.rows.back()[0];
+    commit_outputs(outputs, summary.str(), q, f.csv);
     std::cerr << "rotgen: error: " << to_string(scene.integrator_where)
-              << ": the run stopped at t = " << format_double(t) << " of "
+              << ": the run stopped at t = " << format_double(r.t_reached) << " of "
               << format_double(scene.t_end) << ": " << r.message << "; the " << r.rows.size()
               << " samples computed so far are in " << f.partial << events << "\n";
     return 3;
@@ -256,24 +288,25 @@ scene_spec scene_to_run(const simulate_request& q, const scene_spec& scene) {
 }
 
 // The plot, the page and the figures, from the run (`run`, with what they need recorded) or
-// the scene's columns of it (`r`).
+// the scene's columns of it (`r`), handed to `outputs`; `csv`: the file the samples are in.
 void write_pictures(const simulate_request& q, const scene_spec& scene, const scene_spec& viewed,
-                    const run_result& run, const run_result& r,
+                    const run_result& run, const run_result& r, const std::string& csv,
                     const std::vector<std::string>& inputs, stage_timings& timings,
-                    std::ostream& summary) {
+                    std::ostream& summary, output_set& outputs) {
     if (!q.plot.empty()) {
-        timings.time("plot", q.plot, [&] { draw_plot(q, csv_path(q), scene, r); });
+        timings.time("plot", q.plot, [&] { draw_plot(q, csv, scene, r, outputs); });
         summary << "  wrote   " << q.plot << "\n";
     }
+    const std::string line = provenance(scene);
     if (!q.plot_axis.empty()) {
         timings.time("plot", q.plot_axis,
-                     [&] { draw_axis_figure(q.plot_axis, scene, run, inputs); });
+                     [&] { draw_axis_figure(q.plot_axis, scene, run, inputs, line, outputs); });
         summary << "  wrote   " << q.plot_axis
                 << " (its data: " << figure_data_path(q.plot_axis, "axis") << ")\n";
     }
     if (!q.plot_polhode.empty()) {
         timings.time("plot", q.plot_polhode,
-                     [&] { draw_polhode(q.plot_polhode, scene, run, inputs); });
+                     [&] { draw_polhode(q.plot_polhode, scene, run, inputs, line, outputs); });
         summary << "  wrote   " << q.plot_polhode
                 << " (its data: " << figure_data_path(q.plot_polhode, "polhode") << ")\n";
     }
@@ -281,7 +314,7 @@ void write_pictures(const simulate_request& q, const scene_spec& scene, const sc
         view_data page = view_of_run(viewed, run);
         page.title = scene.model.name + " (" + q.scene + ")";
         page.source = q.scene;
-        timings.time("write", q.view, [&] { write_view(q.view, page, inputs); });
+        timings.time("write", q.view, [&] { write_view(q.view, page, inputs, &outputs); });
         summary << "  wrote   " << q.view << " (the run in 3D: open it in a browser)\n";
     }
 }
@@ -313,8 +346,7 @@ int simulate(const simulate_request& q) {
     const scene_spec viewed = scene_to_run(q, scene);
 
     stage_timings timings;
-    std::ostringstream discarded;
-    std::ostream& summary = q.quiet ? discarded : (is_standard_output(csv) ? std::cerr : std::cout);
+    std::ostringstream summary; // written with the outputs (commit_outputs)
     progress_line progress(scene.t_start, scene.t_end, !q.quiet);
     const run_result run = run_scene(viewed, timings, [&](double t) { progress.update(t); });
     const bool extra = !q.view.empty() || !q.plot_axis.empty() || !q.plot_polhode.empty();
@@ -322,21 +354,24 @@ int simulate(const simulate_request& q) {
     progress.finish();
     print_summary(summary, q, scene, r, timings);
     if (!r.ok) {
-        const int status = report_partial(inputs, files, scene, r, summary);
+        const int status = report_partial(inputs, files, q, scene, r, summary);
         if (q.timings) timings.print(std::cerr);
         return status;
     }
-    timings.time("write", csv, [&] { write_csv(csv_out, r); });
+    output_set outputs; // every output appears together, or none does
+    timings.time("write", csv, [&] { write_csv(csv_out, scene, r, outputs); });
     summary << "  wrote   " << (csv == "-" ? "standard output" : csv) << " (" << r.rows.size()
             << " samples" << (q.csv.empty() ? ", the default name: -o chooses another" : "")
             << ")\n";
     if (events_out) {
-        timings.time("write", events, [&] { write_events(*events_out, r); });
+        timings.time("write", events, [&] { write_events(*events_out, scene, r, outputs); });
         summary << "  wrote   " << (events == "-" ? "standard output" : events) << " ("
                 << r.event_rows.size() << " events"
                 << (scene.events.empty() ? "; the scene has no events:" : "") << ")\n";
     }
-    write_pictures(q, scene, viewed, run, r, inputs, timings, summary);
+    write_pictures(q, scene, viewed, run, r, csv_out.temporary(), inputs, timings, summary,
+                   outputs);
+    commit_outputs(outputs, summary.str(), q, csv);
     if (q.timings) timings.print(std::cerr);
     return 0;
 }

@@ -45,6 +45,12 @@ std::string short_number(double x, int digits) {
     return buf;
 }
 
+std::string short_wide_number(long double x, int digits) {
+    char buf[48];
+    std::snprintf(buf, sizeof buf, "%.*Lg", digits, x);
+    return buf;
+}
+
 std::string format_duration(double seconds) {
     // the unit: the largest whose value rounds to 1.00 or more (999.7 ms is "1.00 s")
     double v = seconds < 0 || !(seconds == seconds) ? 0 : seconds;

@@ -17,8 +17,11 @@ std::string format_number(double x);
 void append_double(std::string& out, double x);
 void append_number(std::string& out, double x);
 
-// `digits` significant digits (printf "%.<digits>g"): for summaries and tables.
+// `digits` significant digits (printf "%.<digits>g"): for summaries, tables and messages (never
+// "%f", which shows 1e-8 as 0.000000).
 std::string short_number(double x, int digits = 3);
+// The same for a long double, which may lie beyond double's range ("1.19e+4932").
+std::string short_wide_number(long double x, int digits = 3);
 
 // A duration in the one unit that fits, three significant digits, never an exponent: "1.30 s",
 // "14.8 ms", "507 us" (ASCII "us"; summaries print "time    <number> <s|ms|us> <what>" and

@@ -15,10 +15,14 @@ std::string gnuplot_temporary(const std::string& output) {
 }
 
 void run_gnuplot_script(const std::string& script_path, const std::string& temporary,
-                        const std::string& output) {
+                        const std::string& output, output_set* outputs) {
     register_temporary(temporary);
     int status = 0;
     const std::string log = run_capture("gnuplot " + shell_quote(script_path), &status);
+    if (status == 0 && outputs) { // the set renames it, or removes it
+        outputs->add_file(temporary, output, output);
+        return;
+    }
     const bool drawn = status == 0 && std::rename(temporary.c_str(), output.c_str()) == 0;
     forget_temporary(temporary);
     if (!drawn) {
@@ -28,13 +32,13 @@ void run_gnuplot_script(const std::string& script_path, const std::string& tempo
     }
 }
 
-void run_gnuplot(const std::string& output, const std::string& temporary,
-                 const std::string& script) {
+void run_gnuplot(const std::string& output, const std::string& temporary, const std::string& script,
+                 output_set* outputs) {
     const std::string script_path = temporary + ".gp";
     write_file_atomically(script_path, script);
     register_temporary(script_path);
     try {
-        run_gnuplot_script(script_path, temporary, output);
+        run_gnuplot_script(script_path, temporary, output, outputs);
     } catch (...) {
         std::remove(script_path.c_str());
         forget_temporary(script_path);

@@ -1,4 +1,4 @@
-// rotgen — stable hashing for cache keys and header stamps.
+// rotgen — stable hashing for cache keys, header stamps and the CSV provenance line.
 #pragma once
 
 #include <cstdint>
@@ -10,5 +10,7 @@ namespace rotgen {
 std::uint64_t fnv1a(const std::string& data, std::uint64_t seed = 14695981039346656037ull);
 // 16 lower-case hex digits.
 std::string hex(std::uint64_t value);
+// SHA-256 (FIPS 180-4) of `data`: 64 lower-case hex digits, as `sha256sum` prints them.
+std::string sha256_hex(const std::string& data);
 
 } // namespace rotgen

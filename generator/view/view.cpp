@@ -241,11 +241,14 @@ std::string view_page(const view_data& d) {
 }
 
 void write_view(const std::string& path, const view_data& data,
-                const std::vector<std::string>& inputs) {
+                const std::vector<std::string>& inputs, output_set* outputs) {
     const std::string page = view_page(data);
     atomic_file out(path, inputs);
     out.stream() << page;
-    out.commit();
+    if (outputs)
+        out.commit(*outputs); // appears with the command's other outputs
+    else
+        out.commit();
 }
 
 } // namespace rotgen

@@ -11,6 +11,7 @@
 #pragma once
 
 #include "scene/scene.hpp"
+#include "support/atomic_file.hpp"
 
 #include <array>
 #include <string>
@@ -49,13 +50,17 @@ view_data view_of_rows(const scene_spec& scene, const std::vector<std::string>& 
 // three.js is not installed).
 std::string view_page(const view_data& data);
 
-// Writes the page atomically to `path` (never over one of `inputs`).
+// Writes the page atomically to `path` (never over one of `inputs`); given `outputs`, it appears
+// with them (support/atomic_file.hpp's output_set).
 void write_view(const std::string& path, const view_data& data,
-                const std::vector<std::string>& inputs);
+                const std::vector<std::string>& inputs, output_set* outputs = nullptr);
 
-// A CSV that `rotgen simulate` wrote: its header (after t) and its rows. Throws user_error
-// located at the file, line and column of what is wrong.
+// A CSV that `rotgen simulate` wrote: its provenance line (run/provenance.hpp; empty when the file
+// has none: lines starting with '#' before the header are skipped), its header (after t) and its
+// rows. Throws user_error located at the file, line and column of what is wrong.
 struct csv_table {
+    std::string provenance;
+    int header_line = 1;
     std::vector<std::string> columns;
     std::vector<std::vector<double>> rows;
 };

@@ -36,13 +36,18 @@ csv_table read_run_csv(const std::string& path) {
     std::ifstream in(path);
     if (!in) throw user_error({path}, "cannot read the run's CSV");
     std::string line;
-    if (!std::getline(in, line) || line.rfind("t,", 0) != 0)
-        throw user_error({path, 1, 1}, "not a CSV that rotgen simulate wrote: its header must "
-                                       "start with 't,'");
     csv_table table;
+    int n = 1;
+    // the provenance line, and any other comment before the header
+    for (; std::getline(in, line) && !line.empty() && line[0] == '#'; ++n)
+        if (n == 1) table.provenance = line;
+    if (line.rfind("t,", 0) != 0)
+        throw user_error({path, n, 1}, "not a CSV that rotgen simulate wrote: its header must "
+                                       "start with 't,'");
+    table.header_line = n;
     const auto header = split_fields(line);
     table.columns.assign(header.begin() + 1, header.end());
-    for (int n = 2; std::getline(in, line); ++n) {
+    for (++n; std::getline(in, line); ++n) {
         if (line.empty()) continue;
         const auto fields = split_fields(line);
         if (fields.size() != header.size())
@@ -57,7 +62,8 @@ csv_table read_run_csv(const std::string& path) {
         }
         table.rows.push_back(std::move(row));
     }
-    if (table.rows.empty()) throw user_error({path, 2, 1}, "the CSV has no rows");
+    if (table.rows.empty())
+        throw user_error({path, table.header_line + 1, 1}, "the CSV has no rows");
     return table;
 }
 

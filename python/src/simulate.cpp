@@ -77,7 +77,7 @@ py::dict result_of(const scene_spec& scene, const run_result& r) {
     d["summary"] = summary_of(scene, r);
     d["ok"] = r.ok;
     // the CLI's line for a run that stopped (simulate.cpp), without the partial file
-    const double t = r.rows.empty() ? scene.t_start : r.rows.back()[0];
+    const double t = r.t_reached; // past the last row when the run stopped between samples
     d["message"] = r.ok ? std::string()
                         : to_string(scene.integrator_where) +
                               ": the run stopped at t = " + format_double(t) + " of " +

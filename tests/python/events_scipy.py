@@ -67,7 +67,7 @@ def rotgen_floor(rotgen, scene, work):
     out = os.path.join(work, "fall.csv")
     subprocess.run([rotgen, "simulate", scene, "-o", out, "-q"], check=True)
     with open(os.path.join(work, "fall.events.csv")) as f:
-        rows = [r for r in csv.DictReader(f) if r["event"] == "floor"]
+        rows = [r for r in csv.DictReader(l for l in f if not l.startswith("#")) if r["event"] == "floor"]
     assert len(rows) == 1, rows
     return {k: float(v) for k, v in rows[0].items() if k != "event"}
 

@@ -42,7 +42,7 @@ def turning_angles(theta0, phi_dot0, psi_dot0):
 
 
 def read_csv(path):
-    lines = pathlib.Path(path).read_text().splitlines()
+    lines = [l for l in pathlib.Path(path).read_text().splitlines() if not l.startswith("#")]
     header = lines[0].split(",")
     return header, [line.split(",") for line in lines[1:]]
 

@@ -4,6 +4,7 @@
 // step grid (times exact in binary) and the model is autonomous; the CSV's numbers have 17
 // significant digits; a row without a complete state of the scene's form is refused, naming what
 // is missing.
+#include "run/provenance.hpp"
 #include "support.hpp"
 
 #include <catch2/catch.hpp>
@@ -41,7 +42,7 @@ whole_and_halves(const std::string& name, const std::string& rest) {
     REQUIRE(a.status == 0);
     REQUIRE(b.status == 0);
     CHECK(b.out.find("start   from the last row of " + scratch(name + "_a.csv") +
-                     " (line 10), t = 2.0") != std::string::npos);
+                     " (line 11), t = 2.0") != std::string::npos);
     return {text_lines(read_file(scratch(name + "_whole.csv"))),
             text_lines(read_file(scratch(name + "_b.csv")))};
 }
@@ -65,10 +66,11 @@ TEST_CASE("two chained halves of a fixed-step run equal the whole run bit for bi
     const auto [whole, half] = whole_and_halves(
         "chain_" + form + "_" + method, "form: " + form + "\nintegrator: {method: " + method +
                                             ", step: 0.015625}\nrecord: " + record + "\n");
-    REQUIRE(whole.size() == 18); // header and 17 rows
-    REQUIRE(half.size() == 10);
+    REQUIRE(whole.size() == 19); // provenance line, header and 17 rows
+    REQUIRE(half.size() == 11);
     CHECK(half[0] == whole[0]);
-    for (std::size_t i = 1; i < half.size(); ++i)
+    CHECK(half[1] == whole[1]);
+    for (std::size_t i = 2; i < half.size(); ++i)
         CHECK(half[i] == whole[i + 8]); // the same text: every digit of every number
 }
 
@@ -80,7 +82,7 @@ TEST_CASE("two chained halves of an adaptive run equal the whole run to its tole
         "chain_dop853", "form: lagrangian\nintegrator: {method: dop853, rtol: 1e-10, atol: "
                         "1e-12}\nrecord: [phi, theta, psi, phi_dot, theta_dot, psi_dot]\n");
     double worst = 0;
-    for (std::size_t i = 1; i < half.size(); ++i) {
+    for (std::size_t i = 2; i < half.size(); ++i) { // after the provenance line and the header
         std::istringstream a(half[i]), b(whole[i + 8]);
         std::string x, y;
         while (std::getline(a, x, ',') && std::getline(b, y, ','))
@@ -122,30 +124,32 @@ TEST_CASE("simulate --from refuses a row that is not a complete state of the sce
           "what is "
           "missing, and writes nothing",
           "[simulate][continue][errors]") {
-    // the earlier run: a Lagrangian heavy top recording some of its state
-    const run_result first = simulate(
-        "from_partial", top + "form: lagrangian\ntime: {end: 1, samples: 3}\n"
-                              "record: [phi, theta, psi, phi_dot, omega1, omega2, omega3]\n");
-    REQUIRE(first.status == 0);
-    const std::string csv = scratch("from_partial.csv");
     using row = std::tuple<std::string, std::string>;
-    const auto [form, expected] = GENERATE_COPY(table<std::string, std::string>({
-        row{"lagrangian", csv + ":1:1: the last row (line 4) is not a complete state of the "
-                                "lagrangian form: it lacks theta_dot, psi_dot (record phi, theta, "
-                                "psi, phi_dot, theta_dot, psi_dot in the run to continue)"},
-        row{"hamiltonian", csv + ":1:1: the last row (line 4) is not a complete state of the "
-                                 "hamiltonian form: it lacks p_phi, p_theta, p_psi (record phi, "
-                                 "theta, psi, p_phi, p_theta, p_psi in the run to continue)"},
-        row{"body", csv + ":1:1: the last row (line 4) is not a complete state of the body form: "
-                          "it lacks q0, q1, q2, q3 (record q0, q1, q2, q3, omega1, omega2, omega3 "
-                          "in the run to continue)"},
+    const auto [form, expected] = GENERATE(table<std::string, std::string>({
+        row{"lagrangian", ":2:1: the last row (line 5) is not a complete state of the "
+                          "lagrangian form: it lacks theta_dot, psi_dot (record phi, theta, "
+                          "psi, phi_dot, theta_dot, psi_dot in the run to continue)"},
+        row{"hamiltonian", ":2:1: the last row (line 5) is not a complete state of the "
+                           "hamiltonian form: it lacks p_phi, p_theta, p_psi (record phi, "
+                           "theta, psi, p_phi, p_theta, p_psi in the run to continue)"},
+        row{"body", ":2:1: the last row (line 5) is not a complete state of the body form: "
+                    "it lacks q0, q1, q2, q3 (record q0, q1, q2, q3, omega1, omega2, omega3 "
+                    "in the run to continue)"},
     }));
     INFO(form);
+    // the earlier run: a heavy top in the same form (--from refuses another) recording some of
+    // its state
+    const run_result first = simulate(
+        "from_partial", top + "form: " + form +
+                            "\ntime: {end: 1, samples: 3}\n"
+                            "record: [phi, theta, psi, phi_dot, omega1, omega2, omega3]\n");
+    REQUIRE(first.status == 0);
+    const std::string csv = scratch("from_partial.csv");
     const run_result r =
         simulate("from_refused", top + "form: " + form + "\ntime: {end: 2, samples: 3}\n",
                  "--from '" + csv + "'");
     CHECK(r.status == 2);
-    CHECK(r.err == "rotgen: error: " + expected + "\n");
+    CHECK(r.err == "rotgen: error: " + csv + expected + "\n");
     CHECK_FALSE(std::ifstream(scratch("from_refused.csv")).good());
 }
 
@@ -156,16 +160,24 @@ TEST_CASE(
     const std::string asym = "model: " + model_path("free_asymmetric_top") +
                              "\ninitial: {phi: 0, theta: 1, psi: 0.3, omega1: 0.1, omega2: 0.5, "
                              "omega3: 1}\nform: reduced\n";
-    const scratch_file no_psi("from_no_psi.csv", "t,theta,p_phi,p_theta,p_psi\n0,1,0.5,0.1,0.2\n"
-                                                 "1,1.1,0.5,0.2,0.2\n");
-    const scratch_file bad("from_bad.csv", "t,theta,p_phi,p_theta,p_psi\n0,1,0.5,0.1,0.2\n"
-                                           "1,1.1,0.5,nan,0.2\n");
+    // each starts with the provenance line of a run of that model in the reduced form
+    const std::string line =
+        rotgen::provenance_line(rotgen::provenance_of(
+            rotgen::load_model(model_path("free_asymmetric_top")), rotgen::form_kind::reduced)) +
+        "\n";
+    const scratch_file no_psi("from_no_psi.csv",
+                              line + "t,theta,p_phi,p_theta,p_psi\n0,1,0.5,0.1,0.2\n"
+                                     "1,1.1,0.5,0.2,0.2\n");
+    const scratch_file bad("from_bad.csv", line + "t,theta,p_phi,p_theta,p_psi\n0,1,0.5,0.1,0.2\n"
+                                                  "1,1.1,0.5,nan,0.2\n");
     const scratch_file short_row("from_short.csv",
-                                 "t,theta,p_phi,p_theta,p_psi\n0,1,0.5,0.1,0.2\n1,1.1\n");
-    const scratch_file header("from_header.csv", "theta,t\n1,0\n");
-    const scratch_file empty("from_empty.csv", "t,theta,p_phi,p_theta,p_psi\n");
-    const scratch_file tilted("from_theta.csv", "t,theta,psi,p_phi,p_theta,p_psi\n1,4,0,1,0,1\n");
-    const scratch_file at_end("from_at_end.csv", "t,theta,psi,p_phi,p_theta,p_psi\n2,1,0,1,0,1\n");
+                                 line + "t,theta,p_phi,p_theta,p_psi\n0,1,0.5,0.1,0.2\n1,1.1\n");
+    const scratch_file header("from_header.csv", line + "theta,t\n1,0\n");
+    const scratch_file empty("from_empty.csv", line + "t,theta,p_phi,p_theta,p_psi\n");
+    const scratch_file tilted("from_theta.csv",
+                              line + "t,theta,psi,p_phi,p_theta,p_psi\n1,4,0,1,0,1\n");
+    const scratch_file at_end("from_at_end.csv",
+                              line + "t,theta,psi,p_phi,p_theta,p_psi\n2,1,0,1,0,1\n");
     // paths, not the files: GENERATE_COPY copies what it uses, and a copied scratch_file removes
     // its file when the copy goes
     const std::string no_psi_csv = no_psi.path, bad_csv = bad.path, short_csv = short_row.path,
@@ -173,16 +185,16 @@ TEST_CASE(
                       theta_csv = tilted.path, none_csv = scratch("from_none.csv");
     using row = std::tuple<std::string, std::string>;
     const auto [file, expected] = GENERATE_COPY(table<std::string, std::string>({
-        row{no_psi_csv, no_psi_csv + ":1:1: the last row (line 3) is not a complete state of the "
+        row{no_psi_csv, no_psi_csv + ":2:1: the last row (line 4) is not a complete state of the "
                                      "reduced form: it lacks psi (record theta, psi, p_theta, "
                                      "p_psi, p_phi in the run to continue)"},
-        row{bad_csv, bad_csv + ":3:11: p_theta = 'nan' is not a finite number: this row cannot "
+        row{bad_csv, bad_csv + ":4:11: p_theta = 'nan' is not a finite number: this row cannot "
                                "start a run"},
-        row{short_csv, short_csv + ":3:1: the last row has 2 values for the header's 5 columns"},
-        row{header_csv, header_csv + ":1:1: not a CSV written by rotgen simulate (its header "
+        row{short_csv, short_csv + ":4:1: the last row has 2 values for the header's 5 columns"},
+        row{header_csv, header_csv + ":2:1: not a CSV written by rotgen simulate (its header "
                                      "does not start with t): nothing to continue from"},
-        row{empty_csv, empty_csv + ":1:1: the run has no rows to continue from"},
-        row{theta_csv, theta_csv + ":2:1: theta = 4 is outside [0, pi] (z-x-z Euler angles)"},
+        row{empty_csv, empty_csv + ":2:1: the run has no rows to continue from"},
+        row{theta_csv, theta_csv + ":3:1: theta = 4 is outside [0, pi] (z-x-z Euler angles)"},
         row{none_csv, none_csv + ": cannot read the run to continue from: No such file or "
                                  "directory"},
         row{at_end_csv, "SCENE:4:13: the run in " + at_end_csv +

@@ -23,8 +23,9 @@ TEST_CASE("Euler-angle rates at theta = 0 are written nan, as the README says",
     const run_result r = run_rotgen("simulate spin.yaml -o -", dir);
     INFO(r.err);
     REQUIRE(r.status == 0);
-    CHECK(r.out == "t,theta,phi_dot,psi_dot,omega3\n0,0,nan,nan,30\n0.10000000000000001,0,nan,"
-                   "nan,30\n");
+    CHECK(without_provenance(r.out) ==
+          "t,theta,phi_dot,psi_dot,omega3\n0,0,nan,nan,30\n0.10000000000000001,0,nan,"
+          "nan,30\n");
     CHECK(r.err.find("4 recorded values are not finite (inf or nan)") != std::string::npos);
     std::ifstream readme(std::string(ROTGEN_SOURCE_DIR) + "/README.md");
     const std::string text((std::istreambuf_iterator<char>(readme)),
@@ -39,7 +40,7 @@ TEST_CASE("simulate --events on a scene without events writes the header and say
     const run_result r = run_rotgen("simulate top.yaml -o out.csv --events ev.csv", dir);
     INFO(r.err);
     REQUIRE(r.status == 0);
-    CHECK(read_file(dir + "/ev.csv") == "event,t,theta\n");
+    CHECK(without_provenance(read_file(dir + "/ev.csv")) == "event,t,theta\n");
     CHECK(r.out.find("wrote   ev.csv (0 events; the scene has no events:)\n") != std::string::npos);
 }
 

@@ -21,9 +21,9 @@ std::string scratch(const std::string& name) {
     return std::string(ROTGEN_BINARY_DIR) + "/" + name;
 }
 
-// The first column (event names) of an events CSV.
+// The first column (event names) of an events CSV (after its provenance line and header).
 std::vector<std::string> event_names(const std::string& path) {
-    std::istringstream in(read_file(path));
+    std::istringstream in(without_provenance(read_file(path)));
     std::string line;
     std::vector<std::string> names;
     std::getline(in, line);

@@ -133,7 +133,7 @@ def refusals(rotgen, work, scene, csv):
     """Bad input to the viewer: exit 2, one located line, no page written."""
     page = os.path.join(work, "bad.html")
     no_q = os.path.join(work, "no_q.csv")
-    rows = open(csv).read().splitlines()
+    rows = [r for r in open(csv).read().splitlines() if not r.startswith("#")]  # provenance
     header = rows[0].split(",")
     keep = [i for i, c in enumerate(header) if c not in ("q0", "q1", "q2", "q3")]
     open(no_q, "w").write("\n".join(",".join(r.split(",")[i] for i in keep) for r in rows[:3]) + "\n")
@@ -169,7 +169,7 @@ def main():
     subprocess.run([a.rotgen, "view", csv, "--scene", scene, "-o", page], check=True,
                    stdout=subprocess.DEVNULL)
     refusals(a.rotgen, work, scene, csv)
-    rows = [[float(v) for v in line.split(",")] for line in open(csv).read().splitlines()[1:]]
+    rows = [[float(v) for v in line.split(",")] for line in open(csv).read().splitlines()[2:]]
     html = open(page).read()
 
     external = re.findall(r"""(?:\b(?:src|href)\s*=\s*["']?|url\(\s*["']?|\bimport\s*\(?\s*["']|"""

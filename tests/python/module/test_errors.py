@@ -87,7 +87,7 @@ def test_a_run_that_stops_raises_run_error_with_the_partial_result(in_tmp):
     # the CLI's line up to where it names its partial file (`<scene>` is scene.yaml there)
     expected = cli_line(err).split("; the ")[0].replace("scene.yaml", "<scene>", 1)
     assert str(e) == expected
-    rows = np.loadtxt("cli.partial.csv", delimiter=",", skiprows=1, ndmin=2)
+    rows = np.loadtxt("cli.partial.csv", delimiter=",", skiprows=2, ndmin=2)  # provenance, header
     assert not e.result.success and len(e.result.t) == len(rows) > 0
     assert np.array_equal(e.result.t, rows[:, 0]) and np.array_equal(e.result.y, rows[:, 1:])
 

@@ -14,8 +14,8 @@ SCENES = sorted(f for f in os.listdir(source("models", "scenes")) if f.endswith(
 
 
 def read_csv(path):
-    with open(path, newline="") as f:
-        rows = list(csv.reader(f))
+    with open(path, newline="") as f:  # after the provenance line ("# rotgen ... form F")
+        rows = list(csv.reader(line for line in f if not line.startswith("#")))
     return rows[0], rows[1:]
 
 
