@@ -66,7 +66,6 @@ class scene_run {
     void decide_chart();
     const compiled_form& compile(form_kind form);
     Eigen::VectorXd state_of(const form_expressions& f, const initial_kinematics& k) const;
-    std::vector<double> parameters_of(const form_expressions& f, const initial_kinematics& k) const;
     void check_finite_start(const initial_kinematics& k, const compiled_form& cf,
                             const Eigen::VectorXd& y) const;
     enum class next { done, body, euler }; // after a segment: finished, or continue in that chart
@@ -209,7 +208,7 @@ Eigen::VectorXd scene_run::state_of(const form_expressions& f, const initial_kin
         const std::string& name = f.state[s].name;
         const bool needs_rates = name.find("_dot") != std::string::npos || name.rfind("p_", 0) == 0;
         // Unreachable from a scene: without rates (|sin theta| < 1e-12) an Euler-angle form
-        // either starts in the body form (decide_chart: the switch below 0.2) or is refused by
+        // either starts in the body form (decide_chart: the switch below 0.1) or is refused by
         // decide_chart (|sin theta| < 1e-10 without the switch), and a switch back to it happens
         // only above |sin theta| = 0.3.
         if (needs_rates && !k.have_rates)
@@ -218,28 +217,6 @@ Eigen::VectorXd scene_run::state_of(const form_expressions& f, const initial_kin
         y[static_cast<Eigen::Index>(s)] = static_cast<double>(state_value(k, m_angles, name));
     }
     return y;
-}
-
-// The form's parameters: the scene's values of the model's, and the conserved momenta (reduced).
-std::vector<double> scene_run::parameters_of(const form_expressions& f,
-                                             const initial_kinematics& k) const {
-    std::vector<double> values;
-    const model_spec& spec = m_scene.model;
-    for (const auto& fp : f.parameters) {
-        std::optional<long double> v;
-        for (std::size_t i = 0; i < spec.parameters.size() && !v; ++i)
-            if (spec.parameters[i].name == fp.name) v = m_model_parameters[i];
-        for (int i = 0; i < 3 && !v; ++i)
-            if (fp.name == "p_" + m_angles.names[i]) {
-                if (!k.have_rates)
-                    throw user_error(m_scene.initial_where,
-                                     "the reduced form needs the initial momenta");
-                v = k.p[static_cast<std::size_t>(i)];
-            }
-        if (!v) throw std::logic_error("no value for the form parameter " + fp.name);
-        values.push_back(static_cast<double>(*v));
-    }
-    return values;
 }
 
 // Initial values the parser accepts (each finite) may still overflow double precision in what
@@ -371,7 +348,8 @@ void scene_run::switch_chart(next to, Eigen::VectorXd& y, double& t_from) {
             " = " + short_number(st) + why + ")";
     const compiled_form& next_form = compile(target);
     y = is_rotor_form(target) ? rotor_other_chart(from.form, last.y) : state_of(next_form.f, k);
-    m_parameters[m_current] = parameters_of(next_form.f, k);
+    m_parameters[m_current] =
+        form_parameter_values(m_scene, m_model_parameters, next_form.f.parameters, k);
     t_from = last.t;
     m_next_sample = m_samples.size();
 }
@@ -468,7 +446,8 @@ Eigen::VectorXd scene_run::start() {
     set_up_events();
 
     Eigen::VectorXd y = state_of(first.f, k0);
-    m_parameters[m_current] = parameters_of(first.f, k0);
+    m_parameters[m_current] =
+        form_parameter_values(m_scene, m_model_parameters, first.f.parameters, k0);
     check_finite_start(k0, first, y);
     if (m_split) {
         const integrator_spec& ig = m_scene.integrator;

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 namespace rotgen {
@@ -187,6 +188,29 @@ long double state_value(const initial_kinematics& k, const angle_convention& c,
     if (name == "qy") return k.quat.y();
     if (name == "qz") return k.quat.z();
     throw std::logic_error("unknown state variable " + name);
+}
+
+std::vector<double> form_parameter_values(const scene_spec& scene,
+                                          const std::vector<long double>& model_values,
+                                          const std::vector<form_parameter>& parameters,
+                                          const initial_kinematics& k) {
+    std::vector<double> values;
+    const model_spec& spec = scene.model;
+    for (const auto& fp : parameters) {
+        std::optional<long double> v;
+        for (std::size_t i = 0; i < spec.parameters.size() && !v; ++i)
+            if (spec.parameters[i].name == fp.name) v = model_values[i];
+        for (int i = 0; i < 3 && !v; ++i)
+            if (fp.name == "p_" + spec.angles.names[static_cast<std::size_t>(i)]) {
+                if (!k.have_rates)
+                    throw user_error(scene.initial_where,
+                                     "the reduced form needs the initial momenta");
+                v = k.p[static_cast<std::size_t>(i)];
+            }
+        if (!v) throw std::logic_error("no value for the form parameter " + fp.name);
+        values.push_back(static_cast<double>(*v));
+    }
+    return values;
 }
 
 } // namespace rotgen

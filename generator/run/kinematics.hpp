@@ -11,6 +11,7 @@
 #pragma once
 
 #include "derive/derive.hpp"
+#include "forms/forms.hpp"
 #include "scene/scene.hpp"
 
 #include <Eigen/Dense>
@@ -18,6 +19,7 @@
 
 #include <array>
 #include <string>
+#include <vector>
 
 namespace rotgen {
 
@@ -52,6 +54,15 @@ void check_physical_inertia(const scene_spec& scene, const Eigen::Matrix3d& iner
 // p_<angle> (the reduced form's parameters), in long double. std::logic_error for another name.
 long double scene_parameter_value(const scene_spec& scene, const initial_kinematics& k,
                                   const std::string& name);
+
+// The values of a form's parameters for one member: its model parameter values (model_values,
+// in the order of scene.model.parameters, exact to long double) and, for the reduced form, the
+// conserved momenta p_<angle> of k, rounded to double. user_error at the scene's `initial` when
+// the reduced form is started without momenta; std::logic_error for a name that is neither.
+std::vector<double> form_parameter_values(const scene_spec& scene,
+                                          const std::vector<long double>& model_values,
+                                          const std::vector<form_parameter>& parameters,
+                                          const initial_kinematics& k);
 
 // A state variable of any form (phi .. psi, phi_dot .., p_phi .., omega1..3, qw qx qy qz) from
 // the initial kinematics, the angles named by c. std::logic_error for another name.
