@@ -89,6 +89,13 @@ int run_command(std::vector<std::string> args) {
                              "rotgen --help)");
 }
 
+// bench and sweep write their folder as they go (sweep's journal is what --resume continues):
+// a standard output that fails after such a command finished cannot take those files back, so
+// the run is one that started and could not finish (status 3), its files kept and complete.
+bool writes_as_it_goes(const std::string& command) {
+    return command == "bench" || command == "sweep";
+}
+
 void report(const user_error& e) {
     std::cerr << "rotgen: error: " << one_line(e.message()) << "\n";
 }
@@ -97,12 +104,22 @@ void report(const user_error& e) {
 
 int run_cli(int argc, char** argv) {
     try {
-        const int status = run_command(std::vector<std::string>(argv + 1, argv + argc));
+        const std::vector<std::string> args(argv + 1, argv + argc);
+        const int status = run_command(args);
         try {
             flush_standard_output(); // a full disk behind standard output is an error too
         } catch (const user_error& e) {
+            if (status != 0) { // 3: the partial rows were written, and say so already
+                report(e);
+                return status;
+            }
+            if (!args.empty() && writes_as_it_goes(args[0])) {
+                std::cerr << "rotgen: error: " << one_line(e.message()) << " after the " << args[0]
+                          << " finished: the files it wrote in its folder are complete and kept\n";
+                return 3;
+            }
             report(e);
-            return status == 0 ? 2 : status; // 3: the partial rows were written
+            return 2;
         }
         return status;
     } catch (const user_error& e) {

@@ -13,6 +13,7 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <filesystem>
 
 using namespace rotgen::test;
@@ -68,6 +69,26 @@ TEST_CASE("a full standard output is exit 2 with one line for simulate, inspect 
     CHECK(read_file(dir + "/inspect.txt").size() > 1000); // observed 3,9xx bytes
 }
 
+// A sweep writes its folder as it goes (its journal is what --resume continues): a standard output
+// that fails after it finished cannot take the folder back, so the run is one that could not
+// finish: status 3, and the line says the files are complete and kept.
+TEST_CASE("a full standard output after a sweep is exit 3 with its folder complete",
+          "[cli][outputs]") {
+    if (!have_dev_full()) return; // WARNed by have_dev_full
+    const std::string dir = fresh_folder("outputs_sweep_stdout_full");
+    write_top_scene(dir + "/top.yaml");
+    const run_result r =
+        run_to("sweep top.yaml -o out -j 1 --vary initial.theta=0.4:0.6:3", "/dev/full", dir);
+    CHECK(r.status == 3);
+    CHECK(r.err == "rotgen: error: standard output: cannot write: No space left on device after "
+                   "the sweep finished: the files it wrote in its folder are complete and kept\n");
+    const std::string summary = read_file(dir + "/out/summary.csv");
+    CHECK(std::count(summary.begin(), summary.end(), '\n') == 4); // the header and 3 members
+    // with its standard output in a file, the same sweep is exit 0
+    const run_result ok = run_to("sweep top.yaml -o out2 -j 1 --vary initial.theta=0.4:0.6:3",
+                                 dir + "/sweep.txt", dir);
+    CHECK(ok.status == 0);
+}
 TEST_CASE("emit -o DIR with a full standard output leaves no header", "[cli][outputs]") {
     if (!have_dev_full()) return; // WARNed by have_dev_full
     const std::string dir = fresh_folder("outputs_emit_full");
