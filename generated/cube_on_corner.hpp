@@ -53,9 +53,7 @@
 /// The kernels of the model 'cube_on_corner', Lagrangian form, y = (q, q_dot), explicit accelerations q_ddot = M^{-1} f (cube_on_corner.hpp).
 
 namespace rotgen {
-/// The kernels that `rotgen emit` writes: one namespace per emitted header.
 namespace models {
-/// The kernels of the model 'cube_on_corner', Lagrangian form, y = (q, q_dot), explicit accelerations q_ddot = M^{-1} f (cube_on_corner.hpp).
 namespace cube_on_corner {
 
 namespace detail {

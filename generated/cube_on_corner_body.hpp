@@ -55,9 +55,7 @@
 /// The kernels of the model 'cube_on_corner', body form, Euler's equations with a quaternion, y = (q, omega) (cube_on_corner_body.hpp).
 
 namespace rotgen {
-/// The kernels that `rotgen emit` writes: one namespace per emitted header.
 namespace models {
-/// The kernels of the model 'cube_on_corner', body form, Euler's equations with a quaternion, y = (q, omega) (cube_on_corner_body.hpp).
 namespace cube_on_corner_body {
 
 namespace detail {

@@ -53,9 +53,7 @@
 /// The kernels of the model 'cube_on_corner', Hamiltonian form, y = (q, p) (cube_on_corner_hamiltonian.hpp).
 
 namespace rotgen {
-/// The kernels that `rotgen emit` writes: one namespace per emitted header.
 namespace models {
-/// The kernels of the model 'cube_on_corner', Hamiltonian form, y = (q, p) (cube_on_corner_hamiltonian.hpp).
 namespace cube_on_corner_hamiltonian {
 
 namespace detail {

@@ -54,9 +54,7 @@
 /// The kernels of the model 'cube_on_corner', reduced (Routh) form, cyclic coordinates ignored (cube_on_corner_reduced.hpp).
 
 namespace rotgen {
-/// The kernels that `rotgen emit` writes: one namespace per emitted header.
 namespace models {
-/// The kernels of the model 'cube_on_corner', reduced (Routh) form, cyclic coordinates ignored (cube_on_corner_reduced.hpp).
 namespace cube_on_corner_reduced {
 
 namespace detail {

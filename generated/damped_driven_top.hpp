@@ -54,9 +54,7 @@
 /// The kernels of the model 'damped_driven_top', Lagrangian form, y = (q, q_dot), explicit accelerations q_ddot = M^{-1} f (damped_driven_top.hpp).
 
 namespace rotgen {
-/// The kernels that `rotgen emit` writes: one namespace per emitted header.
 namespace models {
-/// The kernels of the model 'damped_driven_top', Lagrangian form, y = (q, q_dot), explicit accelerations q_ddot = M^{-1} f (damped_driven_top.hpp).
 namespace damped_driven_top {
 
 namespace detail {

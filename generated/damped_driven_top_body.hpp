@@ -58,9 +58,7 @@
 /// The kernels of the model 'damped_driven_top', body form, Euler's equations with a quaternion, y = (q, omega) (damped_driven_top_body.hpp).
 
 namespace rotgen {
-/// The kernels that `rotgen emit` writes: one namespace per emitted header.
 namespace models {
-/// The kernels of the model 'damped_driven_top', body form, Euler's equations with a quaternion, y = (q, omega) (damped_driven_top_body.hpp).
 namespace damped_driven_top_body {
 
 namespace detail {

@@ -54,9 +54,7 @@
 /// The kernels of the model 'damped_driven_top', Hamiltonian form, y = (q, p) (damped_driven_top_hamiltonian.hpp).
 
 namespace rotgen {
-/// The kernels that `rotgen emit` writes: one namespace per emitted header.
 namespace models {
-/// The kernels of the model 'damped_driven_top', Hamiltonian form, y = (q, p) (damped_driven_top_hamiltonian.hpp).
 namespace damped_driven_top_hamiltonian {
 
 namespace detail {

@@ -53,9 +53,7 @@
 /// The kernels of the model 'free_asymmetric_top', Lagrangian form, y = (q, q_dot), explicit accelerations q_ddot = M^{-1} f (free_asymmetric_top.hpp).
 
 namespace rotgen {
-/// The kernels that `rotgen emit` writes: one namespace per emitted header.
 namespace models {
-/// The kernels of the model 'free_asymmetric_top', Lagrangian form, y = (q, q_dot), explicit accelerations q_ddot = M^{-1} f (free_asymmetric_top.hpp).
 namespace free_asymmetric_top {
 
 namespace detail {

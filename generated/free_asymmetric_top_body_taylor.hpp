@@ -44,9 +44,7 @@
 /// The kernels of the model 'free_asymmetric_top', body form, Euler's equations, y = omega (free_asymmetric_top_body_taylor.hpp).
 
 namespace rotgen {
-/// The kernels that `rotgen emit` writes: one namespace per emitted header.
 namespace models {
-/// The kernels of the model 'free_asymmetric_top', body form, Euler's equations, y = omega (free_asymmetric_top_body_taylor.hpp).
 namespace free_asymmetric_top_body_taylor {
 
 namespace detail {

@@ -53,9 +53,7 @@
 /// The kernels of the model 'free_asymmetric_top', Hamiltonian form, y = (q, p) (free_asymmetric_top_hamiltonian.hpp).
 
 namespace rotgen {
-/// The kernels that `rotgen emit` writes: one namespace per emitted header.
 namespace models {
-/// The kernels of the model 'free_asymmetric_top', Hamiltonian form, y = (q, p) (free_asymmetric_top_hamiltonian.hpp).
 namespace free_asymmetric_top_hamiltonian {
 
 namespace detail {

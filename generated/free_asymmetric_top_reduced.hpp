@@ -54,9 +54,7 @@
 /// The kernels of the model 'free_asymmetric_top', reduced (Routh) form, cyclic coordinates ignored (free_asymmetric_top_reduced.hpp).
 
 namespace rotgen {
-/// The kernels that `rotgen emit` writes: one namespace per emitted header.
 namespace models {
-/// The kernels of the model 'free_asymmetric_top', reduced (Routh) form, cyclic coordinates ignored (free_asymmetric_top_reduced.hpp).
 namespace free_asymmetric_top_reduced {
 
 namespace detail {

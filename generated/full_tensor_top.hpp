@@ -54,9 +54,7 @@
 /// The kernels of the model 'full_tensor_top', Lagrangian form, y = (q, q_dot), explicit accelerations q_ddot = M^{-1} f (full_tensor_top.hpp).
 
 namespace rotgen {
-/// The kernels that `rotgen emit` writes: one namespace per emitted header.
 namespace models {
-/// The kernels of the model 'full_tensor_top', Lagrangian form, y = (q, q_dot), explicit accelerations q_ddot = M^{-1} f (full_tensor_top.hpp).
 namespace full_tensor_top {
 
 namespace detail {

@@ -56,9 +56,7 @@
 /// The kernels of the model 'full_tensor_top', body form, Euler's equations with a quaternion, y = (q, omega) (full_tensor_top_body.hpp).
 
 namespace rotgen {
-/// The kernels that `rotgen emit` writes: one namespace per emitted header.
 namespace models {
-/// The kernels of the model 'full_tensor_top', body form, Euler's equations with a quaternion, y = (q, omega) (full_tensor_top_body.hpp).
 namespace full_tensor_top_body {
 
 namespace detail {

@@ -54,9 +54,7 @@
 /// The kernels of the model 'full_tensor_top', Hamiltonian form, y = (q, p) (full_tensor_top_hamiltonian.hpp).
 
 namespace rotgen {
-/// The kernels that `rotgen emit` writes: one namespace per emitted header.
 namespace models {
-/// The kernels of the model 'full_tensor_top', Hamiltonian form, y = (q, p) (full_tensor_top_hamiltonian.hpp).
 namespace full_tensor_top_hamiltonian {
 
 namespace detail {

@@ -55,9 +55,7 @@
 /// The kernels of the model 'full_tensor_top', reduced (Routh) form, cyclic coordinates ignored (full_tensor_top_reduced.hpp).
 
 namespace rotgen {
-/// The kernels that `rotgen emit` writes: one namespace per emitted header.
 namespace models {
-/// The kernels of the model 'full_tensor_top', reduced (Routh) form, cyclic coordinates ignored (full_tensor_top_reduced.hpp).
 namespace full_tensor_top_reduced {
 
 namespace detail {

@@ -54,9 +54,7 @@
 /// The kernels of the model 'heavy_top', Hamiltonian form, y = (q, p) (heavy_top_hamiltonian.hpp).
 
 namespace rotgen {
-/// The kernels that `rotgen emit` writes: one namespace per emitted header.
 namespace models {
-/// The kernels of the model 'heavy_top', Hamiltonian form, y = (q, p) (heavy_top_hamiltonian.hpp).
 namespace heavy_top_hamiltonian {
 
 namespace detail {

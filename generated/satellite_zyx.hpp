@@ -53,9 +53,7 @@
 /// The kernels of the model 'satellite_zyx', Lagrangian form, y = (q, q_dot), explicit accelerations q_ddot = M^{-1} f (satellite_zyx.hpp).
 
 namespace rotgen {
-/// The kernels that `rotgen emit` writes: one namespace per emitted header.
 namespace models {
-/// The kernels of the model 'satellite_zyx', Lagrangian form, y = (q, q_dot), explicit accelerations q_ddot = M^{-1} f (satellite_zyx.hpp).
 namespace satellite_zyx {
 
 namespace detail {

@@ -56,9 +56,7 @@
 /// The kernels of the model 'satellite_zyx', body form, Euler's equations with a quaternion, y = (q, omega) (satellite_zyx_body.hpp).
 
 namespace rotgen {
-/// The kernels that `rotgen emit` writes: one namespace per emitted header.
 namespace models {
-/// The kernels of the model 'satellite_zyx', body form, Euler's equations with a quaternion, y = (q, omega) (satellite_zyx_body.hpp).
 namespace satellite_zyx_body {
 
 namespace detail {

@@ -1,5 +1,5 @@
-// Issue 24, "documentation claims that are false today": what the README and the shipped scenes
-// say, checked against what rotgen does.
+// Issue 24, "documentation claims that are false today": what the documentation (docs/scenes.md)
+// and the shipped scenes say, checked against what rotgen does.
 #include "files_support.hpp"
 
 #include <catch2/catch.hpp>
@@ -12,7 +12,7 @@
 using namespace rotgen::test;
 namespace fs = std::filesystem;
 
-TEST_CASE("Euler-angle rates at theta = 0 are written nan, as the README says",
+TEST_CASE("Euler-angle rates at theta = 0 are written nan, as the scene reference says",
           "[simulate][claims]") {
     const std::string dir = fresh_folder("claims_theta0");
     // a spin about the vertical: theta stays exactly 0, where only phi_dot + psi_dot is defined
@@ -27,7 +27,7 @@ TEST_CASE("Euler-angle rates at theta = 0 are written nan, as the README says",
           "t,theta,phi_dot,psi_dot,omega3\n0,0,nan,nan,30\n0.10000000000000001,0,nan,"
           "nan,30\n");
     CHECK(r.err.find("4 recorded values are not finite (inf or nan)") != std::string::npos);
-    std::ifstream readme(std::string(ROTGEN_SOURCE_DIR) + "/README.md");
+    std::ifstream readme(std::string(ROTGEN_SOURCE_DIR) + "/docs/scenes.md");
     const std::string text((std::istreambuf_iterator<char>(readme)),
                            std::istreambuf_iterator<char>());
     CHECK(text.find("as `nan`, and the summary says so") != std::string::npos);
@@ -62,9 +62,9 @@ TEST_CASE("the shipped dumbbell pendulum passes near the pole and changes chart,
     CHECK(closest < 0.1); // the switch threshold; observed 0.05 (the scene's comment)
 }
 
-TEST_CASE("the README's list of shipped scenes names every scene in models/scenes",
+TEST_CASE("the scene reference's list of shipped scenes names every scene in models/scenes",
           "[simulate][claims]") {
-    std::ifstream readme(std::string(ROTGEN_SOURCE_DIR) + "/README.md");
+    std::ifstream readme(std::string(ROTGEN_SOURCE_DIR) + "/docs/scenes.md");
     const std::string text((std::istreambuf_iterator<char>(readme)),
                            std::istreambuf_iterator<char>());
     const std::size_t from = text.find("**Shipped scenes**");
