@@ -355,21 +355,34 @@ std::vector<bool> zero_pattern(const candidates& c, const std::vector<program_in
     return zero;
 }
 
+// The rates of each rate candidate of a form, with their d f/d y and d f/d p.
+struct derivative_candidates {
+    candidates rates, J, P;
+};
+
+derivative_candidates derivatives_of(const form_expressions& f, const std::vector<ex>& symbols) {
+    derivative_candidates d;
+    d.rates = rate_candidates_of(f);
+    for (const auto& rate : d.rates) {
+        d.J.push_back(jacobian(f, rate));
+        d.P.push_back(parameter_jacobian(f, rate, symbols));
+    }
+    return d;
+}
+
 // The candidates of parameter_jacobian (d f/d p, its zeros 0) and of variational_rhs (f, then the
-// non-zero entries of d f/d y and d f/d p), one per rate candidate of `f`.
+// entries of d f/d y neither zero nor 1 and the non-zero ones of d f/d p), one per rate candidate.
 struct sensitivity_candidates {
     candidates dfdp, variational;
 };
 
-sensitivity_candidates sensitivity_candidates_of(const form_expressions& f,
-                                                 const std::vector<ex>& symbols,
+sensitivity_candidates sensitivity_candidates_of(const derivative_candidates& d,
                                                  const lowered_form& r) {
     sensitivity_candidates c;
-    for (const auto& rate : rate_candidates_of(f)) {
-        const std::vector<ex> J = jacobian(f, rate);
-        std::vector<ex> P = parameter_jacobian(f, rate, symbols), all = rate;
-        for (std::size_t i = 0; i < J.size(); ++i)
-            if (!r.sensitivity_dfdy_zero[i] && !r.sensitivity_dfdy_one[i]) all.push_back(J[i]);
+    for (std::size_t j = 0; j < d.rates.size(); ++j) {
+        std::vector<ex> P = d.P[j], all = d.rates[j];
+        for (std::size_t i = 0; i < d.J[j].size(); ++i)
+            if (!r.sensitivity_dfdy_zero[i] && !r.sensitivity_dfdy_one[i]) all.push_back(d.J[j][i]);
         for (std::size_t i = 0; i < P.size(); ++i)
             if (r.sensitivity_dfdp_zero[i])
                 P[i] = 0;
@@ -393,21 +406,17 @@ void add_sensitivity_functions(lowered_form& r, const form_expressions& f,
         symbols.push_back(p.symbol);
         r.sensitivity_names.push_back(p.name);
     }
-    candidates J, P;
-    for (const auto& rate : rate_candidates_of(f)) {
-        J.push_back(jacobian(f, rate));
-        P.push_back(parameter_jacobian(f, rate, symbols));
-    }
-    r.sensitivity_dfdy_zero = zero_pattern(J, choose.inputs(), n);
-    r.sensitivity_dfdp_zero = zero_pattern(P, choose.inputs(), k);
+    const derivative_candidates d = derivatives_of(f, symbols);
+    r.sensitivity_dfdy_zero = zero_pattern(d.J, choose.inputs(), n);
+    r.sensitivity_dfdp_zero = zero_pattern(d.P, choose.inputs(), k);
     r.sensitivity_dfdy_one.assign(n * n, true); // q_dot = q_dot: the product needs no factor
-    for (const auto& entries : J)
+    for (const auto& entries : d.J)
         for (std::size_t i = 0; i < n * n; ++i)
             r.sensitivity_dfdy_one[i] = r.sensitivity_dfdy_one[i] && entries[i].is_equal(1);
-    const sensitivity_candidates c = sensitivity_candidates_of(f, symbols, r);
-    const sensitivity_candidates runtime = choose.folding()
-                                               ? sensitivity_candidates_of(runtime_f, symbols, r)
-                                               : sensitivity_candidates{};
+    const sensitivity_candidates c = sensitivity_candidates_of(d, r);
+    const sensitivity_candidates runtime =
+        choose.folding() ? sensitivity_candidates_of(derivatives_of(runtime_f, symbols), r)
+                         : sensitivity_candidates{};
     std::vector<std::string> targets = indexed("dydt", n);
     const auto local = [](const std::string& name, std::size_t i, std::size_t j) {
         return "const T " + name + "_" + std::to_string(i) + "_" + std::to_string(j);

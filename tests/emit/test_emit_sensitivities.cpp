@@ -126,3 +126,22 @@ TEST_CASE("emit --sensitivities gives the same bytes twice and regenerates from 
     REQUIRE(run_rotgen(first.substr(at, first.find('\n', at) - at)).status == 0);
     CHECK(read_file((a.path / "full_tensor_top_body.hpp").string()) == first);
 }
+
+TEST_CASE("emit --sensitivities in the rotor form: the free rotor's rates do not depend on its "
+          "masses and lengths",
+          "[emit][sensitivities]") {
+    const run_result r = run_rotgen("emit " + sq(model_path("dumbbell")) +
+                                    " -o - --sensitivities parameters.m1,parameters.r2");
+    REQUIRE(r.status == 0);
+    CHECK_THAT(r.out, Contains("constexpr std::size_t state_size = 4;") &&
+                          Contains("void variational_rhs(T t, const T* y, const T* S, T* dydt"));
+    // q_ddot = M^{-1} f with M and f both proportional to the moment of inertia: d f/d p = 0,
+    // all 4 x 2 entries, and variational_rhs has no d f/d p term
+    const std::string zero = " = T(S(0));\n";
+    std::size_t zeros = 0;
+    for (std::size_t at = r.out.find("    dfdp["); at != std::string::npos;
+         at = r.out.find("    dfdp[", at + 1))
+        zeros += r.out.compare(r.out.find(" = ", at), zero.size(), zero) == 0;
+    CHECK(zeros == 8);
+    CHECK_THAT(r.out, !Contains("const T dfdp_"));
+}
