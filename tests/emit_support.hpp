@@ -19,13 +19,14 @@ struct emit_request {
     std::vector<std::string> outputs;
     bool specialise_all = false;
     std::vector<std::string> specialise;
+    std::vector<std::string> sensitivities; // parameters.<name> keys (emit --sensitivities)
     std::string command;
     std::string name;
 };
 
 inline emitted_header emit_with(const model_spec& spec, const derivation& d,
                                 const emit_request& o) {
-    const kernel_request request{o.outputs, o.specialise_all, o.specialise};
+    const kernel_request request{o.outputs, o.specialise_all, o.specialise, o.sensitivities};
     const form_expressions f = build_requested_form(spec, d, o.form, o.strategy, request);
     return emit_header(spec, lower_form(spec, f, request), {o.command, o.name});
 }

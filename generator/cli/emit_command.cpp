@@ -2,6 +2,7 @@
 //             [--outputs rhs,jacobian,energy,momenta,mass_matrix,omega,rotation,ignored_rates,
 //                        taylor]
 //             [--specialise | --specialise=NAME,NAME...] [--strategy explicit|solve] [--name UNIT]
+//             [--sensitivities parameters.NAME,...]
 //
 // Writes DIR/<unit>.hpp (unit: the model's name, plus _<form> for forms other than lagrangian),
 // through a temporary file renamed into place: a failed run leaves no partial header; -o -
@@ -36,7 +37,7 @@ const command_spec emit_command{
     "emit",
     "model file",
     "MODEL.yaml -o DIR [--form F] [--strategy S] [--outputs LIST] [--specialise[=NAMES]] [--name "
-    "UNIT]",
+    "UNIT] [--sensitivities KEYS]",
     "Writes DIR/<unit>.hpp: the model's kernels as a dependency-free C++ header, templated on the\n"
     "scalar (unit: the model's name, plus _<form> for forms other than lagrangian). Written "
     "through\n"
@@ -67,6 +68,11 @@ const command_spec emit_command{
       {"--specialize"},
       true},
      {"--name", "UNIT", "the unit: file UNIT.hpp, namespace rotgen::models::UNIT", {}},
+     {"--sensitivities",
+      "KEYS",
+      "comma-separated parameters.NAME keys: add parameter_jacobian (df/dp) and\n"
+      "variational_rhs (dS/dt = df/dy S + [0|df/dp]) for those parameters",
+      {}},
      {"--timings", "", "print the wall time of each pipeline stage to standard error", {}}}};
 
 [[noreturn]] void fail(const std::string& problem) {
@@ -172,6 +178,8 @@ std::string regenerate_command(const parsed_options& o, form_kind form,
                                          ? "--specialise"
                                          : "--specialise=" + o.value("--specialise"));
     if (o.has("--name")) command += " --name " + o.value("--name");
+    if (o.has("--sensitivities"))
+        command += " --sensitivities " + shell_quote(o.value("--sensitivities"));
     return command;
 }
 
@@ -212,6 +220,8 @@ int cmd_emit(const std::vector<std::string>& args) {
     request.specialise_all = o.has("--specialise") && o.value("--specialise").empty();
     if (!o.value("--specialise").empty())
         request.specialise = split_list(o.value("--specialise"), "--specialise");
+    if (o.has("--sensitivities"))
+        request.sensitivities = split_list(o.value("--sensitivities"), "--sensitivities");
 
     stage_timings timings;
     const model_spec spec = load_model(o.operand, "emit");

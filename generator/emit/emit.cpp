@@ -2,6 +2,7 @@
 #include "emit/emit.hpp"
 
 #include "emit/prepared.hpp"
+#include "emit/sensitivities.hpp"
 #include "emit/taylor.hpp"
 #include "expr/angles.hpp"
 #include "expr/print.hpp"
@@ -113,15 +114,17 @@ void names_used(const std::vector<std::string>& lines, std::set<std::string>& na
         }
 }
 
-// The statements: temporaries, then `target = output;` (or `return output;`).
-void statements(const lowered_function& fn, std::vector<std::string>& steps,
-                std::vector<std::string>& assigns) {
+// The statements: temporaries, then `target = output;` (or `return output;`); literals of the
+// type `scalar`.
+void statements(const lowered_function& fn, const std::string& scalar,
+                std::vector<std::string>& steps, std::vector<std::string>& assigns) {
     const lowered_program& prog = fn.program;
     for (const auto& s : prog.steps)
-        steps.push_back("    const T " + s.name + " = " + print_definition(prog, s.node) + ";");
+        steps.push_back("    const T " + s.name + " = " + print_definition(prog, s.node, scalar) +
+                        ";");
     for (std::size_t i = 0; i < prog.outputs.size(); ++i) {
         const int o = prog.outputs[i];
-        std::string v = print_node(prog, o);
+        std::string v = print_node(prog, o, scalar);
         const auto k = prog.nodes[static_cast<std::size_t>(o)].k;
         if (k == lowered_node::kind::number || k == lowered_node::kind::constant)
             v = "T(" + v + ")";
@@ -130,12 +133,15 @@ void statements(const lowered_function& fn, std::vector<std::string>& steps,
     }
 }
 
-// The body: using-declarations for the maths called, the scalar type of literals, (void) for
-// the arguments left unused, the inputs' aliases (const T theta = y[1];), the statements.
-function_body write_body(const lowered_function& fn) {
+// The body: using-declarations for the maths called, the scalar type of literals (`scalar`: S,
+// or another name where S is an argument), (void) for the arguments left unused, the inputs'
+// aliases (const T theta = y[1];), the statements, then `extra` lines.
+function_body write_body(const lowered_function& fn, const std::string& scalar = "S",
+                         const std::vector<std::string>& extra = {}) {
     const lowered_program& prog = fn.program;
     std::vector<std::string> steps, assigns;
-    statements(fn, steps, assigns);
+    statements(fn, scalar, steps, assigns);
+    assigns.insert(assigns.end(), extra.begin(), extra.end());
     std::set<std::string> names, calls;
     names_used(steps, names, calls);
     names_used(assigns, names, calls);
@@ -145,7 +151,8 @@ function_body write_body(const lowered_function& fn) {
                                                "sin", "sinh", "sqrt", "tan",  "tanh"};
     for (const auto& f : math)
         if (calls.count(f)) lines.push_back("    using std::" + f + ";");
-    if (names.count("S")) lines.push_back("    using S = typename detail::scalar_of<T>::type;");
+    if (names.count(scalar))
+        lines.push_back("    using " + scalar + " = typename detail::scalar_of<T>::type;");
     const std::vector<bool> used = used_inputs(prog);
     bool y_used = false;
     std::vector<std::string> aliases;
@@ -170,6 +177,18 @@ function_body write_body(const lowered_function& fn) {
         throw std::logic_error("emit: the printed program has other operation counts than "
                                "lowering's");
     return {join(lines, "\n"), prog.before, prog.after, prog.steps.size()};
+}
+
+// variational_rhs: its program (dydt and the locals dfdy_i_m, dfdp_i_j) and the product
+// dSdt = (d f/d y) S + [0 | d f/d p]; literals of the type rg_scalar, S being the argument.
+function_body variational_body(const lowered_form& lf, const lowered_function& fn) {
+    const variational_product product = variational_product_lines(lf, "rg_scalar");
+    function_body b = write_body(fn, "rg_scalar", product.lines);
+    for (op_count* o : {&b.before, &b.after}) {
+        o->add += product.operations.add;
+        o->mul += product.operations.mul;
+    }
+    return b;
 }
 
 std::string guard_of(const std::string& unit) {
@@ -359,6 +378,12 @@ std::string function_text(const lowered_form& lf, const lowered_function& fn,
     if (fn.name == "rhs_and_jacobian")
         return fill_template("rhs_and_jacobian.hpp.in", common_values(lf, b));
     if (fn.name == "energy") return energy_text(lf, b);
+    if (fn.name == "parameter_jacobian" || fn.name == "variational_rhs") {
+        auto v = common_values(lf, b);
+        for (const auto& [key, value] : sensitivity_values(lf))
+            v[key] = value;
+        return fill_template(fn.name + ".hpp.in", v);
+    }
     return output_text(lf, fn, b);
 }
 
@@ -507,7 +532,8 @@ emitted_header emit_header(const model_spec& spec, const lowered_form& lf,
             includes = "#include <type_traits>\n#include <utility>\n";
             continue;
         }
-        const function_body b = write_body(fn);
+        const function_body b =
+            fn.name == "variational_rhs" ? variational_body(lf, fn) : write_body(fn);
         h.stats.push_back(
             {fn.name, b.before, b.after, b.temporaries, constants_op_count(fn.program), ""});
         functions += function_text(lf, fn, b);

@@ -52,27 +52,43 @@ ex d_by(const ex& e, const ex& x) {
     return e.diff(GiNaC::ex_to<GiNaC::symbol>(x));
 }
 
-// The solve strategy's rows 3..5: d q_ddot / d y_k = M^{-1} (df/dy_k - dM/dy_k q_ddot), with the
-// factorisation of the rhs.
-void solve_jacobian_rows(const form_expressions& f, const std::vector<ex>& rates,
-                         std::vector<ex>& J) {
-    const std::size_t n = f.state.size();
+// The solve strategy's rows 3..5 of d rates / d x_k for the variables x (J row-major, one column
+// per variable): d q_ddot / d x_k = M^{-1} (df/dx_k - dM/dx_k q_ddot), with the factorisation of
+// the rhs.
+void solve_rows(const form_expressions& f, const std::vector<ex>& rates,
+                const std::vector<ex>& variables, std::vector<ex>& J) {
+    const std::size_t m = variables.size();
     const ldlt F = ldlt_factor(f.mass);
     const vec qdd{rates[3], rates[4], rates[5]};
-    for (std::size_t k = 0; k < n; ++k) {
-        const ex& y = f.state[k].symbol;
+    for (std::size_t k = 0; k < m; ++k) {
+        const ex& x = variables[k];
         vec r;
         bool zero = true;
         for (int i = 0; i < 3; ++i) {
-            r[i] = d_by(f.forcing[i], y);
+            r[i] = d_by(f.forcing[i], x);
             for (int j = 0; j < 3; ++j)
-                r[i] -= d_by(f.mass[i][j], y) * qdd[j];
+                r[i] -= d_by(f.mass[i][j], x) * qdd[j];
             zero = zero && r[i].is_zero();
         }
         const vec c = zero ? vec{0, 0, 0} : ldlt_solve(F, r);
         for (int i = 0; i < 3; ++i)
-            J[(3 + i) * n + k] = c[i];
+            J[(3 + i) * m + k] = c[i];
     }
+}
+
+// d rates_i / d x_k, row-major (rates x variables), the solve strategy's rows by solve_rows.
+std::vector<ex> derivatives(const form_expressions& f, const std::vector<ex>& rates,
+                            const std::vector<ex>& variables) {
+    const std::size_t n = rates.size(), m = variables.size();
+    std::vector<ex> J(n * m);
+    const bool solve = f.form == form_kind::lagrangian && f.strategy == lagrangian_strategy::solve;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (solve && i >= 3) continue;
+        for (std::size_t k = 0; k < m; ++k)
+            J[i * m + k] = d_by(rates[i], variables[k]);
+    }
+    if (solve) solve_rows(f, rates, variables, J);
+    return J;
 }
 
 std::vector<form_parameter> model_parameters(const model_spec& spec) {
@@ -85,16 +101,15 @@ std::vector<form_parameter> model_parameters(const model_spec& spec) {
 } // namespace
 
 std::vector<ex> jacobian(const form_expressions& f, const std::vector<ex>& rates) {
-    const std::size_t n = f.state.size();
-    std::vector<ex> J(n * n);
-    const bool solve = f.form == form_kind::lagrangian && f.strategy == lagrangian_strategy::solve;
-    for (std::size_t i = 0; i < n; ++i) {
-        if (solve && i >= 3) continue;
-        for (std::size_t k = 0; k < n; ++k)
-            J[i * n + k] = d_by(rates[i], f.state[k].symbol);
-    }
-    if (solve) solve_jacobian_rows(f, rates, J);
-    return J;
+    std::vector<ex> state;
+    for (const auto& s : f.state)
+        state.push_back(s.symbol);
+    return derivatives(f, rates, state);
+}
+
+std::vector<ex> parameter_jacobian(const form_expressions& f, const std::vector<ex>& rates,
+                                   const std::vector<ex>& parameters) {
+    return derivatives(f, rates, parameters);
 }
 
 form_expressions build_form(const model_spec& spec, const derivation& d, form_kind form,

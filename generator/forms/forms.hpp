@@ -117,6 +117,13 @@ std::vector<GiNaC::ex> jacobian(const form_expressions& f);
 // The same for other rates of the same form (one of f.alternative_rates).
 std::vector<GiNaC::ex> jacobian(const form_expressions& f, const std::vector<GiNaC::ex>& rates);
 
+// The parameter Jacobian d rates_i / d p_j of `rates` (f.rates or one of f.alternative_rates),
+// row-major (state_size x parameters.size()), `parameters` the symbols of form_parameter: GiNaC
+// diff; for the `solve` strategy d q_ddot/d p_j = M^{-1} (df/dp_j - dM/dp_j q_ddot), as jacobian().
+std::vector<GiNaC::ex> parameter_jacobian(const form_expressions& f,
+                                          const std::vector<GiNaC::ex>& rates,
+                                          const std::vector<GiNaC::ex>& parameters);
+
 // The rotation matrix A(q) of the sequence c ((5.25) for z-x-z), row-major.
 std::array<GiNaC::ex, 9> rotation_matrix(const angle_convention& c);
 

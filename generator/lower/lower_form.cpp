@@ -299,6 +299,142 @@ jacobian_candidates jacobians(const form_expressions& f, const form_expressions&
     return r;
 }
 
+// The sensitivity keys (kernel_request::sensitivities): parameters.<name> of a model parameter
+// that is not folded, each once, and not with the taylor output; their parameters, in order.
+std::vector<form_parameter> sensitivity_parameters(const model_spec& spec,
+                                                   const form_expressions& f,
+                                                   const kernel_request& request,
+                                                   const folding& fold,
+                                                   const std::vector<std::string>& outputs) {
+    const std::string option = "--sensitivities: ", prefix = "parameters.";
+    if (!request.sensitivities.empty() && contains(outputs, "taylor"))
+        throw user_error({where}, option + "no Taylor recurrences for the variational equations "
+                                           "yet; leave taylor out of --outputs");
+    std::vector<std::string> names, seen;
+    for (const auto& p : f.parameters)
+        if (p.specialisable) names.push_back(p.name);
+    std::vector<form_parameter> r;
+    for (const auto& key : request.sensitivities) {
+        if (contains(seen, key)) throw user_error({where}, option + "'" + key + "' given twice");
+        seen.push_back(key);
+        if (key.compare(0, prefix.size(), prefix) != 0)
+            throw user_error({where}, option + "'" + key +
+                                          "' is not a parameter key (emit takes "
+                                          "parameters.<name>)");
+        const std::string name = key.substr(prefix.size());
+        const auto it = std::find_if(f.parameters.begin(), f.parameters.end(), [&](const auto& p) {
+            return p.specialisable && p.name == name;
+        });
+        if (it == f.parameters.end()) {
+            const std::string best = closest_name(name, names);
+            throw user_error({where},
+                             option + "'" + key + "': model '" + spec.name +
+                                 "' has no parameter '" + name + "'" +
+                                 (best.empty() ? "" : "; did you mean '" + prefix + best + "'?"));
+        }
+        if (fold.values.count(it->symbol))
+            throw user_error({where}, option + "'" + key +
+                                          "' is folded into the code by --specialise; leave " +
+                                          name + " out of --specialise");
+        r.push_back(*it);
+    }
+    return r;
+}
+
+// Where every candidate's (row-major, `columns` wide) entries are structurally zero: exactly 0 by
+// any route, or vanishing identically.
+std::vector<bool> zero_pattern(const candidates& c, const std::vector<program_input>& inputs,
+                               std::size_t columns) {
+    std::vector<bool> zero(c[0].size(), false);
+    for (const auto& entries : c)
+        for (std::size_t i = 0; i < entries.size(); ++i)
+            zero[i] = zero[i] || entries[i].is_zero();
+    const std::vector<bool> vanishing = identically_zero(c[0], inputs, columns);
+    for (std::size_t i = 0; i < zero.size(); ++i)
+        zero[i] = zero[i] || vanishing[i];
+    return zero;
+}
+
+// The rates of each rate candidate of a form, with their d f/d y and d f/d p.
+struct derivative_candidates {
+    candidates rates, J, P;
+};
+
+derivative_candidates derivatives_of(const form_expressions& f, const std::vector<ex>& symbols) {
+    derivative_candidates d;
+    d.rates = rate_candidates_of(f);
+    for (const auto& rate : d.rates) {
+        d.J.push_back(jacobian(f, rate));
+        d.P.push_back(parameter_jacobian(f, rate, symbols));
+    }
+    return d;
+}
+
+// The candidates of parameter_jacobian (d f/d p, its zeros 0) and of variational_rhs (f, then the
+// entries of d f/d y neither zero nor 1 and the non-zero ones of d f/d p), one per rate candidate.
+struct sensitivity_candidates {
+    candidates dfdp, variational;
+};
+
+sensitivity_candidates sensitivity_candidates_of(const derivative_candidates& d,
+                                                 const lowered_form& r) {
+    sensitivity_candidates c;
+    for (std::size_t j = 0; j < d.rates.size(); ++j) {
+        std::vector<ex> P = d.P[j], all = d.rates[j];
+        for (std::size_t i = 0; i < d.J[j].size(); ++i)
+            if (!r.sensitivity_dfdy_zero[i] && !r.sensitivity_dfdy_one[i]) all.push_back(d.J[j][i]);
+        for (std::size_t i = 0; i < P.size(); ++i)
+            if (r.sensitivity_dfdp_zero[i])
+                P[i] = 0;
+            else
+                all.push_back(P[i]);
+        c.dfdp.push_back(std::move(P));
+        c.variational.push_back(std::move(all));
+    }
+    return c;
+}
+
+// parameter_jacobian and variational_rhs (lowered_form::sensitivity_names), with f, d f/d y and
+// d f/d p lowered together in variational_rhs: their common subexpressions computed once.
+void add_sensitivity_functions(lowered_form& r, const form_expressions& f,
+                               const form_expressions& runtime_f, const chooser& choose,
+                               const std::vector<form_parameter>& keys) {
+    if (keys.empty()) return;
+    const std::size_t n = f.state.size(), k = keys.size();
+    std::vector<ex> symbols;
+    for (const auto& p : keys) {
+        symbols.push_back(p.symbol);
+        r.sensitivity_names.push_back(p.name);
+    }
+    const derivative_candidates d = derivatives_of(f, symbols);
+    r.sensitivity_dfdy_zero = zero_pattern(d.J, choose.inputs(), n);
+    r.sensitivity_dfdp_zero = zero_pattern(d.P, choose.inputs(), k);
+    r.sensitivity_dfdy_one.assign(n * n, true); // q_dot = q_dot: the product needs no factor
+    for (const auto& entries : d.J)
+        for (std::size_t i = 0; i < n * n; ++i)
+            r.sensitivity_dfdy_one[i] = r.sensitivity_dfdy_one[i] && entries[i].is_equal(1);
+    const sensitivity_candidates c = sensitivity_candidates_of(d, r);
+    const sensitivity_candidates runtime =
+        choose.folding() ? sensitivity_candidates_of(derivatives_of(runtime_f, symbols), r)
+                         : sensitivity_candidates{};
+    std::vector<std::string> targets = indexed("dydt", n);
+    const auto local = [](const std::string& name, std::size_t i, std::size_t j) {
+        return "const T " + name + "_" + std::to_string(i) + "_" + std::to_string(j);
+    };
+    for (std::size_t i = 0; i < n * n; ++i)
+        if (!r.sensitivity_dfdy_zero[i] && !r.sensitivity_dfdy_one[i])
+            targets.push_back(local("dfdy", i / n, i % n));
+    for (std::size_t i = 0; i < n * k; ++i)
+        if (!r.sensitivity_dfdp_zero[i]) targets.push_back(local("dfdp", i / k, i % k));
+    r.functions.push_back({"parameter_jacobian",
+                           choose.best(c.dfdp, runtime.dfdp, true),
+                           indexed("dfdp", n * k),
+                           std::vector<std::string>{"t", "y", "p"},
+                           {}});
+    r.functions.push_back({"variational_rhs", choose.best(c.variational, runtime.variational, true),
+                           targets, std::vector<std::string>{"t", "y", "S", "p"}, f.rate_names});
+}
+
 // The hoisted constants of all the functions, named once for the form: equal ones (the same
 // digest: the same expression) share a name, p.c000, p.c001, ... in order of first appearance
 // (children before parents, as each program lists them).
@@ -330,6 +466,8 @@ lowered_form lower_form(const model_spec& spec, const form_expressions& runtime_
                         const kernel_request& request) {
     const std::vector<std::string> outputs = resolve_outputs(spec, runtime_f, request.outputs);
     const folding fold = choose_folding(spec, runtime_f, request);
+    const std::vector<form_parameter> keys =
+        sensitivity_parameters(spec, runtime_f, request, fold, outputs);
     // The form before substitution (runtime_f): its candidates are lowered with the parameters
     // as inputs and folded afterwards, and compete with the substituted ones.
     const form_expressions f = substituted(runtime_f, fold.values);
@@ -382,6 +520,7 @@ lowered_form lower_form(const model_spec& spec, const form_expressions& runtime_
                 {name, choose.best(candidates_of(out), runtime), targets, {"y", "p"}, out.names});
         }
     }
+    add_sensitivity_functions(r, f, runtime_f, choose, keys);
     name_constants(r);
     return r;
 }

@@ -30,12 +30,14 @@ struct kernel_request {
     std::vector<std::string> outputs;    // empty: every output the form can give
     bool specialise_all = false;         // fold every model parameter into the code
     std::vector<std::string> specialise; // or these
+    // `--sensitivities`: parameters.<name> keys; parameter_jacobian and variational_rhs for them
+    std::vector<std::string> sensitivities{};
 };
 
 // One generated function, lowered.
 struct lowered_function {
     // rhs, jacobian, rhs_and_jacobian, energy, momenta, mass_matrix, omega, rotation,
-    // ignored_rates
+    // ignored_rates, parameter_jacobian, variational_rhs
     std::string name;
     lowered_program program; // its inputs: the state (y[i]), the run-time parameters (p.name), t
     // targets[i] receives output i: "dydt[0]", "J[7]", "momentum[2]", or "return".
@@ -57,6 +59,14 @@ struct lowered_form {
     // without a Jacobian.
     std::vector<bool> jacobian_zero;
     std::vector<lowered_function> functions; // in output order (rhs_and_jacobian after jacobian)
+    // With sensitivities: the parameters of d f/d p, in the order asked (k of them), and where
+    // d f/d y (n x n) and d f/d p (n x k) are structurally zero, and where d f/d y is exactly 1
+    // (d q_dot/d q_dot), row-major. parameter_jacobian writes dfdp[i * k + j]; variational_rhs's
+    // program gives dydt[i], then the other d f/d y and the non-zero d f/d p entries as locals
+    // `const T dfdy_i_m`, `const T dfdp_i_j`, from which the emitter writes
+    // dSdt = (d f/d y) S + [0 | d f/d p].
+    std::vector<std::string> sensitivity_names;
+    std::vector<bool> sensitivity_dfdy_zero, sensitivity_dfdy_one, sensitivity_dfdp_zero;
     // The parameter-only subexpressions hoisted out of rhs, jacobian and rhs_and_jacobian (of the
     // run-time parameters), each once for the form: prepare() computes them per parameter set,
     // the functions read them as p.c000, ... Each is printed with the program it was found in.
@@ -75,8 +85,10 @@ form_expressions build_requested_form(const model_spec& spec, const derivation& 
                                       lagrangian_strategy strategy, const kernel_request& request);
 
 // Lowers the functions `request` asks of the form `f` (built for `spec`). Throws user_error for an
-// unknown output, one the form cannot give, or an unknown parameter name in `specialise`
-// (messages start "rotgen emit: ..."); std::logic_error for internal failures.
+// unknown output, one the form cannot give, an unknown parameter name in `specialise`, or a bad
+// sensitivity key (not parameters.<model parameter>, folded by `specialise`, given twice, or
+// asked with the taylor output) (messages start "rotgen emit: ..."); std::logic_error for
+// internal failures.
 lowered_form lower_form(const model_spec& spec, const form_expressions& f,
                         const kernel_request& request);
 

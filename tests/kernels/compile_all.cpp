@@ -57,6 +57,24 @@ template <class T> struct buffers {
     ROTGEN_USE_COMMON(u)                                                                           \
     ns::ignored_rates(b.y, b.out, p);                                                              \
     }
+// The sensitivity units (emit --sensitivities): rhs, jacobian, parameter_jacobian and
+// variational_rhs, given params<T> and prepared<T>.
+#define ROTGEN_USE_SENSITIVITIES(u)                                                                \
+    {                                                                                              \
+        namespace ns = rotgen::models::u;                                                          \
+        const ns::params<scalar> p{};                                                              \
+        constexpr std::size_t w = ns::state_size + ns::sensitivity_count;                          \
+        scalar S[ns::state_size * w], dS[ns::state_size * w],                                      \
+            D[ns::state_size * ns::sensitivity_count];                                             \
+        for (auto& v : S)                                                                          \
+            v = scalar(0.5);                                                                       \
+        ns::rhs(scalar(0.25), b.y, b.f, p);                                                        \
+        ns::jacobian(scalar(0.25), b.y, b.J, p);                                                   \
+        ns::parameter_jacobian(scalar(0.25), b.y, D, p);                                           \
+        ns::variational_rhs(scalar(0.25), b.y, S, b.f, dS, p);                                     \
+        ns::variational_rhs(scalar(0.25), b.y, S, b.f, dS, ns::prepare(p));                        \
+        b.out[0] = dS[0] + D[0];                                                                   \
+    }
 
 void use_all(buffers<scalar>& b);
 void use_all(buffers<scalar>& b) {
@@ -66,6 +84,7 @@ void use_all(buffers<scalar>& b) {
     ROTGEN_UNITS_REDUCED(ROTGEN_USE_REDUCED)
     ROTGEN_UNITS_BODY(ROTGEN_USE_BODY)
     ROTGEN_UNITS_BODY_OMEGA(ROTGEN_USE_BODY_OMEGA)
+    ROTGEN_UNITS_SENSITIVITIES(ROTGEN_USE_SENSITIVITIES)
 #else
     // Eigen's expression templates make every statement expensive to compile (all units: ~150 s,
     // 3.6 GB): every form of one model, plus the full tensor (rotgen_emit_tests runs those).
@@ -77,6 +96,8 @@ void use_all(buffers<scalar>& b) {
     ROTGEN_USE_BODY(heavy_top_body)
     ROTGEN_USE_BODY_OMEGA(free_asymmetric_top_body_omega)
     ROTGEN_USE_FULL(full_tensor_top_solve_specialised)
+    ROTGEN_USE_SENSITIVITIES(heavy_top_hamiltonian_sens)
+    ROTGEN_USE_SENSITIVITIES(full_tensor_top_body_sens)
 #endif
 }
 
