@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdlib>
 #include <cstring>
+#include <mutex>
 
 namespace rotgen {
 
@@ -25,6 +26,10 @@ std::size_t g_written = 0;
 
 void (*volatile g_hook)(int) = nullptr; // set_interrupt_hook
 
+// Guards every writer of the state above (threads of one process, such as Python's, register
+// their temporaries at once); the handler takes no lock: it reads flags set after their buffers.
+std::mutex g_writers;
+
 extern "C" void on_signal(int sig) {
     void (*hook)(int) = g_hook;
     if (hook) hook(sig);
@@ -40,6 +45,7 @@ extern "C" void on_signal(int sig) {
 } // namespace
 
 void register_temporary(const std::string& path) {
+    const std::lock_guard<std::mutex> lock(g_writers);
     if (path.size() >= max_path) return;
     for (std::size_t i = 0; i < max_temporaries; ++i)
         if (!g_used[i]) {
@@ -50,6 +56,7 @@ void register_temporary(const std::string& path) {
 }
 
 void forget_temporary(const std::string& path) {
+    const std::lock_guard<std::mutex> lock(g_writers);
     for (std::size_t i = 0; i < max_temporaries; ++i)
         if (g_used[i] && path == g_temporaries[i].data()) g_used[i] = 0;
 }
@@ -67,7 +74,9 @@ void set_interrupt_hook(void (*hook)(int)) {
     g_hook = hook;
 }
 
-void set_interrupt_note(const std::string& note) {
+namespace {
+
+void set_note_locked(const std::string& note) {
     if (note.empty()) {
         g_note = -1;
         return;
@@ -78,10 +87,18 @@ void set_interrupt_note(const std::string& note) {
     g_note = next;
 }
 
+} // namespace
+
+void set_interrupt_note(const std::string& note) {
+    const std::lock_guard<std::mutex> lock(g_writers);
+    set_note_locked(note);
+}
+
 void note_written(const std::string& what) {
+    const std::lock_guard<std::mutex> lock(g_writers);
     if (g_written++ == 0) g_first_written = what;
     const std::size_t more = g_written - 1;
-    set_interrupt_note(
+    set_note_locked(
         "interrupted; wrote " + g_first_written +
         (more == 0 ? ""
                    : " and " + std::to_string(more) + (more == 1 ? " more file" : " more files")));

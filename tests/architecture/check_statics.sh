@@ -33,7 +33,7 @@ allowed=(
   # The signal handler's state (support/signals.cpp): the temporaries a SIGINT or SIGTERM removes
   # and the line it prints. A handler reaches only globals; the slots are sig_atomic_t flags
   # and fixed buffers, written before a flag is set; process-wide by nature (one set of outputs
-  # per process: the CLI's).
+  # per process). Written under g_writers.
   'rotgen::(anonymous namespace)::g_temporaries'
   'rotgen::(anonymous namespace)::g_used'
   'rotgen::(anonymous namespace)::g_notes'
@@ -41,6 +41,9 @@ allowed=(
   'rotgen::(anonymous namespace)::g_hook'
   'rotgen::(anonymous namespace)::g_first_written'
   'rotgen::(anonymous namespace)::g_written'
+  # The lock every writer of the handler's state above takes (threads of one process register
+  # their temporaries at once); the handler itself reads only flags set after their buffers.
+  'rotgen::(anonymous namespace)::g_writers'
   # The same for a streaming sweep (sweep/journal.cpp): the handler's copy of its journal (fixed
   # storage and atomics), what a SIGINT truncates the summary to.
   'rotgen::(anonymous namespace)::g_journal'
