@@ -1,7 +1,8 @@
 // The extremes of DESIGN.md "Extremes to hold" (issue 6): fast spin, nearly equal moments and
 // extreme ratios, long runs, float vs double vs long double. Each test shows the behaviour that
-// the scripts in bench/extremes/ measure over a wider range (their tables are in docs/performance.md,
-// "Extremes: where the results hold"); the margins are stated next to the measured values.
+// the scripts in bench/extremes/ measure over a wider range (their tables are in
+// docs/performance.md, "Extremes: where the results hold"); the margins are stated next to the
+// measured values.
 #include "support.hpp"
 
 #include "../../generated/free_asymmetric_top_body.hpp"
