@@ -118,17 +118,33 @@ std::string header_path(const std::string& dir, const std::string& file, const s
     return path;
 }
 
-// The header at `path` (DIR created if missing) through support/'s atomic writer (never a
-// partial header), or on standard output, handed to `outputs`.
-void write_header(const std::string& dir, const std::string& path, const std::string& text,
-                  output_set& outputs) {
+// The folders of `dir` that do not exist yet, the deepest first (what create_directories makes).
+std::vector<std::filesystem::path> missing_folders(const std::string& dir) {
     namespace fs = std::filesystem;
+    std::vector<fs::path> missing;
     std::error_code ec;
-    if (path != "-") fs::create_directories(dir, ec);
+    for (fs::path p = fs::absolute(dir, ec); !p.empty() && !fs::exists(p, ec); p = p.parent_path())
+        missing.push_back(p);
+    return missing;
+}
+
+// The header at `path` (DIR created if missing) through support/'s atomic writer (never a
+// partial header), or on standard output, handed to `outputs`. Returns the folders it made, the
+// deepest first.
+std::vector<std::filesystem::path> write_header(const std::string& dir, const std::string& path,
+                                                const std::string& text, output_set& outputs) {
+    namespace fs = std::filesystem;
+    std::vector<fs::path> made;
+    std::error_code ec;
+    if (path != "-") {
+        made = missing_folders(dir);
+        fs::create_directories(dir, ec);
+    }
     if (ec) throw user_error({dir}, "cannot create the output directory: " + ec.message());
     atomic_file out(path);
     out.stream() << text;
     out.commit(outputs);
+    return made;
 }
 
 form_kind form_of(const std::string& f) {
@@ -197,6 +213,28 @@ void print_written(const std::string& path, const emitted_header& h) {
         << "operations: " << summary << ")\n";
 }
 
+// Writes the header and commits it: standard output first, then the line that says what was
+// written, then the file. When one fails, the folders made for it go again (only while empty: the
+// output_set has removed its temporary by then), so that exit 2 leaves nothing.
+void write_and_commit(const std::string& dir, const std::string& path, const emitted_header& h,
+                      stage_timings& timings) {
+    std::vector<std::filesystem::path> made;
+    try {
+        output_set outputs;
+        timings.time("write", h.file_name,
+                     [&] { made = write_header(dir, path, h.text, outputs); });
+        outputs.commit_streams(); // -o -: the header, checked before the line that says so
+        print_written(path, h);
+        flush_standard_output(); // that line, checked before the header appears
+        outputs.commit_files();
+    } catch (const user_error&) {
+        std::error_code ec;
+        for (const auto& folder : made)
+            std::filesystem::remove(folder, ec);
+        throw;
+    }
+}
+
 } // namespace
 
 int cmd_emit(const std::vector<std::string>& args) {
@@ -246,12 +284,7 @@ int cmd_emit(const std::vector<std::string>& args) {
                                                     "; leave taylor out of --outputs");
         }
     });
-    output_set outputs;
-    timings.time("write", h.file_name, [&] { write_header(dir, path, h.text, outputs); });
-    outputs.commit_streams(); // -o -: the header, checked before the line that says so
-    print_written(path, h);
-    flush_standard_output(); // that line, checked before the header appears
-    outputs.commit_files();
+    write_and_commit(dir, path, h, timings);
     if (o.has("--timings")) timings.print(std::cerr);
     return 0;
 }

@@ -95,7 +95,15 @@ TEST_CASE("emit -o DIR with a full standard output leaves no header", "[cli][out
     const run_result r = run_to("emit '" + model_path("heavy_top") + "' -o hdr", "/dev/full", dir);
     CHECK(r.status == 2);
     CHECK(r.err == full_line);
-    CHECK_FALSE(fs::exists(dir + "/hdr/heavy_top.hpp")); // its "wrote" line failed first
+    CHECK_FALSE(fs::exists(dir + "/hdr")); // its "wrote" line failed first: no header, no folder
+    // a folder that was there stays, with what it held
+    fs::create_directories(dir + "/kept");
+    write_top_scene(dir + "/kept/top.yaml");
+    const run_result k =
+        run_to("emit '" + model_path("heavy_top") + "' -o kept/a/b", "/dev/full", dir);
+    CHECK(k.status == 2);
+    CHECK_FALSE(fs::exists(dir + "/kept/a"));
+    CHECK(fs::exists(dir + "/kept/top.yaml"));
 }
 
 TEST_CASE("exit 2 leaves no file: simulate -o good.csv with --view or --events on /dev/full",
