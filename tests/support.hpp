@@ -9,6 +9,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <random>
 #include <sstream>
@@ -63,6 +64,25 @@ struct run_result {
 inline std::string read_file(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// Two headers `rotgen emit` wrote by the same command into two folders: `second` with its folder
+// (which the regenerate command names) spelt as the first's, so that the two are meant to be equal.
+struct emitted_pair {
+    std::string name, first, second;
+};
+
+// The pairs of every header in folder `a` and its twin in folder `b`, in `a`'s listing order.
+inline std::vector<emitted_pair> emitted_pairs(const std::string& a, const std::string& b) {
+    std::vector<emitted_pair> pairs;
+    for (const auto& entry : std::filesystem::directory_iterator(a)) {
+        const std::string name = entry.path().filename().string();
+        std::string second = read_file(b + "/" + name);
+        const std::size_t at = second.find(b);
+        if (at != std::string::npos) second.replace(at, b.size(), a);
+        pairs.push_back({name, read_file(entry.path().string()), second});
+    }
+    return pairs;
 }
 
 // The lines of a text (without their line ends).

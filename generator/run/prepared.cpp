@@ -10,7 +10,7 @@
 namespace rotgen {
 
 std::mutex& symbolic_mutex() {
-    static std::mutex m;
+    static std::mutex m; // the one GiNaC lock, by design (GiNaC is not thread-safe): no state
     return m;
 }
 

@@ -66,10 +66,11 @@ void run_released(const std::function<void()>& work, std::atomic<bool>& stop) {
 void interleave_test_hook() {
     const char* on = std::getenv("ROTGEN_TEST_INTERLEAVE");
     if (!on || std::string(on) != "1") return;
-    // the hook's own count of reads, under its own lock (a test hook: no run reads it)
+    // The hook's own count of reads, guarded by its own lock m (a test hook: no run reads it, and
+    // it holds no per-model or per-run fact).
     static std::mutex m;
-    static std::condition_variable read;
-    static std::uint64_t reads = 0;
+    static std::condition_variable read; // waited on under m
+    static std::uint64_t reads = 0;      // guarded by m
     py::gil_scoped_release released;
     std::unique_lock<std::mutex> lock(m);
     const std::uint64_t mine = ++reads;
