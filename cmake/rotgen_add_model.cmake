@@ -1,17 +1,20 @@
 # rotgen_add_model(<target> MODEL <file.yaml>
-#                  [FORM lagrangian|hamiltonian|reduced|body] [OUTPUTS rhs jacobian ...]
-#                  [SPECIALISE] [STRATEGY explicit|solve] [NAME <unit>])
+#                  [FORM lagrangian|hamiltonian|reduced|body|rotor] [OUTPUTS rhs jacobian ...]
+#                  [SENSITIVITIES parameters.h ...] [SPECIALISE] [STRATEGY explicit|solve]
+#                  [NAME <unit>])
 #
 # Generates the model's kernels at build time and makes <target> an INTERFACE library whose
 # include directory holds <unit>.hpp (namespace rotgen::models::<unit>; the default unit is
 # <target>). The header is regenerated when the model file or the rotgen executable changes.
+# Without FORM, `rotgen emit` chooses as it does on the command line (lagrangian; rotor for a
+# linear rotor).
 #
 #   rotgen_add_model(top_kernels MODEL ${CMAKE_CURRENT_SOURCE_DIR}/top.yaml OUTPUTS rhs jacobian energy)
 #   target_link_libraries(app PRIVATE top_kernels)        # then: #include "top_kernels.hpp"
 include_guard(GLOBAL)
 
 function(rotgen_add_model target)
-  cmake_parse_arguments(PARSE_ARGV 1 ARG "SPECIALISE" "MODEL;FORM;STRATEGY;NAME" "OUTPUTS")
+  cmake_parse_arguments(PARSE_ARGV 1 ARG "SPECIALISE" "MODEL;FORM;STRATEGY;NAME" "OUTPUTS;SENSITIVITIES")
   if(ARG_UNPARSED_ARGUMENTS)
     message(FATAL_ERROR "rotgen_add_model: unknown arguments: ${ARG_UNPARSED_ARGUMENTS}")
   endif()
@@ -27,15 +30,19 @@ function(rotgen_add_model target)
   if(NOT ARG_NAME)
     set(ARG_NAME ${target})
   endif()
-  if(NOT ARG_FORM)
-    set(ARG_FORM lagrangian)
-  endif()
   set(_dir "${CMAKE_CURRENT_BINARY_DIR}/rotgen_generated/${target}")
   set(_header "${_dir}/${ARG_NAME}.hpp")
-  set(_args emit "${_model}" -o "${_dir}" --form ${ARG_FORM} --name ${ARG_NAME})
+  set(_args emit "${_model}" -o "${_dir}" --name ${ARG_NAME})
+  if(ARG_FORM)
+    list(APPEND _args --form ${ARG_FORM})
+  endif()
   if(ARG_OUTPUTS)
     string(REPLACE ";" "," _outputs "${ARG_OUTPUTS}")
     list(APPEND _args --outputs ${_outputs})
+  endif()
+  if(ARG_SENSITIVITIES)
+    string(REPLACE ";" "," _keys "${ARG_SENSITIVITIES}")
+    list(APPEND _args --sensitivities ${_keys})
   endif()
   if(ARG_SPECIALISE)
     list(APPEND _args --specialise)
