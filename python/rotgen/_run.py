@@ -43,7 +43,8 @@ class SimulateResult:
         ``model``, ``form``, ``state_size``, ``method``, ``steps`` (accepted), ``rejected``,
         ``rhs_evals``, ``jac_evals``, ``factorisations``, ``drifts`` (invariant name to
         ``max |v(t) - v(t0)|``), ``chart`` (the chart switch, if any), ``integrate_seconds``,
-        ``kernels_cached``.
+        ``kernels_cached``, ``t_reached`` (the end time, a terminal event's time, or where a
+        run that stopped got to: past its last sample when it stopped between samples).
     success : bool
         Whether the run reached the end time (or a terminal event).
     message : str

@@ -59,6 +59,7 @@ py::dict summary_of(const scene_spec& scene, const run_result& r) {
     s["chart"] = r.chart_note;
     s["integrate_seconds"] = r.integrate_seconds;
     s["kernels_cached"] = r.kernels_cached;
+    s["t_reached"] = r.t_reached; // the end time, a terminal event's, or where a run stopped
     return s;
 }
 

@@ -87,6 +87,10 @@ def test_a_run_that_stops_raises_run_error_with_the_partial_result(in_tmp):
     # the CLI's line up to where it names its partial file (`<scene>` is scene.yaml there)
     expected = cli_line(err).split("; the ")[0].replace("scene.yaml", "<scene>", 1)
     assert str(e) == expected
+    # the summary's t_reached is the time the message names (format_double round-trips), past
+    # the last partial sample: the run stopped between samples
+    t_named = float(expected.split("stopped at t = ")[1].split(" of ")[0])
+    assert e.result.summary["t_reached"] == t_named > e.result.t[-1]
     rows = np.loadtxt("cli.partial.csv", delimiter=",", skiprows=2, ndmin=2)  # provenance, header
     assert not e.result.success and len(e.result.t) == len(rows) > 0
     assert np.array_equal(e.result.t, rows[:, 0]) and np.array_equal(e.result.y, rows[:, 1:])

@@ -51,6 +51,7 @@ def test_simulate_equals_the_cli_csv_bit_for_bit(name, in_tmp):
 def test_nothing_is_written_to_disk(in_tmp):
     r = rotgen.simulate(source("models", "scenes", "falling_top.yaml"))  # a scene with events
     assert len(r.events) == 2  # halfway, then floor (terminal)
+    assert r.summary["t_reached"] == r.events[-1][1]  # the terminal event's time
     assert os.listdir(".") == []
 
 
