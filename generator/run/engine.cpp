@@ -2,6 +2,7 @@
 
 #include "expr/numbers.hpp"
 #include "expr/symbols.hpp"
+#include "run/actions.hpp"
 #include "run/angle_chart.hpp"
 #include "run/chart_kinematics.hpp"
 #include "run/continue_from.hpp"
@@ -9,9 +10,11 @@
 #include "run/prepared.hpp"
 #include "run/rotor_chart.hpp"
 #include "run/split_run.hpp"
+#include "run/start_check.hpp"
 #include "support/error.hpp"
 #include "support/format.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <mutex>
 #include <optional>
@@ -66,14 +69,20 @@ class scene_run {
     void decide_chart();
     const compiled_form& compile(form_kind form);
     Eigen::VectorXd state_of(const form_expressions& f, const initial_kinematics& k) const;
-    void check_finite_start(const initial_kinematics& k, const compiled_form& cf,
-                            const Eigen::VectorXd& y) const;
-    enum class next { done, body, euler }; // after a segment: finished, or continue in that chart
+    enum class next {
+        done,
+        body,
+        euler,
+        act
+    }; // after a segment: finished, continue in that
+       // chart, or act (m_pending) and continue
     next integrate_segment(Eigen::VectorXd& y, double t_from);
     void set_up_events();
     void use_event_functions(const compiled_form& cf);
     void collect_events(std::size_t from);
     void end_at_event(std::size_t which);
+    bool act(Eigen::VectorXd& y, double& t_from);
+    void note_event(double t, const Eigen::VectorXd& y, std::size_t index, const char* phase);
     void switch_chart(next to, Eigen::VectorXd& y, double& t_from);
     void record();
     const compiled_form& record_outputs(double t, Eigen::Ref<const Eigen::VectorXd> y,
@@ -105,6 +114,15 @@ class scene_run {
     integration_result<double> m_last;
     event_set<double, Eigen::VectorXd> m_events; // the scene's events, across chart switches
     std::vector<sample> m_event_samples;         // the state at each event (form: its own)
+    std::optional<run_actions> m_actions;        // counts, time events, actions (actions.hpp)
+    struct pending {
+        double t;
+        std::size_t index;
+        bool acts; // false: an occurrence before its `after`-th, the run goes on unchanged
+    };
+    std::optional<pending> m_pending; // the event that ended the segment, for act()
+    std::vector<std::pair<std::size_t, sample>> m_segments; // after each action: its first
+                                                            // sample and the state after it
     run_result m_result;
 };
 
@@ -126,7 +144,7 @@ initial_kinematics scene_run::exact_start() {
 
 void scene_run::set_up_events() {
     for (const event_spec& e : m_scene.events) {
-        m_events.add({}, direction_of(e), e.stop, e.name);
+        m_events.add({}, direction_of(e), m_actions->terminal(m_result.event_names.size()), e.name);
         m_result.event_names.push_back(e.name);
     }
 }
@@ -143,17 +161,33 @@ void scene_run::use_event_functions(const compiled_form& cf) {
         });
 }
 
-// The events found by the last segment (hits from `from` on), with the state where each occurred.
+// The events found by the last segment (hits from `from` on), with the state where each occurred,
+// from each event's `after`-th occurrence on. A terminal event that stopped it either ends the run
+// (a stop), or is m_pending: an action, or an occurrence before its `after`-th (no change).
 void scene_run::collect_events(std::size_t from) {
     const auto& hits = m_events.hits();
+    std::optional<std::size_t> stop;
     for (std::size_t h = from; h < hits.size(); ++h) {
-        m_event_samples.push_back({hits[h].t, hits[h].y, m_current});
-        m_result.event_index.push_back(hits[h].index);
+        const std::size_t i = hits[h].index;
+        if (!m_actions->occurs(i)) continue;
+        note_event(hits[h].t, hits[h].y, i, m_scene.events[i].acts() ? "before" : "");
+        if (m_scene.events[i].acts()) m_pending = pending{hits[h].t, i, true};
+        if (m_scene.events[i].stop) stop = i;
     }
     const auto& hidden = m_events.may_hide();
     for (std::size_t h = m_result.event_doubts.size(); h < hidden.size(); ++h)
         m_result.event_doubts.push_back({hidden[h].index, hidden[h].from, hidden[h].to});
-    if (m_last.code == status::stopped_by_event) end_at_event(m_events.stopped_by());
+    if (m_last.code != status::stopped_by_event) return;
+    if (stop) m_pending.reset();
+    if (stop) return end_at_event(*stop);
+    if (!m_pending) m_pending = pending{hits.back().t, m_events.stopped_by(), false};
+}
+
+void scene_run::note_event(double t, const Eigen::VectorXd& y, std::size_t index,
+                           const char* phase) {
+    m_event_samples.push_back({t, y, m_current});
+    m_result.event_index.push_back(index);
+    m_result.event_phase.push_back(phase);
 }
 
 // The run ended at the terminal event `which`, the last one noted: its state ends the rows.
@@ -219,62 +253,6 @@ Eigen::VectorXd scene_run::state_of(const form_expressions& f, const initial_kin
     return y;
 }
 
-// Initial values the parser accepts (each finite) may still overflow double precision in what
-// the run computes from them: a rate of 1e300 squares to inf in the energy. Before the run: the
-// form's state and parameters, f(t0, y0), and the invariants at t0 must be finite — as the kernels
-// compute them — or the scene's `initial` is the error.
-void scene_run::check_finite_start(const initial_kinematics& k, const compiled_form& cf,
-                                   const Eigen::VectorXd& y) const {
-    const std::vector<double>& parameters = m_parameters[m_current];
-    const loaded_system sys = cf.system(parameters);
-    // Values far below the overflow threshold cannot overflow a product of a few of them: a
-    // non-finite f or invariant is then the model's own singularity (1/(theta - 0.5) at 0.5).
-    double largest = y.size() > 0 ? y.cwiseAbs().maxCoeff() : 0;
-    for (double v : parameters)
-        largest = std::max(largest, std::abs(v));
-    for (std::size_t i = 0; k.have_rates && i < 3; ++i)
-        for (long double v : {k.qd[i], k.p[i], k.omega[i]})
-            largest = std::max(largest, static_cast<double>(std::abs(v)));
-    const auto check = [&](const std::string& what, double v, const std::string& in = "") {
-        if (std::isfinite(v)) return;
-        const std::string value =
-            what + " = " + format_number(v) + in + " at t = " + format_double(m_scene.t_start);
-        if (!in.empty() || what == "energy" || what == "V") // what the model computes
-            if (largest < 1e50)
-                throw user_error(m_scene.initial_where,
-                                 "the model's equations are not finite at the initial state (" +
-                                     value +
-                                     "): its potential, torque or damping is singular there; "
-                                     "start the scene away from that state");
-        throw user_error(m_scene.initial_where,
-                         "initial values too large for double precision: " + value +
-                             "; give smaller initial rates or momenta, or rescale the model's "
-                             "units");
-    };
-    const auto& q = m_angles.names;
-    if (k.have_rates)
-        for (std::size_t i = 0; i < 3; ++i) {
-            check(q[i] + "_dot", static_cast<double>(k.qd[i]));
-            check("p_" + q[i], static_cast<double>(k.p[i]));
-            check("omega" + std::to_string(i + 1), static_cast<double>(k.omega[i]));
-        }
-    const form_expressions& f = cf.f;
-    for (std::size_t i = 0; i < f.state.size(); ++i)
-        check(f.state[i].name, y[static_cast<Eigen::Index>(i)]);
-    for (std::size_t i = 0; i < f.parameters.size(); ++i)
-        check(f.parameters[i].name, parameters[i]);
-    Eigen::VectorXd dydt(y.size());
-    sys.rhs(m_scene.t_start, y.data(), dydt.data());
-    for (std::size_t i = 0; i < f.rate_names.size(); ++i)
-        check(f.rate_names[i], dydt[static_cast<Eigen::Index>(i)], " in f(t0, y0)");
-    std::vector<double> out(cf.outputs);
-    cf.record(parameters.data(), m_scene.t_start, y.data(), out.data());
-    std::optional<std::array<double, 3>> e;
-    const std::vector<invariant>& invariants = m_prepared.invariants();
-    for (std::size_t i = 0; i < invariants.size(); ++i)
-        check(invariants[i].name, source_value(m_sequence, cf.invariants[i], y, out, m_inertia, e));
-}
-
 // Integrates the current form from t_from over the remaining sample times, and says where to go
 // on: the Euler-angle forms leave for the body form at a sample with |sin theta| < switch_below,
 // or when the integration fails with the state that close to the singularity (only then: a
@@ -286,11 +264,15 @@ scene_run::next scene_run::integrate_segment(Eigen::VectorXd& y, double t_from) 
     const bool can_switch = m_prepared.can_switch();
     const bool euler_chart = cf.form == form_kind::lagrangian ||
                              cf.form == form_kind::hamiltonian || cf.form == form_kind::rotor;
-    const std::vector<double> times(m_times.begin() + static_cast<std::ptrdiff_t>(m_next_sample),
-                                    m_times.end());
-    const std::size_t first_sample = m_samples.size();
+    std::vector<double> times(m_times.begin() + static_cast<std::ptrdiff_t>(m_next_sample),
+                              m_times.end());
+    const auto at = m_actions->next_time(t_from, m_scene.t_end); // a time event ends the segment
+    if (at) times.erase(std::lower_bound(times.begin(), times.end(), at->first), times.end());
+    if (at) times.push_back(at->first);
+    const std::size_t first_sample = m_samples.size(), samples = times.size() - (at ? 1 : 0);
     // returning false stops the run at this sample: the chart is left there
     const auto observe = [&](double t, const Eigen::VectorXd& yt) {
+        if (m_samples.size() == first_sample + samples) return true; // the time event's time
         m_samples.add(t, yt, m_current);
         if (m_on_sample) m_on_sample(t);
         if (!can_switch || m_samples.size() <= first_sample + 1 || reached_end(m_scene, t))
@@ -310,6 +292,15 @@ scene_run::next scene_run::integrate_segment(Eigen::VectorXd& y, double t_from) 
     collect_events(first_hit);
     m_left_chart = m_last.code == status::stopped_by_observer;
     add_stats(m_result.stats, m_last.stats);
+    if (at && m_last.ok() && m_actions->occurs(at->second)) {
+        const event_spec& e = m_scene.events[at->second];
+        note_event(at->first, y, at->second, e.acts() ? "before" : "");
+        if (e.stop) end_at_event(at->second);
+        if (e.stop) return next::done;
+        m_pending = pending{at->first, at->second, e.acts()};
+    }
+    if (at && m_last.ok() && !m_pending) m_pending = pending{at->first, at->second, false};
+    if (m_pending) return next::act;
     if (m_last.code == status::stopped_by_event) return next::done;
     if (!can_switch || m_samples.empty() || reached_end(m_scene, m_samples.last_t()))
         return next::done;
@@ -317,6 +308,38 @@ scene_run::next scene_run::integrate_segment(Eigen::VectorXd& y, double t_from) 
     return euler_chart && !m_last.ok() && sin_theta_of(m_sequence, cf.form, y) < switch_below
                ? next::body
                : next::done;
+}
+
+// The event m_pending ended the last segment with the state y: the state after its action (if it
+// acts), formed as `initial:` forms a start (run/actions.hpp), in the body form when the
+// Euler-angle chart cannot hold it; the integration restarts there. False when the action cannot
+// form a state: the run stops, its message located at the event.
+bool scene_run::act(Eigen::VectorXd& y, double& t_from) {
+    const pending p = *m_pending;
+    m_pending.reset();
+    t_from = p.t;
+    m_next_sample = m_samples.size();
+    if (!p.acts) return true;
+    const compiled_form& cf = *m_compiled[m_current];
+    Eigen::VectorXd dydt(y.size());
+    cf.system(m_parameters[m_current]).rhs(p.t, y.data(), dydt.data());
+    const action_outcome a =
+        m_actions->apply(p.index, {cf.form, p.t, y, dydt}, m_inertia, m_model_parameters);
+    if (!a.error.empty()) {
+        m_last.code = status::invalid_argument, m_last.message = a.error, m_last.t = p.t;
+        return false;
+    }
+    const double d = chart_distance(m_sequence, static_cast<double>(a.k.q[1]));
+    const bool in_body = cf.form != m_scene.form, can = m_prepared.can_switch();
+    const bool body = can && (in_body ? d <= switch_back_above : d < switch_below);
+    const compiled_form& next = compile(body ? other_chart(m_scene.form) : m_scene.form);
+    y = state_of(next.f, a.k);
+    m_parameters[m_current] =
+        form_parameter_values(m_scene, m_model_parameters, next.f.parameters, a.k);
+    note_event(p.t, y, p.index, "after");
+    m_segments.push_back({m_samples.size(), m_event_samples.back()});
+    ++m_result.segments;
+    return true;
 }
 
 // Continues from the last sample in the other chart.
@@ -389,20 +412,29 @@ void scene_run::record() {
     const bool every = m_prepared.every_row();
     const std::size_t n = m_samples.size() - (m_result.ok ? 0 : 1); // !ok: the last, no row
     m_result.rows.reserve(every ? n : 1);
-    for (std::size_t k = 0; k < m_samples.size(); ++k) {
-        const compiled_form& cf = *m_compiled[m_samples.form(k)];
-        const Eigen::Map<const Eigen::VectorXd> ys = m_samples.y(k);
-        if (k < n && (every || k + 1 == n))
-            m_result.rows.push_back(record_row(m_samples.t(k), ys, m_samples.form(k), out));
-        else
-            record_outputs(m_samples.t(k), ys, m_samples.form(k), out);
+    std::vector<double> ref(invariants.size()); // at the start of the segment (the drifts')
+    const auto invariants_at = [&](double t, const Eigen::Ref<const Eigen::VectorXd>& y,
+                                   std::size_t form, bool row) {
+        if (row) m_result.rows.push_back(record_row(t, y, form, out));
+        const compiled_form& cf = row ? *m_compiled[form] : record_outputs(t, y, form, out);
         std::optional<std::array<double, 3>> e;
+        std::vector<double> v(invariants.size());
+        for (std::size_t i = 0; i < invariants.size(); ++i)
+            v[i] = source_value(m_sequence, cf.invariants[i], y, out, m_inertia, e);
+        return v;
+    };
+    for (std::size_t k = 0, segment = 0; k < m_samples.size(); ++k) {
+        for (; segment < m_segments.size() && m_segments[segment].first == k; ++segment) {
+            const sample& s = m_segments[segment].second; // the state after an action
+            ref = invariants_at(s.t, s.y, s.form, false);
+        }
+        const std::vector<double> v = invariants_at(
+            m_samples.t(k), m_samples.y(k), m_samples.form(k), k < n && (every || k + 1 == n));
         for (std::size_t i = 0; i < invariants.size(); ++i) {
             invariant_drift& d = m_result.invariants[i];
-            const double v = source_value(m_sequence, cf.invariants[i], ys, out, m_inertia, e);
-            if (k == 0) d.first = v;
-            d.drift = std::max(d.drift, std::abs(v - d.first));
-            d.largest = std::max(d.largest, std::abs(v));
+            if (k == 0) d.first = ref[i] = v[i];
+            d.drift = std::max(d.drift, std::abs(v[i] - ref[i]));
+            d.largest = std::max(d.largest, std::abs(v[i]));
         }
     }
 }
@@ -443,12 +475,14 @@ Eigen::VectorXd scene_run::start() {
     start_method();
     m_times = sample_times(m_scene);
     m_samples.reserve(m_times.size(), first.f.state.size());
+    m_actions.emplace(m_scene, m_sequence, m_model_parameters);
     set_up_events();
 
     Eigen::VectorXd y = state_of(first.f, k0);
     m_parameters[m_current] =
         form_parameter_values(m_scene, m_model_parameters, first.f.parameters, k0);
-    check_finite_start(k0, first, y);
+    check_finite_start({m_scene, m_prepared.invariants(), m_sequence, m_inertia}, k0, first,
+                       m_parameters[m_current], y);
     if (m_split) {
         const integrator_spec& ig = m_scene.integrator;
         m_result.chart_note =
@@ -465,7 +499,10 @@ run_result scene_run::run() {
     double t_from = m_scene.t_start;
     for (next to = next::body; to != next::done;) {
         to = integrate_segment(y, t_from);
-        if (to != next::done) switch_chart(to, y, t_from);
+        if (to == next::act)
+            to = act(y, t_from) ? next::body : next::done;
+        else if (to != next::done)
+            switch_chart(to, y, t_from);
     }
     if (!m_last.ok() && m_last.code != status::stopped_by_event) // where it stopped: its drifts
         m_samples.add(m_last.t, y, m_current);                   // count, no row (record())
@@ -487,10 +524,8 @@ run_result scene_run::finish_from(const sample_states& samples, const step_stats
                                   std::vector<member_event> events, int stopped_by) {
     for (std::size_t k = 0; k < samples.size(); ++k)
         m_samples.add(samples.t(k), samples.y(k), m_current);
-    for (member_event& e : events) {
-        m_event_samples.push_back({e.t, std::move(e.y), m_current});
-        m_result.event_index.push_back(e.index);
-    }
+    for (member_event& e : events)
+        note_event(e.t, e.y, e.index, "");
     m_last = {};
     m_last.code = stopped_by >= 0 ? status::stopped_by_event : status::ok;
     if (stopped_by >= 0) end_at_event(static_cast<std::size_t>(stopped_by));
@@ -545,15 +580,6 @@ std::unique_ptr<member_parts> run_parts(const prepared_scene& prepared, const me
     return std::make_unique<run_in_parts>(prepared, values, timings);
 }
 
-std::vector<double> sample_times(const scene_spec& scene) {
-    std::vector<double> times(static_cast<std::size_t>(scene.samples));
-    for (std::size_t i = 0; i < times.size(); ++i)
-        times[i] = i + 1 == times.size() ? scene.t_end
-                                         : scene.t_start + (scene.t_end - scene.t_start) *
-                                                               double(i) / double(times.size() - 1);
-    return times;
-}
-
 member_values values_of(const scene_spec& scene) {
     return {scene.angles, scene.initial_rates, scene.parameters};
 }
@@ -567,17 +593,6 @@ run_result run_scene(const scene_spec& scene, stage_timings& timings,
                      const sample_callback& on_sample) {
     const prepared_scene prepared(scene, timings);
     return run_member(prepared, values_of(scene), timings, on_sample);
-}
-
-bool needs_orientation(const scene_spec& scene, bool chart_switch) {
-    bool orientation = chart_switch;
-    const auto& q = scene.model.angles.names;
-    for (const auto& name : scene.record)
-        orientation = orientation || name == q[0] || name == q[1] || name == q[2] ||
-                      name.rfind("body_", 0) == 0 || name.find("_dot") != std::string::npos ||
-                      name.rfind("p_", 0) == 0 || (name.size() == 2 && name[0] == 'q') ||
-                      name == "Lx" || name == "Ly" || name == "Lz";
-    return orientation;
 }
 
 } // namespace rotgen

@@ -40,13 +40,17 @@ struct run_result {
     std::vector<std::string> record;        // the recorded quantities (the scene's, or its default)
     std::vector<std::string> columns;       // the recorded columns, after t (body_x expands to 3)
     std::vector<std::vector<double>> rows;  // t, then one value per column, per sample
-    std::vector<invariant_drift> invariants;
+    std::vector<invariant_drift> invariants; // within each segment between actions (their
+                                             // drift: the largest, from the segment's start)
+    std::size_t segments = 1;                // 1 + the number of actions
     step_stats stats;
     // Events (the scene's `events:`), in time order: which (index into event_names) and the row
     // t, then the recorded columns at the event, as in `rows`.
     std::vector<std::string> event_names;
     std::vector<std::size_t> event_index;
     std::vector<std::vector<double>> event_rows;
+    // Per event row: "before" or "after" for an action (impulse, set: a row each), "" otherwise.
+    std::vector<std::string> event_phase;
     int stopped_by = -1; // the terminal event that ended the run (its state is the last row)
     // Where a pair of zeros of an event may hide: the search could neither prove nor exclude a
     // sign change there (runtime/integrate/event_roots.hpp).

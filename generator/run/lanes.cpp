@@ -318,6 +318,12 @@ void lane_check(const scene_spec& scene) {
         throw user_error(scene.integrator_where,
                          "--lanes needs the method rk4, dop853 or taylor, not " + m +
                              " (or run the sweep without --lanes)");
+    for (const event_spec& e : scene.events)
+        if (e.acts() || e.periodic || e.after > 1)
+            throw user_error(e.periodic ? e.where : e.action_where,
+                             "--lanes: event '" + e.name +
+                                 "' acts, is a time event or counts ('after'); members with "
+                                 "such events run alone: run the sweep without --lanes");
 }
 
 lane_kernels compile_lanes(const prepared_scene& prepared, stage_timings& timings,

@@ -2,6 +2,7 @@
 
 #include "expr/print.hpp"
 #include "expr/symbols.hpp"
+#include "scene/event_actions.hpp"
 #include "scene/scene.hpp"
 
 #include <algorithm>
@@ -36,21 +37,18 @@ bool is_name(const std::string& s) {
 class event_reader {
   public:
     event_reader(const model_spec& model, const std::string& file)
-        : m_names(event_names(model)), m_file(file) {}
+        : m_model(model), m_names(event_names(model)), m_file(file) {}
 
-    event_spec read(const YAML::Node& n) {
+    event_spec read(const YAML::Node& n, double t_start) {
         if (!n.IsMap())
             throw user_error(at(n), "an event must be a mapping {name, when, direction, action}");
-        check_keys(n, {"name", "when", "direction", "action"}, m_file, "an event");
+        check_keys(n, {"name", "when", "every", "direction", "action", "after"}, m_file,
+                   "an event");
         event_spec e;
         read_name(n, e);
-        const YAML::Node when = n["when"];
-        if (!when) throw user_error(at(n), "event '" + e.name + "' needs 'when' (an expression)");
-        e.where = at(when);
-        e.when_text = when.IsScalar() ? when.Scalar() : "";
-        if (e.when_text.find_first_not_of(" \t") == std::string::npos)
-            throw user_error(e.where, "event '" + e.name + "': 'when' is an empty expression");
-        e.when = parse_expression(e.when_text, m_names, e.where, "event '" + e.name + "'");
+        e.every_origin = t_start;
+        scene_detail::read_event_action(n, e, m_model, m_file);
+        if (!e.periodic) read_when(n, e);
         if (const YAML::Node d = n["direction"]) {
             const std::string s = d.IsScalar() ? d.Scalar() : "";
             if (s != "rising" && s != "falling" && s != "both")
@@ -58,18 +56,23 @@ class event_reader {
                                             "' (expected rising, falling or both)");
             e.direction = s == "rising" ? 1 : s == "falling" ? -1 : 0;
         }
-        if (const YAML::Node a = n["action"]) {
-            const std::string s = a.IsScalar() ? a.Scalar() : "";
-            if (s != "stop" && s != "record")
-                throw user_error(at(a), "event '" + e.name + "': unknown action '" + s +
-                                            "' (expected stop or record)");
-            e.stop = s == "stop";
-        }
         return e;
     }
 
   private:
     source_location at(const YAML::Node& n) const { return location_of(n, m_file); }
+
+    void read_when(const YAML::Node& n, event_spec& e) {
+        const YAML::Node when = n["when"];
+        if (!when)
+            throw user_error(at(n), "event '" + e.name +
+                                        "' needs 'when' (an expression) or 'every' (a period)");
+        e.where = at(when);
+        e.when_text = when.IsScalar() ? when.Scalar() : "";
+        if (e.when_text.find_first_not_of(" \t") == std::string::npos)
+            throw user_error(e.where, "event '" + e.name + "': 'when' is an empty expression");
+        e.when = parse_expression(e.when_text, m_names, e.where, "event '" + e.name + "'");
+    }
 
     void read_name(const YAML::Node& n, event_spec& e) {
         const YAML::Node name = n["name"];
@@ -83,6 +86,7 @@ class event_reader {
             throw user_error(at(name), "event name '" + e.name + "' is used twice");
     }
 
+    const model_spec& m_model;
     name_table m_names;
     std::string m_file;
     std::set<std::string> m_seen;
@@ -106,8 +110,17 @@ name_table event_names(const model_spec& model) {
     return names;
 }
 
+name_table action_names(const model_spec& model) {
+    name_table names = event_names(model);
+    for (const auto& [r, symbol] : record_symbols()) {
+        const auto it = names.find(r);
+        if (it != names.end() && it->second.is_equal(symbol)) names.erase(it);
+    }
+    return names;
+}
+
 std::vector<event_spec> read_events(const YAML::Node& n, const model_spec& model,
-                                    const std::string& file) {
+                                    const std::string& file, double t_start) {
     if (!n) return {};
     if (!n.IsSequence() || n.size() == 0)
         throw user_error(location_of(n, file),
@@ -115,8 +128,23 @@ std::vector<event_spec> read_events(const YAML::Node& n, const model_spec& model
     event_reader reader(model, file);
     std::vector<event_spec> events;
     for (const auto& item : n)
-        events.push_back(reader.read(item));
+        events.push_back(reader.read(item, t_start));
     return events;
+}
+
+const char* action_name(action_kind a) {
+    switch (a) {
+    case action_kind::stop:
+        return "stop";
+    case action_kind::impulse:
+        return "impulse";
+    case action_kind::impulse_space:
+        return "impulse_space";
+    case action_kind::set:
+        return "set";
+    default:
+        return "record";
+    }
 }
 
 const char* direction_name(int direction) {
@@ -130,9 +158,10 @@ std::string describe_events(const std::vector<event_spec>& events, const angle_c
         os << "\"events\": [";
         for (std::size_t i = 0; i < events.size(); ++i)
             os << (i ? ", " : "") << "{\"name\": " << json_quote(events[i].name)
-               << ", \"when\": " << json_quote(to_text(events[i].when, angles))
+               << (events[i].periodic ? ", \"every\": " : ", \"when\": ")
+               << json_quote(to_text(events[i].periodic ? events[i].every : events[i].when, angles))
                << ", \"direction\": \"" << direction_name(events[i].direction)
-               << "\", \"action\": \"" << (events[i].stop ? "stop" : "record") << "\"}";
+               << "\", \"action\": \"" << action_name(events[i].action) << "\"}";
         os << "]";
         return os.str();
     }
@@ -140,8 +169,11 @@ std::string describe_events(const std::vector<event_spec>& events, const angle_c
     os << (latex ? "\n\\section*{Events}\n\\begin{itemize}\n" : "\nEvents (zeros of g, scene)\n");
     for (const event_spec& e : events)
         os << (latex ? "\\item " : "  ") << e.name << ": "
-           << (latex ? "$" + to_latex(e.when, angles) + " = 0$" : to_text(e.when, angles) + " = 0")
-           << ", " << direction_name(e.direction) << ", " << (e.stop ? "stop" : "record") << "\n";
+           << (e.periodic ? (latex ? "every $" + to_latex(e.every, angles) + "$"
+                                   : "every " + to_text(e.every, angles))
+               : latex    ? "$" + to_latex(e.when, angles) + " = 0$"
+                          : to_text(e.when, angles) + " = 0")
+           << ", " << direction_name(e.direction) << ", " << action_name(e.action) << "\n";
     if (latex) os << "\\end{itemize}\n";
     return os.str();
 }

@@ -72,7 +72,7 @@ class scene_reader {
         if (root["integrator"]) read_integrator(root["integrator"]);
         if (m_scene.model.rotor) scene_detail::check_rotor_integrator(m_scene);
         read_record(root["record"]);
-        m_scene.events = read_events(root["events"], m_scene.model, m_file);
+        m_scene.events = read_events(root["events"], m_scene.model, m_file, m_scene.t_start);
         if (const YAML::Node sw = root["switch_chart"]) {
             if (!sw.IsScalar() || (sw.Scalar() != "true" && sw.Scalar() != "false"))
                 throw user_error(at(sw), "switch_chart must be true or false");

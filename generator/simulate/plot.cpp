@@ -71,7 +71,8 @@ std::string plot_terminal(const std::string& file, std::size_t panels) {
 
 std::string plot_script(const std::string& output, const std::string& terminal_for,
                         const std::string& csv, const std::vector<std::string>& record,
-                        const std::string& title, const std::map<std::string, double>& drifts) {
+                        const std::string& title, const std::map<std::string, double>& drifts,
+                        const std::vector<double>& marks) {
     const panel_list panels = panels_of(csv, record, drifts);
     std::ostringstream script;
     script << "set terminal " << plot_terminal(terminal_for, panels.size()) << "\n"
@@ -80,6 +81,9 @@ std::string plot_script(const std::string& output, const std::string& terminal_f
            // the same margins in every panel: their time axes line up
            << "set lmargin at screen 0.11\nset rmargin at screen 0.76\n"
            << "set multiplot layout " << panels.size() << ",1 title '" << title << "'\n";
+    for (double t : marks) // the actions' times, in every panel
+        script << "set arrow from " << format_number(t) << ", graph 0 to " << format_number(t)
+               << ", graph 1 nohead dashtype 2 linecolor rgb 'gray40'\n";
     for (std::size_t i = 0; i < panels.size(); ++i) {
         script << "set ylabel '" << panels[i].first << "'\n";
         script << (i + 1 == panels.size() ? "set xlabel 't'\n" : "unset xlabel\n");
@@ -94,11 +98,12 @@ std::string plot_script(const std::string& output, const std::string& terminal_f
 
 void plot_run(const std::string& png, const std::string& csv,
               const std::vector<std::string>& record, const std::string& title,
-              const std::map<std::string, double>& drifts, output_set* outputs) {
+              const std::map<std::string, double>& drifts, output_set* outputs,
+              const std::vector<double>& marks) {
     draw_with_gnuplot(
         png,
         [&](const std::string& output) {
-            return plot_script(output, png, csv, record, title, drifts);
+            return plot_script(output, png, csv, record, title, drifts, marks);
         },
         outputs);
 }

@@ -18,15 +18,18 @@ std::string plot_terminal(const std::string& file, std::size_t panels);
 // `csv`: the samples (t first, then the columns of `record` in order; may be a temporary file).
 // `drifts`: the quantities drawn as their change from the start, with their value at the start:
 // the energy and the conserved momenta (their raw values would fill the axis with ticks that all
-// read the same). Every panel has the same margins, so that their time axes line up. Given
-// `outputs`, the plot appears with them (support/atomic_file.hpp's output_set).
+// read the same). Every panel has the same margins, so that their time axes line up. `marks`: the
+// times of the run's actions (events that act), drawn in every panel as dashed vertical lines.
+// Given `outputs`, the plot appears with them (support/atomic_file.hpp's output_set).
 void plot_run(const std::string& png, const std::string& csv,
               const std::vector<std::string>& record, const std::string& title,
-              const std::map<std::string, double>& drifts, output_set* outputs = nullptr);
+              const std::map<std::string, double>& drifts, output_set* outputs = nullptr,
+              const std::vector<double>& marks = {});
 
 // The gnuplot script plot_run runs, writing `output`.
 std::string plot_script(const std::string& output, const std::string& terminal_for,
                         const std::string& csv, const std::vector<std::string>& record,
-                        const std::string& title, const std::map<std::string, double>& drifts);
+                        const std::string& title, const std::map<std::string, double>& drifts,
+                        const std::vector<double>& marks = {});
 
 } // namespace rotgen

@@ -50,18 +50,20 @@ void write_csv(atomic_file& out, const scene_spec& scene, const run_result& r,
     out.commit(outputs);
 }
 
-// One row per event in time order: its name, t, the recorded columns at the event.
+// One row per event in time order: its name, t, the phase (before/after an action, else empty),
+// the recorded columns at the event.
 void write_events(atomic_file& out, const scene_spec& scene, const run_result& r,
                   output_set& outputs) {
     std::ostream& os = out.stream();
-    os << provenance(scene) << "\nevent,t";
+    os << provenance(scene) << "\nevent,t,phase";
     for (const auto& c : r.columns)
         os << "," << c;
     os << "\n";
     for (std::size_t k = 0; k < r.event_rows.size(); ++k) {
-        os << r.event_names[r.event_index[k]];
-        for (double v : r.event_rows[k])
-            os << "," << format_number(v);
+        os << r.event_names[r.event_index[k]] << "," << format_number(r.event_rows[k][0]) << ","
+           << r.event_phase[k];
+        for (std::size_t c = 1; c < r.event_rows[k].size(); ++c)
+            os << "," << format_number(r.event_rows[k][c]);
         os << "\n";
     }
     out.commit(outputs);
@@ -85,9 +87,13 @@ void print_event_doubts(std::ostream& os, const run_result& r, std::size_t i) {
 void print_events(std::ostream& os, const run_result& r) {
     for (std::size_t i = 0; i < r.event_names.size(); ++i) {
         std::size_t n = 0;
-        for (std::size_t k : r.event_index)
-            n += k == i ? 1 : 0;
+        std::size_t acted = 0;
+        for (std::size_t k = 0; k < r.event_index.size(); ++k) {
+            n += r.event_index[k] == i && r.event_phase[k] != "after" ? 1 : 0;
+            acted += r.event_index[k] == i && r.event_phase[k] == "after" ? 1 : 0;
+        }
         os << "  event   " << r.event_names[i] << ": " << n << (n == 1 ? " time" : " times");
+        if (acted > 0) os << ", acted " << acted << (acted == 1 ? " time" : " times");
         if (r.stopped_by == static_cast<int>(i))
             os << "; stopped the run at t = " << format_double(r.rows.back()[0]);
         os << "\n";
@@ -108,7 +114,11 @@ void print_invariants(std::ostream& os, const run_result& r) {
            << name << "(0)| = " << short_number(inv.drift)
            << (near_zero ? " (absolute: " + name + "(0) is near 0)"
                          : " (relative " + short_number(inv.drift / std::abs(inv.first)) + ")")
-           << (conserved ? "" : ", not conserved: the model is damped or driven") << "\n";
+           << (conserved ? "" : ", not conserved: the model is damped or driven")
+           << (r.segments > 1 ? "; max over " + std::to_string(r.segments) +
+                                    " segments between actions, each from its start"
+                              : "")
+           << "\n";
     }
     std::size_t non_finite = 0;
     for (const auto& row : r.rows)
@@ -173,10 +183,13 @@ void draw_plot(const simulate_request& q, std::string csv, const scene_spec& sce
             if (r.columns[i] == inv.what.name && !r.rows.empty() &&
                 (inv.what.conserved || inv.what.name == "energy"))
                 drifts[inv.what.name] = r.rows[0][i + 1];
+    std::vector<double> actions; // their times, marked in every panel
+    for (std::size_t k = 0; k < r.event_rows.size(); ++k)
+        if (r.event_phase[k] == "after") actions.push_back(r.event_rows[k][0]);
     plot_run(q.plot, csv, r.record,
              scene.model.name + " (" + to_string(r.form) + " form, " + scene.integrator.method +
                  ")",
-             drifts, &outputs);
+             drifts, &outputs, actions);
 }
 
 // Where the samples go: the requested file, "-" for standard output, or by default

@@ -25,8 +25,10 @@ summary_layout layout_of(const prepared_scene& prepared) {
     for (const auto& name : prepared.scene().record)
         for (const auto& c : record_columns(name))
             l.columns.push_back(c);
-    for (const auto& e : prepared.scene().events)
+    for (const auto& e : prepared.scene().events) {
+        if (e.acts()) l.acting.push_back(l.events.size());
         l.events.push_back(e.name);
+    }
     for (const auto& inv : prepared.invariants())
         l.invariants.push_back(inv.name);
     l.samples = static_cast<std::size_t>(prepared.scene().samples);
@@ -63,6 +65,11 @@ member_outcome outcome_of(const prepared_scene& prepared, const summary_layout& 
         if (i < o.event_times.size() && std::isnan(o.event_times[i]))
             o.event_times[i] = r.event_rows[k][0];
     }
+    for (std::size_t a : layout.acting) {
+        o.actions.push_back(0);
+        for (std::size_t k = 0; k < r.event_index.size(); ++k)
+            o.actions.back() += r.event_index[k] == a && r.event_phase[k] == "after" ? 1 : 0;
+    }
     o.steps = r.stats.accepted;
     o.rhs_evals = r.stats.rhs_evals;
     if (!r.ok)
@@ -84,6 +91,8 @@ void write_summary_header(std::ostream& os, const sweep_plan& plan, const summar
         os << ",final." << c;
     for (const auto& e : layout.events)
         os << ",event." << e;
+    for (std::size_t a : layout.acting)
+        os << ",actions." << layout.events[a];
     for (const auto& inv : layout.invariants)
         os << ",drift." << inv;
     os << ",steps,rhs_evals,status\n";
@@ -108,6 +117,8 @@ std::string summary_row_of(std::size_t m, const std::vector<double>& row,
         field(o.final_row, c, false);
     for (std::size_t i = 0; i < layout.events.size(); ++i)
         field(o.event_times, i, true);
+    for (std::size_t i = 0; i < layout.acting.size(); ++i)
+        field(o.actions, i, false);
     for (std::size_t i = 0; i < layout.invariants.size(); ++i)
         field(o.drifts, i, false);
     s += ',' + std::to_string(o.steps) + ',' + std::to_string(o.rhs_evals) + ',' +

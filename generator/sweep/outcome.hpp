@@ -17,6 +17,7 @@ struct member_outcome {
     std::vector<double> final_row;   // t and the recorded columns at the last sample reached
     std::vector<double> drifts;      // max |v(t) - v(t0)|, one per monitored invariant
     std::vector<double> event_times; // the first time of each scene event; NaN: it never occurred
+    std::vector<double> actions;     // how many times each acting event acted (layout.acting)
     std::uint64_t steps = 0, rhs_evals = 0;
     std::string status = "ok"; // or why the member stopped (or could not start)
     bool in_lanes = false;     // run in a batch of lanes (sweep --lanes), not alone
@@ -33,6 +34,7 @@ struct member_outcome {
 struct summary_layout {
     std::vector<std::string> columns;    // recorded columns, body_x expanded
     std::vector<std::string> events;     // the scene's events, in the scene's order
+    std::vector<std::size_t> acting;     // those that act (impulse, set): actions.<name> columns
     std::vector<std::string> invariants; // energy, p_phi, ...
     std::size_t samples = 0;
 };

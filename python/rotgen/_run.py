@@ -37,8 +37,9 @@ class SimulateResult:
     columns : list of str
         The names of y's columns (the CSV header after ``t``).
     events : list of tuple
-        The scene's events in time order, each a tuple (name, time, the recorded columns there as
-        an ndarray).
+        The scene's events in time order, each a tuple (name, time, phase, the recorded columns
+        there as an ndarray); phase is ``"before"`` or ``"after"`` for the two rows of an event
+        that acts (impulse, set), ``""`` otherwise.
     summary : dict
         ``model``, ``form``, ``state_size``, ``method``, ``steps`` (accepted), ``rejected``,
         ``rhs_evals``, ``jac_evals``, ``factorisations``, ``drifts`` (invariant name to
@@ -56,7 +57,7 @@ class SimulateResult:
         self.t = rows[:, 0]
         self.y = rows[:, 1:]
         self.columns = list(d["columns"])
-        self.events = [(name, t, values) for name, t, values in d["events"]]
+        self.events = [(name, t, phase, values) for name, t, phase, values in d["events"]]
         self.summary = d["summary"]
         self.success = d["ok"]
         self.message = d["message"]
@@ -105,7 +106,7 @@ class SimulateResult:
         Returns
         -------
         pandas.DataFrame
-            One row per event: ``event``, ``t`` and the recorded columns (the rows of
+            One row per event: ``event``, ``t``, ``phase`` and the recorded columns (the rows of
             ``rotgen simulate``'s events CSV).
 
         Raises
@@ -116,8 +117,8 @@ class SimulateResult:
         pd = _pandas()
         if pd is None:
             raise ImportError("events_to_pandas() needs pandas (Debian: python3-pandas)")
-        rows = [[name, t, *values] for name, t, values in self.events]
-        return pd.DataFrame(rows, columns=["event", "t", *self.columns])
+        rows = [[name, t, phase, *values] for name, t, phase, values in self.events]
+        return pd.DataFrame(rows, columns=["event", "t", "phase", *self.columns])
 
     def __repr__(self):
         s = self.summary

@@ -71,7 +71,8 @@ py::dict result_of(const scene_spec& scene, const run_result& r) {
     for (std::size_t k = 0; k < r.event_rows.size(); ++k) {
         const std::vector<double>& row = r.event_rows[k];
         py::array_t<double> values(row.size() - 1, row.data() + 1);
-        events.append(py::make_tuple(r.event_names[r.event_index[k]], row[0], values));
+        events.append(
+            py::make_tuple(r.event_names[r.event_index[k]], row[0], r.event_phase[k], values));
     }
     d["events"] = events;
     d["event_names"] = r.event_names;

@@ -69,7 +69,7 @@ def rotgen_floor(rotgen, scene, work):
     with open(os.path.join(work, "fall.events.csv")) as f:
         rows = [r for r in csv.DictReader(l for l in f if not l.startswith("#")) if r["event"] == "floor"]
     assert len(rows) == 1, rows
-    return {k: float(v) for k, v in rows[0].items() if k != "event"}
+    return {k: float(v) for k, v in rows[0].items() if k not in ("event", "phase")}
 
 
 def main():

@@ -23,13 +23,15 @@ TEST_CASE("bad events: exit 2, one located line, nothing written", "[scene][even
         row{"events: [{name: a, when: theta}, {name: a, when: psi}]",
             "4:41: event name 'a' is used twice"},
         row{"events: [{name: a, when: theta, action: halt}]",
-            "4:41: event 'a': unknown action 'halt' (expected stop or record)"},
+            "4:41: event 'a': unknown action 'halt' (expected stop, record, {impulse: [..]}, "
+            "{impulse_space: [..]} or {set: {name: value}})"},
         row{"events: [{when: theta}]", "4:10: an event needs 'name'"},
         row{"events: [{name: '1a', when: theta}]",
             "4:18: event name '1a' must be a name: letters, digits and '_', not starting with a "
             "digit"},
         row{"events: []", "4:9: 'events' must be a list of {name, when, direction, action}"},
-        row{"events: [{name: a}]", "4:10: event 'a' needs 'when' (an expression)"},
+        row{"events: [{name: a}]",
+            "4:10: event 'a' needs 'when' (an expression) or 'every' (a period)"},
         row{"events: [{name: a, when: theta, colour: red}]",
             "4:33: unknown field 'colour' in an event"},
         row{"form: reduced\nevents: [{name: a, when: phi}]",

@@ -40,7 +40,7 @@ TEST_CASE("simulate --events on a scene without events writes the header and say
     const run_result r = run_rotgen("simulate top.yaml -o out.csv --events ev.csv", dir);
     INFO(r.err);
     REQUIRE(r.status == 0);
-    CHECK(without_provenance(read_file(dir + "/ev.csv")) == "event,t,theta\n");
+    CHECK(without_provenance(read_file(dir + "/ev.csv")) == "event,t,phase,theta\n");
     CHECK(r.out.find("wrote   ev.csv (0 events; the scene has no events:)\n") != std::string::npos);
 }
 

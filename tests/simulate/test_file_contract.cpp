@@ -159,7 +159,7 @@ TEST_CASE("a run that stops early keeps its events beside its partial rows (exit
     const csv_table events = read_csv(dir + "/out.partial.events.csv");
     REQUIRE(events.rows.size() == 1);
     CHECK(std::abs(events.rows[0][1] - 0.1) < 1e-12); // the zero of t - 0.1; observed exact
-    CHECK(events.rows[0][2] == Approx(rows.rows[1][1]).epsilon(1e-6)); // theta at t = 0.1
+    CHECK(events.rows[0][3] == Approx(rows.rows[1][1]).epsilon(1e-6)); // theta at t = 0.1
     CHECK(entries_in(dir) == 3);
 }
 

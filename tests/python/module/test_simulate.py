@@ -39,10 +39,10 @@ def test_simulate_equals_the_cli_csv_bit_for_bit(name, in_tmp):
     assert same_bits(r.y, [[float(v) for v in row[1:]] for row in rows])
     if os.path.exists("cli.events.csv"):
         eheader, erows = read_csv("cli.events.csv")
-        assert eheader == ["event", "t", *r.columns]
-        assert [e[0] for e in r.events] == [row[0] for row in erows]
-        assert same_bits([[e[1], *e[2]] for e in r.events],
-                         [[float(v) for v in row[1:]] for row in erows])
+        assert eheader == ["event", "t", "phase", *r.columns]
+        assert [(e[0], e[2]) for e in r.events] == [(row[0], row[2]) for row in erows]
+        assert same_bits([[e[1], *e[3]] for e in r.events],
+                         [[float(v) for v in [row[1], *row[3:]]] for row in erows])
     else:
         assert r.events == []
     assert os.listdir(".") == [] or sorted(os.listdir(".")) == ["cli.events.csv"]
@@ -118,3 +118,24 @@ def test_with_changes_the_scene_and_keeps_the_rest(in_tmp):
                         "model: " + source("models", "heavy_top.yaml"))
     assert same_bits(rotgen.simulate(rotgen.Scene(yaml_text=text)).y, r.y)
     assert os.listdir(".") == []
+
+
+def test_events_that_act_in_a_scene_dict(in_tmp):
+    # a free symmetric top (I1 = I2 = 2, I3 = 0.5) kicked about its axis every 0.5: omega3 steps by
+    # kick / I3 at each, and is constant between (Euler's equations 5.87-5.89)
+    scene = rotgen.Scene({
+        "model": {"name": "kicked_top", "parameters": {"I1": 2, "I3": 0.5, "kick": 0.05},
+                  "inertia": ["I1", "I1", "I3"]},
+        "form": "body",
+        "initial": {"phi": 0, "theta": 0.5, "psi": 0, "omega1": 0.3, "omega2": 0, "omega3": 4},
+        "time": {"end": 1.6, "samples": 17},
+        "record": ["omega3"],
+        "events": [{"name": "pulse", "every": 0.5, "action": {"impulse": [0, 0, "kick"]}}],
+    })
+    r = rotgen.simulate(scene)
+    assert [(e[0], e[2]) for e in r.events] == [("pulse", "before"), ("pulse", "after")] * 3
+    assert [e[1] for e in r.events] == pytest.approx([0.5, 0.5, 1.0, 1.0, 1.5, 1.5], abs=1e-15)
+    for before, after in zip(r.events[0::2], r.events[1::2]):
+        assert after[3][0] - before[3][0] == pytest.approx(0.1, abs=1e-14)  # observed 0 .. 9e-16
+    assert list(r.events_to_pandas().columns) == ["event", "t", "phase", "omega3"]
+    assert r["omega3"][-1] == pytest.approx(4.3, abs=1e-13)
