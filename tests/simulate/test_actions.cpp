@@ -370,3 +370,45 @@ TEST_CASE("a sweep over the pulse strength varies the impulse and counts the act
         CHECK(std::abs(s.rows[m][s.column("final.omega3")] - (4 + 3 * kick / 0.5)) < 1e-14);
     }
 }
+
+TEST_CASE("a set of a parameter switches a torque law's sign", "[simulate][actions]") {
+    // a symmetric top with the body torque k about its axis: I3 omega3' = k (5.89 with I1 = I2),
+    // so omega3 rises at k / I3 until the set at t = 1 makes k = -k, then falls at the same rate
+    const scratch_file scene(
+        "switch_k.yaml",
+        "model:\n  name: torqued_top\n  parameters: {I1: 2, I3: 0.5, k: 0.2}\n"
+        "  inertia: [I1, I1, I3]\n  torque: [\"0\", \"0\", \"k\"]\n"
+        "form: body\ninitial: {phi: 0.1, theta: 0.7, psi: 0.2, omega1: 0.3, omega2: -0.1, "
+        "omega3: 4}\ntime: {end: 2, samples: 21}\n"
+        "integrator: {method: dop853, rtol: 1e-12, atol: 1e-14}\nrecord: [omega3]\n"
+        "events:\n  - {name: mode, when: t - 1, action: {set: {parameters.k: -k}}}\n");
+    const run_result r =
+        run_rotgen("simulate '" + scene.path + "' -o '" + scratch("switch_k.csv") + "'");
+    INFO(r.out << r.err);
+    REQUIRE(r.status == 0);
+    double worst = 0;
+    for (const auto& row : read_csv(scratch("switch_k.csv")).rows) {
+        const double t = row[0], w3 = t <= 1 ? 4 + 0.4 * t : 4.4 - 0.4 * (t - 1);
+        worst = std::max(worst, std::abs(row[1] - w3));
+    }
+    CHECK(worst < 1e-14); // measured 1.3e-15
+}
+
+TEST_CASE("sweep --lanes refuses events that act, with one line", "[simulate][actions][sweep]") {
+    const scratch_file scene(
+        "lanes_kick.yaml",
+        std::string(symmetric_model) +
+            "form: body\ninitial: {phi: 0.1, theta: 0.7, psi: 0.2, omega1: 0.3, omega2: -0.1, "
+            "omega3: 4}\ntime: {end: 2, samples: 5}\nintegrator: {method: rk4, step: 0.01}\n"
+            "record: [omega3]\nevents:\n"
+            "  - {name: pulse, when: t - 1, action: {impulse: [0, 0, kick]}}\n");
+    const std::string dir = scratch("lanes_kick");
+    std::filesystem::remove_all(dir);
+    const run_result r = run_rotgen("sweep '" + scene.path + "' -o '" + dir +
+                                    "' --vary parameters.kick=0:0.2:4 --lanes 4 -q");
+    CHECK(r.status == 2);
+    CHECK(r.err == "rotgen: error: " + scene.path +
+                       ":11:40: --lanes: event 'pulse' acts, is a time event or counts ('after'); "
+                       "members with such events run alone: run the sweep without --lanes\n");
+    CHECK_FALSE(std::filesystem::exists(dir));
+}
