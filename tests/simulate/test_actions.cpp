@@ -412,3 +412,25 @@ TEST_CASE("sweep --lanes refuses events that act, with one line", "[simulate][ac
                        "members with such events run alone: run the sweep without --lanes\n");
     CHECK_FALSE(std::filesystem::exists(dir));
 }
+
+TEST_CASE("an event whose expression an action leaves at 0 is not reported there again",
+          "[simulate][actions]") {
+    // omega3 = 4 + 0.4 t crosses 4.3 at t = 0.75, where the action sets it to 4.3: g = 0 right
+    // after the action, and the run goes on with g > 0, without firing again
+    const scratch_file scene(
+        "hold.yaml",
+        "model:\n  name: torqued_top\n  parameters: {I1: 2, I3: 0.5, k: 0.2}\n"
+        "  inertia: [I1, I1, I3]\n  torque: [\"0\", \"0\", \"k\"]\n"
+        "form: body\ninitial: {phi: 0.1, theta: 0.7, psi: 0.2, omega1: 0.3, omega2: -0.1, "
+        "omega3: 4}\ntime: {end: 2, samples: 21}\nrecord: [omega3]\n"
+        "events:\n  - {name: hold, when: omega3 - 4.3, action: {set: {omega3: 4.3}}}\n");
+    const run_result r =
+        run_rotgen("simulate '" + scene.path + "' -o '" + scratch("hold.csv") + "'");
+    INFO(r.out << r.err);
+    REQUIRE(r.status == 0);
+    CHECK(r.out.find("event   hold: 1 time, acted 1 time") != std::string::npos);
+    const csv_table ev = read_csv(scratch("hold.events.csv"));
+    REQUIRE(ev.rows.size() == 2);
+    CHECK(ev.rows[0][1] == Approx(0.75).epsilon(1e-12));
+    CHECK(read_csv(scratch("hold.csv")).rows.back()[1] == Approx(4.3 + 0.4 * 1.25).epsilon(1e-12));
+}
