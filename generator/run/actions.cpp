@@ -109,6 +109,13 @@ class set_action {
     }
 
   private:
+    // Where the first of `names` is set.
+    const source_location& first_of(const std::vector<std::string>& names) const {
+        for (const set_entry& s : m_e.set)
+            if (index_in(names, s.name) >= 0) return s.where;
+        return m_e.action_where;
+    }
+
     std::string located(const source_location& at, const std::string& what) const {
         return to_string(at) + ": event '" + m_e.name + "': " + what;
     }
@@ -140,9 +147,8 @@ class set_action {
         if (by_angles) quat = quaternion_of_angles(m_seq, angles[0], angles[1], angles[2]);
         if (by_quat) {
             if (std::abs(qv.norm() - 1) > 1e-6)
-                return located(m_e.set.front().where, "the quaternion set has norm " +
-                                                          format_number(qv.norm()) +
-                                                          ", not 1 (to 1e-6)");
+                return located(first_of(q), "the quaternion set has norm " +
+                                                format_number(qv.norm()) + ", not 1 (to 1e-6)");
             qv.normalize();
             quat = Eigen::Quaterniond(qv[0], qv[1], qv[2], qv[3]);
             angles = angles_of_quaternion(m_seq, quat);
