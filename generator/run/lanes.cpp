@@ -149,6 +149,13 @@ template <class V> std::vector<double> by_lane(const std::vector<V>& values, std
     return out;
 }
 
+// Whether a lane carries the event through to the end: an event that acts (or counts its
+// occurrences, `after`) needs the restart of a member's own run (run/actions.hpp), so the lane it
+// occurs in leaves the batch there and the member runs alone, from its start.
+bool runs_in_lanes(const event_spec& e) {
+    return !e.acts() && e.after <= 1;
+}
+
 // A lane's run: its samples (none when the member must run alone), the events it met in time order,
 // the terminal one that ended it (-1: none) and the work it took part in: the batch's steps and
 // evaluations up to its own end (the step of its terminal event, or the batch's end).
@@ -238,6 +245,10 @@ std::vector<lane_run> run_system(const prepared_scene& prepared, lane_batch& b, 
     const auto observe = [&](double t, const Eigen::VectorXd& y) {
         for (; hits_seen < events.hits().size(); ++hits_seen) {
             const std::size_t e = events.hits()[hits_seen].index, l = e / scene.events.size();
+            if (!runs_in_lanes(scene.events[e % scene.events.size()])) {
+                sys.stop(l); // it acts or counts here: it leaves the batch and runs alone
+                continue;
+            }
             if (scene.events[e % scene.events.size()].stop && !ended[l]) {
                 ended[l] = 1;
                 sys.stop(l); // its run is over: it stays where it is
@@ -318,12 +329,6 @@ void lane_check(const scene_spec& scene) {
         throw user_error(scene.integrator_where,
                          "--lanes needs the method rk4, dop853 or taylor, not " + m +
                              " (or run the sweep without --lanes)");
-    for (const event_spec& e : scene.events)
-        if (e.acts() || e.periodic || e.after > 1)
-            throw user_error(e.periodic ? e.where : e.action_where,
-                             "--lanes: event '" + e.name +
-                                 "' acts, is a time event or counts ('after'); members with "
-                                 "such events run alone: run the sweep without --lanes");
 }
 
 lane_kernels compile_lanes(const prepared_scene& prepared, stage_timings& timings,
@@ -355,6 +360,8 @@ std::vector<std::optional<run_result>> run_lanes(const prepared_scene& prepared,
                                                  const lane_kernels& kernels,
                                                  const std::vector<member_values>& members) {
     std::vector<std::optional<run_result>> results(members.size());
+    for (const event_spec& e : prepared.scene().events)
+        if (e.periodic) return results; // every member meets a time event: all run alone
     lane_batch b = start_members(prepared, members);
     if (b.member_of.empty()) return results;
     const integrator_spec& ig = prepared.scene().integrator;

@@ -53,7 +53,8 @@ struct lane_kernels {
 };
 
 // Throws user_error (at the scene's integrator) when lanes cannot run the scene: a method other
-// than rk4, dop853 and taylor.
+// than rk4, dop853 and taylor. Events that act, time events (`every`) and events that count
+// (`after`) do not stop lanes: a member meets one leaves its batch and runs alone (run_lanes).
 void lane_check(const scene_spec& scene);
 
 // The batch kernel of the scene's form (compiled, or loaded from the cache) for `lanes` members
@@ -62,7 +63,8 @@ void lane_check(const scene_spec& scene);
 lane_kernels compile_lanes(const prepared_scene& prepared, stage_timings& timings,
                            std::size_t lanes);
 
-// Runs the members together; a member's entry is empty when it must run alone (above).
+// Runs the members together; a member's entry is empty when it must run alone: it changes chart,
+// an event that acts or counts occurs in its lane, or the scene has a time event (every member).
 // Thread-safe as run_member is.
 std::vector<std::optional<run_result>> run_lanes(const prepared_scene& prepared,
                                                  const lane_kernels& kernels,
