@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <mutex>
 
 namespace rotgen::bench {
 
@@ -98,14 +100,20 @@ measured_run measure_scene(const scene_spec& scene, const run_result* ref, int r
     measured_run m;
     try {
         stage_timings timings;
-        const prepared_scene prepared(scene, timings);
+        std::unique_ptr<prepared_scene> prepared;
+        { // GiNaC under the lock (Python's other threads), as run_member uses it
+            const std::lock_guard<std::mutex> lock(symbolic_mutex());
+            prepared = std::make_unique<prepared_scene>(scene, timings);
+        }
         const member_values values = values_of(scene);
         m.seconds = INFINITY;
         for (int k = 0; k < repeats; ++k) {
-            m.result = run_member(prepared, values, timings);
+            m.result = run_member(*prepared, values, timings);
             m.seconds = std::min(m.seconds, m.result.integrate_seconds);
             if (!m.result.ok) break;
         }
+        const std::lock_guard<std::mutex> lock(symbolic_mutex());
+        prepared.reset();
     } catch (const user_error& e) {
         m.why = e.message();
         m.refused = true;

@@ -59,11 +59,14 @@ int cmd_tune(const std::vector<std::string>& args) {
     std::optional<atomic_file> file;
     if (!out.empty()) file.emplace(out, std::vector<std::string>{o.operand, scene.model.file});
     const bool form_given = scene.form_given;
-    resolve_auto(scene, o.has("--verbose") ? &std::cerr : nullptr);
+    const auto_choice c = resolve_auto(scene, o.has("--verbose") ? &std::cerr : nullptr);
     std::cout << "rotgen tune " << o.operand << "\n"
               << "  method  auto: " << scene.integrator.auto_choice << "\n"
               << "  target  error " << short_number(scene.integrator.error)
               << " (the largest over the samples of the attitude error and |dw|/|w|)\n"
+              << "  error   " << short_number(c.error) << " measured, in "
+              << format_duration(c.run_seconds) << " integrating (reference floor "
+              << short_number(c.floor) << ")\n"
               << "  scene   " << (form_given ? "" : "form: " + std::string(to_string(scene.form)))
               << (form_given ? "" : "\n          ") << integrator_line(scene.integrator) << "\n";
     if (file) {

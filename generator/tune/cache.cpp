@@ -94,9 +94,9 @@ std::string auto_cache_key(const scene_spec& scene) {
     return hex(fnv1a(all));
 }
 
-void resolve_auto(scene_spec& scene, std::ostream* log) {
+auto_choice resolve_auto(scene_spec& scene, std::ostream* log) {
     integrator_spec& ig = scene.integrator;
-    if (ig.method != "auto") return;
+    if (ig.method != "auto") return {};
     const fs::path file =
         fs::path(usable_cache_directory()) / "tune" / (auto_cache_key(scene) + ".choice");
     auto_choice c;
@@ -111,6 +111,7 @@ void resolve_auto(scene_spec& scene, std::ostream* log) {
     if (!scene.form_given) scene.form = c.form;
     ig.auto_choice = choice_text(c) + " (tuned in " + short_number(c.tune_seconds, 2) + " s" +
                      (c.cached ? "; cached" : "") + ")";
+    return c;
 }
 
 } // namespace rotgen

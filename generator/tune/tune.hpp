@@ -54,7 +54,8 @@ std::string auto_cache_key(const scene_spec& scene);
 
 // `scene` with method auto resolved (from the cache, or tuned and cached): the method, rtol, atol,
 // the form (unless the scene gave one) and integrator.auto_choice, the line the summaries print
-// after "auto: ". Scenes of other methods are left as they are. `log` as in tune_scene.
-void resolve_auto(scene_spec& scene, std::ostream* log = nullptr);
+// after "auto: ". Scenes of other methods are left as they are (and the choice returned is empty).
+// `log` as in tune_scene.
+auto_choice resolve_auto(scene_spec& scene, std::ostream* log = nullptr);
 
 } // namespace rotgen

@@ -117,3 +117,20 @@ def test_with_changes_the_scene_and_keeps_the_rest(in_tmp):
                         "model: " + source("models", "heavy_top.yaml"))
     assert same_bits(rotgen.simulate(rotgen.Scene(yaml_text=text)).y, r.y)
     assert os.listdir(".") == []
+
+
+def test_with_method_auto_runs_the_tuned_choice(in_tmp, monkeypatch):
+    # issue 50: Scene.with_(integrator={"method": "auto", ...}) drops the file's rtol and atol, and
+    # rotgen.simulate tunes (once, cached by content) and runs the choice, as the CLI does
+    monkeypatch.setenv("ROTGEN_CACHE_DIR", str(in_tmp / "cache"))
+    s = rotgen.Scene(source("models", "scenes", "heavy_top_nutation.yaml"))
+    s2 = s.with_(integrator={"method": "auto", "error": 1e-6}, time={"end": 1, "samples": 51})
+    r = rotgen.simulate(s2)
+    assert r.summary["method"] != "auto"
+    assert r.summary["auto"].startswith(r.summary["method"] + " rtol ")
+    assert "; cached" not in r.summary["auto"]
+    again = rotgen.simulate(s2)
+    assert again.summary["auto"].endswith("; cached)")
+    assert same_bits(again.y, r.y)
+    # back to a method of its own: the error key goes
+    assert rotgen.simulate(s2.with_(integrator={"method": "dop853"})).summary["auto"] == ""
