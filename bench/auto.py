@@ -20,10 +20,10 @@ import time
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 ROTGEN = next((a for a in sys.argv[1:] if not a.startswith("--")), os.path.join(ROOT, "build", "rotgen"))
 QUICK = "--quick" in sys.argv
-SCENES = ["heavy_top_nutation", "free_top_axis2", "heavy_top_loops"]
+SCENES = ["free_top_workprecision", "heavy_top_nutation"]
 TARGETS = [1e-4, 1e-8, 1e-12]
 OUT = os.path.join(ROOT, "bench-out", "auto")
-CACHE = os.path.join(OUT, "cache")
+CACHE = os.environ.get("ROTGEN_CACHE_DIR", os.path.join(OUT, "cache"))
 RECORD = "record: [q0, q1, q2, q3, omega1, omega2, omega3]"
 
 

@@ -249,9 +249,11 @@ TEST_CASE("rotgen bench --quick: columns, plots, and errors that match an indepe
     CHECK(extra ==
           std::map<std::string, int>{{"split2", 2}, {"split4", 2}, {"split6", 2}, {"taylor", 2}});
 
-    // issue 50: the summary ends with the choice in scene terms. At 1e-12 and 1e-13, where no
-    // DOP853 run gets, the split rows (at rounding, observed 3e-14) are chosen, never long double
-    // (bench only); each printed scene block, run as a scene, reproduces an error within its level
+    // issue 50: the summary ends with the choice in scene terms. At 1e-11, where no DOP853 run
+    // gets, a split row (at rounding: observed split2 tol 1e-8, bench error 4.5e-14, run 1.5e-13)
+    // is chosen, never long double (bench only); each printed scene block, run as a scene,
+    // reproduces an error within its level (observed 6.8e-5 at 1e-3 .. 1.5e-13 at 1e-11); levels
+    // below 3x the verifying reference's floor (2.4e-12 here) get no choice
     const std::vector<choice> choices = read_choices(r.out);
     REQUIRE(choices.size() >= 6);
     for (const choice& c : choices) {
@@ -264,7 +266,7 @@ TEST_CASE("rotgen bench --quick: columns, plots, and errors that match an indepe
         CHECK(e <= std::stod(c.level));
     }
     for (const choice& c : choices)
-        if (c.level == "1e-12") CHECK(c.config.find("rotgen split") == 0);
+        if (c.level == "1e-11") CHECK(c.config.find("rotgen split") == 0);
     // the three tables agree: results.md's best table and its interpolated table name the choice
     for (const choice& c : choices) {
         INFO(c.level << ": " << c.config);
