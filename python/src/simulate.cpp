@@ -88,20 +88,6 @@ py::dict result_of(const scene_spec& scene, const run_result& r) {
     return d;
 }
 
-// Method auto resolved (tune/) with the GIL released and without the lock, which the tuning runs
-// take as they need it (run_member); the scene's text is registered for the cache key.
-void resolve_released(scene_spec& scene, const std::string& path, const std::string& text) {
-    py::gil_scoped_release released;
-    if (!text.empty()) set_memory_file(path, text);
-    try {
-        resolve_auto(scene);
-    } catch (...) {
-        if (!text.empty()) erase_memory_file(path);
-        throw;
-    }
-    if (!text.empty()) erase_memory_file(path);
-}
-
 // Reads and prepares the scene (under the lock), as `rotgen simulate` does (run_scene), then runs
 // it with the GIL released; Ctrl-C stops it at the next sample (run_released).
 py::dict simulate_scene(const std::string& path, const std::string& text) {
@@ -162,6 +148,20 @@ py::dict scene_info(const std::string& path, const std::string& text) {
 }
 
 } // namespace
+
+// Method auto resolved (tune/) with the GIL released and without the lock, which the tuning runs
+// take as they need it (run_member); the scene's text is registered for the cache key.
+void resolve_released(scene_spec& scene, const std::string& path, const std::string& text) {
+    py::gil_scoped_release released;
+    if (!text.empty()) set_memory_file(path, text);
+    try {
+        resolve_auto(scene);
+    } catch (...) {
+        if (!text.empty()) erase_memory_file(path);
+        throw;
+    }
+    if (!text.empty()) erase_memory_file(path);
+}
 
 void init_simulate(py::module_& m) {
     m.def("simulate", &simulate_scene, py::arg("path"), py::arg("text") = "");

@@ -161,6 +161,12 @@ TEST_CASE("rotgen tune writes a scene that simulate runs, and exits 2 below the 
     CHECK(r.status == 0);
     CHECK(r.out.find("  method  auto: ") != std::string::npos);
     CHECK(r.out.find("; cached)") != std::string::npos);
+    // a sweep tunes once for all members (here: reads the choice) and says so; the choice is part
+    // of its journal's hash
+    r = run_rotgen("sweep '" + scene + "' -o '" + dir + "/sweep' --vary initial.theta=0.4:0.6:3");
+    INFO(r.out << r.err);
+    CHECK(r.status == 0);
+    CHECK(r.out.find("method auto: ") != std::string::npos);
     // an error below what the reference resolves: exit 2 naming the smallest error reached
     r = run_rotgen("tune '" + scene + "' --error 1e-17");
     CHECK(r.status == 2);
