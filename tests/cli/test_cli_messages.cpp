@@ -156,8 +156,8 @@ TEST_CASE("messages: did you mean, for commands, options and case", "[cli][messa
     const top_scene s("messages_case.yaml", "integrator: {method: DOP853}\n");
     check_error_line(run_rotgen("simulate messages_case.yaml", ROTGEN_BINARY_DIR),
                      "messages_case.yaml:4:22: unknown integrator 'DOP853' (expected rk4, "
-                     "dopri5, dop853, implicit_midpoint, rosenbrock, split2, split4, split6 or "
-                     "taylor); did you mean 'dop853'?");
+                     "dopri5, dop853, implicit_midpoint, rosenbrock, split2, split4, split6, "
+                     "taylor or auto); did you mean 'dop853'?");
 }
 
 TEST_CASE("messages: the summary's model line names the form that ran", "[cli][messages]") {
