@@ -14,6 +14,7 @@
 #include "bench/bench_internal.hpp"
 #include "bench/files.hpp"
 #include "bench/numbers.hpp"
+#include "bench/sampled_error.hpp"
 #include "expr/symbols.hpp"
 #include "run/angle_chart.hpp"
 #include "run/engine.hpp"
@@ -109,6 +110,7 @@ class bench_run {
         m_ctx.output = read_output(m_ctx.run.raw);
         write_tables(m_ctx);                          // results.csv, final_states.csv, drift.csv
         m_ctx.summary = summarise(m_ctx.output.rows); // the best configuration per accuracy
+        t.time("verify", "the chosen scenes", [&] { choose(); }); // in scene terms, run once
         std::string markdown = write_markdown(m_ctx, seconds_since(m_wall0));
         t.time("plot", "", [&] { draw_plots(m_ctx); });
         finish(markdown); // results.md, the summary on stdout
@@ -131,6 +133,7 @@ class bench_run {
                                m_ctx.conservative, m_ctx.variants, m_ctx.extra);
     }
     void choose_variants();
+    void choose();
     void finish(std::string& markdown);
     void print_summary(double wall_seconds) const;
 
@@ -188,6 +191,24 @@ void bench_run::choose_variants() {
     check_taylor(c.spec, c.variants.variants[0], c.extra);
 }
 
+// The choice per level in scene terms, each scene run through the engine and measured against the
+// tight reference of the one error measure (levels below 3x that reference's floor are not
+// verifiable and get no choice).
+void bench_run::choose() {
+    bench_context& c = m_ctx;
+    const reference_run ref = make_reference(c.scene);
+    c.verify_floor = ref.floor;
+    const verify_fn verify = [&](const scene_spec& s) {
+        const measured_run m = measure_scene(scene_for_error(s), &ref.result, 1);
+        return m.ok ? m.error : NAN;
+    };
+    std::vector<double> levels;
+    for (const double l : c.summary.levels)
+        if (l > floor_factor * ref.floor) levels.push_back(l);
+    c.choices = choose_scenes(c.output.rows, c.variants.variants, c.scene, levels,
+                              c.output.reference_error, verify);
+}
+
 void bench_run::finish(std::string& markdown) {
     const double wall_seconds = seconds_since(m_wall0);
     markdown +=
@@ -219,19 +240,7 @@ void bench_run::print_summary(double wall_seconds) const {
               << "\n";
     for (const auto& why : c.plan.left_out)
         std::cout << "  left out  " << why << "\n";
-    std::cout << "  fastest to reach an error (median times; " << matched_accuracy_rule << "):\n";
-    for (std::size_t l = 0; l < c.summary.levels.size(); ++l) {
-        const reach& a = c.summary.reached[l].first;
-        const reach& b = c.summary.reached[l].second;
-        if (!std::isfinite(a.time) && !std::isfinite(b.time)) continue;
-        const double level = c.summary.levels[l];
-        const auto side = [&](const reach& r, bool peer) {
-            return std::isfinite(r.time) ? reach_text(r)
-                                         : "- (" + why_none(out.rows, peer, level) + ")";
-        };
-        std::cout << "  " << tol_text(level) << "  rotgen " << side(a, false) << "  peer "
-                  << side(b, true) << "\n";
-    }
+    std::cout << choices_text(c, "  ");
     std::cout << "  wrote     " << (c.dir / "results.csv").string()
               << ", results.md, final_states.csv, "
               << "drift.csv, work_precision_time.png, work_precision_evals.png"

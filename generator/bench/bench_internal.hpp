@@ -6,6 +6,7 @@
 #include "bench/driver.hpp"
 #include "bench/initial_state.hpp"
 #include "bench/plan.hpp"
+#include "bench/scene_choice.hpp"
 #include "bench/sources.hpp"
 #include "bench/split_taylor.hpp"
 #include "bench/summary.hpp"
@@ -39,7 +40,14 @@ struct bench_context {
     driver_run run;
     driver_output output;
     bench_summary summary; // points into output.rows
+    // per level of summary.levels: the fastest scene simulate runs, verified (scene_choice.hpp);
+    // the one choice the console and results.md print
+    std::vector<scene_choice> choices;
+    double verify_floor = 0; // the verification reference's floor (sampled_error.hpp)
 };
+
+// The choice at each level, in scene terms: what the console and results.md print (one text).
+std::string choices_text(const bench_context& ctx, const std::string& indent);
 
 // results.csv, final_states.csv, drift.csv in ctx.dir.
 void write_tables(const bench_context& ctx);

@@ -2,6 +2,7 @@
 #include "bench/bench_internal.hpp"
 #include "bench/files.hpp"
 #include "bench/numbers.hpp"
+#include "bench/sampled_error.hpp"
 
 #include <sstream>
 
@@ -87,17 +88,35 @@ void md_introduction(std::ostream& md, const bench_context& ctx) {
           "same for the momenta of the cyclic coordinates.\n\n";
 }
 
-// The fastest measured configuration per accuracy.
-void md_best(std::ostream& md, const bench_summary& s) {
+// The choice of the level (choose_scenes), or null.
+const result_row* chosen(const bench_context& ctx, double level) {
+    for (const scene_choice& c : ctx.choices)
+        if (c.level == level) return c.row;
+    return nullptr;
+}
+
+// The choice in scene terms (the text the console prints).
+void md_choice(std::ostream& md, const bench_context& ctx) {
+    md << "## The choice, in scene terms\n\n```text\n"
+       << choices_text(ctx, "") << "```\n\nLevels below 3x the verification reference's floor ("
+       << short_number(floor_factor * ctx.verify_floor)
+       << ") and bench rows at 3x the bench reference's own error are not chosen from.\n\n";
+}
+
+// The fastest configuration per accuracy: rotgen's is the choice (runnable by simulate,
+// verified); the peers' the fastest measured at matched accuracy.
+void md_best(std::ostream& md, const bench_context& ctx) {
+    const bench_summary& s = ctx.summary;
     md << "## Best configuration per accuracy\n\n"
-       << "Fastest configuration (by median time) whose error is at most the level and more than "
-          "a tenth of it; time as median (min). The "
+       << "rotgen: the choice above (the fastest configuration simulate runs whose error is at "
+          "most the level, verified); peer: the fastest whose error is at most the level and "
+          "more than a tenth of it; time as median (min). The peers' "
        << matched_accuracy_rule << ".\n\n"
        << "| error <= | rotgen best | time | RHS evals | best peer | time | RHS evals | peer / "
           "rotgen |\n"
        << "|---|---|---:|---:|---|---:|---:|---:|\n";
     for (std::size_t l = 0; l < s.levels.size(); ++l) {
-        const auto* a = s.best[l].rotgen;
+        const auto* a = chosen(ctx, s.levels[l]);
         const auto* b = s.best[l].peer;
         md << "| " << tol_text(s.levels[l]) << " | " << config_name(a) << " | "
            << (a ? short_number(a->median * 1e6) + " µs (" + short_number(a->min * 1e6) + ")" : "")
@@ -108,19 +127,21 @@ void md_best(std::ostream& md, const bench_summary& s) {
     }
 }
 
-// The fastest curve per accuracy, interpolated.
-void md_interpolated(std::ostream& md, const bench_summary& s) {
+// The fastest curve per accuracy, interpolated: rotgen's is the chosen configuration's curve.
+void md_interpolated(std::ostream& md, const bench_context& ctx) {
+    const bench_summary& s = ctx.summary;
     md << "\n### Interpolated along each curve\n\n"
        << "Time (median) to reach the accuracy on each configuration's error-time curve, "
           "interpolated between its neighbouring points (or a measured run within 10x below "
           "it; ≤: a curve with no run in that decade competes with its cheapest run more "
-          "accurate than it, an upper bound); the fastest rotgen and the fastest peer "
-          "configuration.\n\n"
+          "accurate than it, an upper bound); for rotgen the curve of the choice above, for the "
+          "peers the fastest curve.\n\n"
        << "| error | rotgen configuration | time | RHS evals | peer configuration | time | RHS "
           "evals "
           "| peer / rotgen |\n|---|---|---:|---:|---|---:|---:|---:|\n";
     for (std::size_t l = 0; l < s.levels.size(); ++l) {
-        const reach& a = s.reached[l].first;
+        const result_row* c = chosen(ctx, s.levels[l]);
+        const reach a = c ? curve_reach(ctx.output.rows, *c, s.levels[l]) : reach{};
         const reach& b = s.reached[l].second;
         const bool ha = std::isfinite(a.time), hb = std::isfinite(b.time);
         const auto time = [](const reach& r) {
@@ -183,20 +204,21 @@ void md_long_runs(std::ostream& md, const bench_context& ctx) {
     }
 }
 
-void md_all(std::ostream& md, const std::vector<result_row>& rows) {
+void md_all(std::ostream& md, const bench_context& ctx) {
     md << "\n## All configurations\n\n"
        << "| method | peer | form | scalar | tol | step | status | error | orientation | RHS | Jac "
           "| "
-          "steps | median µs | min µs | max µs | energy drift | momentum drift |\n"
-       << "|---|---|---|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
-    for (const auto& r : rows)
+          "steps | median µs | min µs | max µs | energy drift | momentum drift | simulate |\n"
+       << "|---|---|---|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
+    for (const auto& r : ctx.output.rows)
         md << "| " << r.method << " | " << r.peer << " | " << r.form << " | " << r.scalar << " | "
            << (r.tol > 0 ? tol_text(r.tol) : "") << " | "
            << (r.step > 0 ? short_number(r.step, 4) : "") << " | " << r.status << " | "
            << short_number(r.error) << " | " << short_number(r.orientation) << " | " << r.rhs
            << " | " << r.jac << " | " << r.steps << " | " << short_number(r.median * 1e6) << " | "
            << short_number(r.min * 1e6) << " | " << short_number(r.max * 1e6) << " | "
-           << short_number(r.energy_drift) << " | " << short_number(r.momentum_drift) << " |\n";
+           << short_number(r.energy_drift) << " | " << short_number(r.momentum_drift) << " | "
+           << runnable_text(r, ctx.variants.variants, ctx.scene) << " |\n";
 }
 
 } // namespace
@@ -214,11 +236,12 @@ void write_tables(const bench_context& ctx) {
 std::string write_markdown(const bench_context& ctx, double wall_seconds_so_far) {
     std::ostringstream md;
     md_introduction(md, ctx);
-    md_best(md, ctx.summary);
-    md_interpolated(md, ctx.summary);
+    md_choice(md, ctx);
+    md_best(md, ctx);
+    md_interpolated(md, ctx);
     md_fewest(md, ctx);
     if (!ctx.plan.drift_labels.empty()) md_long_runs(md, ctx);
-    md_all(md, ctx.output.rows);
+    md_all(md, ctx);
     md << "\nGeneration " << short_number(ctx.generate_seconds) << " s, compilation "
        << (ctx.driver.cached ? "cached" : short_number(ctx.driver.seconds) + " s") << ", sweep "
        << short_number(ctx.run.seconds) << " s; total so far " << short_number(wall_seconds_so_far)

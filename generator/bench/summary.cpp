@@ -66,20 +66,27 @@ reach reach_on_curve(const std::string& name, const std::vector<const result_row
     return std::isfinite(best_here.time) ? best_here : beyond_level(best_here, points, level);
 }
 
+std::string curve_name(const result_row& r) {
+    return (r.peer == "rotgen" ? "rotgen " : r.peer + " ") + method_key(r) + " " + r.scalar + " " +
+           r.form;
+}
+
+void sort_curve(std::vector<const result_row*>& points) {
+    std::sort(points.begin(), points.end(), [](const result_row* a, const result_row* b) {
+        return a->tol > 0 ? a->tol > b->tol : a->step > b->step;
+    });
+}
+
 // The fastest curve (interpolated) per level, per kind of peer.
 std::vector<std::pair<reach, reach>> best_interpolated(const std::vector<result_row>& rows,
                                                        const std::vector<double>& levels) {
     std::map<std::string, std::vector<const result_row*>> curves_by_name;
     for (const auto& r : rows)
         if (r.ok() && std::isfinite(r.median) && r.error >= 0)
-            curves_by_name[(r.peer == "rotgen" ? "rotgen " : r.peer + " ") + method_key(r) + " " +
-                           r.scalar + " " + r.form]
-                .push_back(&r);
+            curves_by_name[curve_name(r)].push_back(&r);
     std::vector<std::pair<reach, reach>> reached(levels.size()); // (rotgen, peer)
     for (auto& [name, points] : curves_by_name) {
-        std::sort(points.begin(), points.end(), [](const result_row* a, const result_row* b) {
-            return a->tol > 0 ? a->tol > b->tol : a->step > b->step;
-        });
+        sort_curve(points);
         for (std::size_t l = 0; l < levels.size(); ++l) {
             const reach best_here = reach_on_curve(name, points, levels[l]);
             if (!std::isfinite(best_here.time)) continue;
@@ -139,6 +146,15 @@ bench_summary summarise(const std::vector<result_row>& rows) {
     s.best = best_measured(rows, s.levels);
     s.reached = best_interpolated(rows, s.levels);
     return s;
+}
+
+reach curve_reach(const std::vector<result_row>& rows, const result_row& r, double level) {
+    std::vector<const result_row*> points;
+    for (const auto& p : rows)
+        if (p.ok() && std::isfinite(p.median) && p.error >= 0 && curve_name(p) == curve_name(r))
+            points.push_back(&p);
+    sort_curve(points);
+    return reach_on_curve(curve_name(r), points, level);
 }
 
 const result_row* fewest(const std::vector<result_row>& rows, const std::string& peer,

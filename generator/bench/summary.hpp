@@ -71,6 +71,10 @@ struct bench_summary {
 // The summary of the rows (which must outlive it).
 bench_summary summarise(const std::vector<result_row>& rows);
 
+// The time the curve of row `r` (its method, scalar and form) needs to reach `level`,
+// interpolated as in the interpolated table; NaN time when it does not get there.
+reach curve_reach(const std::vector<result_row>& rows, const result_row& r, double level);
+
 // The fewest RHS evaluations of a method (double, main form) at an error level (matched
 // accuracy).
 const result_row* fewest(const std::vector<result_row>& rows, const std::string& peer,

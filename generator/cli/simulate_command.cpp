@@ -4,6 +4,7 @@
 #include "cli/commands.hpp"
 #include "cli/options.hpp"
 #include "simulate/simulate.hpp"
+#include "tune/tune.hpp"
 
 #include <iostream>
 
@@ -77,6 +78,7 @@ int cmd_simulate(const std::vector<std::string>& args) {
     request.from = o.value("--from");
     request.timings = o.has("--timings");
     request.quiet = o.has("--quiet");
+    request.resolve = [](scene_spec& s) { resolve_auto(s); }; // method auto
     return simulate(request);
 }
 

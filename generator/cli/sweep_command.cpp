@@ -3,6 +3,7 @@
 #include "cli/commands.hpp"
 #include "cli/options.hpp"
 #include "sweep/sweep.hpp"
+#include "tune/tune.hpp"
 
 #include <cstdlib>
 #include <iostream>
@@ -86,6 +87,7 @@ int cmd_sweep(const std::vector<std::string>& args) {
     q.timings = o.has("--timings");
     q.quiet = o.has("--quiet");
     q.resume = o.has("--resume");
+    q.resolve = [](scene_spec& s) { resolve_auto(s); }; // method auto: tuned once for all
     return sweep(q);
 }
 

@@ -6,6 +6,7 @@
 #include "run/engine.hpp"
 #include "run/rotor_chart.hpp"
 #include "run/split_run.hpp"
+#include "support/error.hpp"
 
 namespace rotgen {
 
@@ -16,6 +17,10 @@ std::mutex& symbolic_mutex() {
 
 prepared_scene::prepared_scene(const scene_spec& scene, stage_timings& timings)
     : m_scene(scene), m_scratch(scene) {
+    if (scene.integrator.method == "auto") // tune/ resolves it above the run (resolve_auto)
+        throw user_error(scene.integrator_where,
+                         "integrator auto is chosen before a run by rotgen simulate, sweep and "
+                         "tune (and rotgen.simulate); this caller runs a method it is given");
     const model_spec& spec = m_scene.model;
     m_d = timings.time("derive", spec.name, [&] {
         if (!spec.rotor) return derive(spec);

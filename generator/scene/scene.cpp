@@ -171,6 +171,7 @@ class scene_reader {
     void read_form(const YAML::Node& n) {
         if (m_scene.model.rotor) m_scene.form = form_kind::rotor; // its one form, the default
         if (!n) return;
+        m_scene.form_given = true;
         const std::string f = n.IsScalar() ? n.Scalar() : "";
         if (f == "lagrangian")
             m_scene.form = form_kind::lagrangian;
@@ -234,13 +235,14 @@ class scene_reader {
         if (!n.IsMap())
             throw user_error(at(n), "'integrator' must be {method, rtol, atol} or {method, step} "
                                     "(a step: fixed steps, no error control)");
-        check_keys(n, {"method", "rtol", "atol", "step", "max_steps"}, m_file, "integrator");
+        check_keys(n, {"method", "rtol", "atol", "step", "max_steps", "error"}, m_file,
+                   "integrator");
         m_scene.integrator_where = at(n);
         integrator_spec& ig = m_scene.integrator;
         if (n["method"]) {
             const std::vector<std::string> methods{
-                "rk4",    "dopri5", "dop853", "implicit_midpoint", "rosenbrock", "split2",
-                "split4", "split6", "taylor"};
+                "rk4",    "dopri5", "dop853", "implicit_midpoint", "rosenbrock", "split2", "split4",
+                "split6", "taylor", "auto"};
             ig.method = n["method"].Scalar();
             if (std::find(methods.begin(), methods.end(), ig.method) == methods.end()) {
                 const std::string best = closest_name(ig.method, methods);
@@ -248,10 +250,11 @@ class scene_reader {
                     at(n["method"]),
                     "unknown integrator '" + ig.method +
                         "' (expected rk4, dopri5, dop853, implicit_midpoint, rosenbrock, "
-                        "split2, split4, split6 or taylor)" +
+                        "split2, split4, split6, taylor or auto)" +
                         (best.empty() ? "" : "; did you mean '" + best + "'?"));
             }
         }
+        if (ig.method == "auto" || n["error"]) return read_auto(n);
         const auto positive = [&](const char* key, double& value) {
             if (!n[key]) return;
             value = number(n[key], std::string("integrator ") + key);
@@ -284,6 +287,26 @@ class scene_reader {
                              "integrator rtol below 1e-15 cannot be met in double precision");
         if (ig.step > 0 && ig.step > std::abs(m_scene.t_end - m_scene.t_start))
             throw user_error(at(n["step"]), "integrator step is longer than the time span");
+    }
+
+    // integrator: {method: auto, error: 1e-8} (tune/ chooses the method before the run).
+    void read_auto(const YAML::Node& n) {
+        if (m_scene.integrator.method != "auto")
+            throw user_error(at(n["error"]), "integrator error is the target of method auto; "
+                                             "give rtol and atol to " +
+                                                 m_scene.integrator.method);
+        for (const char* key : {"rtol", "atol", "step"})
+            if (n[key])
+                throw user_error(at(n[key]), std::string("integrator auto chooses its ") + key +
+                                                 " itself: give 'error' only");
+        if (!n["error"])
+            throw user_error(at(n), "integrator auto needs 'error': the largest error accepted "
+                                    "at the samples, e.g. {method: auto, error: 1e-8}");
+        const double e = number(n["error"], "integrator error");
+        if (!(e > 0 && e < 1))
+            throw user_error(at(n["error"]), "integrator error must be between 0 and 1");
+        m_scene.integrator.error = e;
+        if (n["max_steps"]) throw user_error(at(n["max_steps"]), "integrator auto sets max_steps");
     }
 
     void read_record(const YAML::Node& n) {

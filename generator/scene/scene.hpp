@@ -41,8 +41,12 @@ struct written_value {
 struct integrator_spec {
     std::string method = "dop853"; // rk4 | dopri5 | dop853 | implicit_midpoint | rosenbrock |
                                    // split2 | split4 | split6 (step, or rtol: a step by rule) |
-                                   // taylor
+                                   // taylor | auto (tune/: chosen before the run)
     double rtol = 1e-8, atol = 1e-10;
+    double error = 0; // method auto: the largest error accepted at the samples (tune/tune.hpp)
+    // After tune/ resolved `auto` into the method above: "dop853 rtol 3e-9 in the body form
+    // (tuned in 4.2 s; cached)", what the summaries print after "auto: "; empty otherwise.
+    std::string auto_choice;
     double step = 0; // the step of rk4 and implicit_midpoint; an adaptive method given a step
                      // takes fixed steps of that size without error control (and no rtol, atol)
     long max_steps = 10'000'000;
@@ -62,6 +66,7 @@ struct scene_spec {
     model_spec model;
     std::vector<double> parameters; // the model's parameters, in model order, with overrides
     form_kind form = form_kind::lagrangian;
+    bool form_given = false;        // the scene wrote `form:` (method auto keeps it)
     std::array<double, 3> angles{}; // phi, theta, psi
     initial_kind initial = initial_kind::rates;
     std::array<double, 3> initial_rates{}; // q_dot, p, or omega, as `initial` says

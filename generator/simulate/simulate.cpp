@@ -142,10 +142,11 @@ void print_summary(std::ostream& os, const simulate_request& q, const scene_spec
         os << "  start   from the last row of " << scene.from->file << " (line " << scene.from->line
            << "), t = " << format_double(scene.t_start) << "\n";
     if (!r.chart_note.empty()) os << "  chart   " << r.chart_note << "\n";
-    os << "  method  " << ig.method;
-    if (ig.fixed_step())
+    const bool tuned = !ig.auto_choice.empty(); // method auto: what tune/ chose
+    os << "  method  " << (tuned ? "auto: " + ig.auto_choice : ig.method);
+    if (!tuned && ig.fixed_step())
         os << " step " << format_double(ig.step);
-    else
+    else if (!tuned)
         os << " rtol " << format_double(ig.rtol) << " atol " << format_double(ig.atol);
     // the span the steps covered: a run that stopped between samples went past its last row
     const double last_row = r.rows.empty() ? scene.t_start : r.rows.back()[0];
@@ -335,6 +336,7 @@ void write_pictures(const simulate_request& q, const scene_spec& scene, const sc
 // The scene, continued from the last row of q.from when given.
 scene_spec scene_of(const simulate_request& q) {
     scene_spec scene = load_scene(q.scene, "simulate");
+    if (q.resolve) q.resolve(scene); // method auto
     if (!q.from.empty()) continue_from(scene, q.from);
     return scene;
 }

@@ -5,9 +5,12 @@
 // columns>`, one row per event in time order).
 #pragma once
 
+#include <functional>
 #include <string>
 
 namespace rotgen {
+
+struct scene_spec;
 
 struct simulate_request {
     std::string scene;        // the scene file
@@ -20,6 +23,9 @@ struct simulate_request {
     bool timings = false;     // one line per pipeline stage to stderr
     bool quiet = false;       // no summary and no progress line
     std::string from;         // continue from the last row of this CSV (run/continue_from.hpp)
+    // Resolves `method: auto` before the run (the CLI and Python pass tune/'s resolve_auto, a
+    // later stage); unset: a scene with method auto is refused by the engine.
+    std::function<void(scene_spec&)> resolve;
 };
 
 // Returns the exit status. Throws user_error for bad input (nothing is written then).

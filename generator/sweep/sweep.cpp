@@ -68,7 +68,11 @@ writer_setup files_of(const sweep_request& q, const scene_spec& scene, std::size
     w.dir = q.directory;
     w.trajectories = q.trajectories;
     w.chunk = chunk_of(members, q.lanes);
-    w.hash = journal_hash(scene.file, scene.model.file, q.vary, q.trajectories, q.lanes);
+    std::vector<std::string> keys = q.vary; // with method auto, its choice is part of the hash
+    if (!scene.integrator.auto_choice.empty())
+        keys.push_back("auto " + scene.integrator.method + " " +
+                       short_number(scene.integrator.rtol, 17) + " " + to_string(scene.form));
+    w.hash = journal_hash(scene.file, scene.model.file, keys, q.trajectories, q.lanes);
     const journal_names names = journal_in(q.directory);
     const journal_found found = read_journal(names, w.chunk, members);
     if (!found.exists) return w;
@@ -107,7 +111,10 @@ void print_summary(std::ostream& os, const sweep_request& q, const scene_spec& s
     const std::size_t all = w.first() + w.members();
     os << "rotgen sweep " << q.scene << "\n"
        << "  model   " << scene.model.name << " (" << scene.model.file << "), "
-       << to_string(scene.form) << " form, method " << scene.integrator.method << "\n"
+       << to_string(scene.form) << " form, method "
+       << (scene.integrator.auto_choice.empty() ? scene.integrator.method
+                                                : "auto: " + scene.integrator.auto_choice)
+       << "\n"
        << "  members " << all << " (" << mode_name(plan.mode) << " over " << keys << "), "
        << all - w.failed() << " ok, " << w.failed() << " failed; " << workers << "\n";
     if (!lanes.empty())
@@ -142,6 +149,8 @@ struct ensemble {
 
     ensemble(const sweep_request& q, bool root, stage_timings& timings)
         : scene(load_scene(q.scene, "sweep")), plan(read_sweep_plan(scene, q.vary)), table(plan) {
+        // method auto: rank 0 (first to prepare) tunes and caches; the other ranks read its choice
+        if (q.resolve) q.resolve(scene);
         // what cannot be done is refused before any derivation or compilation
         check_files(q, scene);
         if (root) {

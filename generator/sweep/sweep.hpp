@@ -13,10 +13,13 @@
 // threads (sweep/parallel.hpp); the files are the same for every number of threads.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
 namespace rotgen {
+
+struct scene_spec;
 
 struct sweep_request {
     std::string scene;             // the scene file
@@ -28,6 +31,8 @@ struct sweep_request {
     bool timings = false;          // one line per pipeline stage to stderr
     bool quiet = false;            // no summary and no progress line
     bool resume = false;           // go on from DIR's journal (sweep/journal.hpp)
+    // Resolves `method: auto` once for every member (the CLI passes tune/'s resolve_auto).
+    std::function<void(scene_spec&)> resolve;
 };
 
 // Returns the exit status: 0, or 3 if a member failed. Throws user_error for bad input (nothing

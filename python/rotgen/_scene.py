@@ -163,8 +163,17 @@ class Scene:
         Examples
         --------
         >>> s2 = s.with_(initial={"theta": 0.7}, integrator={"method": "taylor", "rtol": 1e-12})
+        >>> s3 = s.with_(integrator={"method": "auto", "error": 1e-8})  # rotgen tune's choice
         """
-        merged = _merge(self.to_dict(), _merge(dict(changes or {}), keys))
+        change = _merge(dict(changes or {}), keys)
+        merged = _merge(self.to_dict(), change)
+        ig = merged.get("integrator")
+        if isinstance(ig, Mapping) and isinstance(change.get("integrator"), Mapping):
+            # method auto takes only its error; another method has no error
+            if ig.get("method") == "auto":
+                merged["integrator"] = dict(change["integrator"])
+            else:
+                ig.pop("error", None)
         return Scene(merged)
 
     def __repr__(self):

@@ -14,6 +14,10 @@
 #include <mutex>
 #include <string>
 
+namespace rotgen {
+struct scene_spec;
+}
+
 namespace rotgen::python {
 
 namespace py = pybind11;
@@ -50,6 +54,11 @@ void run_released(const std::function<void()>& work, std::atomic<bool>& stop);
 // threads alternate: each integrates after the other thread has read another model. Without the
 // variable it returns at once.
 void interleave_test_hook();
+
+// `scene` with method auto resolved (tune/: tuned, or read from the cache) with the GIL released
+// and without symbolic_mutex(), which the tuning runs take as they need it; `text` (when not empty)
+// registered as the content of `path` meanwhile (the cache key reads it). simulate.cpp.
+void resolve_released(scene_spec& scene, const std::string& path, const std::string& text);
 
 void init_errors(py::module_& m);
 void init_model(py::module_& m);

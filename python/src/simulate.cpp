@@ -6,6 +6,8 @@
 #include "run/prepared.hpp"
 #include "scene/scene.hpp"
 #include "support/format.hpp"
+#include "support/memory_files.hpp"
+#include "tune/tune.hpp"
 
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
@@ -47,6 +49,7 @@ py::dict summary_of(const scene_spec& scene, const run_result& r) {
     s["form"] = std::string(to_string(scene.form));
     s["state_size"] = r.state_size;
     s["method"] = scene.integrator.method;
+    s["auto"] = scene.integrator.auto_choice; // method auto: what tune/ chose ("" otherwise)
     s["steps"] = r.stats.accepted;
     s["rejected"] = r.stats.rejected;
     s["rhs_evals"] = r.stats.rhs_evals;
@@ -95,6 +98,10 @@ py::dict simulate_scene(const std::string& path, const std::string& text) {
     {
         symbolic_scope scope(path, text);
         run.scene = std::make_unique<scene_spec>(load_scene(path, "simulate"));
+    }
+    if (run.scene->integrator.method == "auto") resolve_released(*run.scene, path, text);
+    {
+        symbolic_scope scope(path, text);
         run.prepared = std::make_unique<prepared_scene>(*run.scene, timings);
     }
     interleave_test_hook();
@@ -143,6 +150,20 @@ py::dict scene_info(const std::string& path, const std::string& text) {
 }
 
 } // namespace
+
+// Method auto resolved (tune/) with the GIL released and without the lock, which the tuning runs
+// take as they need it (run_member); the scene's text is registered for the cache key.
+void resolve_released(scene_spec& scene, const std::string& path, const std::string& text) {
+    py::gil_scoped_release released;
+    if (!text.empty()) set_memory_file(path, text);
+    try {
+        resolve_auto(scene);
+    } catch (...) {
+        if (!text.empty()) erase_memory_file(path);
+        throw;
+    }
+    if (!text.empty()) erase_memory_file(path);
+}
 
 void init_simulate(py::module_& m) {
     m.def("simulate", &simulate_scene, py::arg("path"), py::arg("text") = "");

@@ -58,6 +58,10 @@ void prepare(ensemble& e, const std::string& text, const sweep_options& o) {
     {
         symbolic_scope scope(e.path, text);
         e.scene = std::make_unique<scene_spec>(load_scene(e.path, "sweep"));
+    }
+    if (e.scene->integrator.method == "auto") resolve_released(*e.scene, e.path, text);
+    {
+        symbolic_scope scope(e.path, text);
         e.plan = std::make_unique<sweep_plan>(read_sweep_plan(*e.scene, o.vary));
         e.table = std::make_unique<member_table>(*e.plan);
         if (o.lanes > 1) lane_check(*e.scene);

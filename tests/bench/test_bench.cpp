@@ -14,6 +14,9 @@
 // The driver is compiled once and cached in <build>/bench-cache (the first run compiles it).
 #include "support.hpp"
 
+#include "bench/sampled_error.hpp"
+#include "scene/scene.hpp"
+
 #include "../../generated/free_asymmetric_top_body.hpp"
 
 #include <exact_free_top.hpp>
@@ -49,6 +52,54 @@ struct table {
     std::vector<std::string> header;
     std::vector<std::map<std::string, std::string>> rows;
 };
+
+// One level of the bench summary's choice: "error <= 1e-08: CONFIG, 12 us (...)" and its scene
+// lines.
+struct choice {
+    std::string level, config;
+    std::vector<std::string> lines;
+};
+
+std::vector<choice> read_choices(const std::string& out) {
+    std::vector<choice> cs;
+    for (const std::string& line : text_lines(out)) {
+        const std::size_t at = line.find("error <= ");
+        if (at != std::string::npos && line.find(": ", at) != std::string::npos &&
+            line.find(", ", at) != std::string::npos && line.find("none (") == std::string::npos) {
+            const std::size_t colon = line.find(": ", at);
+            cs.push_back({line.substr(at + 9, colon - at - 9),
+                          line.substr(colon + 2, line.find(", ", colon) - colon - 2),
+                          {}});
+        } else if (!cs.empty() &&
+                   (line.find("    form: ") == 2 || line.find("    integrator: ") == 2))
+            cs.back().lines.push_back(line.substr(6));
+    }
+    return cs;
+}
+
+// The scene with a choice's lines for its form and integrator, run and measured with the one
+// error measure against its reference.
+double run_choice(const std::string& scene, const std::vector<std::string>& lines,
+                  const std::string& dir) {
+    std::string text;
+    for (const std::string& line : text_lines(read_file(scene)))
+        if (line.rfind("form:", 0) != 0 && line.rfind("integrator:", 0) != 0)
+            text +=
+                (line.rfind("model: ", 0) == 0 ? "model: " + std::string(ROTGEN_SOURCE_DIR) +
+                                                     "/models/" + line.substr(line.rfind('/') + 1)
+                                               : line) +
+                "\n";
+    for (const std::string& line : lines)
+        text += line + "\n";
+    const std::string file = dir + "/choice.yaml";
+    std::ofstream(file) << text;
+    const rotgen::scene_spec chosen = rotgen::load_scene(file);
+    const rotgen::bench::reference_run ref =
+        rotgen::bench::make_reference(rotgen::load_scene(scene));
+    const auto m =
+        rotgen::bench::measure_scene(rotgen::bench::scene_for_error(chosen), &ref.result, 1);
+    return m.ok ? m.error : NAN;
+}
 
 table read_table(const std::string& path) {
     table t;
@@ -198,23 +249,33 @@ TEST_CASE("rotgen bench --quick: columns, plots, and errors that match an indepe
     CHECK(extra ==
           std::map<std::string, int>{{"split2", 2}, {"split4", 2}, {"split6", 2}, {"taylor", 2}});
 
-    // issue 25 §6: the split rows, at rounding, compete in the summary's "fastest" table (they
-    // said "-" at 1e-12 and 1e-13, where no DOP853 run gets): at 1e-12, where no split run is in
-    // the decade, with their cheapest run as an upper bound (observed split2, 3.05e-14)
-    const auto summary_line = [&](const std::string& level) {
-        const std::size_t at = r.out.find("  " + level + "  rotgen ");
-        REQUIRE(at != std::string::npos);
-        return r.out.substr(at, r.out.find('\n', at) - at);
-    };
-    for (const char* level : {"1e-12", "1e-13"}) {
-        const std::string line = summary_line(level);
-        INFO(line);
-        CHECK(line.find("rotgen split") != std::string::npos);
-        // the peers reach neither level: the line says what they reached
-        CHECK(line.find("peer - (best reached ") != std::string::npos);
+    // issue 50: the summary ends with the choice in scene terms. At 1e-11, where no DOP853 run
+    // gets, a split row (at rounding: observed split2 tol 1e-8, bench error 4.5e-14, run 1.5e-13)
+    // is chosen, never long double (bench only); each printed scene block, run as a scene,
+    // reproduces an error within its level (observed 6.8e-5 at 1e-3 .. 1.5e-13 at 1e-11); levels
+    // below 3x the verifying reference's floor (2.4e-12 here) get no choice
+    const std::vector<choice> choices = read_choices(r.out);
+    REQUIRE(choices.size() >= 6);
+    for (const choice& c : choices) {
+        INFO(c.level << ": " << c.config);
+        CHECK(c.config.find("long_double") == std::string::npos);
+        CHECK(c.config.find("odeint") == std::string::npos);
+        REQUIRE(c.lines.size() == 2);
+        const double e = run_choice(scene, c.lines, dir);
+        INFO("run: " << e);
+        CHECK(e <= std::stod(c.level));
     }
-    CHECK(summary_line("1e-12").find("an upper bound: its cheapest run reached") !=
-          std::string::npos);
+    for (const choice& c : choices)
+        if (c.level == "1e-11") CHECK(c.config.find("rotgen split") == 0);
+    // the three tables agree: results.md's best table and its interpolated table name the choice
+    for (const choice& c : choices) {
+        INFO(c.level << ": " << c.config);
+        CHECK(md.find("| " + c.level + " | " + c.config + " | ") != std::string::npos);
+        if (c.config.find(" tol ") == std::string::npos) continue; // "dop853 fixed" curves
+        const std::string curve = c.config.substr(0, c.config.rfind(" tol "));
+        CHECK(md.find("| " + c.level + " | " + curve + " | ") != std::string::npos);
+    }
+    CHECK(md.find("| bench only |") != std::string::npos); // long double rows, the peers
 
     // one configuration re-run here: DOP853, rtol = atol = 1e-8, run-time parameters
     namespace model = rotgen::models::free_asymmetric_top_body;

@@ -143,7 +143,7 @@ TEST_CASE("messages: a potential singular at the start is not told to shrink the
 TEST_CASE("messages: did you mean, for commands, options and case", "[cli][messages]") {
     check_error_line(run_rotgen("simulat x.yaml"),
                      "unknown command 'simulat'; did you mean 'simulate'? (expected inspect, "
-                     "emit, simulate, bench, sweep or view; see rotgen --help)");
+                     "emit, simulate, bench, sweep, view or tune; see rotgen --help)");
     const run_result r = run_rotgen("swep");
     CHECK(r.err.rfind("rotgen: error: unknown command 'swep'; did you mean 'sweep'?", 0) == 0);
     CHECK(!contains(r.err, "rotgen: error: rotgen:")); // no doubled prefix
@@ -156,8 +156,8 @@ TEST_CASE("messages: did you mean, for commands, options and case", "[cli][messa
     const top_scene s("messages_case.yaml", "integrator: {method: DOP853}\n");
     check_error_line(run_rotgen("simulate messages_case.yaml", ROTGEN_BINARY_DIR),
                      "messages_case.yaml:4:22: unknown integrator 'DOP853' (expected rk4, "
-                     "dopri5, dop853, implicit_midpoint, rosenbrock, split2, split4, split6 or "
-                     "taylor); did you mean 'dop853'?");
+                     "dopri5, dop853, implicit_midpoint, rosenbrock, split2, split4, split6, "
+                     "taylor or auto); did you mean 'dop853'?");
 }
 
 TEST_CASE("messages: the summary's model line names the form that ran", "[cli][messages]") {

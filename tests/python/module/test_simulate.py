@@ -139,3 +139,20 @@ def test_events_that_act_in_a_scene_dict(in_tmp):
         assert after[3][0] - before[3][0] == pytest.approx(0.1, abs=1e-14)  # observed 0 .. 9e-16
     assert list(r.events_to_pandas().columns) == ["event", "t", "phase", "omega3"]
     assert r["omega3"][-1] == pytest.approx(4.3, abs=1e-13)
+
+
+def test_with_method_auto_runs_the_tuned_choice(in_tmp, monkeypatch):
+    # issue 50: Scene.with_(integrator={"method": "auto", ...}) drops the file's rtol and atol, and
+    # rotgen.simulate tunes (once, cached by content) and runs the choice, as the CLI does
+    monkeypatch.setenv("ROTGEN_CACHE_DIR", str(in_tmp / "cache"))
+    s = rotgen.Scene(source("models", "scenes", "heavy_top_nutation.yaml"))
+    s2 = s.with_(integrator={"method": "auto", "error": 1e-6}, time={"end": 1, "samples": 51})
+    r = rotgen.simulate(s2)
+    assert r.summary["method"] != "auto"
+    assert r.summary["auto"].startswith(r.summary["method"] + " rtol ")
+    assert "; cached" not in r.summary["auto"]
+    again = rotgen.simulate(s2)
+    assert again.summary["auto"].endswith("; cached)")
+    assert same_bits(again.y, r.y)
+    # back to a method of its own: the error key goes
+    assert rotgen.simulate(s2.with_(integrator={"method": "dop853"})).summary["auto"] == ""

@@ -1,0 +1,176 @@
+// rotgen — `method: auto`: the search (tune.hpp).
+#include "tune/tune.hpp"
+
+#include "bench/sampled_error.hpp"
+#include "support/error.hpp"
+#include "support/format.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <ostream>
+
+namespace rotgen {
+
+namespace {
+
+// The tolerances tried: 1e-2, 3e-3, 1e-3, ..., 1e-14 (index j: 1e-2 / sqrt(10)^j, rounded to
+// one significant digit, 1 or 3).
+double grid_tolerance(int j) {
+    const int k = 2 + j / 2;
+    return (j % 2 == 0 ? 1.0 : 0.3) * std::pow(10.0, -k);
+}
+constexpr int grid_size = 25; // 1e-2 .. 1e-14
+
+// The grid index nearest `tol`.
+int grid_index(double tol) {
+    const int j = int(std::lround(-2 * std::log10(tol / 1e-2)));
+    return std::clamp(j, 0, grid_size - 1);
+}
+
+const std::vector<std::string> auto_methods{"dop853", "dopri5", "taylor",
+                                            "split2", "split4", "split6"};
+
+bool is_split(const std::string& m) {
+    return m.rfind("split", 0) == 0;
+}
+
+// The forms a choice may use: the scene's when it gives one (or a rotor's one form), else the
+// scene's default and the body form.
+std::vector<form_kind> candidate_forms(const scene_spec& scene) {
+    if (scene.form_given || scene.model.rotor || scene.form == form_kind::body) return {scene.form};
+    return {scene.form, form_kind::body};
+}
+
+struct candidate {
+    std::string method;
+    form_kind form;
+    double tol = 0;
+    bench::measured_run run;
+};
+
+scene_spec configured(const scene_spec& base, form_kind form, const std::string& method,
+                      double tol) {
+    scene_spec s = base;
+    s.form = form;
+    s.integrator = integrator_spec{};
+    s.integrator.method = method;
+    s.integrator.rtol = tol, s.integrator.atol = tol / 100;
+    return s;
+}
+
+// A method in a form: the loosest grid tolerance that meets the target (run once each), or the
+// refusal / the most accurate run it made (!meets).
+struct search_result {
+    candidate best; // meets: the loosest that meets; else the most accurate
+    bool meets = false, refused = false;
+};
+
+search_result search(const scene_spec& base, form_kind form, const std::string& method,
+                     const run_result& ref, double target, std::ostream* log) {
+    search_result r;
+    const auto try_at = [&](int j) {
+        candidate c{method, form, grid_tolerance(j), {}};
+        c.run = bench::measure_scene(configured(base, form, method, c.tol), &ref, 1);
+        if (log)
+            *log << "  tune    " << method << " " << to_string(form) << " rtol "
+                 << short_number(c.tol) << ": "
+                 << (c.run.ok ? "error " + short_number(c.run.error) : c.run.why) << "\n";
+        return c;
+    };
+    int j = grid_index(target);
+    candidate c = try_at(j);
+    if (c.run.refused) {
+        r.refused = true;
+        r.best = c;
+        return r;
+    }
+    const auto meets = [&](const candidate& x) { return x.run.ok && x.run.error <= target; };
+    if (meets(c)) { // looser while it still meets
+        r.meets = true, r.best = c;
+        while (j > 0 && meets(c = try_at(--j)))
+            r.best = c;
+        return r;
+    }
+    r.best = c;
+    while (j < grid_size - 1) { // tighter, by the error's excess (a half decade at least)
+        const double excess = c.run.ok ? c.run.error / target : 10;
+        j = std::min(grid_size - 1, j + std::clamp(int(std::ceil(std::log10(excess) * 2)), 1, 6));
+        c = try_at(j);
+        if (c.run.ok && (!r.best.run.ok || c.run.error < r.best.run.error)) r.best = c;
+        if (meets(c)) return r.meets = true, r;
+    }
+    return r;
+}
+
+} // namespace
+
+std::string choice_text(const auto_choice& c) {
+    return c.method + " rtol " + short_number(c.rtol) + " atol " + short_number(c.atol) +
+           " in the " + to_string(c.form) + " form";
+}
+
+std::vector<std::string> methods_accepting(const scene_spec& scene) {
+    std::vector<std::string> ok;
+    for (const auto& m : auto_methods)
+        for (const form_kind f : candidate_forms(scene)) {
+            if (is_split(m) && f != form_kind::body && scene.form_given) continue;
+            scene_spec s = bench::scene_for_error(configured(scene, f, m, 1e-6));
+            s.t_end = s.t_start + (scene.t_end - scene.t_start) * 1e-3; // a short run suffices
+            if (bench::measure_scene(s, nullptr, 1).ok) {
+                ok.push_back(m);
+                break;
+            }
+        }
+    return ok;
+}
+
+auto_choice tune_scene(const scene_spec& scene, std::ostream* log) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const double target = scene.integrator.error;
+    const bench::reference_run ref = bench::make_reference(scene);
+    if (!(target > bench::floor_factor * ref.floor))
+        throw user_error(scene.integrator_where,
+                         "integrator auto: error " + short_number(target) +
+                             " is below what the tuning reference resolves (" +
+                             short_number(bench::floor_factor * ref.floor) +
+                             ", 3x its own error); the smallest error reached is " +
+                             short_number(bench::floor_factor * ref.floor));
+    const scene_spec base = bench::scene_for_error(scene);
+    std::vector<candidate> found;
+    candidate closest{"", scene.form, 0, {}};
+    for (const form_kind f : candidate_forms(scene))
+        for (const auto& m : auto_methods) {
+            if (is_split(m) && f != form_kind::body) continue; // they run the body form
+            search_result s = search(base, f, m, ref.result, target, log);
+            if (s.refused) continue;
+            if (s.meets) found.push_back(s.best);
+            if (s.best.run.ok && (closest.method.empty() || s.best.run.error < closest.run.error))
+                closest = s.best;
+        }
+    if (found.empty())
+        throw user_error(scene.integrator_where,
+                         "integrator auto: no configuration reaches error " + short_number(target) +
+                             "; the smallest error reached is " +
+                             (closest.method.empty()
+                                  ? std::string("none (every method failed)")
+                                  : short_number(closest.run.error) + " (" + closest.method +
+                                        " rtol " + short_number(closest.tol) + ")"));
+    for (candidate& c : found) // timed again: the smallest of three runs
+        c.run.seconds =
+            bench::measure_scene(configured(base, c.form, c.method, c.tol), &ref.result, 3).seconds;
+    const candidate& best =
+        *std::min_element(found.begin(), found.end(), [](const candidate& a, const candidate& b) {
+            return a.run.seconds < b.run.seconds;
+        });
+    auto_choice choice;
+    choice.method = best.method, choice.rtol = best.tol, choice.atol = best.tol / 100;
+    choice.form = is_split(best.method) ? form_kind::body : best.form;
+    choice.error = best.run.error, choice.run_seconds = best.run.seconds;
+    choice.floor = ref.floor;
+    choice.tune_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return choice;
+}
+
+} // namespace rotgen

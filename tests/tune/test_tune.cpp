@@ -1,0 +1,177 @@
+// method: auto and rotgen tune (issue 50, generator/tune/): the one error measure, choices that
+// meet their error when run, the cache keyed by content, methods that refuse a scene never chosen,
+// and the command's exits.
+#include "support.hpp"
+
+#include "bench/sampled_error.hpp"
+#include "scene/scene.hpp"
+#include "tune/tune.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+using namespace rotgen::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string scene_path(const std::string& name) {
+    return std::string(ROTGEN_SOURCE_DIR) + "/models/scenes/" + name + ".yaml";
+}
+
+// A fresh cache for this test (the kernels' cache stays shared: only tune/ is emptied).
+void fresh_tune_cache() {
+    const std::string dir = std::string(ROTGEN_BINARY_DIR) + "/tune-cache";
+    ::setenv("ROTGEN_CACHE_DIR", dir.c_str(), 1);
+    fs::remove_all(dir + "/tune");
+}
+
+// The scene with method auto at `error`, over its first `span` time units (the tests stay short).
+rotgen::scene_spec auto_scene(const std::string& name, double error, double span) {
+    rotgen::scene_spec s = rotgen::load_scene(scene_path(name));
+    s.t_end = s.t_start + span;
+    s.samples = 101;
+    s.integrator = rotgen::integrator_spec{};
+    s.integrator.method = "auto";
+    s.integrator.error = error;
+    return s;
+}
+
+rotgen::run_result samples(const std::vector<std::vector<double>>& rows) {
+    rotgen::run_result r;
+    r.columns = {"q0", "q1", "q2", "q3", "omega1", "omega2", "omega3"};
+    r.rows = rows;
+    return r;
+}
+
+} // namespace
+
+TEST_CASE("sampled error: the rotation angle between attitudes and the relative rate error",
+          "[tune]") {
+    const double a = 3e-7; // a rotation by a about x, at the second sample
+    const auto ref = samples({{0, 1, 0, 0, 0, 0, 0, 10}, {1, 0, 1, 0, 0, 0, 0, 10}});
+    auto run = samples({{0, 1, 0, 0, 0, 0, 0, 10}, {1, 0, 1, 0, 0, 0, 0, 10}});
+    // ref's second attitude is a half turn about x: q = (0, 1, 0, 0); the run's turned by a more
+    run.rows[1][1] = -std::sin(a / 2), run.rows[1][2] = std::cos(a / 2);
+    CHECK(rotgen::bench::sampled_error(run, ref) == Approx(a).epsilon(1e-9));
+    // the opposite quaternion is the same attitude
+    for (int k = 1; k <= 4; ++k)
+        run.rows[1][k] = -run.rows[1][k];
+    CHECK(rotgen::bench::sampled_error(run, ref) == Approx(a).epsilon(1e-9));
+    // a rate error of 5e-6 on |omega| = 10 at the first sample: 5e-7, larger than the attitude's
+    run.rows[0][6] = 5e-6;
+    CHECK(rotgen::bench::sampled_error(run, ref) == Approx(5e-7).epsilon(1e-9));
+    // a run that did not finish has no error
+    run.ok = false;
+    CHECK(std::isnan(rotgen::bench::sampled_error(run, ref)));
+}
+
+TEST_CASE("method auto meets its error on shipped scenes when its choice is run", "[tune]") {
+    fresh_tune_cache();
+    struct tried {
+        const char* scene;
+        double error, span;
+    };
+    for (const tried t :
+         {tried{"heavy_top_nutation", 1e-6, 2}, tried{"free_top_axis2", 1e-9, 10}}) {
+        rotgen::scene_spec s = auto_scene(t.scene, t.error, t.span);
+        const rotgen::bench::reference_run ref = rotgen::bench::make_reference(s);
+        rotgen::resolve_auto(s);
+        INFO(t.scene << ": " << s.integrator.auto_choice);
+        CHECK(s.integrator.method != "auto");
+        CHECK(s.integrator.auto_choice.find("tuned in") != std::string::npos);
+        const auto m =
+            rotgen::bench::measure_scene(rotgen::bench::scene_for_error(s), &ref.result, 1);
+        REQUIRE(m.ok);
+        INFO("error " << m.error);
+        CHECK(m.error <= t.error);
+        CHECK(m.error > t.error / 1000); // the loosest tolerance that meets it, not a tight one
+    }
+}
+
+TEST_CASE("method auto: the cache is keyed by the content of scene and model, not the path",
+          "[tune]") {
+    fresh_tune_cache();
+    const std::string abs = scene_path("free_top_axis2");
+    const std::string rel = "models/scenes/../scenes/free_top_axis2.yaml";
+    rotgen::scene_spec a = rotgen::load_scene(abs);
+    fs::current_path(ROTGEN_SOURCE_DIR);
+    rotgen::scene_spec b = rotgen::load_scene(rel);
+    for (auto* s : {&a, &b})
+        s->integrator.method = "auto", s->integrator.error = 1e-6, s->t_end = 5;
+    CHECK(rotgen::auto_cache_key(a) == rotgen::auto_cache_key(b));
+    rotgen::resolve_auto(a);
+    CHECK(a.integrator.auto_choice.find("cached") == std::string::npos);
+    rotgen::resolve_auto(b); // the other spelling finds the first's choice
+    CHECK(b.integrator.auto_choice.find("; cached)") != std::string::npos);
+    CHECK(b.integrator.method == a.integrator.method);
+    CHECK(b.integrator.rtol == a.integrator.rtol);
+    // a changed model (a moment of inertia) misses, as does another target
+    rotgen::scene_spec c = b;
+    c.integrator.method = "auto";
+    c.model.source += "\n# changed\n";
+    CHECK(rotgen::auto_cache_key(c) != rotgen::auto_cache_key(a));
+    c = b;
+    c.integrator.method = "auto", c.integrator.error = 1e-7;
+    CHECK(rotgen::auto_cache_key(c) != rotgen::auto_cache_key(a));
+}
+
+TEST_CASE("method auto never chooses a method that refuses the scene", "[tune]") {
+    // a linear rotor: the split methods step a three-axis body and refuse it
+    const std::string rotor = std::string(ROTGEN_SOURCE_DIR) + "/tests/tune/rotor_scene.yaml";
+    rotgen::scene_spec s = rotgen::load_scene(rotor);
+    const auto methods = rotgen::methods_accepting(s);
+    CHECK(std::find(methods.begin(), methods.end(), "dop853") != methods.end());
+    for (const char* m : {"split2", "split4", "split6"})
+        CHECK(std::find(methods.begin(), methods.end(), m) == methods.end());
+    // a body scene accepts them
+    const auto body = rotgen::methods_accepting(rotgen::load_scene(scene_path("free_top_axis2")));
+    CHECK(std::find(body.begin(), body.end(), "split4") != body.end());
+}
+
+TEST_CASE("rotgen tune writes a scene that simulate runs, and exits 2 below the reachable error",
+          "[tune]") {
+    fresh_tune_cache();
+    const std::string dir = std::string(ROTGEN_BINARY_DIR) + "/tests_tune_out";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const std::string scene = dir + "/short.yaml";
+    {
+        std::ofstream out(scene);
+        out << "model: " << ROTGEN_SOURCE_DIR << "/models/heavy_top.yaml\n"
+            << "initial: {phi: 0, theta: 0.5, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 30}\n"
+            << "time: {start: 0, end: 1, samples: 51}\n"
+            << "integrator: {method: auto, error: 1e-7}\n";
+    }
+    auto r = run_rotgen("tune '" + scene + "' -o '" + dir + "/tuned.yaml'");
+    INFO(r.out << r.err);
+    REQUIRE(r.status == 0);
+    CHECK(r.out.find("  method  auto: ") != std::string::npos);
+    CHECK(r.out.find("integrator: {method: ") != std::string::npos);
+    const std::string tuned = read_file(dir + "/tuned.yaml");
+    CHECK(tuned.find("method: auto") == std::string::npos);
+    r = run_rotgen("simulate '" + dir + "/tuned.yaml' -o '" + dir + "/tuned.csv'");
+    CHECK(r.status == 0);
+    // simulate resolves method auto itself, from the cache the tune filled
+    r = run_rotgen("simulate '" + scene + "' -o '" + dir + "/auto.csv'");
+    CHECK(r.status == 0);
+    CHECK(r.out.find("  method  auto: ") != std::string::npos);
+    CHECK(r.out.find("; cached)") != std::string::npos);
+    // a sweep tunes once for all members (here: reads the choice) and says so; the choice is part
+    // of its journal's hash
+    r = run_rotgen("sweep '" + scene + "' -o '" + dir + "/sweep' --vary initial.theta=0.4:0.6:3");
+    INFO(r.out << r.err);
+    CHECK(r.status == 0);
+    CHECK(r.out.find("method auto: ") != std::string::npos);
+    // an error below what the reference resolves: exit 2 naming the smallest error reached
+    r = run_rotgen("tune '" + scene + "' --error 1e-17");
+    CHECK(r.status == 2);
+    CHECK(r.err.find("smallest error reached is") != std::string::npos);
+    CHECK(!fs::exists(dir + "/none.yaml"));
+    r = run_rotgen("tune '" + scene + "' --error 2");
+    CHECK(r.status == 2);
+}
