@@ -387,8 +387,11 @@ void scene_run::record() {
     for (const auto& inv : invariants)
         m_result.invariants.push_back({inv, 0, 0});
     std::vector<double> out; // the record program's outputs at a sample
-    for (const sample& s : m_event_samples)
+    for (std::size_t e = 0; e < m_event_samples.size(); ++e) {
+        const sample& s = m_event_samples[e];
         m_result.event_rows.push_back(record_row(s.t, s.y, s.form, out));
+        if (m_sens) m_sens->record_event(m_result.event_index[e], s.t, s.y, m_result);
+    }
     const bool every = m_prepared.every_row();
     const std::size_t n = m_samples.size() - (m_result.ok ? 0 : 1); // !ok: the last, no row
     m_result.rows.reserve(every ? n : 1);

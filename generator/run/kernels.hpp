@@ -77,6 +77,7 @@ struct compiled_form {
     // form's parameters, v as for record); the record program's outputs by (y, P), row-major
     // outputs x (n + P)
     loaded_system::kernel parameter_jacobian = nullptr, record_jacobian = nullptr;
+    std::vector<loaded_system::kernel> event_jacobians; // g of each event by (y, P, t): n + P + 1
     std::vector<value_source> columns;    // one per quantity column (body_x expands to 3)
     std::vector<value_source> invariants; // as the invariants are listed
     std::size_t outputs = 0;              // of the record program

@@ -29,6 +29,9 @@ sensitivity_run::sensitivity_run(const prepared_scene& prepared, const member_va
     const auto n = static_cast<Eigen::Index>(m_n);
     m_jacobian.resize(n, n);
     m_dfdp.resize(n, static_cast<Eigen::Index>(cf.f.parameters.size()));
+    for (const value_source& c : cf.columns)
+        if (c.kind == value_source::compiled)
+            m_columns.push_back(static_cast<std::size_t>(c.index));
 }
 
 Eigen::VectorXd sensitivity_run::augmented(const Eigen::VectorXd& y0) const {
@@ -75,38 +78,77 @@ Eigen::MatrixXd sensitivity_run::state_sensitivity(Eigen::Ref<const Eigen::Vecto
     return Eigen::Map<const row_major>(y.data() + n, n, k) / m_scale;
 }
 
+std::vector<double> sensitivity_run::column_derivatives(double t,
+                                                        Eigen::Ref<const Eigen::VectorXd> y,
+                                                        const Eigen::MatrixXd& S) const {
+    const std::size_t n = m_n, np = m_cf.f.parameters.size();
+    std::vector<double> jac(m_cf.outputs * (n + np)), out;
+    m_cf.record_jacobian(m_parameters.data(), t, y.data(), jac.data());
+    out.reserve(m_columns.size() * keys());
+    for (const std::size_t o : m_columns) {
+        const Eigen::Map<const Eigen::RowVectorXd> by_y(&jac[o * (n + np)],
+                                                        static_cast<Eigen::Index>(n)),
+            by_p(&jac[o * (n + np) + n], static_cast<Eigen::Index>(np));
+        const Eigen::RowVectorXd d = by_y * S + by_p * m_start.dP; // the chain rule
+        out.insert(out.end(), d.data(), d.data() + d.size());
+    }
+    return out;
+}
+
+Eigen::RowVectorXd sensitivity_run::event_time(std::size_t which, double t,
+                                               Eigen::Ref<const Eigen::VectorXd> y,
+                                               Eigen::MatrixXd& S) const {
+    const auto n = static_cast<Eigen::Index>(m_n), np = m_start.dP.rows();
+    Eigen::RowVectorXd g(n + np + 1); // g by (y, P, t)
+    m_cf.event_jacobians[which](m_parameters.data(), t, y.data(), g.data());
+    Eigen::VectorXd f(n);
+    m_base.rhs(t, y.data(), f.data());
+    const double rate = g[n + np] + g.head(n).dot(f); // dg/dt along the motion
+    const Eigen::RowVectorXd dt =
+        -(g.head(n) * S + g.segment(n, np) * m_start.dP) / rate; // (4.8) of the issue
+    S += f * dt;
+    return dt;
+}
+
 void sensitivity_run::record(const sample_states& samples, std::size_t rows, bool every,
                              run_result& result) const {
-    const std::size_t n = m_n, np = m_cf.f.parameters.size(), k = keys();
+    const std::size_t n = m_n, k = keys();
     result.sensitivity_keys = m_keys;
-    std::vector<std::size_t> columns; // the record program's output of each derived column
     for (std::size_t c = 0; c < m_cf.columns.size(); ++c)
-        if (m_cf.columns[c].kind == value_source::compiled) {
-            columns.push_back(static_cast<std::size_t>(m_cf.columns[c].index));
+        if (m_cf.columns[c].kind == value_source::compiled)
             for (const auto& key : m_keys)
                 result.sensitivity_columns.push_back("d(" + result.columns[c] + ")/d(" + key + ")");
-        }
-    std::vector<double> jac(m_cf.outputs * (n + np));
     for (std::size_t s = 0; s < rows; ++s) {
         if (!every && s + 1 != rows) continue;
         const Eigen::Map<const Eigen::VectorXd> y = samples.y(s);
-        const Eigen::MatrixXd S = state_sensitivity(y);
-        m_cf.record_jacobian(m_parameters.data(), samples.t(s), y.data(), jac.data());
-        std::vector<double> out;
-        out.reserve(columns.size() * k);
-        for (const std::size_t o : columns) {
-            const Eigen::Map<const Eigen::RowVectorXd> by_y(&jac[o * (n + np)],
-                                                            static_cast<Eigen::Index>(n)),
-                by_p(&jac[o * (n + np) + n], static_cast<Eigen::Index>(np));
-            const Eigen::RowVectorXd d = by_y * S + by_p * m_start.dP;
-            out.insert(out.end(), d.data(), d.data() + d.size());
-        }
-        result.sensitivity_rows.push_back(std::move(out));
+        Eigen::MatrixXd S = state_sensitivity(y);
+        if (result.stopped_by >= 0 && s + 1 == samples.size()) // the terminal event's state
+            event_time(static_cast<std::size_t>(result.stopped_by), samples.t(s), y, S);
+        result.sensitivity_rows.push_back(column_derivatives(samples.t(s), y, S));
         std::vector<double> flat(n * k);
         Eigen::Map<row_major>(flat.data(), static_cast<Eigen::Index>(n),
                               static_cast<Eigen::Index>(k)) = S;
         result.state_sensitivities.push_back(std::move(flat));
     }
+}
+
+void sensitivity_run::record_event(std::size_t which, double t, Eigen::Ref<const Eigen::VectorXd> y,
+                                   run_result& result) const {
+    if (result.event_sensitivity_columns.empty()) {
+        for (const auto& key : m_keys)
+            result.event_sensitivity_columns.push_back("d(t_event)/d(" + key + ")");
+        for (std::size_t c = 0; c < m_cf.columns.size(); ++c)
+            if (m_cf.columns[c].kind == value_source::compiled)
+                for (const auto& key : m_keys)
+                    result.event_sensitivity_columns.push_back("d(" + result.columns[c] + ")/d(" +
+                                                               key + ")");
+    }
+    Eigen::MatrixXd S = state_sensitivity(y);
+    const Eigen::RowVectorXd dt = event_time(which, t, y, S);
+    std::vector<double> row(dt.data(), dt.data() + dt.size());
+    const std::vector<double> columns = column_derivatives(t, y, S);
+    row.insert(row.end(), columns.begin(), columns.end());
+    result.event_sensitivity_rows.push_back(std::move(row));
 }
 
 void refuse_sensitivity_switch(const scene_spec& scene, double t) {

@@ -46,12 +46,25 @@ class sensitivity_run {
 
     // S and the recorded columns' derivatives at the samples of `samples` that have rows (the
     // first `rows` samples, or the last of them only when !every), into `result`.
+    // With result.stopped_by set, the last sample is at that terminal event: its S is the
+    // event's (below).
     void record(const sample_states& samples, std::size_t rows, bool every,
                 run_result& result) const;
+    // At the event `which` found at (t, y): dt_e/ds = -(g_y S + g_P dP/ds) / (g_t + g_y f), and
+    // the recorded columns' derivatives with the state's there, S + f dt_e/ds, into `result`.
+    void record_event(std::size_t which, double t, Eigen::Ref<const Eigen::VectorXd> y,
+                      run_result& result) const;
 
   private:
     static void rhs(const double* self, double t, const double* y, double* dydt);
     Eigen::MatrixXd state_sensitivity(Eigen::Ref<const Eigen::VectorXd> y) const;
+    // dt_e/ds (1 x k) of the event `which` at (t, y), and S moved to the event (S + f dt_e/ds).
+    Eigen::RowVectorXd event_time(std::size_t which, double t, Eigen::Ref<const Eigen::VectorXd> y,
+                                  Eigen::MatrixXd& S) const;
+    // The derived columns' d(column)/d(key) at (t, y) with the state's sensitivity S.
+    std::vector<double> column_derivatives(double t, Eigen::Ref<const Eigen::VectorXd> y,
+                                           const Eigen::MatrixXd& S) const;
+    std::vector<std::size_t> m_columns; // the record program's output of each derived column
 
     const scene_spec& m_scene;
     const compiled_form& m_cf;

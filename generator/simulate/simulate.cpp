@@ -65,11 +65,16 @@ void write_events(atomic_file& out, const scene_spec& scene, const run_result& r
     os << provenance(scene) << "\nevent,t";
     for (const auto& c : r.columns)
         os << "," << c;
+    for (const auto& c : r.event_sensitivity_columns)
+        os << "," << c;
     os << "\n";
     for (std::size_t k = 0; k < r.event_rows.size(); ++k) {
         os << r.event_names[r.event_index[k]];
         for (double v : r.event_rows[k])
             os << "," << format_number(v);
+        if (k < r.event_sensitivity_rows.size())
+            for (double v : r.event_sensitivity_rows[k])
+                os << "," << format_number(v);
         os << "\n";
     }
     out.commit(outputs);
