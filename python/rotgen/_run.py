@@ -86,8 +86,8 @@ class SimulateResult:
         self.sensitivities = np.full((len(self.t), len(self.columns), k), np.nan)
         for m, name in enumerate(self._sensitivity_columns):
             column, key = name[2:].split(")/d(", 1)
-            c, k = self.columns.index(column), self.sensitivity_keys.index(key[:-1])
-            self.sensitivities[:, c, k] = self._sensitivity_values[:, m]
+            c, j = self.columns.index(column), self.sensitivity_keys.index(key[:-1])
+            self.sensitivities[:, c, j] = self._sensitivity_values[:, m]
         self.state_sensitivities = state
         if all(key.startswith("y0.") for key in self.sensitivity_keys) and state.shape[1] == k:
             self.stm = state
