@@ -7,12 +7,15 @@
 #include "run/engine.hpp"
 #include "run/prepared.hpp"
 #include "scene/scene.hpp"
+#include "support/format.hpp"
+#include "sweep/outcome.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -319,4 +322,26 @@ TEST_CASE("the sensitivities of event times agree with central differences", "[s
         }
     }
     CHECK(worst < 5e-9); // observed 5e-10
+}
+
+// A sweep keeps the last row's derivatives: final.d(<column>)/d(<key>) in summary.csv, the same
+// doubles as the member's own run.
+TEST_CASE("a sweep's summary holds the final sensitivities of each member", "[sensitivities]") {
+    const scene_spec scene = scene_of("sweep", heavy_top);
+    member_values values = values_of(scene);
+    values.parameters[4] = 0.2; // h
+    const rotgen::run_result r = run_values(scene, values);
+    stage_timings timings;
+    prepared_scene prepared(scene, timings);
+    prepared.keep_last_row_only();
+    prepared.compile_all(timings);
+    const summary_layout layout = layout_of(prepared);
+    CHECK(layout.sensitivities == r.sensitivity_columns);
+    const member_outcome o = run_one(prepared, layout, values, false);
+    CHECK(o.final_sensitivities == r.sensitivity_rows.back());
+    std::ostringstream header;
+    write_summary_header(header, sweep_plan{}, layout);
+    CHECK_THAT(header.str(), Catch::Contains(",final.p_psi,final.d(theta)/d(initial.theta),"));
+    CHECK_THAT(summary_row_of(0, {}, layout, o),
+               Catch::Contains(format_number(o.final_sensitivities.back()) + ","));
 }
