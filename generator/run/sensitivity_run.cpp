@@ -29,6 +29,7 @@ sensitivity_run::sensitivity_run(const prepared_scene& prepared, const member_va
     const auto n = static_cast<Eigen::Index>(m_n);
     m_jacobian.resize(n, n);
     m_dfdp.resize(n, static_cast<Eigen::Index>(cf.f.parameters.size()));
+    m_forcing.resize(n, static_cast<Eigen::Index>(keys()));
     for (const value_source& c : cf.columns)
         if (c.kind == value_source::compiled)
             m_columns.push_back(static_cast<std::size_t>(c.index));
@@ -54,7 +55,8 @@ void sensitivity_run::rhs(const double* self, double t, const double* y, double*
     const Eigen::Map<const row_major> S(y + n, n, k);
     Eigen::Map<row_major> dS(dydt + n, n, k);
     dS.noalias() = J * S;
-    dS.noalias() += r.m_scale * (dfdp * r.m_start.dP);
+    r.m_forcing.noalias() = dfdp * r.m_start.dP; // into scratch: no allocation per call
+    dS.noalias() += r.m_scale * r.m_forcing;
 }
 
 loaded_system sensitivity_run::system() const {

@@ -75,6 +75,7 @@ class sensitivity_run {
     double m_scale = 1;
     std::size_t m_n = 0;
     mutable Eigen::MatrixXd m_jacobian, m_dfdp; // scratch (row-major data), one run at a time
+    mutable Eigen::MatrixXd m_forcing;          // scratch: (d f/d P) dP/ds
     mutable std::vector<double> m_scratch;
 };
 
