@@ -9,6 +9,8 @@
 #include "run/kinematics.hpp"
 #include "run/prepared.hpp"
 #include "run/rotor_chart.hpp"
+#include "run/run_rules.hpp"
+#include "run/sensitivity_run.hpp"
 #include "run/split_run.hpp"
 #include "run/start_check.hpp"
 #include "support/error.hpp"
@@ -34,17 +36,6 @@ struct sample {
     std::size_t form; // index into scene_run::m_compiled
 };
 
-// t is the end time or beyond it, in the direction of the run (backward when t_end < t_start).
-bool reached_end(const scene_spec& scene, double t) {
-    return scene.t_end >= scene.t_start ? t >= scene.t_end : t <= scene.t_end;
-}
-
-void add_stats(step_stats& s, const step_stats& more) {
-    s.steps += more.steps, s.accepted += more.accepted, s.rejected += more.rejected;
-    s.rhs_evals += more.rhs_evals, s.jac_evals += more.jac_evals,
-        s.factorisations += more.factorisations;
-}
-
 // One member's run on a prepared scene: its own initial values and parameter values, the
 // prepared (shared, immutable) kernels. Touches GiNaC only under symbolic_mutex().
 class scene_run {
@@ -68,7 +59,9 @@ class scene_run {
     initial_kinematics exact_start();
     void decide_chart();
     const compiled_form& compile(form_kind form);
-    Eigen::VectorXd state_of(const form_expressions& f, const initial_kinematics& k) const;
+    Eigen::VectorXd state_of(const form_expressions& f, const initial_kinematics& k) const {
+        return form_state(f, k, m_angles, m_scene.form);
+    }
     enum class next {
         done,
         body,
@@ -110,7 +103,8 @@ class scene_run {
     sample_states m_samples; // form: index into m_compiled
     std::size_t m_next_sample = 0;
     std::optional<any_method<double>> m_method;
-    std::optional<split_runner> m_split; // split2/4/6: the body form as a split system
+    std::optional<split_runner> m_split;   // split2/4/6: the body form as a split system
+    std::optional<sensitivity_run> m_sens; // y (+) S integrated: the scene's sensitivities
     integration_result<double> m_last;
     event_set<double, Eigen::VectorXd> m_events; // the scene's events, across chart switches
     std::vector<sample> m_event_samples;         // the state at each event (form: its own)
@@ -234,25 +228,6 @@ const compiled_form& scene_run::compile(form_kind form) {
     return *m_compiled.back();
 }
 
-// The state vector of a form from the initial kinematics (rounded to double).
-Eigen::VectorXd scene_run::state_of(const form_expressions& f, const initial_kinematics& k) const {
-    if (is_rotor_form(f.form)) return rotor_state(f.form, k);
-    Eigen::VectorXd y(static_cast<Eigen::Index>(f.state.size()));
-    for (std::size_t s = 0; s < f.state.size(); ++s) {
-        const std::string& name = f.state[s].name;
-        const bool needs_rates = name.find("_dot") != std::string::npos || name.rfind("p_", 0) == 0;
-        // Unreachable from a scene: without rates (|sin theta| < 1e-12) an Euler-angle form
-        // either starts in the body form (decide_chart: the switch below 0.1) or is refused by
-        // decide_chart (|sin theta| < 1e-10 without the switch), and a switch back to it happens
-        // only above |sin theta| = 0.3.
-        if (needs_rates && !k.have_rates)
-            throw std::logic_error("run: the " + std::string(to_string(m_scene.form)) +
-                                   " form was started at the singularity from body omega");
-        y[static_cast<Eigen::Index>(s)] = static_cast<double>(state_value(k, m_angles, name));
-    }
-    return y;
-}
-
 // Integrates the current form from t_from over the remaining sample times, and says where to go
 // on: the Euler-angle forms leave for the body form at a sample with |sin theta| < switch_below,
 // or when the integration fails with the state that close to the singularity (only then: a
@@ -260,7 +235,7 @@ Eigen::VectorXd scene_run::state_of(const form_expressions& f, const initial_kin
 // a sample with |sin theta| > switch_back_above.
 scene_run::next scene_run::integrate_segment(Eigen::VectorXd& y, double t_from) {
     const compiled_form& cf = *m_compiled[m_current];
-    const loaded_system sys = cf.system(m_parameters[m_current]);
+    const loaded_system sys = m_sens ? m_sens->system() : cf.system(m_parameters[m_current]);
     const bool can_switch = m_prepared.can_switch();
     const bool euler_chart = cf.form == form_kind::lagrangian ||
                              cf.form == form_kind::hamiltonian || cf.form == form_kind::rotor;
@@ -345,6 +320,7 @@ bool scene_run::act(Eigen::VectorXd& y, double& t_from) {
 // Continues from the last sample in the other chart.
 void scene_run::switch_chart(next to, Eigen::VectorXd& y, double& t_from) {
     const std::size_t k_last = m_samples.size() - 1;
+    if (m_sens) refuse_sensitivity_switch(m_scene, m_samples.t(k_last));
     const sample last{m_samples.t(k_last), m_samples.y(k_last), m_samples.form(k_last)};
     const compiled_form& from = *m_compiled[m_current];
     initial_kinematics k; // a rotor changes chart directly (rotor_other_chart)
@@ -407,8 +383,11 @@ void scene_run::record() {
     for (const auto& inv : invariants)
         m_result.invariants.push_back({inv, 0, 0});
     std::vector<double> out; // the record program's outputs at a sample
-    for (const sample& s : m_event_samples)
+    for (std::size_t e = 0; e < m_event_samples.size(); ++e) {
+        const sample& s = m_event_samples[e];
         m_result.event_rows.push_back(record_row(s.t, s.y, s.form, out));
+        if (m_sens) m_sens->record_event(m_result.event_index[e], s.t, s.y, m_result);
+    }
     const bool every = m_prepared.every_row();
     const std::size_t n = m_samples.size() - (m_result.ok ? 0 : 1); // !ok: the last, no row
     m_result.rows.reserve(every ? n : 1);
@@ -437,6 +416,7 @@ void scene_run::record() {
             d.largest = std::max(d.largest, std::abs(v[i]));
         }
     }
+    if (m_sens) m_sens->record(m_samples, n, every, m_result);
 }
 
 // The integrator of the scene, with its step bound (a split method: the body form as a split
@@ -448,7 +428,10 @@ void scene_run::start_method() {
         m_split.emplace(m_scene, m_inertia);
         return;
     }
-    m_method = make_method<double>(ig.method, ig.rtol, ig.atol, ig.fixed_step() ? ig.step : 0.0);
+    const double f =
+        sensitivity_run::tolerance_factor(m_scene, m_compiled[m_current]->f.state.size());
+    m_method =
+        make_method<double>(ig.method, ig.rtol * f, ig.atol * f, ig.fixed_step() ? ig.step : 0.0);
     if (!m_method) throw std::logic_error("run: unknown method " + ig.method);
     std::visit([&](auto& m) { m.max_steps = ig.max_steps; }, *m_method);
     if (auto* r = std::get_if<rodas4<double>>(&*m_method))
@@ -483,6 +466,10 @@ Eigen::VectorXd scene_run::start() {
         form_parameter_values(m_scene, m_model_parameters, first.f.parameters, k0);
     check_finite_start({m_scene, m_prepared.invariants(), m_sequence, m_inertia}, k0, first,
                        m_parameters[m_current], y);
+    if (m_scene.sensitivities.active()) { // the run integrates y (+) S
+        m_sens.emplace(m_prepared, m_values, first, m_parameters[m_current], k0);
+        y = m_sens->augmented(y);
+    }
     if (m_split) {
         const integrator_spec& ig = m_scene.integrator;
         m_result.chart_note =

@@ -65,6 +65,17 @@ struct run_result {
                             // the run stopped at, after it (`invariants` include that state)
     std::string message;    // why not, when !ok
     double integrate_seconds = 0;
+    // With the scene's sensitivities (run/sensitivity_run.hpp): the keys (k of them); the columns
+    // d(<column>)/d(<key>), record order then key order, of the recorded columns the record
+    // program computes; per row of `rows`, their values and the state's sensitivity S = dy/ds
+    // (n x k, row-major: S[i * k + j] = d y_i/d key_j, y the state of `form`).
+    std::vector<std::string> sensitivity_keys, sensitivity_columns;
+    std::vector<std::vector<double>> sensitivity_rows, state_sensitivities;
+    // Per event row: d(t_event)/d(<key>) for each key, then the derived columns' derivatives
+    // with the state's sensitivity at the event, S + f dt_e/ds (named in that order). A terminal
+    // event's sample row carries the same.
+    std::vector<std::string> event_sensitivity_columns;
+    std::vector<std::vector<double>> event_sensitivity_rows;
     bool kernels_cached = true; // every compiled form came from the cache
 };
 

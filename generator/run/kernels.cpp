@@ -124,6 +124,37 @@ void print_body(std::ostream& shim, const form_expressions& f, const std::vector
              << ";\n";
 }
 
+// With sensitivities: rotgen_parameter_jacobian, d f/d P (row-major n x P, every parameter of
+// the form: the model's, and the reduced form's cyclic momenta); rotgen_record_jacobian, the
+// record program's outputs differentiated by the state, then by the parameters (row-major outputs
+// x (n + P)); and rotgen_event_jacobian_<i>, event i's g by (y, P, t): GiNaC's derivatives, exact.
+std::vector<std::pair<std::string, std::vector<ex>>>
+sensitivity_programs(const scene_spec& scene, const form_expressions& f,
+                     const std::vector<ex>& program, const std::vector<ex>& events) {
+    if (!scene.sensitivities.active()) return {};
+    std::vector<ex> parameters, variables;
+    for (const auto& s : f.state)
+        variables.push_back(s.symbol);
+    for (const auto& p : f.parameters)
+        parameters.push_back(p.symbol), variables.push_back(p.symbol);
+    const auto by_variables = [&](const std::vector<ex>& outputs, bool time) {
+        std::vector<ex> d;
+        for (const ex& out : outputs) {
+            for (const ex& v : variables)
+                d.push_back(out.diff(GiNaC::ex_to<GiNaC::symbol>(v)));
+            if (time) d.push_back(out.diff(GiNaC::ex_to<GiNaC::symbol>(f.time)));
+        }
+        return d;
+    };
+    std::vector<std::pair<std::string, std::vector<ex>>> more{
+        {"rotgen_parameter_jacobian", parameter_jacobian(f, f.rates, parameters)},
+        {"rotgen_record_jacobian", by_variables(program, false)}};
+    for (std::size_t e = 0; e < events.size(); ++e)
+        more.emplace_back("rotgen_event_jacobian_" + std::to_string(e),
+                          by_variables({events[e]}, true));
+    return more;
+}
+
 // The translation unit compiled for the runtime: the header and extern "C" entry points
 // rotgen_rhs, rotgen_jacobian, rotgen_record, and rotgen_event_<i> per scene event (each its own
 // function: a run evaluates one event without the others), and with `taylor` rotgen_taylor_series
@@ -132,7 +163,8 @@ void print_body(std::ostream& shim, const form_expressions& f, const std::vector
 // of an ensemble run its kernels concurrently with their own values.
 std::string entry_points(const form_expressions& f, const std::string& unit,
                          const std::vector<ex>& program, const std::vector<ex>& events,
-                         const std::string& taylor, const std::vector<std::string>& constants) {
+                         const std::string& taylor, const std::vector<std::string>& constants,
+                         const std::vector<std::pair<std::string, std::vector<ex>>>& more) {
     std::ostringstream shim;
     shim << "\n// ---- rotgen run: entry points for the runtime ----\n"
          << "namespace {\nnamespace rg_model = rotgen::models::" << unit << ";\n";
@@ -174,6 +206,8 @@ std::string entry_points(const form_expressions& f, const std::string& unit,
     function("rotgen_record", program);
     for (std::size_t e = 0; e < events.size(); ++e)
         function("rotgen_event_" + std::to_string(e), {events[e]});
+    for (const auto& [name, outputs] : more)
+        function(name, outputs);
     shim << "}\n";
     return shim.str();
 }
@@ -243,7 +277,8 @@ compiled_form compile_form(const scene_spec& scene, form_expressions f, bool ori
     for (const auto& k : lowered.constants)
         constants.push_back(k.name.substr(2)); // p.c000 -> c000
     const std::string source =
-        header.text + entry_points(c.f, header.unit, program, events, c.taylor_call, constants);
+        header.text + entry_points(c.f, header.unit, program, events, c.taylor_call, constants,
+                                   sensitivity_programs(scene, c.f, program, events));
     const std::string flags = taylor ? host_exact_vector_flags() : "";
     c.lib = timings.time("compile", header.unit,
                          [&] { return compile_and_load(source, header.unit, flags); });
@@ -257,6 +292,15 @@ compiled_form compile_form(const scene_spec& scene, form_expressions f, bool ori
     for (std::size_t e = 0; e < events.size(); ++e)
         c.events.push_back(reinterpret_cast<loaded_system::kernel>(
             c.lib.symbol("rotgen_event_" + std::to_string(e))));
+    if (scene.sensitivities.active()) {
+        c.parameter_jacobian =
+            reinterpret_cast<loaded_system::kernel>(c.lib.symbol("rotgen_parameter_jacobian"));
+        c.record_jacobian =
+            reinterpret_cast<loaded_system::kernel>(c.lib.symbol("rotgen_record_jacobian"));
+        for (std::size_t e = 0; e < events.size(); ++e)
+            c.event_jacobians.push_back(reinterpret_cast<loaded_system::kernel>(
+                c.lib.symbol("rotgen_event_jacobian_" + std::to_string(e))));
+    }
     if (taylor) {
         c.sys.tay = reinterpret_cast<loaded_system::taylor_kernel>(c.lib.symbol("rotgen_taylor"));
         using count_fn = unsigned long (*)();

@@ -8,6 +8,7 @@
 #include "support/format.hpp"
 
 #include "run/angle_chart.hpp"
+#include "run/rotor_chart.hpp"
 
 #include <Eigen/Dense>
 
@@ -211,6 +212,25 @@ std::vector<double> form_parameter_values(const scene_spec& scene,
         values.push_back(static_cast<double>(*v));
     }
     return values;
+}
+
+Eigen::VectorXd form_state(const form_expressions& f, const initial_kinematics& k,
+                           const angle_convention& c, form_kind scene_form) {
+    if (is_rotor_form(f.form)) return rotor_state(f.form, k);
+    Eigen::VectorXd y(static_cast<Eigen::Index>(f.state.size()));
+    for (std::size_t s = 0; s < f.state.size(); ++s) {
+        const std::string& name = f.state[s].name;
+        const bool needs_rates = name.find("_dot") != std::string::npos || name.rfind("p_", 0) == 0;
+        // Unreachable from a scene: without rates (|sin theta| < 1e-12) an Euler-angle form
+        // either starts in the body form (decide_chart: the switch below 0.1) or is refused by
+        // decide_chart (|sin theta| < 1e-10 without the switch), and a switch back to it happens
+        // only above |sin theta| = 0.3.
+        if (needs_rates && !k.have_rates)
+            throw std::logic_error("run: the " + std::string(to_string(scene_form)) +
+                                   " form was started at the singularity from body omega");
+        y[static_cast<Eigen::Index>(s)] = static_cast<double>(state_value(k, c, name));
+    }
+    return y;
 }
 
 } // namespace rotgen

@@ -69,4 +69,10 @@ std::vector<double> form_parameter_values(const scene_spec& scene,
 long double state_value(const initial_kinematics& k, const angle_convention& c,
                         const std::string& name);
 
+// The state vector of form f (a three-angle form's, or a linear rotor's) from the initial
+// kinematics, rounded to double; `scene_form` names the scene's form in the logic_error of a start
+// without rates in a form that needs them (decide_chart in run/engine.cpp makes it unreachable).
+Eigen::VectorXd form_state(const form_expressions& f, const initial_kinematics& k,
+                           const angle_convention& c, form_kind scene_form);
+
 } // namespace rotgen

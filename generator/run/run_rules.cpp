@@ -1,5 +1,7 @@
-// rotgen — two rules of run/engine.hpp that simulate and bench share: the sample times and whether
-// the body form keeps the attitude.
+// rotgen — rules of run/engine.hpp that simulate and bench share (the sample times, whether the
+// body form keeps the attitude) and those of run/run_rules.hpp.
+#include "run/run_rules.hpp"
+
 #include "run/engine.hpp"
 
 namespace rotgen {
@@ -24,6 +26,16 @@ bool needs_orientation(const scene_spec& scene, bool chart_switch) {
     for (const event_spec& e : scene.events) // an action forms the state from the attitude
         orientation = orientation || e.acts();
     return orientation;
+}
+
+bool reached_end(const scene_spec& scene, double t) {
+    return scene.t_end >= scene.t_start ? t >= scene.t_end : t <= scene.t_end;
+}
+
+void add_stats(step_stats& s, const step_stats& more) {
+    s.steps += more.steps, s.accepted += more.accepted, s.rejected += more.rejected;
+    s.rhs_evals += more.rhs_evals, s.jac_evals += more.jac_evals,
+        s.factorisations += more.factorisations;
 }
 
 } // namespace rotgen

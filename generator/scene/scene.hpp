@@ -11,6 +11,7 @@
 //   events: [{name: floor, when: theta - pi/2, direction: rising, action: stop}]   (events.hpp)
 //   switch_chart: true           # continue in the body form near theta = 0, pi (default true)
 //   sweep: {...}                 # for `rotgen sweep` only (read by sweep/members.hpp)
+//   sensitivities: [initial.theta, parameters.h]   # d(motion)/d(key) (sensitivities.hpp)
 //
 // Angles: z-x-z Euler angles in radians, theta in [0, pi]; rates in rad per time unit; omega in
 // body axes.
@@ -18,6 +19,7 @@
 
 #include "forms/form_kind.hpp"
 #include "scene/events.hpp"
+#include "scene/sensitivities.hpp"
 #include "spec/spec.hpp"
 
 #include <array>
@@ -87,6 +89,7 @@ struct scene_spec {
     // `simulate --from`: the row the run starts from (its t is t_start; angles and rates were set
     // from it); the body form's attitude is its q0..q3 as written, not the angles'.
     std::optional<start_row> from;
+    sensitivity_spec sensitivities; // derivatives integrated with the motion (sensitivities.hpp)
 
     // Where things were written, for errors found later (an unrecordable quantity, a failed run).
     source_location where;            // the scene file itself

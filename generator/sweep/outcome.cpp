@@ -1,5 +1,6 @@
 #include "sweep/outcome.hpp"
 
+#include "run/sensitivity_start.hpp"
 #include "support/format.hpp"
 
 #include <cmath>
@@ -32,6 +33,17 @@ summary_layout layout_of(const prepared_scene& prepared) {
     for (const auto& inv : prepared.invariants())
         l.invariants.push_back(inv.name);
     l.samples = static_cast<std::size_t>(prepared.scene().samples);
+    const scene_spec& scene = prepared.scene();
+    if (scene.sensitivities.active()) { // the columns the scene's form gives (compile_all: cached)
+        stage_timings timings;
+        bool cached = true;
+        const compiled_form& cf = prepared.compiled(scene.form, timings, &cached);
+        const std::vector<std::string> keys = sensitivity_key_names(scene, cf.f);
+        for (std::size_t c = 0; c < cf.columns.size() && c < l.columns.size(); ++c)
+            for (const auto& key : keys)
+                if (cf.columns[c].kind == value_source::compiled)
+                    l.sensitivities.push_back("d(" + l.columns[c] + ")/d(" + key + ")");
+    }
     return l;
 }
 
@@ -57,6 +69,8 @@ member_outcome outcome_of(const prepared_scene& prepared, const summary_layout& 
     if (keep_trajectory)
         o.trajectory.assign(layout.samples * width, std::numeric_limits<double>::quiet_NaN());
     if (!r.rows.empty()) o.final_row = r.rows.back();
+    if (!r.sensitivity_rows.empty() && r.sensitivity_columns == layout.sensitivities)
+        o.final_sensitivities = r.sensitivity_rows.back(); // a member started in another form: none
     for (const auto& d : r.invariants)
         o.drifts.push_back(d.drift);
     o.event_times.assign(layout.events.size(), std::numeric_limits<double>::quiet_NaN());
@@ -89,6 +103,8 @@ void write_summary_header(std::ostream& os, const sweep_plan& plan, const summar
     os << ",final.t";
     for (const auto& c : layout.columns)
         os << ",final." << c;
+    for (const auto& c : layout.sensitivities)
+        os << ",final." << c;
     for (const auto& e : layout.events)
         os << ",event." << e;
     for (std::size_t a : layout.acting)
@@ -115,6 +131,8 @@ std::string summary_row_of(std::size_t m, const std::vector<double>& row,
     }
     for (std::size_t c = 0; c <= layout.columns.size(); ++c)
         field(o.final_row, c, false);
+    for (std::size_t c = 0; c < layout.sensitivities.size(); ++c)
+        field(o.final_sensitivities, c, false);
     for (std::size_t i = 0; i < layout.events.size(); ++i)
         field(o.event_times, i, true);
     for (std::size_t i = 0; i < layout.acting.size(); ++i)

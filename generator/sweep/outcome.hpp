@@ -14,8 +14,9 @@
 namespace rotgen {
 
 struct member_outcome {
-    std::vector<double> final_row;   // t and the recorded columns at the last sample reached
-    std::vector<double> drifts;      // max |v(t) - v(t0)|, one per monitored invariant
+    std::vector<double> final_row; // t and the recorded columns at the last sample reached
+    std::vector<double> final_sensitivities; // there, summary_layout::sensitivities (or none)
+    std::vector<double> drifts;              // max |v(t) - v(t0)|, one per monitored invariant
     std::vector<double> event_times; // the first time of each scene event; NaN: it never occurred
     std::vector<double> actions;     // how many times each acting event acted (layout.acting)
     std::uint64_t steps = 0, rhs_evals = 0;
@@ -36,6 +37,8 @@ struct summary_layout {
     std::vector<std::string> events;     // the scene's events, in the scene's order
     std::vector<std::size_t> acting;     // those that act (impulse, set): actions.<name> columns
     std::vector<std::string> invariants; // energy, p_phi, ...
+    // With the scene's sensitivities: d(<column>)/d(<key>), as the scene's form records them
+    std::vector<std::string> sensitivities;
     std::size_t samples = 0;
 };
 summary_layout layout_of(const prepared_scene& prepared);
@@ -49,7 +52,8 @@ member_outcome run_one(const prepared_scene& prepared, const summary_layout& lay
 member_outcome outcome_of(const prepared_scene& prepared, const summary_layout& layout,
                           const run_result& r, bool keep_trajectory);
 
-// summary.csv: member, the keys as written, final.t, final.<column>..., event.<name>... (the time
+// summary.csv: member, the keys as written, final.t, final.<column>..., with sensitivities
+// final.d(<column>)/d(<key>)..., event.<name>... (the time
 // of the event's first occurrence, empty if none), drift.<invariant>..., steps, rhs_evals, status.
 // Numbers with 17 significant digits; a status with a comma or a quote is quoted (RFC 4180).
 void write_summary_header(std::ostream& os, const sweep_plan& plan, const summary_layout& layout);

@@ -2,6 +2,7 @@
 #include "tune/tune.hpp"
 
 #include "bench/sampled_error.hpp"
+#include "scene/sensitivities.hpp"
 #include "support/error.hpp"
 #include "support/format.hpp"
 
@@ -30,6 +31,15 @@ int grid_index(double tol) {
 
 const std::vector<std::string> auto_methods{"dop853", "dopri5", "taylor",
                                             "split2", "split4", "split6"};
+
+// The methods auto may choose for this scene: those that integrate its sensitivities, if it has
+// any.
+std::vector<std::string> methods_for(const scene_spec& scene) {
+    std::vector<std::string> r;
+    for (const auto& m : auto_methods)
+        if (!scene.sensitivities.active() || method_takes_sensitivities(m)) r.push_back(m);
+    return r;
+}
 
 bool is_split(const std::string& m) {
     return m.rfind("split", 0) == 0;
@@ -112,7 +122,7 @@ std::string choice_text(const auto_choice& c) {
 
 std::vector<std::string> methods_accepting(const scene_spec& scene) {
     std::vector<std::string> ok;
-    for (const auto& m : auto_methods)
+    for (const auto& m : methods_for(scene))
         for (const form_kind f : candidate_forms(scene)) {
             if (is_split(m) && f != form_kind::body && scene.form_given) continue;
             scene_spec s = bench::scene_for_error(configured(scene, f, m, 1e-6));
@@ -140,7 +150,7 @@ auto_choice tune_scene(const scene_spec& scene, std::ostream* log) {
     std::vector<candidate> found;
     candidate closest{"", scene.form, 0, {}};
     for (const form_kind f : candidate_forms(scene))
-        for (const auto& m : auto_methods) {
+        for (const auto& m : methods_for(scene)) {
             if (is_split(m) && f != form_kind::body) continue; // they run the body form
             search_result s = search(base, f, m, ref.result, target, log);
             if (s.refused) continue;

@@ -2,6 +2,8 @@
 
 import io
 
+import numpy as np
+
 from . import _rotgen
 from ._errors import RunError
 from ._scene import source_of
@@ -50,6 +52,17 @@ class SimulateResult:
         Whether the run reached the end time (or a terminal event).
     message : str
         Why not (the CLI's line), when not.
+    sensitivity_keys : list of str
+        The scene's ``sensitivities`` keys in order (``y0.<state>`` for ``all_initial``); empty
+        without them.
+    sensitivities : ndarray or None
+        d(column)/d(key), shape (samples, columns, keys): NaN for a column without a derivative
+        (the body form's angles, rates, momenta and quaternion); None without sensitivities.
+    state_sensitivities : ndarray or None
+        S = dy/d(key) of the run form's state y, shape (samples, n, keys); None without them.
+    stm : ndarray or None
+        The state-transition matrix dy(t)/dy(t0), shape (samples, n, n), with
+        ``sensitivities: {keys: all_initial}``; else None.
     """
 
     def __init__(self, d):
@@ -61,6 +74,25 @@ class SimulateResult:
         self.summary = d["summary"]
         self.success = d["ok"]
         self.message = d["message"]
+        self.sensitivity_keys = list(d["sensitivity_keys"])
+        self._sensitivity_columns = list(d["sensitivity_columns"])
+        self._sensitivity_values = d["sensitivity_values"]
+        self.sensitivities = None
+        self.state_sensitivities = None
+        self.stm = None
+        if self.sensitivity_keys:
+            self._set_sensitivities(d["state_sensitivities"])
+
+    def _set_sensitivities(self, state):
+        k = len(self.sensitivity_keys)
+        self.sensitivities = np.full((len(self.t), len(self.columns), k), np.nan)
+        for m, name in enumerate(self._sensitivity_columns):
+            column, key = name[2:].split(")/d(", 1)
+            c, j = self.columns.index(column), self.sensitivity_keys.index(key[:-1])
+            self.sensitivities[:, c, j] = self._sensitivity_values[:, m]
+        self.state_sensitivities = state
+        if all(key.startswith("y0.") for key in self.sensitivity_keys) and state.shape[1] == k:
+            self.stm = state
 
     def __getitem__(self, column):
         """The samples of one recorded column, by name (``r["theta"]``).
@@ -88,7 +120,8 @@ class SimulateResult:
         Returns
         -------
         pandas.DataFrame
-            Indexed by ``t``, one column per recorded quantity (:attr:`columns`).
+            Indexed by ``t``, one column per recorded quantity (:attr:`columns`), then the
+            ``d(<column>)/d(<key>)`` columns of the CSV with sensitivities.
 
         Raises
         ------
@@ -98,7 +131,10 @@ class SimulateResult:
         pd = _pandas()
         if pd is None:
             raise ImportError("to_pandas() needs pandas (Debian: python3-pandas)")
-        return pd.DataFrame(self.y, index=pd.Index(self.t, name="t"), columns=self.columns)
+        frame = pd.DataFrame(self.y, index=pd.Index(self.t, name="t"), columns=self.columns)
+        for m, name in enumerate(self._sensitivity_columns):
+            frame[name] = self._sensitivity_values[:, m]
+        return frame
 
     def events_to_pandas(self):
         """The events as a DataFrame (needs pandas).

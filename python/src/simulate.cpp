@@ -66,8 +66,30 @@ py::dict summary_of(const scene_spec& scene, const run_result& r) {
     return s;
 }
 
+// With sensitivities: the keys, the d(...) columns' names, and per row the d(...) values
+// (rows x sensitivity columns) and S (rows x n x k).
+void add_sensitivities(py::dict& d, const run_result& r) {
+    d["sensitivity_keys"] = r.sensitivity_keys;
+    d["sensitivity_columns"] = r.sensitivity_columns;
+    const std::size_t rows = r.sensitivity_rows.size(), k = r.sensitivity_keys.size();
+    py::array_t<double> values({rows, r.sensitivity_columns.size()});
+    py::array_t<double> S({rows, k == 0 ? 0 : r.state_size, k});
+    auto v = values.mutable_unchecked<2>();
+    auto s = S.mutable_unchecked<3>();
+    for (std::size_t i = 0; i < rows; ++i) {
+        for (std::size_t j = 0; j < r.sensitivity_columns.size(); ++j)
+            v(i, j) = r.sensitivity_rows[i][j];
+        for (std::size_t a = 0; k > 0 && a < r.state_size; ++a)
+            for (std::size_t b = 0; b < k; ++b)
+                s(i, a, b) = r.state_sensitivities[i][a * k + b];
+    }
+    d["sensitivity_values"] = values;
+    d["state_sensitivities"] = S;
+}
+
 py::dict result_of(const scene_spec& scene, const run_result& r) {
     py::dict d;
+    add_sensitivities(d, r);
     d["rows"] = rows_array(r.rows, r.columns.size() + 1);
     d["columns"] = r.columns;
     py::list events;
