@@ -82,6 +82,7 @@ def main():
     ap.add_argument("-o", "--output", default="-")
     ap.add_argument("--rotgen", default=os.path.join(ROOT, "build", "rotgen"))
     ap.add_argument("--scenes", default=",".join(SCENES))
+    ap.add_argument("--methods", default="", help="only these (comma-separated)")
     args = ap.parse_args()
     lines = ["| scene | method | " + " | ".join("%g" % t for t in TOLS) +
              " | spread (max/min) |", "|---|---|" + "---:|" * (len(TOLS) + 1)]
@@ -96,6 +97,8 @@ def main():
             notes.append("%s: reference taylor 1e-15; taylor at 1e-15 in the %s form differs by "
                          "%.1e (the floor)" % (name, other, floor))
             for m in methods:
+                if args.methods and m not in args.methods.split(","):
+                    continue
                 cells, ratios = [], []
                 for tol in TOLS:
                     a = run(args.rotgen, path, m, tol, tmp)

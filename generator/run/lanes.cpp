@@ -1,4 +1,5 @@
 #include "run/lanes.hpp"
+#include "run/tolerance_layout.hpp"
 
 #include "support/error.hpp"
 
@@ -368,6 +369,9 @@ std::vector<std::optional<run_result>> run_lanes(const prepared_scene& prepared,
     } else {
         dop853<double> m(ig.rtol, ig.atol);
         m.fixed_step = step;
+        stage_timings timings; // the form is compiled already: the layout of its state
+        calibrate(m, tolerance_layout(
+                         prepared.compiled(prepared.scene().form, timings, nullptr).f.state));
         m.max_steps = static_cast<std::size_t>(max_steps);
         lanes = integrate_lanes(prepared, kernels, b, m);
     }
