@@ -35,8 +35,8 @@ def timed(rotgen, path, method, tol, form, tmp):
         r = subprocess.run([rotgen, "simulate", scene, "-o", out], capture_output=True, text=True)
         if r.returncode != 0:
             return None, None
-        m = re.search(r"time\s+([0-9.e+-]+) (ms|s|µs) integrating", r.stdout + r.stderr)
-        scale = {"s": 1e3, "ms": 1.0, "µs": 1e-3}[m.group(2)]
+        m = re.search(r"time\s+([0-9.e+-]+) (ms|s|µs|us) integrating", r.stdout + r.stderr)
+        scale = {"s": 1e3, "ms": 1.0, "µs": 1e-3, "us": 1e-3}[m.group(2)]
         times.append(float(m.group(1)) * scale)
     import numpy as np
     data = np.loadtxt(out, delimiter=",", comments="#", skiprows=2)
