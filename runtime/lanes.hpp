@@ -169,6 +169,14 @@ template <class S> inline constexpr bool is_lane_system_v = is_lane_system<S>::v
 /// Sums of squares of K error terms for an error norm: one set for a system, one per lane for a
 /// lane system (component i belongs to lane i mod W). largest(norm, n) is the norm of the one set,
 /// or the largest over the lanes with n/W components each.
+/// The lanes of a system: sys.lanes() for a lane system, else 1.
+template <class S> std::size_t lanes_of(const S& sys) {
+    if constexpr (is_lane_system_v<S>)
+        return sys.lanes();
+    else
+        return (void)sys, std::size_t(1);
+}
+
 template <class T, class S, std::size_t K, bool = is_lane_system_v<S>> class lane_error_sums {
   public:
     explicit lane_error_sums(const S&) {}

@@ -4,15 +4,45 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "combine.hpp"
 #include "derivatives.hpp"
 #include "result.hpp"
 
 namespace rotgen {
+
+/// What a tolerance means: one definition for every method (docs/integrators.md, "What a tolerance
+/// means"). Component i of the state may err by
+///   sk_i = atol + rtol · m_i,
+/// m_i the magnitude of what the component measures, by its group:
+///   groups empty             m_i = max(|y0_i|, |y1_i|): each component relative to itself
+///                            (HNW I, (4.10); C++ systems that say nothing about their layout)
+///   groups[i] = attitude     m_i = 1: an angle or a unit quaternion's component, whose error is
+///                            an attitude error in radians however far the angle has turned (an
+///                            Euler angle of a fast top grows to 1e4 rad; relative to it, rtol
+///                            would allow 1e4 · rtol)
+///   groups[i] = itself       m_i = max(|y0_i|, |y1_i|), as without groups (a component the
+///                            layout does not describe, e.g. one appended to a form's state)
+///   groups[i] = g in 0..7    m_i = max(‖y0_g‖, ‖y1_g‖), the Euclidean norm of group g's
+///   components:
+///                            a rate or a momentum relative to its vector (ω, the angles' rates,
+///                            the momenta), not to itself (ω1 of a fast top is 1e-3 of |ω|)
+/// weights[i] (empty: all 1) multiplies err_i / sk_i; 0 leaves a component out of the norm. The
+/// weighted error vector's RMS over the components is the step's error (error_norm below); each
+/// method holds its estimate of it to its calibration of rtol (the method's `tolerance_scale`).
+/// A lane system (lanes.hpp: W lanes, component-major) applies the layout of one lane to each.
+struct error_layout {
+    static constexpr signed char attitude = -1; ///< the group of an attitude component (m_i = 1)
+    static constexpr signed char itself = -2;   ///< relative to itself (m_i = |y_i|)
+    static constexpr int max_groups = 8;        ///< vector groups 0 .. max_groups - 1
+    std::vector<signed char> groups;            ///< per component of one lane's state, or empty
+    std::vector<double> weights;                ///< per component of one lane's state, or empty
+};
 
 /// Options shared by the adaptive methods. Each method sets its own defaults in its header.
 template <class T> struct adaptive_options {
@@ -26,25 +56,103 @@ template <class T> struct adaptive_options {
     T facmax = T(10);    ///< largest step-size ratio h_new/h
     T beta = T(0.04);    ///< PI controller weight of the previous error (0: I controller)
     std::size_t max_steps = 1000000; ///< attempted steps before status::max_steps
+    error_layout layout;             ///< what the tolerance is relative to (error_layout)
+    /// The estimate is held to F · sk, F = calibration_scale · τ^calibration_power (τ = rtol, or
+    /// atol when rtol is 0; calibration_factor): 1 and 0 by default; calibrate() sets each
+    /// method's measured values, so that the error at the samples is near rtol whatever the method.
+    T calibration_scale = T(1);
+    T calibration_power = T(0); ///< see calibration_scale
 };
+
+/// F = scale · τ^power, τ = rtol (atol when rtol is 0), and at least 4 eps / τ (an estimate held
+/// below rounding would stop the run): the factor a method's estimate is held to (calibrate()).
+template <class T> T calibration_factor(T scale, T power, T rtol, T atol) {
+    using std::max;
+    using std::pow;
+    const T tau = rtol > T(0) ? rtol : atol;
+    if (!(tau > T(0))) return scale;
+    const T f = power == T(0) ? scale : scale * pow(tau, power);
+    return max(f, T(4) * std::numeric_limits<T>::epsilon() / tau);
+}
+
+/// Gives the method m the layout of its system's state and its calibration, M::calibrated_scale
+/// and M::calibrated_power (measured: bench/proportionality/measure.py), so that rtol means the
+/// same for every method (error_layout; docs/integrators.md, "What a tolerance means"). The scene
+/// layer calls it for every run; a C++ program may, or keep the plain per-component norm.
+template <class M> void calibrate(M& m, const error_layout& layout) {
+    m.layout = layout;
+    m.calibration_scale = M::calibrated_scale;
+    m.calibration_power = M::calibrated_power;
+}
 
 namespace detail {
 
-/// Error norm (HNW I, (4.11)): RMS over i of err_i / sk_i, sk_i = atol + rtol·max(|y0_i|, |y1_i|).
-/// Any vectors with size() and operator[] (Eigen vectors, the explicit methods' work vectors).
-template <class T, class E, class V>
-T error_norm(const E& err, const V& y0, const V& y1, T atol, T rtol) {
+/// The largest of ‖a_g‖ and ‖b_g‖ for each group g of one lane (components c·lanes + lane).
+template <class T, class A, class B>
+std::array<T, error_layout::max_groups> group_norms(const error_layout& L, const A& a, const B& b,
+                                                    std::size_t lanes, std::size_t lane) {
+    using std::max;
     using std::sqrt;
+    std::array<T, error_layout::max_groups> sa{}, sb{};
+    for (std::size_t c = 0; c < L.groups.size(); ++c) {
+        const int g = L.groups[c];
+        if (g < 0 || g >= error_layout::max_groups) continue;
+        const T ai = a[c * lanes + lane], bi = b[c * lanes + lane];
+        sa[std::size_t(g)] += ai * ai;
+        sb[std::size_t(g)] += bi * bi;
+    }
+    for (std::size_t g = 0; g < sa.size(); ++g)
+        sa[g] = max(sqrt(sa[g]), sqrt(sb[g]));
+    return sa;
+}
+
+/// out_i = weight_i / sk_i for every component of a state of `lanes` lanes (1: an ordinary
+/// system), sk_i = atol + rtol · m_i as error_layout defines it, from the step's start y0 and end
+/// y1. A layout whose size is not the lane's component count is ignored (each component relative
+/// to itself).
+template <class T, class A, class B, class Out>
+void inverse_scales(const error_layout& L, const A& y0, const B& y1, T atol, T rtol,
+                    std::size_t lanes, Out& out) {
+    using std::abs;
+    using std::max;
     const T tiny = std::numeric_limits<T>::min();
+    const std::size_t n = size_of(out), per_lane = n / lanes;
+    const bool grouped = L.groups.size() == per_lane;
+    const bool weighted = L.weights.size() == per_lane;
+    for (std::size_t l = 0; l < lanes; ++l) {
+        std::array<T, error_layout::max_groups> norms{};
+        if (grouped) norms = group_norms<T>(L, y0, y1, lanes, l);
+        for (std::size_t c = 0; c < per_lane; ++c) {
+            const std::size_t i = c * lanes + l;
+            T m = max(abs(y0[i]), abs(y1[i]));
+            const int g = grouped ? L.groups[c] : error_layout::itself;
+            if (g == error_layout::attitude) m = T(1);
+            if (g >= 0) m = norms[std::size_t(g)];
+            const T w = weighted ? T(L.weights[c]) : T(1);
+            out[i] = w / max(atol + rtol * m, tiny);
+        }
+    }
+}
+
+/// Error norm (HNW I, (4.11)): RMS over i of err_i · inv_i, inv_i = weight_i / sk_i from
+/// inverse_scales. Any vectors with size() and operator[] (Eigen vectors, the explicit methods'
+/// work vectors).
+template <class T, class E, class V> T error_norm(const E& err, const V& inv) {
+    using std::sqrt;
     T sum = T(0);
     for (std::size_t i = 0; i < size_of(err); ++i) {
-        using std::abs;
-        using std::max;
-        const T sk = max(atol + rtol * max(abs(y0[i]), abs(y1[i])), tiny);
-        const T r = err[i] / sk;
+        const T r = err[i] * inv[i];
         sum += r * r;
     }
-    return sqrt(sum / T(err.size()));
+    return sqrt(sum / T(size_of(err)));
+}
+
+/// The same with the scales of y0, y1 under the layout (into the work vector `inv`).
+template <class T, class E, class V, class W>
+T error_norm(const E& err, const V& y0, const W& y1, T atol, T rtol, const error_layout& layout,
+             W& inv) {
+    inverse_scales(layout, y0, y1, atol, rtol, 1, inv);
+    return error_norm<T>(err, inv);
 }
 
 /// Validation of the options shared by the adaptive methods; returns an empty string when valid.
@@ -126,20 +234,20 @@ template <class T> class pi_controller {
 ///   h  = min(100·h, h1, hmax)
 template <class S, class T, class V, class F>
 T initial_step(const S& sys, T t0, const V& y0, const F& f0, T dir, T hmax, T atol, T rtol,
-               int order, step_stats& stats) {
+               int order, step_stats& stats, const error_layout& layout = {}) {
     using std::abs;
     using std::max;
     using std::min;
     using std::pow;
     using std::sqrt;
-    const T tiny = std::numeric_limits<T>::min();
     const T n = T(y0.size());
+    F inv = f0; // weight_i / sk_i at y0 (error_layout)
+    inverse_scales(layout, y0, y0, atol, rtol, 1, inv);
     T dnf = T(0), dny = T(0);
     for (std::size_t i = 0; i < size_of(f0); ++i) {
         const T y0i = y0[static_cast<Eigen::Index>(i)];
-        const T sk = max(atol + rtol * abs(y0i), tiny);
-        dnf += (f0[i] / sk) * (f0[i] / sk);
-        dny += (y0i / sk) * (y0i / sk);
+        dnf += (f0[i] * inv[i]) * (f0[i] * inv[i]);
+        dny += (y0i * inv[i]) * (y0i * inv[i]);
     }
     dnf /= n;
     dny /= n;
@@ -150,10 +258,8 @@ T initial_step(const S& sys, T t0, const V& y0, const F& f0, T dir, T hmax, T at
         y1[i] = y0[static_cast<Eigen::Index>(i)] + (dir * h) * f0[i];
     eval_rhs(sys, t0 + dir * h, y1, f1, stats);
     T der2 = T(0);
-    for (std::size_t i = 0; i < size_of(f0); ++i) {
-        const T sk = max(atol + rtol * abs(y0[static_cast<Eigen::Index>(i)]), tiny);
-        der2 += ((f1[i] - f0[i]) / sk) * ((f1[i] - f0[i]) / sk);
-    }
+    for (std::size_t i = 0; i < size_of(f0); ++i)
+        der2 += ((f1[i] - f0[i]) * inv[i]) * ((f1[i] - f0[i]) * inv[i]);
     der2 = sqrt(der2 / n) / h;
     if (!(der2 == der2) || der2 > std::numeric_limits<T>::max()) return dir * h; // f1 not finite
     const T der12 = max(der2, sqrt(dnf));

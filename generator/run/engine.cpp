@@ -13,6 +13,7 @@
 #include "run/sensitivity_run.hpp"
 #include "run/split_run.hpp"
 #include "run/start_check.hpp"
+#include "run/tolerance_layout.hpp"
 #include "support/error.hpp"
 #include "support/format.hpp"
 
@@ -257,9 +258,11 @@ scene_run::next scene_run::integrate_segment(Eigen::VectorXd& y, double t_from) 
     };
     const std::size_t first_hit = m_events.hits().size();
     if (m_events.size() > 0) use_event_functions(cf);
+    const error_layout layout = tolerance_layout(cf.f.state); // this chart's (step_control.hpp)
+    if (m_method) std::visit([&](auto& m) { use_layout(m, layout); }, *m_method);
     m_timings.time("integrate", to_string(cf.form), [&] {
         m_last = m_split ? m_split->integrate(sys, t_from, y, times, observe,
-                                              m_events.size() > 0 ? &m_events : nullptr)
+                                              m_events.size() > 0 ? &m_events : nullptr, layout)
                  : m_events.size() > 0
                      ? integrate(sys, *m_method, t_from, y, times, observe, m_events)
                      : integrate(sys, *m_method, t_from, y, times, observe);

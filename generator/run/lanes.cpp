@@ -1,4 +1,5 @@
 #include "run/lanes.hpp"
+#include "run/tolerance_layout.hpp"
 
 #include "support/error.hpp"
 
@@ -359,6 +360,12 @@ lane_kernels compile_lanes(const prepared_scene& prepared, stage_timings& timing
 #endif
 }
 
+// What the scene's tolerance is relative to: the layout of its form's state (compiled already).
+static error_layout layout_of(const prepared_scene& prepared) {
+    stage_timings timings;
+    return tolerance_layout(prepared.compiled(prepared.scene().form, timings, nullptr).f.state);
+}
+
 std::vector<std::optional<run_result>> run_lanes(const prepared_scene& prepared,
                                                  const lane_kernels& kernels,
                                                  const std::vector<member_values>& members) {
@@ -379,11 +386,13 @@ std::vector<std::optional<run_result>> run_lanes(const prepared_scene& prepared,
     } else if (ig.method == "taylor") {
         taylor<double> m;
         m.rtol = ig.rtol, m.atol = ig.atol, m.step = step;
+        calibrate(m, layout_of(prepared));
         m.max_steps = static_cast<std::size_t>(max_steps);
         lanes = integrate_lanes(prepared, kernels, b, m);
     } else {
         dop853<double> m(ig.rtol, ig.atol);
         m.fixed_step = step;
+        calibrate(m, layout_of(prepared));
         m.max_steps = static_cast<std::size_t>(max_steps);
         lanes = integrate_lanes(prepared, kernels, b, m);
     }

@@ -81,10 +81,12 @@ body_split_system<loaded_system> split_runner::system(const loaded_system& body)
     return body_split_system<loaded_system>(body, m_frame.tensor, m_frame.moments, m_frame.axes);
 }
 
-integration_result<double>
-split_runner::integrate(const loaded_system& body, double t0, Eigen::VectorXd& y,
-                        const std::vector<double>& times, const observer& observe,
-                        event_set<double, Eigen::VectorXd>* events) const {
+integration_result<double> split_runner::integrate(const loaded_system& body, double t0,
+                                                   Eigen::VectorXd& y,
+                                                   const std::vector<double>& times,
+                                                   const observer& observe,
+                                                   event_set<double, Eigen::VectorXd>* events,
+                                                   const error_layout& layout) const {
     const body_split_system<loaded_system> sys = system(body);
     const auto run = [&](auto method) {
         method.max_steps = m_max_steps;
@@ -98,6 +100,7 @@ split_runner::integrate(const loaded_system& body, double t0, Eigen::VectorXd& y
         }
         controlled.rtol = m_rtol;
         controlled.atol = m_atol;
+        calibrate(controlled, layout);
         return run(controlled);
     };
     if (m_order == 2) return fixed_or_controlled(split2<double>(), split2_controlled<double>());

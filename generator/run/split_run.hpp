@@ -54,7 +54,8 @@ class split_runner {
     using observer = std::function<bool(double, const Eigen::VectorXd&)>;
     integration_result<double> integrate(const loaded_system& body, double t0, Eigen::VectorXd& y,
                                          const std::vector<double>& times, const observer& observe,
-                                         event_set<double, Eigen::VectorXd>* events) const;
+                                         event_set<double, Eigen::VectorXd>* events,
+                                         const error_layout& layout = {}) const;
 
   private:
     body_split_system<loaded_system> system(const loaded_system& body) const;

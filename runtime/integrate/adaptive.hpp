@@ -46,7 +46,7 @@ ROTGEN_NOINLINE integration_result<T> run_adaptive(const S& sys, const Method& m
     pi_controller<T> controller(method, St::order);
     T h = method.h0 > T(0) ? dir * min(method.h0, hmax)
                            : initial_step(sys, t0, y, st.f_start(), dir, hmax, method.atol,
-                                          method.rtol, St::order, stats);
+                                          method.rtol, St::order, stats, method.layout);
     integration_result<T> res;
     state_vector<T, S> y_now = y; // local copies while stepping: see fixed.hpp
     state_vector<T, S> ys = y;

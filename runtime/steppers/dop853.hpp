@@ -215,6 +215,10 @@ template <class T> struct dop853 : adaptive_options<T> {
     /// The stepper for a system of type S.
     template <class S> using stepper = dop853_stepper<T, S>;
 
+    /// calibrate()'s values for scenes (bench/proportionality: rtol means the error at the samples)
+    static constexpr double calibrated_scale = 0.01;
+    static constexpr double calibrated_power = 0; ///< see calibrated_scale
+
     dop853() {
         this->facmin = T(0.333);
         this->facmax = T(6);
@@ -263,9 +267,10 @@ template <class T, class S> class dop853_stepper {
     /// Storage for n state components, with the tolerances of m (and a fixed step when
     /// m.fixed_step > 0: no error control).
     dop853_stepper(const dop853<T>& m, std::size_t n)
-        : m_atol(m.atol), m_rtol(m.rtol), m_fixed(m.fixed_step > T(0)) {
+        : m_atol(m.atol * factor(m)), m_rtol(m.rtol * factor(m)), m_layout(m.layout),
+          m_fixed(m.fixed_step > T(0)) {
         const auto zero = detail::make_work_vector<work>(n);
-        m_y0 = m_y1 = m_k1 = m_y0_scratch = m_arg_scratch = zero;
+        m_y0 = m_y1 = m_k1 = m_y0_scratch = m_arg_scratch = m_bk = m_inv = zero;
         m_k.fill(zero);
         m_r.fill(zero);
     }
@@ -395,20 +400,20 @@ template <class T, class S> class dop853_stepper {
                 m_y1[i] = y0[i] + h * b_k(i);
             return {detail::all_finite(m_y1) ? status::ok : status::non_finite, T(0)};
         }
-        const T tiny = std::numeric_limits<T>::min();
+        for (std::size_t i = 0; i < n; ++i) {
+            m_bk[i] = b_k(i);
+            m_y1[i] = y0[i] + h * m_bk[i];
+        }
+        detail::inverse_scales(m_layout, y0, m_y1, m_atol, m_rtol, detail::lanes_of(sys), m_inv);
         detail::lane_error_sums<T, S, 2> sums(sys); // E3, E5
         for (std::size_t i = 0; i < n; ++i) {
-            const T bk = b_k(i);
             const T e3 =
-                bk - T(tab::bhh1) * k[0][i] - T(tab::bhh2) * k[8][i] - T(tab::bhh3) * k[11][i];
+                m_bk[i] - T(tab::bhh1) * k[0][i] - T(tab::bhh2) * k[8][i] - T(tab::bhh3) * k[11][i];
             const T e5 = T(tab::er1) * k[0][i] + T(tab::er6) * k[5][i] + T(tab::er7) * k[6][i] +
                          T(tab::er8) * k[7][i] + T(tab::er9) * k[8][i] + T(tab::er10) * k[9][i] +
                          T(tab::er11) * k[10][i] + T(tab::er12) * k[11][i];
-            const T y1 = y0[i] + h * bk;
-            m_y1[i] = y1;
-            const T inv_sk = T(1) / max(m_atol + m_rtol * max(abs(y0[i]), abs(y1)), tiny);
-            sums.add(i, 0, e3 * inv_sk);
-            sums.add(i, 1, e5 * inv_sk);
+            sums.add(i, 0, e3 * m_inv[i]);
+            sums.add(i, 1, e5 * m_inv[i]);
         }
         const auto norm = [&](const std::array<T, 2>& e, std::size_t components) {
             T deno = e[1] + T(0.01) * e[0];
@@ -485,8 +490,14 @@ template <class T, class S> class dop853_stepper {
     work& r(int i) { return m_r[static_cast<std::size_t>(i - 2)]; }
     const work& r(int i) const { return m_r[static_cast<std::size_t>(i - 2)]; }
 
+    static T factor(const dop853<T>& m) {
+        return calibration_factor(m.calibration_scale, m.calibration_power, m.rtol, m.atol);
+    }
+
     T m_atol, m_rtol;
-    bool m_fixed; ///< fixed steps: no error estimate
+    error_layout m_layout;
+    work m_bk, m_inv; ///< Σ b_j k_j and weight_i / sk_i of the last step (error_layout)
+    bool m_fixed;     ///< fixed steps: no error estimate
     T m_t = T(0), m_h = T(0);
     work m_y0, m_y1, m_k1; ///< start and end of the step, f at the start
     stages m_k;            ///< the stages of the last step (with a static size: steps with samples)

@@ -69,6 +69,10 @@ template <class T> struct dopri5 : adaptive_options<T> {
     /// The stepper for a system of type S.
     template <class S> using stepper = dopri5_stepper<T, S>;
 
+    /// calibrate()'s values for scenes (bench/proportionality: rtol means the error at the samples)
+    static constexpr double calibrated_scale = 0.004;
+    static constexpr double calibrated_power = 0; ///< see calibrated_scale
+
     dopri5() = default;
     /// The defaults with the tolerances rtol, atol.
     dopri5(T rtol, T atol) {
@@ -110,9 +114,10 @@ template <class T, class S> class dopri5_stepper {
     static constexpr bool uses_jacobian = false;
 
     /// Storage for n state components, with the tolerances of m.
-    dopri5_stepper(const dopri5<T>& m, std::size_t n) : m_atol(m.atol), m_rtol(m.rtol) {
+    dopri5_stepper(const dopri5<T>& m, std::size_t n)
+        : m_atol(m.atol * factor(m)), m_rtol(m.rtol * factor(m)), m_layout(m.layout) {
         const auto zero = detail::make_work_vector<work>(n);
-        m_y0 = m_y1 = m_r2 = m_r3 = m_r4 = m_r5 = m_y0_scratch = m_arg_scratch = zero;
+        m_y0 = m_y1 = m_r2 = m_r3 = m_r4 = m_r5 = m_y0_scratch = m_arg_scratch = m_inv = zero;
         m_k.fill(zero);
     }
 
@@ -212,7 +217,7 @@ template <class T, class S> class dopri5_stepper {
                             a(tab::e6, 6), a(tab::e7, 7));
         for (auto& e : arg)
             e *= h;
-        const T err = detail::error_norm(arg, y0, m_y1, m_atol, m_rtol);
+        const T err = detail::error_norm(arg, y0, m_y1, m_atol, m_rtol, m_layout, m_inv);
         m_y0 = y0;
         using std::isfinite;
         if (!isfinite(err) || !detail::all_finite(m_y1) || !detail::all_finite(k[6]))
@@ -232,9 +237,15 @@ template <class T, class S> class dopri5_stepper {
         }
     }
 
+    static T factor(const dopri5<T>& m) {
+        return calibration_factor(m.calibration_scale, m.calibration_power, m.rtol, m.atol);
+    }
+
     T m_atol, m_rtol;
+    error_layout m_layout;
     T m_h = T(0);
     work m_y0, m_y1, m_r2, m_r3, m_r4, m_r5;
+    work m_inv; ///< weight_i / sk_i of the last step (step_control.hpp, error_layout)
     stages m_k; ///< the last step's stages (static size: k1 and k7, all in steps with samples)
     work m_y0_scratch, m_arg_scratch; ///< a run-time size's y0 and stage argument in a step
 };

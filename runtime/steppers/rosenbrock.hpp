@@ -90,6 +90,10 @@ template <class T> struct rodas4 : adaptive_options<T> {
 
     bool autonomous = false; ///< true: f does not depend on t, skip ∂f/∂t
 
+    /// calibrate()'s values for scenes (bench/proportionality: rtol means the error at the samples)
+    static constexpr double calibrated_scale = 0.008;
+    static constexpr double calibrated_power = 0; ///< see calibrated_scale
+
     rodas4() {
         this->facmin = T(0.2);
         this->facmax = T(6);
@@ -141,9 +145,10 @@ template <class T, class S> class rodas4_stepper {
 
     /// Storage for n state components, with the options of m.
     rodas4_stepper(const rodas4<T>& m, std::size_t n)
-        : m_atol(m.atol), m_rtol(m.rtol), m_autonomous(m.autonomous), m_y0(vector::Zero(n)),
-          m_y1(m_y0), m_tmp(m_y0), m_rhs(m_y0), m_f0(m_y0), m_f1(m_y0), m_ft(m_y0),
-          m_jac(matrix::Zero(n, n)), m_iter(matrix::Zero(n, n)) {
+        : m_atol(m.atol * factor(m)), m_rtol(m.rtol * factor(m)), m_layout(m.layout),
+          m_autonomous(m.autonomous), m_y0(vector::Zero(n)), m_y1(m_y0), m_inv(m_y0), m_tmp(m_y0),
+          m_rhs(m_y0), m_f0(m_y0), m_f1(m_y0), m_ft(m_y0), m_jac(matrix::Zero(n, n)),
+          m_iter(matrix::Zero(n, n)) {
         for (auto& k : m_k)
             k = m_y0;
     }
@@ -197,7 +202,7 @@ template <class T, class S> class rodas4_stepper {
         m_y1 = y;
         for (std::size_t j = 0; j < 6; ++j)
             m_y1 += T(tab::m[j]) * m_k[j];
-        const T err = detail::error_norm(m_k[5], y, m_y1, m_atol, m_rtol); // err_vec = K_6
+        const T err = detail::error_norm(m_k[5], y, m_y1, m_atol, m_rtol, m_layout, m_inv); // K_6
         using std::isfinite;
         if (!isfinite(err) || !m_y1.allFinite()) return {status::non_finite, err};
         return {status::ok, err};
@@ -218,11 +223,16 @@ template <class T, class S> class rodas4_stepper {
     step_ends<T, vector> hermite_ends() const { return {m_h, m_y0, m_f1, m_y1, m_f0}; }
 
   private:
+    static T factor(const rodas4<T>& m) {
+        return calibration_factor(m.calibration_scale, m.calibration_power, m.rtol, m.atol);
+    }
+
     T m_atol, m_rtol;
+    error_layout m_layout;
     bool m_autonomous;
     bool m_jac_valid = false;
     T m_t = T(0), m_h = T(0);
-    vector m_y0, m_y1, m_tmp, m_rhs, m_f0, m_f1, m_ft;
+    vector m_y0, m_y1, m_inv, m_tmp, m_rhs, m_f0, m_f1, m_ft;
     std::array<vector, 6> m_k;
     matrix m_jac, m_iter;
     Eigen::PartialPivLU<Eigen::Matrix<T, state_dim<S>(), state_dim<S>()>> m_lu;

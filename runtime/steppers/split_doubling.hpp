@@ -25,6 +25,12 @@
 /// error at t = 10 is within 10 rtol (or twice DOP853's at the same rtol) this way, with the
 /// estimate held to 0.05 of the tolerance.
 ///
+/// Scenes (calibrate(), step_control.hpp) hold the estimate to 0.05 · c_p · τ^(1/p) of sk instead
+/// (c_p = calibrated_scale, τ = rtol): the propagated result is the one the estimate measures, so
+/// a local error held to τ^((p+1)/p) makes a global error proportional to τ (error per unit step;
+/// held to τ, the global error goes as τ^(p/(p+1)): 46x of spread in error ÷ rtol over 1e-5 …
+/// 1e-10 for split2; bench/results/proportionality.md).
+///
 /// Adaptive steps give up exact symplecticity (HLW, Geometric Numerical Integration, ch. VIII): the
 /// fixed-step mode (split_method, `step`) is the structure-preserving one.
 /// Stepper concept (stepper.hpp): order 2/4/6, error estimate, continuous extension (the two half
@@ -58,6 +64,10 @@ template <class T, int Order> struct split_controlled : adaptive_options<T> {
     /// The stepper for a system of type S.
     template <class S> using stepper = split_doubling_stepper<T, S, Order>;
 
+    /// calibrate()'s values for scenes (bench/proportionality: rtol means the error at the samples)
+    static constexpr double calibrated_scale = Order == 2 ? 640.0 : Order == 4 ? 25.0 : 2.0;
+    static constexpr double calibrated_power = 1.0 / Order; ///< see calibrated_scale
+
     split_controlled() {
         this->facmax = T(2);
         this->beta = T(0);
@@ -77,6 +87,8 @@ template <class T, int Order> struct split_controlled : adaptive_options<T> {
     std::string check() const {
         if (!(tolerance_scale > T(0) && tolerance_scale <= T(1)))
             return "tolerance_scale must lie in (0, 1]";
+        if (!(this->calibration_scale > T(0)) || !(this->calibration_power >= T(0)))
+            return "calibration_scale must be > 0 and calibration_power >= 0";
         return detail::check_adaptive_options<T>(*this);
     }
 };
@@ -107,9 +119,9 @@ template <class T, class S, int Order> class split_doubling_stepper {
 
     /// Storage for n state components, with the tolerances of m times m.tolerance_scale.
     split_doubling_stepper(const split_controlled<T, Order>& m, std::size_t n)
-        : m_atol(m.atol * m.tolerance_scale), m_rtol(m.rtol * m.tolerance_scale),
+        : m_atol(m.atol * factor(m)), m_rtol(m.rtol * factor(m)), m_layout(m.layout),
           m_y0(detail::make_work_vector<vector>(n)), m_y1(m_y0), m_full(m_y0), m_mid(m_y0),
-          m_f(m_y0) {}
+          m_f(m_y0), m_inv(m_y0) {}
 
     /// f(t0, y0), after start() (for the initial step selection).
     const vector& f_start() const { return m_f; }
@@ -136,7 +148,7 @@ template <class T, class S, int Order> class split_doubling_stepper {
         const T scale = T(1) / T((1 << Order) - 1);
         for (std::size_t i = 0; i < detail::size_of(m_full); ++i)
             m_full[i] = (m_y1[i] - m_full[i]) * scale;
-        return {status::ok, detail::error_norm(m_full, y, m_y1, m_atol, m_rtol)};
+        return {status::ok, detail::error_norm(m_full, y, m_y1, m_atol, m_rtol, m_layout, m_inv)};
     }
 
     /// Nothing to prepare (samples are the method run from the step's start): always true.
@@ -151,8 +163,14 @@ template <class T, class S, int Order> class split_doubling_stepper {
     }
 
   private:
+    static T factor(const split_controlled<T, Order>& m) {
+        return m.tolerance_scale *
+               calibration_factor(m.calibration_scale, m.calibration_power, m.rtol, m.atol);
+    }
+
     T m_atol, m_rtol;
-    vector m_y0, m_y1, m_full, m_mid, m_f;
+    error_layout m_layout;
+    vector m_y0, m_y1, m_full, m_mid, m_f, m_inv;
     const S* m_sys = nullptr;
     T m_t = T(0), m_h = T(0);
 };

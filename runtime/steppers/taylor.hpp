@@ -44,6 +44,7 @@
 #include <vector>
 
 #include "../lanes.hpp"
+#include "../step_control.hpp"
 #include "../stepper.hpp"
 
 namespace rotgen {
@@ -253,6 +254,15 @@ template <class T> struct taylor {
     T hmax = T(0);                   ///< largest step; 0: |t_end - t0|
     int order = 0;                   ///< 0: from the tolerance, per step; > 0: always this order
     std::size_t max_steps = 1000000; ///< step budget
+    /// What the tolerance is relative to (step_control.hpp): with groups, the weighted control
+    /// (the file's comment); without, Jorba and Zou's relative or absolute control.
+    error_layout layout;
+    T calibration_scale =
+        T(1); ///< the weighted control holds the truncation to F sk_i (F: step_control.hpp)
+    T calibration_power = T(0); ///< see calibration_scale
+    /// calibrate()'s values for scenes (bench/proportionality: rtol means the error at the samples)
+    static constexpr double calibrated_scale = 0.01;
+    static constexpr double calibrated_power = 0; ///< see calibrated_scale
 
     /// The method's name, as scene files and `rotgen simulate` spell it.
     std::string name() const { return "taylor"; }
@@ -297,6 +307,12 @@ template <class T> struct taylor {
         explicit step_rule(int order = 2)
             : p(order), inv_p1(T(1) / T(order - 1)), inv_p(T(1) / T(order)),
               c(-T(2) - T(0.7) / T(order - 1)) {}
+        /// The weighted control's rule: h = rho · eps^(1/p) · exp(-0.7 / (p - 1)), so that the
+        /// truncation error is eps relative to the weights whatever p's rounding up (JZ's e^-2 is
+        /// eps^(1/p) at p = -ln(eps)/2 exactly, and up to e^2 looser at p rounded up).
+        step_rule(int order, T ln_eps) : step_rule(order) {
+            c = ln_eps * inv_p - T(0.7) / T(order - 1);
+        }
 
         /// m from the norms n1 = ||y^[p-1]||, n = ||y^[p]|| and inv_s = 1 / s, s = ||y||_inf
         /// (relative) or 1 (absolute): one logarithm where the quotients n / s are normal numbers
@@ -383,10 +399,19 @@ template <class T, class S> class taylor_stepper {
     /// Storage for n state components, with the options of m.
     taylor_stepper(const taylor<T>& m, std::size_t n)
         : m_method(m), m_n(n), m_y1(vector::Zero(static_cast<Eigen::Index>(n))), m_f0(m_y1),
-          m_comp(m_y1), m_comp_start(m_y1), m_tail(m_y1) {
+          m_comp(m_y1), m_comp_start(m_y1), m_tail(m_y1),
+          m_weight(vector::Ones(static_cast<Eigen::Index>(n))),
+          m_weighted(m.layout.groups.size() == n) {
         m_max_order = m.max_order();
         m_order_abs = m.order_of(false), m_order_rel = m.order_of(true);
         m_rule_abs = rule(m_order_abs), m_rule_rel = rule(m_order_rel);
+        if (m_weighted) {
+            using std::log;
+            const T f =
+                calibration_factor(m.calibration_scale, m.calibration_power, m.rtol, m.atol);
+            if (m.rtol > T(0)) m_rule_rel = rule(m_order_rel, log(f * m.rtol));
+            if (m.atol > T(0)) m_rule_abs = rule(m_order_abs, log(f * m.atol));
+        }
     }
 
     /// Begins a run at (t0, y0): evaluates f(t0, y0); false when it is not finite.
@@ -469,13 +494,13 @@ template <class T, class S> class taylor_stepper {
         return m_c[i * static_cast<std::size_t>(m_p + 1) + static_cast<std::size_t>(k)];
     }
 
-    /// max_i |y_i^[k]|
+    /// max_i w_i |y_i^[k]| (w_i = 1 but under a layout: expand())
     T norm(int k) const {
         using std::abs;
         using std::max;
         T r = T(0);
         for (std::size_t i = 0; i < size(); ++i) {
-            const T v = abs(coefficient(i, k));
+            const T v = abs(coefficient(i, k)) * m_weight[static_cast<Eigen::Index>(i)];
             if (!(v == v)) return v;
             r = max(r, v);
         }
@@ -500,6 +525,7 @@ template <class T, class S> class taylor_stepper {
         const taylor<T>& m = m_method;
         m_relative = m.rtol > T(0) && m.rtol * m_norm0 > m.atol;
         m_inv_s = m_relative ? T(1) / m_norm0 : T(1); // off the step's chain: see step_rule
+        if (m_weighted) weigh(y);
         m_p = m_relative ? m_order_rel : m_order_abs;
         const std::size_t stride = static_cast<std::size_t>(m_p + 1);
         for (std::size_t i = 0; i < size(); ++i)
@@ -507,6 +533,17 @@ template <class T, class S> class taylor_stepper {
         sys.taylor(t, m_c.data(), m_p);
         ++stats.rhs_evals;
         m_expanded = true;
+    }
+
+    /// The weighted control (a layout with groups): w_i = eps / sk_i at the step's start, eps =
+    /// rtol (or atol when rtol is 0) choosing the order, s = 1: the truncation error of component
+    /// i is held near sk_i = atol + rtol m_i (error_layout), as every method's error is.
+    void weigh(const vector& y) {
+        const taylor<T>& m = m_method;
+        detail::inverse_scales(m.layout, y, y, m.atol, m.rtol, 1, m_weight);
+        m_relative = m.rtol > T(0);
+        m_weight *= m_relative ? m.rtol : m.atol;
+        m_norm0 = T(1), m_inv_s = T(1);
     }
 
     taylor<T> m_method;
@@ -521,6 +558,8 @@ template <class T, class S> class taylor_stepper {
     vector m_y1, m_f0;
     vector m_comp, m_comp_start; ///< Kahan's compensation of m_y1, and of the step's start
     vector m_tail;               ///< tails(): the step's sum of y^[k] h^(k-1), k >= 1
+    vector m_weight;             ///< w_i of norm(): 1, or eps / sk_i under a layout (weigh())
+    bool m_weighted;             ///< the layout has groups: the weighted control
     bool m_stepped = false;      ///< m_y1 and m_comp hold a step's end
 };
 

@@ -83,6 +83,9 @@ template <class T, class S> class taylor_lane_stepper {
         m_relative.assign(m_w, 0);
         m_acc.assign(m_w, T(0));
         m_continued.assign(m_w, 0);
+        m_weight = vector::Ones(static_cast<Eigen::Index>(m_size));
+        m_weighted = m_method.layout.groups.size() == m_n;
+        if (m_weighted) weighted_rules();
         expand(sys, t0, y0, stats);
         for (std::size_t i = 0; i < m_n; ++i)
             for (std::size_t l = 0; l < m_w; ++l)
@@ -205,7 +208,7 @@ template <class T, class S> class taylor_lane_stepper {
             for (std::size_t i = 0; i < m_n; ++i) {
                 const T* c = at(i, k);
                 for (std::size_t l = 0; l < w; ++l) {
-                    const T v = abs(c[l]);
+                    const T v = abs(c[l]) * m_weight[static_cast<Eigen::Index>(i * m_w + l)];
                     m[l] = v == v ? std::max(m[l], v) : v; // NaN stays: max(NaN, v) is NaN
                 }
             }
@@ -246,6 +249,10 @@ template <class T, class S> class taylor_lane_stepper {
             if (m.order == 0 && sys.is_live(l))
                 p = std::max(p, m_relative[l] ? m_order_rel : m_order_abs);
         }
+        if (m_weighted) {
+            weigh(y);
+            if (m.order == 0) p = m.rtol > T(0) ? m_order_rel : m_order_abs;
+        }
         m_p = p;
         for (std::size_t i = 0; i < m_n; ++i)
             for (std::size_t l = 0; l < m_w; ++l)
@@ -253,6 +260,22 @@ template <class T, class S> class taylor_lane_stepper {
         sys.taylor(t, m_c.data(), m_p);
         ++stats.rhs_evals;
         m_expanded = true;
+    }
+
+    /// The weighted control under a layout, as taylor_stepper's (each lane's scales its own).
+    void weighted_rules() {
+        using std::log;
+        const taylor<T>& m = m_method;
+        const T f = calibration_factor(m.calibration_scale, m.calibration_power, m.rtol, m.atol);
+        if (m.rtol > T(0)) m_rule_rel = step_rule(m_order_rel, log(f * m.rtol));
+        if (m.atol > T(0)) m_rule_abs = step_rule(m_order_abs, log(f * m.atol));
+    }
+    void weigh(const vector& y) {
+        const taylor<T>& m = m_method;
+        detail::inverse_scales(m.layout, y, y, m.atol, m.rtol, m_w, m_weight);
+        m_weight *= m.rtol > T(0) ? m.rtol : m.atol;
+        for (std::size_t l = 0; l < m_w; ++l)
+            m_relative[l] = m.rtol > T(0), m_norm0[l] = T(1), m_inv_s[l] = T(1);
     }
 
     taylor<T> m_method;
@@ -271,6 +294,8 @@ template <class T, class S> class taylor_lane_stepper {
     vector m_comp, m_comp_start;   ///< Kahan's compensation of m_y1, and of the step's start
     std::vector<char> m_continued; ///< per lane: this step continues from the last step's end
     bool m_stepped = false;
+    vector m_weight;         ///< w of norms(): 1, or eps / sk under a layout (weigh())
+    bool m_weighted = false; ///< the layout has groups: the weighted control
 };
 
 } // namespace rotgen

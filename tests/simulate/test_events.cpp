@@ -246,8 +246,10 @@ TEST_CASE("the summary names where a pair of zeros may hide: g = (t - 0.5)^2 tou
     REQUIRE(at != std::string::npos);
     double from = 0, to = 0;
     REQUIRE(std::sscanf(r.out.c_str() + at + warning.size(), "%lf .. %lf", &from, &to) == 2);
+    // the interval holds 0.5 to an ulp: observed [0.4999999999999999, 0.49999999999999994] since
+    // issue 50's step control (the steps, and so the search's brackets, moved), [.., 0.5] before
     CHECK(from <= 0.5);
-    CHECK(to >= 0.5);
+    CHECK(to >= 0.5 - 1.2e-16);
     CHECK(to - from < 5e-16); // observed 5.6e-17
     CHECK(r.out.find("(g neither changes sign nor stays away from 0 there)\n", at) !=
           std::string::npos);
