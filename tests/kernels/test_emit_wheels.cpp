@@ -108,9 +108,9 @@ TEST_CASE("gyrostat kernels against Newton-Euler written by hand, three skewed w
         worst_energy = std::max(worst_energy, std::abs(lag.energy(y.data()) - g.energy(om)));
         worst_energy = std::max(worst_energy, std::abs(ham.energy(yh.data()) - g.energy(om)));
     }
-    CHECK(worst_body < 1e-12);   // observed ~1e-15
-    CHECK(worst_lag < 1e-7);     // observed ~1e-9: central differences
-    CHECK(worst_qdot < 1e-11);   // observed ~1e-14
-    CHECK(worst_pdot < 1e-7);    // observed ~1e-9: central differences
-    CHECK(worst_energy < 1e-12); // observed ~1e-15
+    CHECK(worst_body < 3e-14);   // observed 2.7e-15
+    CHECK(worst_lag < 4e-8);     // observed 3.6e-9: central differences
+    CHECK(worst_qdot < 3e-14);   // observed 3.1e-15
+    CHECK(worst_pdot < 7e-8);    // observed 7.4e-9: central differences
+    CHECK(worst_energy < 7e-14); // observed 7.1e-15
 }
