@@ -293,7 +293,7 @@ std::string as_json(const model_spec& spec, const equations& d, const inertia_re
     os << "  \"cyclic\": [";
     for (std::size_t i = 0; i < d.cyclic.size(); ++i)
         os << (i ? ", " : "") << json_quote(d.names[static_cast<std::size_t>(d.cyclic[i])]);
-    os << "],\n  \"energy\": " << json_quote(to_text(d.energy, c));
+    os << "],\n  \"energy\": " << json_quote(to_text(d.energy, c)) << wheels_json(spec);
     if (inertia) os << ",\n" << inertia_json(spec, *inertia);
     os << "\n}\n";
     return os.str();

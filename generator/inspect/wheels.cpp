@@ -61,6 +61,29 @@ std::string wheels_text(const model_spec& spec) {
     return os.str();
 }
 
+std::string wheels_json(const model_spec& spec) {
+    if (spec.wheels.empty()) return "";
+    const angle_convention& c = spec.angles;
+    std::ostringstream os;
+    os << ",\n  \"wheels\": [";
+    int k = 0;
+    for (const wheel_spec& w : spec.wheels) {
+        const char* drive = w.drive == wheel_spec::drive_kind::rate     ? "rate"
+                            : w.drive == wheel_spec::drive_kind::torque ? "torque"
+                                                                        : "free";
+        os << (k++ ? ", " : "") << "{\"name\": " << json_quote(w.name) << ", \"axis\": ["
+           << json_quote(to_text(w.axis[0], c)) << ", " << json_quote(to_text(w.axis[1], c)) << ", "
+           << json_quote(to_text(w.axis[2], c))
+           << "], \"inertia\": " << json_quote(to_text(w.inertia, c))
+           << ", \"drive\": " << json_quote(drive);
+        if (w.drive != wheel_spec::drive_kind::free)
+            os << ", \"" << drive << "\": " << json_quote(to_text(w.drive_value, c));
+        os << "}";
+    }
+    os << "]";
+    return os.str();
+}
+
 std::string gyrostat_stability_text(const model_spec& spec, const inertia_report& r) {
     if (spec.wheels.empty()) return "";
     const angle_convention& c = spec.angles;

@@ -226,6 +226,8 @@ TEST_CASE("intermediate-axis spin: the wobble stays small exactly beyond the thr
     CHECK(r.out.find("{\"axis\": 2, \"unstable_from\": \"I1 - I2\", \"unstable_to\": \"-I2 + "
                      "I3\", \"unstable_from_value\": -1.0, \"unstable_to_value\": 1.0}") !=
           std::string::npos);
+    CHECK(r.out.find("\"wheels\": [{\"name\": \"wheel\", \"axis\": [\"0\", \"1\", \"0\"], "
+                     "\"inertia\": \"Jw\", \"drive\": \"free\"}]") != std::string::npos);
     // h/omega = p_wheel / omega2 with omega2 = 1
     for (double p : {-0.8, -0.5, 0.0, 0.5, 0.8}) {
         INFO("p_wheel " << p);
