@@ -126,12 +126,48 @@ vector3 generalized_force(const model_spec& spec, const derivation& d) {
     return Q;
 }
 
+// l = J^{-T} p; H = 1/2 l^T I^{-1} l + V (with wheels (l - h) for l, and - routh: wheels.hpp);
+// Hamilton's equations q_dot = dH/dp, p_dot = -dH/dq + Q(q, dH/dp).
+void hamiltonian_side(derivation& d) {
+    const auto& s = symbols();
+    const wheel_terms& wh = d.wheels;
+    for (int i = 0; i < 3; ++i) {
+        ex l = 0;
+        for (int j = 0; j < 3; ++j)
+            l += d.inverse_omega_jacobian[j][i] * s.p[j];
+        d.body_momentum[i] = canonical(l);
+    }
+    vector3 lb = d.body_momentum;
+    if (wh.any)
+        for (int i = 0; i < 3; ++i)
+            lb[i] = canonical(lb[i] - wh.h[i]);
+    ex H = 0;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            H += lb[i] * d.inverse_inertia[i][j] * lb[j];
+    d.hamiltonian =
+        wh.any ? canonical(H / 2 - wh.routh + d.potential) : canonical(H / 2 + d.potential);
+
+    GiNaC::exmap rates_of_p;
+    for (int i = 0; i < 3; ++i) {
+        d.hamilton_qdot[i] = canonical(d.hamiltonian.diff(s.p[i]));
+        rates_of_p[s.qd[i]] = d.hamilton_qdot[i];
+    }
+    for (int i = 0; i < 3; ++i)
+        d.hamilton_pdot[i] =
+            canonical(-d.hamiltonian.diff(s.q[i]) + d.generalized_force[i].subs(rates_of_p));
+}
+
 } // namespace
 
-derivation derive(const model_spec& spec) {
-    refuse_rotor(spec);
+derivation derive(const model_spec& model) {
+    refuse_rotor(model);
+    refuse_torque_wheels(model, "the derivation");
+    const model_spec spec = gyrostat_body(model);
     const auto& s = symbols();
     derivation d;
+    d.wheels = wheel_terms_of(model);
+    const wheel_terms& wh = d.wheels;
     d.angles = spec.angles;
     d.omega_jacobian = omega_jacobian(spec.angles);
     d.inverse_omega_jacobian = inverse_omega_jacobian(d.omega_jacobian);
@@ -152,6 +188,15 @@ derivation derive(const model_spec& spec) {
     d.kinetic = canonical(T / 2);
     d.potential = canonical(spec.potential);
     d.lagrangian = canonical(d.kinetic - d.potential);
+    if (wh.any) { // wheels.hpp: T the total, L Routh's function
+        ex hw = 0, hw_driven = 0;
+        for (int i = 0; i < 3; ++i) {
+            hw += wh.h[i] * d.omega[i];
+            hw_driven += wh.h_driven[i] * d.omega[i];
+        }
+        d.lagrangian = canonical(T / 2 + hw + wh.routh - d.potential);
+        d.kinetic = canonical(T / 2 + hw_driven + wh.kinetic);
+    }
     d.energy = canonical(d.kinetic + d.potential);
 
     // p = dL/dq_dot, M = dp/dq_dot
@@ -169,6 +214,7 @@ derivation derive(const model_spec& spec) {
         ex f = d.lagrangian.diff(s.q[i]) + d.generalized_force[i];
         for (int j = 0; j < 3; ++j)
             f -= d.momenta[i].diff(s.q[j]) * s.qd[j];
+        if (wh.driven) f -= d.momenta[i].diff(s.t); // a rate drive: p depends on t
         d.forcing[i] = canonical(f);
         ex el = -d.forcing[i];
         for (int j = 0; j < 3; ++j)
@@ -176,27 +222,7 @@ derivation derive(const model_spec& spec) {
         d.euler_lagrange[i] = canonical(el);
     }
 
-    // l = J^{-T} p; H = 1/2 l^T I^{-1} l + V
-    for (int i = 0; i < 3; ++i) {
-        ex l = 0;
-        for (int j = 0; j < 3; ++j)
-            l += d.inverse_omega_jacobian[j][i] * s.p[j];
-        d.body_momentum[i] = canonical(l);
-    }
-    ex H = 0;
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-            H += d.body_momentum[i] * d.inverse_inertia[i][j] * d.body_momentum[j];
-    d.hamiltonian = canonical(H / 2 + d.potential);
-
-    GiNaC::exmap rates_of_p;
-    for (int i = 0; i < 3; ++i) {
-        d.hamilton_qdot[i] = canonical(d.hamiltonian.diff(s.p[i]));
-        rates_of_p[s.qd[i]] = d.hamilton_qdot[i];
-    }
-    for (int i = 0; i < 3; ++i)
-        d.hamilton_pdot[i] =
-            canonical(-d.hamiltonian.diff(s.q[i]) + d.generalized_force[i].subs(rates_of_p));
+    hamiltonian_side(d);
 
     for (int i = 0; i < 3; ++i)
         if (canonical(d.lagrangian.diff(s.q[i])).is_zero() && d.generalized_force[i].is_zero())

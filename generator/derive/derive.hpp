@@ -7,7 +7,8 @@
 //   M(q) q_ddot = f(q, q_dot, t),
 //     f_i = dL/dq_i - sum_j (dp_i/dq_j) q_dot_j + Q_i   (Euler-Lagrange; Q the generalised force)
 //   Q = -c .* q_dot + J^T tau                           (damping, body torque tau)
-//   H(q, p) = 1/2 l^T I^{-1} l + V,  l = J^{-T} p       (l the body angular momentum; no
+//   H(q, p) = 1/2 l^T I^{-1} l + V,  (a gyrostat's wheels: wheels.hpp)
+//    l = J^{-T} p       (l the body angular momentum; no
 //                                                        symbolic inverse of M is ever formed)
 //   q_dot = dH/dp,  p_dot = -dH/dq + Q                  (Hamilton's equations)
 //
@@ -19,6 +20,7 @@
 // (expanded, with sin^2 of phi and psi rewritten as 1 - cos^2), so results are reproducible.
 #pragma once
 
+#include "derive/wheels.hpp"
 #include "spec/spec.hpp"
 
 #include <ginac/ginac.h>
@@ -48,6 +50,11 @@ struct derivation {
     vector3 hamilton_qdot;          // dH/dp
     vector3 hamilton_pdot;          // -dH/dq + Q(q, dH/dp)
     std::vector<int> cyclic; // indices of coordinates absent from L and Q (momentum conserved)
+    // A gyrostat's wheels (wheels.hpp): h, its rate, the extra kinetic terms. With wheels, T is
+    // the total kinetic energy, L Routh's function (free wheels' angles eliminated), I above the
+    // body's I_e (+ J a a^T of the rate-driven wheels), l = J^{-T} p = I_e omega + h and
+    // H = 1/2 (l - h)^T I_e^{-1} (l - h) - routh + V.
+    wheel_terms wheels;
 };
 
 // Derives everything above. Pure: depends only on the spec.

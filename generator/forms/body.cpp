@@ -202,10 +202,10 @@ void body_state_and_rates(const model_spec& spec, const derivation& d, const vec
         }
     }
     const vec Iw = mat_vec(spec.inertia, w);
-    const vec gyro = cross(w, Iw);
+    const vec gyro = cross(w, momentum_of(d, Iw)); // omega x (I omega + h), h of the wheels
     vec rhs;
     for (int i = 0; i < 3; ++i)
-        rhs[i] = tau[i] - gyro[i];
+        rhs[i] = d.wheels.driven ? tau[i] - gyro[i] - d.wheels.h_dot[i] : tau[i] - gyro[i];
     const vec wd = mat_vec(d.inverse_inertia, rhs);
     for (int i = 0; i < 3; ++i) {
         f.rates.push_back(wd[i]);
@@ -244,11 +244,12 @@ void body_notes(const model_spec& spec, bool quaternion, bool chart_used, form_e
 }
 
 // energy T + V with T = 1/2 omega . I omega; l = I omega; omega; I; A = R^T if q is kept.
-void body_outputs(const model_spec& spec, const vec& w, const ex& potential,
+void body_outputs(const model_spec& spec, const derivation& d, const vec& w, const ex& potential,
                   const std::array<ex, 9>& R, bool quaternion, form_expressions& f) {
     const vec Iw = mat_vec(spec.inertia, w);
-    add_output(f, "energy", {dot(w, Iw) / 2 + potential}, {"energy"});
-    add_output(f, "momenta", {Iw[0], Iw[1], Iw[2]}, {"l1", "l2", "l3"});
+    add_output(f, "energy", {kinetic_of(d, w, Iw) + potential}, {"energy"});
+    const vec l = momentum_of(d, Iw);
+    add_output(f, "momenta", {l[0], l[1], l[2]}, {"l1", "l2", "l3"});
     add_output(f, "omega", {w[0], w[1], w[2]}, {"omega1", "omega2", "omega3"});
     add_output(f, "mass_matrix", flat(spec.inertia), matrix_names("I"));
     if (quaternion) {
@@ -278,7 +279,7 @@ void build_body(const model_spec& spec, const derivation& d, form_expressions& f
     const bool quaternion = torque.needs_orientation || orientation;
     body_state_and_rates(spec, d, w, torque.tau, quaternion, f);
     body_notes(spec, quaternion, chart.used(), f);
-    body_outputs(spec, w, torque.potential, R, quaternion, f);
+    body_outputs(spec, d, w, torque.potential, R, quaternion, f);
 }
 
 } // namespace rotgen::form_detail

@@ -79,11 +79,26 @@ void add_output(form_expressions& f, const std::string& name, std::vector<ex> va
     f.outputs[name] = form_output{std::move(values), std::move(names), {}};
 }
 
+ex kinetic_of(const derivation& d, const vec& w, const vec& Iw) {
+    if (!d.wheels.any) return dot(w, Iw) / 2;
+    const vec hd{d.wheels.h_driven[0], d.wheels.h_driven[1], d.wheels.h_driven[2]};
+    return dot(w, Iw) / 2 + dot(hd, w) + d.wheels.kinetic;
+}
+
+vec momentum_of(const derivation& d, const vec& Iw) {
+    if (!d.wheels.any) return Iw;
+    return {Iw[0] + d.wheels.h[0], Iw[1] + d.wheels.h[1], Iw[2] + d.wheels.h[2]};
+}
+
 hamilton_parts hamilton(const derivation& d) {
     const auto& s = symbols();
     hamilton_parts h;
-    h.l = d.body_momentum;                           // l = J^{-T} p
-    h.w = mat_vec(d.inverse_inertia, h.l);           // omega = I^{-1} l
+    h.l = d.body_momentum; // l = J^{-T} p
+    vec lb = h.l;          // l - h: the body's own momentum I omega (a gyrostat's wheels)
+    if (d.wheels.any)
+        for (int i = 0; i < 3; ++i)
+            lb[i] = h.l[i] - d.wheels.h[i];
+    h.w = mat_vec(d.inverse_inertia, lb);            // omega = I^{-1} (l - h)
     h.qdot = mat_vec(d.inverse_omega_jacobian, h.w); // q_dot = J^{-1} omega = dH/dp
     GiNaC::exmap rates;
     for (int i = 0; i < 3; ++i)

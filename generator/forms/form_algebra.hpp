@@ -37,6 +37,12 @@ std::vector<std::string> matrix_names(const std::string& m); // m11, m12, ..., m
 void add_output(form_expressions& f, const std::string& name, std::vector<GiNaC::ex> values,
                 std::vector<std::string> names);
 
+// A gyrostat's (derive/wheels.hpp) total kinetic energy 1/2 omega . I omega (+ h_driven . omega
+// + the wheels' own terms) and total angular momentum I omega (+ h), given Iw = I omega; the bare
+// body's when the model has no wheels.
+GiNaC::ex kinetic_of(const derivation& d, const vec& w, const vec& Iw);
+vec momentum_of(const derivation& d, const vec& Iw);
+
 // H = 1/2 l . I^{-1} l + V with l = J^{-T} p: the Hamiltonian form's pieces, composed.
 struct hamilton_parts {
     vec l, w, qdot, pdot; // l = J^{-T} p, omega = I^{-1} l, q_dot = dH/dp, p_dot = -dH/dq + Q

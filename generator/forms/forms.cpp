@@ -94,7 +94,7 @@ std::vector<ex> derivatives(const form_expressions& f, const std::vector<ex>& ra
 std::vector<form_parameter> model_parameters(const model_spec& spec) {
     std::vector<form_parameter> ps;
     for (const parameter& p : spec.parameters)
-        ps.push_back({p.name, p.symbol, p.value, p.description, true});
+        ps.push_back({p.name, p.symbol, p.value, p.description, !p.wheel_momentum});
     return ps;
 }
 
@@ -112,8 +112,9 @@ std::vector<ex> parameter_jacobian(const form_expressions& f, const std::vector<
     return derivatives(f, rates, parameters);
 }
 
-form_expressions build_form(const model_spec& spec, const derivation& d, form_kind form,
+form_expressions build_form(const model_spec& model, const derivation& d, form_kind form,
                             lagrangian_strategy strategy, bool orientation) {
+    const model_spec spec = gyrostat_body(model); // I + J a a^T of rate-driven wheels
     form_expressions f;
     f.angles = spec.angles;
     f.form = form;

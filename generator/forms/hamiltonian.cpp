@@ -30,8 +30,13 @@ void build_hamiltonian(const derivation& d, form_expressions& f) {
         "l = J^{-T} p (body angular momentum), omega = I^{-1} l, q_dot = J^{-1} omega = dH/dp, "
         "p_dot = -dH/dq + Q; " +
         f.angles.singular_clause() + ".");
-    add_output(f, "energy", {dot(h.w, h.l) / 2 + d.potential}, {"energy"});
-    f.outputs["energy"].alternatives.push_back({d.hamiltonian});
+    if (d.wheels.any) { // h.l - h = I omega
+        const vec Iw{h.l[0] - d.wheels.h[0], h.l[1] - d.wheels.h[1], h.l[2] - d.wheels.h[2]};
+        add_output(f, "energy", {kinetic_of(d, h.w, Iw) + d.potential}, {"energy"});
+    } else {
+        add_output(f, "energy", {dot(h.w, h.l) / 2 + d.potential}, {"energy"});
+    }
+    if (!d.wheels.driven) f.outputs["energy"].alternatives.push_back({d.hamiltonian});
     add_output(f, "momenta", {s.p[0], s.p[1], s.p[2]}, momentum_names(f.angles));
     add_output(f, "omega", {h.w[0], h.w[1], h.w[2]}, {"omega1", "omega2", "omega3"});
 }

@@ -44,10 +44,10 @@ vec euler_equations_q_ddot(const model_spec& spec, const derivation& d) {
     for (auto& t : tau)
         t = canonical(t);
     const vec Iw = mat_vec(spec.inertia, d.omega);
-    const vec gyro = cross(d.omega, Iw);
+    const vec gyro = cross(d.omega, momentum_of(d, Iw)); // omega x (I omega + h)
     vec b;
     for (int i = 0; i < 3; ++i)
-        b[i] = tau[i] - gyro[i];
+        b[i] = d.wheels.driven ? tau[i] - gyro[i] - d.wheels.h_dot[i] : tau[i] - gyro[i];
     const vec wd = mat_vec(d.inverse_inertia, b);
     vec a;
     for (int i = 0; i < 3; ++i) {
@@ -113,9 +113,9 @@ void build_lagrangian(const model_spec& spec, const derivation& d, form_expressi
     // omega = J q_dot (5.30); T = 1/2 omega . I omega (5.38); p = J^T I omega.
     const vec w = d.omega;
     const vec Iw = mat_vec(spec.inertia, w);
-    add_output(f, "energy", {dot(w, Iw) / 2 + d.potential}, {"energy"});
+    add_output(f, "energy", {kinetic_of(d, w, Iw) + d.potential}, {"energy"});
     f.outputs["energy"].alternatives.push_back({d.energy});
-    const vec p = mat_t_vec(d.omega_jacobian, Iw);
+    const vec p = mat_t_vec(d.omega_jacobian, momentum_of(d, Iw));
     add_output(f, "momenta", {p[0], p[1], p[2]}, momentum_names(f.angles));
     f.outputs["momenta"].alternatives.push_back({d.momenta[0], d.momenta[1], d.momenta[2]});
     add_output(f, "omega", {w[0], w[1], w[2]}, {"omega1", "omega2", "omega3"});

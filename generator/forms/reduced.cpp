@@ -127,8 +127,13 @@ void reduced_outputs(const derivation& d, const hamilton_parts& h, const std::ve
         names.push_back(f.angles.names[i] + "_dot");
     }
     add_output(f, "ignored_rates", rates, names);
-    offer(f, dropped, "energy", {d.hamiltonian}, {"energy"});
-    const ex energy = dot(h.w, h.l) / 2 + d.potential;
+    vec Iw = h.l; // I omega = l - h (a gyrostat's wheels)
+    for (int i = 0; i < 3; ++i)
+        Iw[i] = h.l[i] - d.wheels.h[i];
+    const ex energy =
+        d.wheels.any ? kinetic_of(d, h.w, Iw) + d.potential : dot(h.w, h.l) / 2 + d.potential;
+    // H is the energy unless a wheel's rate is driven (then L depends on t)
+    offer(f, dropped, "energy", {d.wheels.driven ? energy : d.hamiltonian}, {"energy"});
     if (f.outputs.count("energy") && mentioned_ignored({energy}, dropped, f.angles).empty())
         f.outputs["energy"].alternatives.push_back({energy});
     add_output(f, "momenta", {s.p[0], s.p[1], s.p[2]}, momentum_names(f.angles));

@@ -5,6 +5,7 @@
 #include "expr/symbols.hpp"
 #include "inertia/inertia.hpp"
 #include "inspect/equations.hpp"
+#include "inspect/wheels.hpp"
 
 #include <algorithm>
 #include <sstream>
@@ -168,6 +169,7 @@ std::string inertia_text(const model_spec& spec, const inertia_report& r, bool s
        << "):\n";
     for (const auto& s : r.stability)
         os << "  axis " << s.axis << ": " << stability_text(s, r, symbolic, c) << "\n";
+    os << gyrostat_stability_text(spec, r);
     return os.str();
 }
 
@@ -248,7 +250,7 @@ std::string inertia_json(const model_spec& spec, const inertia_report& r) {
         os << ",\n    \"centre_of_mass\": " << json_array(spec.body->centre_of_mass, c);
         os << ",\n    \"pivot\": " << json_array(spec.body->pivot, c);
     }
-    os << "\n  }";
+    os << gyrostat_stability_json(spec, r) << "\n  }";
     return os.str();
 }
 
@@ -291,7 +293,7 @@ std::string as_json(const model_spec& spec, const equations& d, const inertia_re
     os << "  \"cyclic\": [";
     for (std::size_t i = 0; i < d.cyclic.size(); ++i)
         os << (i ? ", " : "") << json_quote(d.names[static_cast<std::size_t>(d.cyclic[i])]);
-    os << "],\n  \"energy\": " << json_quote(to_text(d.energy, c));
+    os << "],\n  \"energy\": " << json_quote(to_text(d.energy, c)) << wheels_json(spec);
     if (inertia) os << ",\n" << inertia_json(spec, *inertia);
     os << "\n}\n";
     return os.str();
@@ -344,6 +346,7 @@ std::string as_text(const model_spec& spec, const equations& d) {
         os << " " << d.names[static_cast<std::size_t>(i)] << " (p_"
            << d.names[static_cast<std::size_t>(i)] << " conserved)";
     os << "\nenergy E = T + V = " << to_text(d.energy, c) << "\n";
+    os << wheels_text(spec);
     return os.str();
 }
 

@@ -58,6 +58,16 @@ void check_output_names(const std::vector<std::string>& requested) {
         }
 }
 
+// Whether an output mentions t (a wheel's rate drive, derive/wheels.hpp): the header's output
+// functions take no t.
+bool depends_on_time(const form_expressions& f, const std::string& name) {
+    const auto it = f.outputs.find(name);
+    if (it == f.outputs.end()) return false;
+    for (const GiNaC::ex& e : it->second.values)
+        if (e.has(f.time)) return true;
+    return false;
+}
+
 // The outputs to write, in output_names()' order, whatever order the request gave.
 std::vector<std::string> resolve_outputs(const model_spec& spec, const form_expressions& f,
                                          const std::vector<std::string>& asked) {
@@ -67,8 +77,15 @@ std::vector<std::string> resolve_outputs(const model_spec& spec, const form_expr
     if (requested.empty()) {
         requested = {"rhs", "jacobian"};
         for (const auto& name : all)
-            if (f.outputs.count(name)) requested.push_back(name);
+            if (f.outputs.count(name) && !depends_on_time(f, name)) requested.push_back(name);
     }
+    for (const auto& r : requested)
+        if (depends_on_time(f, r))
+            throw user_error({where}, std::string("the ") + to_string(f.form) + " form of '" +
+                                          spec.name + "' cannot give '" + r +
+                                          "' in a header: it depends on t (a wheel's rate "
+                                          "drive), and the output functions take no t; "
+                                          "`rotgen simulate` records it");
     for (const auto& r : requested)
         if (r != "rhs" && r != "jacobian" && r != "taylor" && !f.outputs.count(r)) {
             const auto why = f.unavailable.find(r);

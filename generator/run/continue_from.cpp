@@ -196,6 +196,7 @@ void continue_from(scene_spec& scene, const std::string& csv) {
                          "integrator step is longer than the time span from t = " +
                              format_double(scene.t_start) + " (the last row of " + csv + ")");
     set_initial(scene, row);
+    continue_wheels(scene, row);
     scene.initial_where = {csv, row.line, 1};
     scene.from = std::move(row);
 }

@@ -35,4 +35,8 @@ void check_start_row(const start_row& row, const form_expressions& f);
 // The value of `name` in the row; NaN when the row has no such column.
 double row_value(const start_row& row, const std::string& name);
 
+// A gyrostat (run/wheel_start.cpp): each free wheel's momentum p_<wheel> from the row; refused in
+// the hamiltonian and reduced forms. Nothing for a model without wheels.
+void continue_wheels(scene_spec& scene, const start_row& row);
+
 } // namespace rotgen

@@ -54,7 +54,7 @@ class source_finder {
             const std::string& q = m_spec.angles.names[i];
             if (name == q) return {value_source::angle, i};
             if (name == q + "_dot") return {value_source::euler_rate, i};
-            if (name == "p_" + q) return {value_source::canonical_momentum, i};
+            if (name == "p_" + q) return canonical_momentum(i);
         }
         throw user_error(where, "the " + std::string(to_string(m_c.form)) +
                                     " form does not give '" + name + "'");
@@ -73,6 +73,16 @@ class source_finder {
     }
 
   private:
+    // p = J^T l, l = I omega, or for a gyrostat the total I omega + h from the record program.
+    value_source canonical_momentum(int i) {
+        value_source v{value_source::canonical_momentum, i};
+        if (m_spec.wheels.empty()) return v;
+        const auto& Q = symbols().omega;
+        const auto l = gyrostat_momentum(m_spec, {Q[0], Q[1], Q[2]});
+        v.momentum = compiled(l[0]).index;
+        compiled(l[1]), compiled(l[2]);
+        return v;
+    }
     value_source compiled(const ex& e) {
         m_program.push_back(e);
         return {value_source::compiled, static_cast<int>(m_program.size() - 1)};
@@ -309,6 +319,18 @@ compiled_form compile_form(const scene_spec& scene, form_expressions f, bool ori
     return c;
 }
 
+namespace {
+
+// l = I omega, or a gyrostat's total from the record program (value_source::momentum).
+Eigen::Vector3d momentum_of(const value_source& src, const std::vector<double>& out,
+                            const Eigen::Matrix3d& inertia, const Eigen::Vector3d& w) {
+    if (src.momentum < 0) return inertia * w;
+    const auto m = static_cast<std::size_t>(src.momentum);
+    return Eigen::Vector3d(out[m], out[m + 1], out[m + 2]);
+}
+
+} // namespace
+
 double source_value(const euler_sequence& s, const value_source& src,
                     Eigen::Ref<const Eigen::VectorXd> y, const std::vector<double>& out,
                     const Eigen::Matrix3d& inertia, std::optional<std::array<double, 3>>& e) {
@@ -327,9 +349,10 @@ double source_value(const euler_sequence& s, const value_source& src,
     if (src.kind == value_source::angle) return (*e)[static_cast<std::size_t>(src.index)];
     if (!s.is_zxz()) {
         const Eigen::Matrix3d J = omega_jacobian_at(s, *e); // undefined on the singular set
-        const Eigen::Vector3d v = src.kind == value_source::euler_rate
-                                      ? Eigen::Vector3d(J.lu().solve(w))
-                                      : Eigen::Vector3d(J.transpose() * (inertia * w));
+        const Eigen::Vector3d v =
+            src.kind == value_source::euler_rate
+                ? Eigen::Vector3d(J.lu().solve(w))
+                : Eigen::Vector3d(J.transpose() * momentum_of(src, out, inertia, w));
         return v[src.index];
     }
     const double st = std::sin((*e)[1]), ct = std::cos((*e)[1]), sp = std::sin((*e)[2]),
@@ -340,7 +363,7 @@ double source_value(const euler_sequence& s, const value_source& src,
                : src.index == 1 ? w[0] * cp - w[1] * sp
                                 : w[2] - phi_dot * ct;
     }
-    const Eigen::Vector3d l = inertia * w; // p = J^T l, J of (5.30)
+    const Eigen::Vector3d l = momentum_of(src, out, inertia, w); // p = J^T l, J of (5.30)
     return src.index == 0   ? st * sp * l[0] + st * cp * l[1] + ct * l[2]
            : src.index == 1 ? cp * l[0] - sp * l[1]
                             : l[2];

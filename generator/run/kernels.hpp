@@ -57,6 +57,9 @@ struct value_source {
         quaternion_of_angles, // Euler-angle forms: of qz(phi) (x) qx(theta) (x) qz(psi), q0 >= 0
     } kind;
     int index;
+    // canonical_momentum of a gyrostat: where the record program holds the total L1..L3
+    // (I omega + h, run/wheel_records.cpp); -1: I omega.
+    int momentum = -1;
 };
 
 // A quantity to monitor along the run: the energy, or a momentum the derivation found conserved.

@@ -90,6 +90,7 @@ initial_kinematics initial_kinematics_of(const scene_spec& scene, const derivati
         at[s.q[i]] = exact_scene_value(scene.angles[i], scene.angles_written[i]);
         k.q[i] = to_long_double(at[s.q[i]]);
     }
+    at[s.t] = GiNaC::numeric(scene.t_start); // a wheel's rate drive: p depends on t
     const euler_sequence sequence = sequence_of(scene.model.angles);
     k.have_rates = chart_distance(sequence, scene.angles[1]) >= 1e-12;
     std::array<ex, 3> qd;

@@ -169,6 +169,9 @@ std::unique_ptr<quad_start::programs> build(const scene_spec& scene, const deriv
             {s.qd[i], names[i] + "_dot",
              scene.initial == initial_kind::rates ? first_rate + i : computed_rate - i});
     std::vector<ex> out(d.momenta.begin(), d.momenta.end());
+    if (d.wheels.driven) // a wheel's rate drive: p depends on t
+        for (ex& e : out)
+            e = e.subs(s.t == GiNaC::numeric(scene.t_start));
     out.insert(out.end(), d.omega.begin(), d.omega.end());
     p->kinematics = lowered(out, with(with(angles, rates), parameters), in_effect, written);
     if (scene.initial == initial_kind::momenta) {

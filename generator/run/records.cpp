@@ -1,6 +1,8 @@
 // rotgen — run/: L1..L3, Lx..Lz, T and V from a form's outputs (records.hpp).
 #include "run/records.hpp"
 
+#include "derive/wheels.hpp"
+
 #include <array>
 
 namespace rotgen {
@@ -32,6 +34,7 @@ bool in_form_terms(const form_expressions& f, const ex& e) {
 std::optional<std::array<ex, 3>> body_momentum(const model_spec& spec, const form_expressions& f) {
     const std::vector<ex>* w = output(f, "omega");
     if (!w) return std::nullopt;
+    if (!spec.wheels.empty()) return gyrostat_momentum(spec, *w);
     std::array<ex, 3> l;
     for (std::size_t i = 0; i < 3; ++i) {
         l[i] = 0;
@@ -44,6 +47,7 @@ std::optional<std::array<ex, 3>> body_momentum(const model_spec& spec, const for
 // T = 1/2 omega . I omega (5.38), or energy - V where the form has no omega.
 std::optional<ex> kinetic(const model_spec& spec, const form_expressions& f) {
     const std::vector<ex>* w = output(f, "omega");
+    if (w && !spec.wheels.empty()) return gyrostat_kinetic(spec, *w);
     if (const auto l = body_momentum(spec, f))
         return ((*w)[0] * (*l)[0] + (*w)[1] * (*l)[1] + (*w)[2] * (*l)[2]) / 2;
     const std::vector<ex>* e = output(f, "energy");
@@ -67,6 +71,8 @@ std::optional<ex> potential(const model_spec& spec, const form_expressions& f) {
 std::optional<ex> derived_record(const model_spec& spec, const form_expressions& f,
                                  const std::string& name) {
     if (name == "T") return kinetic(spec, f);
+    if (const std::vector<ex>* w = output(f, "omega"); w && !spec.wheels.empty())
+        if (auto r = wheel_record(spec, *w, name)) return r;
     if (name == "V") return potential(spec, f);
     const auto l = body_momentum(spec, f);
     if (!l) return std::nullopt;

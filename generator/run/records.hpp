@@ -12,6 +12,7 @@
 #include "forms/forms.hpp"
 #include "spec/spec.hpp"
 
+#include <array>
 #include <optional>
 #include <string>
 
@@ -21,5 +22,12 @@ namespace rotgen {
 // nothing when the form does not determine it (the reduced form without omega, or without A).
 std::optional<GiNaC::ex> derived_record(const model_spec& spec, const form_expressions& f,
                                         const std::string& name);
+
+// A gyrostat (run/wheel_records.cpp; derive/wheels.hpp), given body omega: the total angular
+// momentum I_e omega + h, the total kinetic energy, and h1..h3, <wheel>_dot, p_<wheel>.
+std::array<GiNaC::ex, 3> gyrostat_momentum(const model_spec& spec, const std::vector<GiNaC::ex>& w);
+GiNaC::ex gyrostat_kinetic(const model_spec& spec, const std::vector<GiNaC::ex>& w);
+std::optional<GiNaC::ex> wheel_record(const model_spec& spec, const std::vector<GiNaC::ex>& w,
+                                      const std::string& name);
 
 } // namespace rotgen

@@ -32,6 +32,12 @@ void check_split_model(const scene_spec& scene, const Eigen::Matrix3d& inertia) 
     const model_spec& spec = scene.model;
     const std::string head =
         "integrator " + scene.integrator.method + " cannot run model '" + spec.name + "': ";
+    if (!spec.wheels.empty())
+        throw user_error(scene.integrator_where,
+                         head +
+                             "it carries wheels (a gyrostat), and the split methods' exact "
+                             "free flow is the bare body's; use " +
+                             other_methods);
     bool rates = spec.has_damping;
     for (const auto& c : spec.torque)
         rates = rates || depends_on_rates(c);

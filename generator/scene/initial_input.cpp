@@ -35,6 +35,8 @@ class initial_reader {
             allowed.insert(allowed.end(), g.begin(), g.end());
         for (const auto& g : m_rates)
             allowed.insert(allowed.end(), g.begin(), g.end());
+        for (const auto& p : m_scene.model.parameters) // free wheels: scene/wheel_initial.cpp
+            if (p.wheel_momentum) allowed.push_back(p.name);
         check_keys(m_n, allowed, m_file, "initial");
         const int att = chosen(m_attitude, "give the attitude one way only: the angles, a "
                                            "quaternion q0..q3 or the matrix A");

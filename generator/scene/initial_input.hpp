@@ -22,4 +22,15 @@ namespace rotgen::scene_detail {
 void read_initial_state(scene_spec& scene, const YAML::Node& n, const source_location& key,
                         const value_reader& values, const std::string& file);
 
+// A free wheel's momentum p_<wheel> written in `initial` (scene/wheel_initial.cpp): the value of
+// the model parameter of that name; refused when `parameters` gives it too.
+void read_wheel_initial(scene_spec& scene, const YAML::Node& n, const YAML::Node& parameters,
+                        const value_reader& values, const std::string& file);
+
+// "model 'M' carries wheels: <instead> (its momenta p_phi.. include the wheels' h)".
+std::string wheel_momenta_refusal(const model_spec& model, const std::string& instead);
+
+// A model with wheels in the hamiltonian form must keep its chart (switch_chart: false).
+void check_wheel_scene(const scene_spec& scene);
+
 } // namespace rotgen::scene_detail

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <fstream>
 
+#include "derive/wheels.hpp"
 #include "expr/angles.hpp"
 #include "expr/symbols.hpp"
 
@@ -78,6 +79,7 @@ class scene_reader {
                 throw user_error(at(sw), "switch_chart must be true or false");
             m_scene.switch_chart = sw.Scalar() == "true";
         }
+        scene_detail::check_wheel_scene(m_scene);
         m_scene.sensitivities = read_sensitivities(root["sensitivities"], m_scene, m_file);
         return std::move(m_scene);
     }
@@ -201,6 +203,7 @@ class scene_reader {
             return scene_detail::read_rotor_initial(m_scene, n, initial_key(root), *m_values,
                                                     m_file);
         scene_detail::read_initial_state(m_scene, n, initial_key(root), *m_values, m_file);
+        scene_detail::read_wheel_initial(m_scene, n, root["parameters"], *m_values, m_file);
     }
 
     // Where the `initial` key is written (the mapping's location if not found).
@@ -323,7 +326,9 @@ class scene_reader {
         }
         if (!n.IsSequence()) throw user_error(at(n), "'record' must be a list of quantities");
         if (n.size() == 0) throw user_error(at(n), "'record' must list at least one quantity");
-        const std::vector<std::string> allowed = recordable_names(m_scene.model.angles);
+        std::vector<std::string> allowed = recordable_names(m_scene.model.angles);
+        for (const auto& w : wheel_record_names(m_scene.model)) // a gyrostat's h, p_k, rates
+            allowed.push_back(w);
         for (const auto& item : n) {
             const std::string name = item.IsScalar() ? item.Scalar() : "";
             if (std::find(allowed.begin(), allowed.end(), name) == allowed.end()) {

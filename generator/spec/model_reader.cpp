@@ -23,7 +23,7 @@ model_reader::model_reader(const std::string& file, const std::string& source) :
 model_spec model_reader::read(const YAML::Node& root) {
     check_keys(root,
                {"name", "description", "angles", "parameters", "inertia", "body", "potential",
-                "gravity", "damping", "torque"},
+                "gravity", "damping", "torque", "wheels"},
                m_file, "the model");
     read_name(root);
     read_angles(root);
@@ -46,6 +46,7 @@ model_spec model_reader::read(const YAML::Node& root) {
                                                  "angles are the z-x-z phi and theta; leave "
                                                  "'angles' out");
     if (m_spec.rotor) read_rotor(root);
+    if (root["wheels"]) read_wheels(root["wheels"]);
     return std::move(m_spec);
 }
 

@@ -33,6 +33,24 @@ struct parameter {
     std::string description; // optional
     GiNaC::realsymbol symbol;
     source_location where;
+    // A free wheel's axial momentum p_<wheel> (spec/wheels_input.cpp): initial data of a run
+    // (the scene's `initial`), not a model constant, so never specialised.
+    bool wheel_momentum = false;
+};
+
+// A wheel (rotor) spinning about an axis fixed in the body (a gyrostat; spec/wheels_input.cpp).
+// The model's inertia holds the wheels' masses and transverse moments, not J a a^T. The wheel's
+// axial momentum is p = J (a . omega + alpha_dot), alpha its angle relative to the body.
+struct wheel_spec {
+    enum class drive_kind { free, rate, torque };
+    std::string name;  // an identifier: its angle <name>, rate <name>_dot, momentum p_<name>
+    vector3 axis;      // a unit vector in body axes (normalised exactly)
+    GiNaC::ex inertia; // J, its moment about its axis
+    drive_kind drive = drive_kind::free;
+    // rate: alpha_dot(t); torque: the motor torque on the wheel about its axis. Free: 0.
+    GiNaC::ex drive_value;
+    GiNaC::ex momentum; // free: the parameter p_<name> (conserved); otherwise 0
+    source_location where, drive_where;
 };
 
 // Uniform gravity: V = mass g (com . e_z), e_z the space vertical in body axes, i.e. the third
@@ -77,6 +95,8 @@ struct model_spec {
     // the gravity shorthand gives V = M g d cos(theta), d the distance of the centre of mass
     // along the line (n points from the fixed point towards it).
     GiNaC::ex rotor_moment, rotor_potential;
+    // `wheels:` (a gyrostat), in file order; a free wheel's momentum is also a parameter.
+    std::vector<wheel_spec> wheels;
 
     // parameter name -> symbol, for parsing further expressions (scenes) in this model's terms.
     name_table parameter_names() const;

@@ -48,6 +48,11 @@ class model_reader {
     // rotor_input.cpp: a linear rotor's moment and potential, and what a rotor cannot take
     void read_rotor(const YAML::Node& root);
 
+    // wheels_input.cpp: `wheels:` (axes, moments, drives; free wheels' momenta as parameters)
+    void read_wheels(const YAML::Node& n);
+    wheel_spec read_wheel(const YAML::Node& item, std::vector<std::string>& taken) const;
+    void read_drive(const YAML::Node& d, wheel_spec& w) const;
+
     // inertia_input.cpp: the tensor given directly, and the checks every tensor passes
     void read_inertia(const YAML::Node& n);
     void set_diagonal_flag();
