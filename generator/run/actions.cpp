@@ -14,6 +14,21 @@ namespace rotgen {
 
 namespace {
 
+// An action on a gyrostat forms the state from body omega with the wheels keeping their momenta
+// p_k: right for free wheels in the Lagrangian and body forms (Delta omega = I^-1 J, I without
+// the wheels' axial moments); the Hamiltonian form's momenta and a driven wheel's inertia would
+// need h, which the action's kinematics (from_body) do not carry.
+void refuse_wheel_action(const scene_spec& scene, const event_spec& e) {
+    bool driven = false;
+    for (const wheel_spec& w : scene.model.wheels)
+        driven = driven || w.drive != wheel_spec::drive_kind::free;
+    if (scene.model.wheels.empty() || (!driven && scene.form != form_kind::hamiltonian)) return;
+    throw user_error(e.action_where,
+                     "event '" + e.name + "': an action on a model with wheels needs free wheels " +
+                         "and the lagrangian or body form" +
+                         (driven ? " (a wheel here is driven)" : ", not hamiltonian"));
+}
+
 using vec3 = Eigen::Vector3d;
 
 // The kinematics before an action: the attitude and body omega of any form's state, with the
@@ -217,6 +232,7 @@ run_actions::run_actions(const scene_spec& scene, const euler_sequence& sequence
                                                  "': an action needs the lagrangian, "
                                                  "hamiltonian or body form, not " +
                                                  to_string(scene.form));
+        if (e.acts()) refuse_wheel_action(scene, e);
         if (!e.periodic) continue;
         const GiNaC::ex T = GiNaC::evalf(e.every.subs(values));
         m_period[i] = GiNaC::is_a<GiNaC::numeric>(T) ? GiNaC::ex_to<GiNaC::numeric>(T).to_double()

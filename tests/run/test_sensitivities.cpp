@@ -262,6 +262,12 @@ TEST_CASE("sensitivities refuse bad keys, other methods and the chart switch, lo
     CHECK_THAT(refused("switch", low, "switch_chart: false", "switch_chart: true"),
                Catch::Contains(":8:16: sensitivities are not carried across the chart switch "
                                "this run makes at t = 0.5"));
+    // an action would make S jump (S+ = h_y S- + ...), which is not built: refused at the key
+    CHECK_THAT(refused("action", heavy_top, "switch_chart: false",
+                       "switch_chart: false\nevents:\n  - {name: kick, when: t - 1, action: "
+                       "{impulse: [0.1, 0, 0]}}"),
+               Catch::Contains(":10:16: sensitivities are not carried across an event's action "
+                               "(event 'kick' at line 9 acts); run them without the action"));
 }
 
 // The body form starts from the angles' quaternion: S(t0) of qw..qz is its derivative by the
