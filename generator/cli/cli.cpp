@@ -26,6 +26,8 @@ const char* const usage =
     "                       an ensemble of the scene (varied initial values and parameters)\n"
     "  view RUN.csv --scene SCENE.yaml\n"
     "                       a self-contained HTML page that plays the run in 3D in a browser\n"
+    "  fit SCENE.yaml --data measured.csv --free KEY,...\n"
+    "                       fit initial values and parameters to measurements (least squares)\n"
     "\n"
     "  help [COMMAND]       this text, or a command's options (also rotgen COMMAND --help)\n"
     "  --version            the version\n"
@@ -81,11 +83,12 @@ int run_command(std::vector<std::string> args) {
     if (command == "bench") return cmd_bench(args);
     if (command == "sweep") return cmd_sweep(args);
     if (command == "view") return cmd_view(args);
-    const std::string best =
-        closest_name(command, {"inspect", "emit", "simulate", "bench", "sweep", "view", "help"});
+    if (command == "fit") return cmd_fit(args);
+    const std::string best = closest_name(
+        command, {"inspect", "emit", "simulate", "bench", "sweep", "view", "fit", "help"});
     throw user_error({}, "unknown command '" + command + "'" +
                              (best.empty() ? "" : "; did you mean '" + best + "'?") +
-                             " (expected inspect, emit, simulate, bench, sweep or view; see "
+                             " (expected inspect, emit, simulate, bench, sweep, view or fit; see "
                              "rotgen --help)");
 }
 

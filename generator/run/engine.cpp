@@ -546,6 +546,7 @@ std::unique_ptr<member_parts> run_parts(const prepared_scene& prepared, const me
 }
 
 std::vector<double> sample_times(const scene_spec& scene) {
+    if (!scene.sample_at.empty()) return scene.sample_at;
     std::vector<double> times(static_cast<std::size_t>(scene.samples));
     for (std::size_t i = 0; i < times.size(); ++i)
         times[i] = i + 1 == times.size() ? scene.t_end

@@ -233,6 +233,8 @@ void read_block(const YAML::Node& block, const std::string& file, sweep_plan& pl
 
 } // namespace
 
+void resolve_sweep_key(const scene_spec& scene, sweep_key& k) { resolve(scene, k); }
+
 sweep_plan read_sweep_plan(const scene_spec& scene, const std::vector<std::string>& cli_vary) {
     sweep_plan plan;
     plan.where = scene.where;

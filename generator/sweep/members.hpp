@@ -47,6 +47,10 @@ struct sweep_key {
     double value(std::size_t i) const; // the i-th value (grid and zip)
 };
 
+// Resolves `k.key` to what it sets in the scene (k.target, k.index); user_error at `k.where` if it
+// sets nothing (`rotgen fit --free` resolves its keys here too).
+void resolve_sweep_key(const scene_spec& scene, sweep_key& k);
+
 struct sweep_plan {
     sweep_mode mode = sweep_mode::grid;
     std::vector<sweep_key> keys;
