@@ -57,11 +57,11 @@ std::string stop_words(Eigen::LevenbergMarquardtSpace::Status s, bool& converged
     converged = s != TooManyFunctionEvaluation && s != ImproperInputParameters && s != UserAsked;
     switch (s) {
     case RelativeReductionTooSmall:
-        return "the relative reduction of chi2 fell below 1e-10";
+        return "the relative reduction of chi2 fell below 1e-8";
     case RelativeErrorTooSmall:
-        return "the relative step in the keys fell below 1e-10";
+        return "the relative step in the keys fell below 1e-8";
     case RelativeErrorAndReductionTooSmall:
-        return "the relative reduction of chi2 and the relative step both fell below 1e-10";
+        return "the relative reduction of chi2 and the relative step both fell below 1e-8";
     case CosinusTooSmall:
         return "the residuals are orthogonal to the Jacobian's columns";
     case TooManyFunctionEvaluation:
@@ -213,7 +213,7 @@ fit_result solve_fit(const fit_model& model, const fit_residuals& res, Eigen::Ve
         }
         weighted_problem problem(model, res, weights_of(res, out.sigma));
         Eigen::LevenbergMarquardt<weighted_problem> lm(problem);
-        lm.parameters.ftol = lm.parameters.xtol = 1e-10;
+        lm.parameters.ftol = lm.parameters.xtol = 1e-8; // the runs are not exact: not below
         lm.parameters.maxfev = max_evaluations;
         const auto status = lm.minimize(x);
         out.stop = stop_words(status, out.converged);

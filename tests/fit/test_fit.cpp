@@ -103,3 +103,33 @@ TEST_CASE("fit without sigmas weights each column by its residual RMS and scales
     CHECK_THAT(r.variance_scale, Catch::Matchers::WithinRel(1.0, 0.05));
     CHECK(std::abs(r.values[0] - 1.0) < 3 * r.stderrs[0]);
 }
+
+// The standard errors mean what they say: over 40 seeds (a longer test: ~40 fits), the 2-sigma
+// intervals hold the truth about 95% of the time and ((estimate - truth) / sigma)^2 averages 1.
+TEST_CASE("fit standard errors are calibrated over 40 seeds", "[fit][long]") {
+    const scene_spec truth = load_scene(top_scene);
+    const std::vector<std::string> checked{"Ixx", "Izz", "Ixy"};
+    std::vector<int> inside(checked.size(), 0);
+    std::vector<double> z2(checked.size(), 0);
+    const int seeds = 40;
+    for (int seed = 100; seed < 100 + seeds; ++seed) {
+        const synthetic d = measure(truth, static_cast<std::uint64_t>(seed), 200, 1e-3, 1e-4);
+        const fit_result r = fit_synthetic(top_start(truth), d, keys_of(inertia),
+                                           "omega1=1e-3,omega2=1e-3,omega3=1e-3,q=1e-4");
+        INFO("seed " << seed << ": " << r.stop << " after " << r.evaluations << " evaluations, " << r.iterations << " iterations, chi2 " << r.chi2 << " values " << r.values.transpose());
+        REQUIRE(r.converged);
+        for (std::size_t c = 0; c < checked.size(); ++c) {
+            const auto k = static_cast<Eigen::Index>(
+                std::find(inertia.begin(), inertia.end(), checked[c]) - inertia.begin());
+            const double z = (r.values[k] - parameter_of(truth, checked[c])) / r.stderrs[k];
+            inside[c] += std::abs(z) < 2;
+            z2[c] += z * z / seeds;
+        }
+    }
+    for (std::size_t c = 0; c < checked.size(); ++c) {
+        INFO(checked[c] << ": coverage " << inside[c] / double(seeds) << ", mean z^2 " << z2[c]);
+        CHECK(inside[c] / double(seeds) >= 0.85);
+        CHECK(z2[c] >= 0.5);
+        CHECK(z2[c] <= 2.0);
+    }
+}
