@@ -9,7 +9,7 @@
 #include "fit/data.hpp"
 #include "run/engine.hpp"
 #include "run/prepared.hpp"
-#include "sweep/members.hpp"
+#include "scene/value_keys.hpp"
 
 #include <Eigen/Dense>
 
@@ -22,7 +22,7 @@ namespace rotgen {
 
 struct fit_key {
     std::string key; // as written: "parameters.Ixx"
-    sweep_key::target_t target = sweep_key::parameter;
+    value_key::target_t target = value_key::parameter;
     std::size_t index = 0; // angle 0..2, rate 0..2, or model parameter
     bool positive = false; // a mass: stays > 0 at every iterate
 };
@@ -70,14 +70,25 @@ class fit_model {
     // Throws model_failure when the run fails at x.
     model_columns evaluate(const Eigen::VectorXd& x, bool derivatives) const;
     std::size_t runs() const { return m_runs; }
+    // Whether the derivatives are the sensitivities integrated with the run (every run computes
+    // them then), or central differences of runs (a method or form that does not take them).
+    bool sensitivities() const { return m_sensitivities; }
 
   private:
+    run_result run_at(const member_values& v) const;
+    Eigen::MatrixXd columns_of(const run_result& r) const;
     Eigen::MatrixXd columns_at(const member_values& v) const;
+    model_columns differences(const member_values& v, model_columns m) const;
+    model_columns integrated(const member_values& v) const;
+    void quaternion_derivatives(const run_result& r, model_columns& m) const;
 
     std::vector<fit_key> m_keys;
     std::vector<double> m_times;
-    std::vector<std::size_t> m_sample_of;
+    std::vector<std::size_t> m_sample_of; // per data row: its sample (t_start is sample 0)
+    bool m_sensitivities = false;
+    std::vector<std::size_t> m_q_state; // the body form's qw, qx, qy, qz in its state
     std::vector<std::string> m_columns;
+    std::vector<bool> m_needed; // per column: measured
     member_values m_base;
     std::unique_ptr<prepared_scene> m_prepared;
     stage_timings& m_timings;

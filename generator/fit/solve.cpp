@@ -31,7 +31,9 @@ class weighted_problem {
 
     int operator()(const Eigen::VectorXd& x, Eigen::VectorXd& f) const {
         try {
-            m_res.compute(m_model.evaluate(x, false), f, nullptr);
+            m_last = m_model.evaluate(x, false); // with sensitivities: the derivatives too
+            m_last_x = x;
+            m_res.compute(m_last, f, nullptr);
             f = f.cwiseProduct(m_w);
         } catch (const model_failure&) {
             f = Eigen::VectorXd::Constant(values(), penalty);
@@ -40,7 +42,9 @@ class weighted_problem {
     }
     int df(const Eigen::VectorXd& x, Eigen::MatrixXd& J) const {
         Eigen::VectorXd r;
-        m_res.compute(m_model.evaluate(x, true), r, &J); // x: an accepted, physical point
+        if (m_last.dy.empty() || m_last_x.size() != x.size() || m_last_x != x)
+            m_last = m_model.evaluate(x, true), m_last_x = x; // x: an accepted, physical point
+        m_res.compute(m_last, r, &J);
         J = m_w.asDiagonal() * J;
         return 0;
     }
@@ -50,6 +54,8 @@ class weighted_problem {
     const fit_model& m_model;
     const fit_residuals& m_res;
     Eigen::VectorXd m_w;
+    mutable model_columns m_last; // the last evaluation (the solver asks for J where it was)
+    mutable Eigen::VectorXd m_last_x;
 };
 
 std::string stop_words(Eigen::LevenbergMarquardtSpace::Status s, bool& converged) {

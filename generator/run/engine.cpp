@@ -8,6 +8,7 @@
 #include "run/kinematics.hpp"
 #include "run/prepared.hpp"
 #include "run/rotor_chart.hpp"
+#include "run/sensitivity_run.hpp"
 #include "run/split_run.hpp"
 #include "support/error.hpp"
 #include "support/format.hpp"
@@ -101,7 +102,8 @@ class scene_run {
     sample_states m_samples; // form: index into m_compiled
     std::size_t m_next_sample = 0;
     std::optional<any_method<double>> m_method;
-    std::optional<split_runner> m_split; // split2/4/6: the body form as a split system
+    std::optional<split_runner> m_split;   // split2/4/6: the body form as a split system
+    std::optional<sensitivity_run> m_sens; // y (+) S integrated: the scene's sensitivities
     integration_result<double> m_last;
     event_set<double, Eigen::VectorXd> m_events; // the scene's events, across chart switches
     std::vector<sample> m_event_samples;         // the state at each event (form: its own)
@@ -282,7 +284,7 @@ void scene_run::check_finite_start(const initial_kinematics& k, const compiled_f
 // a sample with |sin theta| > switch_back_above.
 scene_run::next scene_run::integrate_segment(Eigen::VectorXd& y, double t_from) {
     const compiled_form& cf = *m_compiled[m_current];
-    const loaded_system sys = cf.system(m_parameters[m_current]);
+    const loaded_system sys = m_sens ? m_sens->system() : cf.system(m_parameters[m_current]);
     const bool can_switch = m_prepared.can_switch();
     const bool euler_chart = cf.form == form_kind::lagrangian ||
                              cf.form == form_kind::hamiltonian || cf.form == form_kind::rotor;
@@ -322,6 +324,7 @@ scene_run::next scene_run::integrate_segment(Eigen::VectorXd& y, double t_from) 
 // Continues from the last sample in the other chart.
 void scene_run::switch_chart(next to, Eigen::VectorXd& y, double& t_from) {
     const std::size_t k_last = m_samples.size() - 1;
+    if (m_sens) refuse_sensitivity_switch(m_scene, m_samples.t(k_last));
     const sample last{m_samples.t(k_last), m_samples.y(k_last), m_samples.form(k_last)};
     const compiled_form& from = *m_compiled[m_current];
     initial_kinematics k; // a rotor changes chart directly (rotor_other_chart)
@@ -405,6 +408,7 @@ void scene_run::record() {
             d.largest = std::max(d.largest, std::abs(v));
         }
     }
+    if (m_sens) m_sens->record(m_samples, n, every, m_result);
 }
 
 // The integrator of the scene, with its step bound (a split method: the body form as a split
@@ -416,7 +420,10 @@ void scene_run::start_method() {
         m_split.emplace(m_scene, m_inertia);
         return;
     }
-    m_method = make_method<double>(ig.method, ig.rtol, ig.atol, ig.fixed_step() ? ig.step : 0.0);
+    const double f =
+        sensitivity_run::tolerance_factor(m_scene, m_compiled[m_current]->f.state.size());
+    m_method =
+        make_method<double>(ig.method, ig.rtol * f, ig.atol * f, ig.fixed_step() ? ig.step : 0.0);
     if (!m_method) throw std::logic_error("run: unknown method " + ig.method);
     std::visit([&](auto& m) { m.max_steps = ig.max_steps; }, *m_method);
     if (auto* r = std::get_if<rodas4<double>>(&*m_method))
@@ -449,6 +456,10 @@ Eigen::VectorXd scene_run::start() {
     m_parameters[m_current] =
         form_parameter_values(m_scene, m_model_parameters, first.f.parameters, k0);
     check_finite_start(k0, first, y);
+    if (m_scene.sensitivities.active()) { // the run integrates y (+) S
+        m_sens.emplace(m_prepared, m_values, first, m_parameters[m_current], k0);
+        y = m_sens->augmented(y);
+    }
     if (m_split) {
         const integrator_spec& ig = m_scene.integrator;
         m_result.chart_note =

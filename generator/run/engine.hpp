@@ -61,6 +61,12 @@ struct run_result {
                             // the run stopped at, after it (`invariants` include that state)
     std::string message;    // why not, when !ok
     double integrate_seconds = 0;
+    // With the scene's sensitivities (run/sensitivity_run.hpp): the keys (k of them); the columns
+    // d(<column>)/d(<key>), record order then key order, of the recorded columns the record
+    // program computes; per row of `rows`, their values and the state's sensitivity S = dy/ds
+    // (n x k, row-major: S[i * k + j] = d y_i/d key_j, y the state of `form`).
+    std::vector<std::string> sensitivity_keys, sensitivity_columns;
+    std::vector<std::vector<double>> sensitivity_rows, state_sensitivities;
     bool kernels_cached = true; // every compiled form came from the cache
 };
 

@@ -124,6 +124,27 @@ void print_body(std::ostream& shim, const form_expressions& f, const std::vector
              << ";\n";
 }
 
+// With sensitivities: rotgen_parameter_jacobian, d f/d P (row-major n x P, every parameter of
+// the form: the model's, and the reduced form's cyclic momenta), and rotgen_record_jacobian, the
+// record program's outputs differentiated by the state, then by the parameters (row-major outputs
+// x (n + P)): GiNaC's derivatives, exact.
+std::vector<std::pair<std::string, std::vector<ex>>>
+sensitivity_programs(const scene_spec& scene, const form_expressions& f,
+                     const std::vector<ex>& program) {
+    if (!scene.sensitivities.active()) return {};
+    std::vector<ex> parameters, variables;
+    for (const auto& s : f.state)
+        variables.push_back(s.symbol);
+    for (const auto& p : f.parameters)
+        parameters.push_back(p.symbol), variables.push_back(p.symbol);
+    std::vector<ex> record;
+    for (const ex& out : program)
+        for (const ex& v : variables)
+            record.push_back(out.diff(GiNaC::ex_to<GiNaC::symbol>(v)));
+    return {{"rotgen_parameter_jacobian", parameter_jacobian(f, f.rates, parameters)},
+            {"rotgen_record_jacobian", record}};
+}
+
 // The translation unit compiled for the runtime: the header and extern "C" entry points
 // rotgen_rhs, rotgen_jacobian, rotgen_record, and rotgen_event_<i> per scene event (each its own
 // function: a run evaluates one event without the others), and with `taylor` rotgen_taylor_series
@@ -132,7 +153,8 @@ void print_body(std::ostream& shim, const form_expressions& f, const std::vector
 // of an ensemble run its kernels concurrently with their own values.
 std::string entry_points(const form_expressions& f, const std::string& unit,
                          const std::vector<ex>& program, const std::vector<ex>& events,
-                         const std::string& taylor, const std::vector<std::string>& constants) {
+                         const std::string& taylor, const std::vector<std::string>& constants,
+                         const std::vector<std::pair<std::string, std::vector<ex>>>& more) {
     std::ostringstream shim;
     shim << "\n// ---- rotgen run: entry points for the runtime ----\n"
          << "namespace {\nnamespace rg_model = rotgen::models::" << unit << ";\n";
@@ -174,6 +196,8 @@ std::string entry_points(const form_expressions& f, const std::string& unit,
     function("rotgen_record", program);
     for (std::size_t e = 0; e < events.size(); ++e)
         function("rotgen_event_" + std::to_string(e), {events[e]});
+    for (const auto& [name, outputs] : more)
+        function(name, outputs);
     shim << "}\n";
     return shim.str();
 }
@@ -243,7 +267,8 @@ compiled_form compile_form(const scene_spec& scene, form_expressions f, bool ori
     for (const auto& k : lowered.constants)
         constants.push_back(k.name.substr(2)); // p.c000 -> c000
     const std::string source =
-        header.text + entry_points(c.f, header.unit, program, events, c.taylor_call, constants);
+        header.text + entry_points(c.f, header.unit, program, events, c.taylor_call, constants,
+                                   sensitivity_programs(scene, c.f, program));
     const std::string flags = taylor ? host_exact_vector_flags() : "";
     c.lib = timings.time("compile", header.unit,
                          [&] { return compile_and_load(source, header.unit, flags); });
@@ -257,6 +282,12 @@ compiled_form compile_form(const scene_spec& scene, form_expressions f, bool ori
     for (std::size_t e = 0; e < events.size(); ++e)
         c.events.push_back(reinterpret_cast<loaded_system::kernel>(
             c.lib.symbol("rotgen_event_" + std::to_string(e))));
+    if (scene.sensitivities.active()) {
+        c.parameter_jacobian =
+            reinterpret_cast<loaded_system::kernel>(c.lib.symbol("rotgen_parameter_jacobian"));
+        c.record_jacobian =
+            reinterpret_cast<loaded_system::kernel>(c.lib.symbol("rotgen_record_jacobian"));
+    }
     if (taylor) {
         c.sys.tay = reinterpret_cast<loaded_system::taylor_kernel>(c.lib.symbol("rotgen_taylor"));
         using count_fn = unsigned long (*)();

@@ -73,9 +73,13 @@ struct compiled_form {
     loaded_system sys;                         // without parameter values (p null)
     loaded_system::kernel record = nullptr;    // record(p, t, y, out): the record program
     std::vector<loaded_system::kernel> events; // g of each scene event, out[0] (event_kernels.hpp)
-    std::vector<value_source> columns;         // one per quantity column (body_x expands to 3)
-    std::vector<value_source> invariants;      // as the invariants are listed
-    std::size_t outputs = 0;                   // of the record program
+    // With the scene's sensitivities (else null), (v, t, y, out): d f/d P, row-major n x P (the
+    // form's parameters, v as for record); the record program's outputs by (y, P), row-major
+    // outputs x (n + P)
+    loaded_system::kernel parameter_jacobian = nullptr, record_jacobian = nullptr;
+    std::vector<value_source> columns;    // one per quantity column (body_x expands to 3)
+    std::vector<value_source> invariants; // as the invariants are listed
+    std::size_t outputs = 0;              // of the record program
     std::string header, unit; // the emitted header and its unit (lanes compile it for a batch)
     std::string taylor_call;  // the header's function the Taylor entry points call
     // prepare(v, w): w = the parameter values v, then the constants computed from them

@@ -56,7 +56,7 @@ class scene_reader {
         refuse_model_file(root);
         check_keys(root,
                    {"model", "parameters", "form", "initial", "time", "integrator", "record",
-                    "description", "switch_chart", "sweep", "events"},
+                    "description", "switch_chart", "sweep", "events", "sensitivities"},
                    m_file, "the scene");
         m_scene.file = m_file;
         m_scene.where = {m_file, 1, 1};
@@ -78,6 +78,7 @@ class scene_reader {
                 throw user_error(at(sw), "switch_chart must be true or false");
             m_scene.switch_chart = sw.Scalar() == "true";
         }
+        m_scene.sensitivities = read_sensitivities(root["sensitivities"], m_scene, m_file);
         return std::move(m_scene);
     }
 

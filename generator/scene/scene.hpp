@@ -11,6 +11,7 @@
 //   events: [{name: floor, when: theta - pi/2, direction: rising, action: stop}]   (events.hpp)
 //   switch_chart: true           # continue in the body form near theta = 0, pi (default true)
 //   sweep: {...}                 # for `rotgen sweep` only (read by sweep/members.hpp)
+//   sensitivities: [initial.theta, parameters.h]   # d(motion)/d(key) (sensitivities.hpp)
 //
 // Angles: z-x-z Euler angles in radians, theta in [0, pi]; rates in rad per time unit; omega in
 // body axes.
@@ -18,6 +19,7 @@
 
 #include "forms/form_kind.hpp"
 #include "scene/events.hpp"
+#include "scene/sensitivities.hpp"
 #include "spec/spec.hpp"
 
 #include <array>
@@ -85,6 +87,7 @@ struct scene_spec {
     // Explicit sample times (`rotgen fit`: the measurement times), ascending, inside the span;
     // empty: `samples` times evenly from t_start to t_end (run/engine.hpp's sample_times).
     std::vector<double> sample_at;
+    sensitivity_spec sensitivities; // derivatives integrated with the motion (sensitivities.hpp)
 
     // Where things were written, for errors found later (an unrecordable quantity, a failed run).
     source_location where;            // the scene file itself

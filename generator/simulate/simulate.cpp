@@ -25,10 +25,16 @@ namespace rotgen {
 
 namespace {
 
-void write_rows(std::ostream& os, const std::vector<std::vector<double>>& rows) {
-    for (const auto& row : rows) {
+// Each row, then its sensitivity columns `more[k]` where there are (run_result).
+void write_rows(std::ostream& os, const std::vector<std::vector<double>>& rows,
+                const std::vector<std::vector<double>>& more = {}) {
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+        const auto& row = rows[k];
         for (std::size_t i = 0; i < row.size(); ++i)
             os << (i ? "," : "") << format_number(row[i]);
+        if (k < more.size())
+            for (double v : more[k])
+                os << "," << format_number(v);
         os << "\n";
     }
 }
@@ -45,8 +51,10 @@ void write_csv(atomic_file& out, const scene_spec& scene, const run_result& r,
     os << provenance(scene) << "\nt";
     for (const auto& c : r.columns)
         os << "," << c;
+    for (const auto& c : r.sensitivity_columns)
+        os << "," << c;
     os << "\n";
-    write_rows(os, r.rows);
+    write_rows(os, r.rows, r.sensitivity_rows);
     out.commit(outputs);
 }
 

@@ -17,58 +17,6 @@ namespace {
 constexpr double largest_member_count = 1e8; // a bound on memory, not on the method
 constexpr double pi = 3.141592653589793238;
 
-// The names `initial.<name>` may use in this scene: the angles and the rates it gives.
-std::vector<std::string> initial_names(const scene_spec& scene) {
-    const auto& q = scene.model.angles.names;
-    const std::array<std::array<std::string, 3>, 3> rates{
-        {{q[0] + "_dot", q[1] + "_dot", q[2] + "_dot"},
-         {"p_" + q[0], "p_" + q[1], "p_" + q[2]},
-         {"omega1", "omega2", "omega3"}}};
-    std::vector<std::string> names(q.begin(), q.end());
-    for (const auto& r : rates[static_cast<std::size_t>(scene.initial)])
-        names.push_back(r);
-    return names;
-}
-
-// Resolves `key` to what it sets in the scene; user_error at `where` if it sets nothing.
-void resolve(const scene_spec& scene, sweep_key& k) {
-    const auto dot = k.key.find('.');
-    const std::string group = k.key.substr(0, dot),
-                      name = dot == std::string::npos ? std::string() : k.key.substr(dot + 1);
-    std::vector<std::string> names;
-    if (group == "initial") {
-        names = initial_names(scene);
-        for (std::size_t i = 0; i < names.size(); ++i)
-            if (names[i] == name) {
-                if (scene.model.rotor && i % 3 == 2) // psi, psi_dot: no coordinate of a rotor
-                    throw user_error(k.where, "sweep key '" + k.key +
-                                                  "': a linear rotor's state is phi, theta, "
-                                                  "phi_dot, theta_dot");
-                k.target = i < 3 ? sweep_key::angle : sweep_key::rate;
-                k.index = i % 3;
-                return;
-            }
-    } else if (group == "parameters") {
-        for (std::size_t i = 0; i < scene.model.parameters.size(); ++i) {
-            names.push_back(scene.model.parameters[i].name);
-            if (names.back() == name) {
-                k.target = sweep_key::parameter;
-                k.index = i;
-                return;
-            }
-        }
-    } else {
-        throw user_error(k.where, "unknown sweep key '" + k.key +
-                                      "' (expected initial.<name> or parameters.<name>)");
-    }
-    std::vector<std::string> keys;
-    for (const auto& n : names)
-        keys.push_back(group + "." + n);
-    const std::string best = closest_name(k.key, keys);
-    throw user_error(k.where, "unknown sweep key '" + k.key + "' for this scene" +
-                                  (best.empty() ? "" : "; did you mean '" + best + "'?"));
-}
-
 double checked(double v, const source_location& where, const std::string& what) {
     if (!std::isfinite(v) || std::fpclassify(v) == FP_SUBNORMAL)
         throw user_error(where, what + " must be a finite number, 0 or at least 2.2e-308 in size");
@@ -233,8 +181,6 @@ void read_block(const YAML::Node& block, const std::string& file, sweep_plan& pl
 
 } // namespace
 
-void resolve_sweep_key(const scene_spec& scene, sweep_key& k) { resolve(scene, k); }
-
 sweep_plan read_sweep_plan(const scene_spec& scene, const std::vector<std::string>& cli_vary) {
     sweep_plan plan;
     plan.where = scene.where;
@@ -251,7 +197,7 @@ sweep_plan read_sweep_plan(const scene_spec& scene, const std::vector<std::strin
         throw user_error(plan.where, "nothing to vary: give a sweep: block with vary: or "
                                      "--vary KEY=FROM:TO:COUNT");
     for (auto& k : plan.keys) {
-        resolve(scene, k);
+        resolve_value_key(scene, k, "sweep key");
         check_values(
             k, scene.model.angles); // distinct keys set distinct values: each value has one name
     }

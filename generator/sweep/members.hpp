@@ -24,6 +24,7 @@
 
 #include "run/engine.hpp"
 #include "scene/scene.hpp"
+#include "scene/value_keys.hpp"
 #include "support/error.hpp"
 
 #include <cstdint>
@@ -35,21 +36,14 @@ namespace rotgen {
 
 enum class sweep_mode { grid, zip, random };
 
-struct sweep_key {
-    std::string key;       // as written: "initial.theta", "parameters.h"
-    source_location where; // the entry in the scene, or "rotgen sweep --vary ..."
-    enum target_t { angle, rate, parameter } target = angle;
-    std::size_t index = 0;      // angle 0..2, rate 0..2, or model parameter
+// key, where (the entry in the scene, or "rotgen sweep --vary ..."), target, index: value_key's
+struct sweep_key : value_key {
     std::vector<double> values; // grid and zip: the values listed
     double from = 0, to = 0;    // random, and a range {from, to, count}
     std::size_t count = 0;      // a range's count (its values computed when asked); 0: a list
     std::size_t size() const { return count != 0 ? count : values.size(); }
     double value(std::size_t i) const; // the i-th value (grid and zip)
 };
-
-// Resolves `k.key` to what it sets in the scene (k.target, k.index); user_error at `k.where` if it
-// sets nothing (`rotgen fit --free` resolves its keys here too).
-void resolve_sweep_key(const scene_spec& scene, sweep_key& k);
 
 struct sweep_plan {
     sweep_mode mode = sweep_mode::grid;

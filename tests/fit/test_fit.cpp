@@ -116,7 +116,9 @@ TEST_CASE("fit standard errors are calibrated over 40 seeds", "[fit][long]") {
         const synthetic d = measure(truth, static_cast<std::uint64_t>(seed), 200, 1e-3, 1e-4);
         const fit_result r = fit_synthetic(top_start(truth), d, keys_of(inertia),
                                            "omega1=1e-3,omega2=1e-3,omega3=1e-3,q=1e-4");
-        INFO("seed " << seed << ": " << r.stop << " after " << r.evaluations << " evaluations, " << r.iterations << " iterations, chi2 " << r.chi2 << " values " << r.values.transpose());
+        INFO("seed " << seed << ": " << r.stop << " after " << r.evaluations << " evaluations, "
+                     << r.iterations << " iterations, chi2 " << r.chi2 << " values "
+                     << r.values.transpose());
         REQUIRE(r.converged);
         for (std::size_t c = 0; c < checked.size(); ++c) {
             const auto k = static_cast<Eigen::Index>(

@@ -79,7 +79,7 @@ TEST_CASE("rotgen fit refuses bad data at its place and writes nothing", "[fit]"
     const auto key =
         run_rotgen("fit '" + free_scene + "' --data data.csv --free parameters.I4", f.dir);
     CHECK(key.status == 2);
-    CHECK_THAT(key.err, Contains("rotgen fit --free parameters.I4: unknown sweep key"));
+    CHECK_THAT(key.err, Contains("rotgen fit --free parameters.I4: unknown free key"));
 }
 
 TEST_CASE("rotgen fit that does not converge exits 3 with its last iterate in the partial file",
