@@ -12,6 +12,13 @@ from ._scene import Scene, source_of
 class FitResult:
     """The outcome of :func:`fit` (what ``rotgen fit`` prints and writes).
 
+    Made by :func:`fit` (and held by :class:`RunError`), not by user code.
+
+    Parameters
+    ----------
+    d : dict
+        What the compiled core returns.
+
     Attributes
     ----------
     keys : list of str

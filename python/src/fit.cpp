@@ -76,9 +76,11 @@ py::dict fit_scene_columns(const std::string& path, const std::string& text,
         scene.reset();
         throw;
     }
-    symbolic_scope scope(path, text);
-    fitted = fitted_scene(*scene, r, "fitted.yaml");
-    scene.reset();
+    {
+        symbolic_scope scope(path, text); // the GIL released: no Python object in here
+        fitted = fitted_scene(*scene, r, "fitted.yaml");
+        scene.reset();
+    }
     return result_of(r, fitted);
 }
 
