@@ -28,6 +28,8 @@ const char* const usage =
     "                       a self-contained HTML page that plays the run in 3D in a browser\n"
     "  tune SCENE.yaml --error E [-o tuned.yaml]\n"
     "                       the fastest integrator reaching an error (method: auto), as a scene\n"
+    "  fit SCENE.yaml --data measured.csv --free KEY,...\n"
+    "                       fit initial values and parameters to measurements (least squares)\n"
     "\n"
     "  help [COMMAND]       this text, or a command's options (also rotgen COMMAND --help)\n"
     "  --version            the version\n"
@@ -84,12 +86,14 @@ int run_command(std::vector<std::string> args) {
     if (command == "sweep") return cmd_sweep(args);
     if (command == "view") return cmd_view(args);
     if (command == "tune") return cmd_tune(args);
+    if (command == "fit") return cmd_fit(args);
     const std::string best = closest_name(
-        command, {"inspect", "emit", "simulate", "bench", "sweep", "view", "tune", "help"});
-    throw user_error({}, "unknown command '" + command + "'" +
-                             (best.empty() ? "" : "; did you mean '" + best + "'?") +
-                             " (expected inspect, emit, simulate, bench, sweep, view or tune; see "
-                             "rotgen --help)");
+        command, {"inspect", "emit", "simulate", "bench", "sweep", "view", "tune", "fit", "help"});
+    throw user_error({},
+                     "unknown command '" + command + "'" +
+                         (best.empty() ? "" : "; did you mean '" + best + "'?") +
+                         " (expected inspect, emit, simulate, bench, sweep, view, tune or fit; see "
+                         "rotgen --help)");
 }
 
 // bench and sweep write their folder as they go (sweep's journal is what --resume continues):

@@ -16,5 +16,6 @@ int cmd_bench(const std::vector<std::string>& args);    // bench_command.cpp
 int cmd_sweep(const std::vector<std::string>& args);    // sweep_command.cpp
 int cmd_view(const std::vector<std::string>& args);     // view_command.cpp
 int cmd_tune(const std::vector<std::string>& args);     // tune_command.cpp
+int cmd_fit(const std::vector<std::string>& args);      // fit_command.cpp
 
 } // namespace rotgen

@@ -104,7 +104,8 @@ member_values values_of(const scene_spec& scene);
 run_result run_member(const prepared_scene& prepared, const member_values& values,
                       stage_timings& timings, const sample_callback& on_sample = {});
 
-// The sample times: `samples` points from t_start to t_end, the last exactly t_end.
+// The sample times: `samples` points from t_start to t_end, the last exactly t_end (or the
+// scene's explicit `sample_at`).
 std::vector<double> sample_times(const scene_spec& scene);
 
 // An event a member met in a run integrated elsewhere: which of the scene's events, when, and the

@@ -7,6 +7,7 @@
 namespace rotgen {
 
 std::vector<double> sample_times(const scene_spec& scene) {
+    if (!scene.sample_at.empty()) return scene.sample_at; // fit: the measurement times
     std::vector<double> times(static_cast<std::size_t>(scene.samples));
     for (std::size_t i = 0; i < times.size(); ++i)
         times[i] = i + 1 == times.size() ? scene.t_end

@@ -89,6 +89,9 @@ struct scene_spec {
     // `simulate --from`: the row the run starts from (its t is t_start; angles and rates were set
     // from it); the body form's attitude is its q0..q3 as written, not the angles'.
     std::optional<start_row> from;
+    // Explicit sample times (`rotgen fit`: the measurement times), ascending, inside the span;
+    // empty: `samples` times evenly from t_start to t_end (run/engine.hpp's sample_times).
+    std::vector<double> sample_at;
     sensitivity_spec sensitivities; // derivatives integrated with the motion (sensitivities.hpp)
 
     // Where things were written, for errors found later (an unrecordable quantity, a failed run).

@@ -64,5 +64,6 @@ void init_errors(py::module_& m);
 void init_model(py::module_& m);
 void init_simulate(py::module_& m);
 void init_sweep(py::module_& m);
+void init_fit(py::module_& m);
 
 } // namespace rotgen::python

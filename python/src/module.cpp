@@ -87,4 +87,5 @@ PYBIND11_MODULE(_rotgen, m) {
     rotgen::python::init_model(m);
     rotgen::python::init_simulate(m);
     rotgen::python::init_sweep(m);
+    rotgen::python::init_fit(m);
 }

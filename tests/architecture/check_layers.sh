@@ -4,7 +4,7 @@
 #   check_layers.sh SOURCE_DIR
 set -euo pipefail
 root=${1:?source dir}
-stages=(support expr inertia spec derive forms lower emit inspect scene run view simulate bench sweep tune cli)
+stages=(support expr inertia spec derive forms lower emit inspect scene run view simulate bench sweep tune fit cli)
 declare -A rank
 for i in "${!stages[@]}"; do rank[${stages[$i]}]=$i; done
 bad=0

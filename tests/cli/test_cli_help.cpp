@@ -8,7 +8,7 @@ using namespace rotgen::test;
 
 TEST_CASE("cli: every command's help lists its options in aligned columns", "[cli]") {
     const std::string command =
-        GENERATE("inspect", "emit", "simulate", "bench", "sweep", "view", "tune");
+        GENERATE("inspect", "emit", "simulate", "bench", "sweep", "view", "tune", "fit");
     const run_result r = run_rotgen(command + " --help");
     INFO(command << ":\n" << r.out);
     REQUIRE(r.status == 0);

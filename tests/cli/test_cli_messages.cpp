@@ -143,7 +143,7 @@ TEST_CASE("messages: a potential singular at the start is not told to shrink the
 TEST_CASE("messages: did you mean, for commands, options and case", "[cli][messages]") {
     check_error_line(run_rotgen("simulat x.yaml"),
                      "unknown command 'simulat'; did you mean 'simulate'? (expected inspect, "
-                     "emit, simulate, bench, sweep, view or tune; see rotgen --help)");
+                     "emit, simulate, bench, sweep, view, tune or fit; see rotgen --help)");
     const run_result r = run_rotgen("swep");
     CHECK(r.err.rfind("rotgen: error: unknown command 'swep'; did you mean 'sweep'?", 0) == 0);
     CHECK(!contains(r.err, "rotgen: error: rotgen:")); // no doubled prefix

@@ -116,9 +116,9 @@ def test_the_public_names_are_the_documented_ones():
                      "SimulateResult", "SweepResult", "__version__"}
     for name in names:
         assert name in rotgen.__doc__, f"rotgen's module docstring does not name {name}"
-    # 10 names, 6 public methods: Model.equations, .inertia, Scene.to_dict, .with_,
-    # SimulateResult.to_pandas, .events_to_pandas
-    assert len(MEMBERS) == 15, [m for m, _ in MEMBERS]
+    # 12 names (fit and FitResult among them), 6 public methods: Model.equations, .inertia,
+    # Scene.to_dict, .with_, SimulateResult.to_pandas, .events_to_pandas
+    assert len(MEMBERS) == 17, [m for m, _ in MEMBERS]
 
 
 @pytest.mark.parametrize("name,obj", MEMBERS, ids=[m for m, _ in MEMBERS])
