@@ -32,12 +32,14 @@ Q = ["q0", "q1", "q2", "q3"]
 W = ["omega1", "omega2", "omega3"]
 
 
-def scene_of(model):
+START = {"phi": 0.3, "theta": 1.2, "psi": 0.1, "omega1": 0.5, "omega2": -0.3, "omega3": 0.5}
+
+
+def scene_of(model, initial):
     return rotgen.Scene({
         "model": f"models/{model}.yaml",
         "form": "body",
-        "initial": {"phi": 0.3, "theta": 1.2, "psi": 0.1, "omega1": 1.0, "omega2": -0.5,
-                    "omega3": 2.0},
+        "initial": initial,
         "time": {"start": 0, "end": TAU, "samples": 501},
         "integrator": {"method": "dop853", "rtol": 1e-11, "atol": 1e-13},
         "record": Q + W,
@@ -53,7 +55,7 @@ def sign_of_state(q):
 
 
 def exponent(model, t_end):
-    scene = scene_of(model)
+    scene = scene_of(model, START)
     v = np.ones(7) / np.sqrt(7.0)
     total, times, lambdas = 0.0, [], []
     for k in range(int(round(t_end / TAU))):
@@ -67,7 +69,7 @@ def exponent(model, t_end):
         times.append((k + 1) * TAU)
         lambdas.append(total / times[-1])
         last = {c: float(r[c][-1]) for c in Q + W}
-        scene = scene.with_(initial=None).with_(initial=last)
+        scene = scene_of(model, last)
     return np.array(times), np.array(lambdas)
 
 

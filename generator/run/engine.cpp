@@ -258,7 +258,8 @@ scene_run::next scene_run::integrate_segment(Eigen::VectorXd& y, double t_from) 
     };
     const std::size_t first_hit = m_events.hits().size();
     if (m_events.size() > 0) use_event_functions(cf);
-    const error_layout layout = tolerance_layout(cf.f.state); // this chart's (step_control.hpp)
+    const error_layout layout = m_sens ? m_sens->layout(tolerance_layout(cf.f.state))
+                                       : tolerance_layout(cf.f.state); // step_control.hpp
     if (m_method) std::visit([&](auto& m) { use_layout(m, layout); }, *m_method);
     m_timings.time("integrate", to_string(cf.form), [&] {
         m_last = m_split ? m_split->integrate(sys, t_from, y, times, observe,
@@ -431,10 +432,7 @@ void scene_run::start_method() {
         m_split.emplace(m_scene, m_inertia);
         return;
     }
-    const double f =
-        sensitivity_run::tolerance_factor(m_scene, m_compiled[m_current]->f.state.size());
-    m_method =
-        make_method<double>(ig.method, ig.rtol * f, ig.atol * f, ig.fixed_step() ? ig.step : 0.0);
+    m_method = make_method<double>(ig.method, ig.rtol, ig.atol, ig.fixed_step() ? ig.step : 0.0);
     if (!m_method) throw std::logic_error("run: unknown method " + ig.method);
     std::visit([&](auto& m) { m.max_steps = ig.max_steps; }, *m_method);
     if (auto* r = std::get_if<rodas4<double>>(&*m_method))

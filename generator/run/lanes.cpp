@@ -107,6 +107,9 @@ std::pair<std::string, std::string> lane_target(const std::string& method, std::
 // The members' states and parameters laid out by lane (component c of lane l at c*lanes + l);
 // lanes past the members repeat the first member (stopped: they only fill the last batch).
 struct lane_batch {
+    // the members' own timings (the sweep reports preparation only): the parts keep a reference
+    // to it to their end, so it lives with them, at an address that a move of the batch keeps
+    std::unique_ptr<stage_timings> timings = std::make_unique<stage_timings>();
     std::vector<std::unique_ptr<member_parts>> parts; // per member
     std::vector<std::size_t> lane_of;                 // member -> lane, or `alone`
     std::vector<std::size_t> member_of;               // lane -> member (members only)
@@ -120,9 +123,8 @@ struct lane_batch {
 lane_batch start_members(const prepared_scene& prepared,
                          const std::vector<member_values>& members) {
     lane_batch b;
-    stage_timings timings; // a member's own (the sweep reports preparation only)
     for (const member_values& values : members) {
-        b.parts.push_back(run_parts(prepared, values, timings));
+        b.parts.push_back(run_parts(prepared, values, *b.timings));
         b.lane_of.push_back(lane_batch::alone);
         Eigen::VectorXd y;
         std::vector<double> p;

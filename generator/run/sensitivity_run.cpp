@@ -25,7 +25,6 @@ sensitivity_run::sensitivity_run(const prepared_scene& prepared, const member_va
         std::lock_guard<std::mutex> lock(symbolic_mutex());
         m_start = start_derivatives_of(m_scene, prepared.derived(), cf.f, values, k0);
     }
-    if (!m_scene.sensitivities.error_control) m_scale = std::ldexp(1.0, -300);
     const auto n = static_cast<Eigen::Index>(m_n);
     m_jacobian.resize(n, n);
     m_dfdp.resize(n, static_cast<Eigen::Index>(cf.f.parameters.size()));
@@ -39,7 +38,7 @@ Eigen::VectorXd sensitivity_run::augmented(const Eigen::VectorXd& y0) const {
     const auto n = static_cast<Eigen::Index>(m_n), k = static_cast<Eigen::Index>(keys());
     Eigen::VectorXd y(n + n * k);
     y.head(n) = y0;
-    Eigen::Map<row_major>(y.data() + n, n, k) = m_scale * m_start.dy0;
+    Eigen::Map<row_major>(y.data() + n, n, k) = m_start.dy0;
     return y;
 }
 
@@ -56,7 +55,7 @@ void sensitivity_run::rhs(const double* self, double t, const double* y, double*
     Eigen::Map<row_major> dS(dydt + n, n, k);
     dS.noalias() = J * S;
     r.m_forcing.noalias() = dfdp * r.m_start.dP; // into scratch: no allocation per call
-    dS.noalias() += r.m_scale * r.m_forcing;
+    dS.noalias() += r.m_forcing;
 }
 
 loaded_system sensitivity_run::system() const {
@@ -68,16 +67,22 @@ loaded_system sensitivity_run::system() const {
     return s;
 }
 
-double sensitivity_run::tolerance_factor(const scene_spec& scene, std::size_t n) {
-    const sensitivity_spec& s = scene.sensitivities;
-    if (!s.active() || s.error_control) return 1;
-    const std::size_t keys = s.all_initial ? n : s.keys.size();
-    return std::sqrt(double(n) / double(n + n * keys));
+error_layout sensitivity_run::layout(const error_layout& state) const {
+    error_layout l = state;
+    const std::size_t nk = m_n * keys();
+    l.groups.resize(m_n + nk, error_layout::itself); // S: each entry relative to itself
+    if (!m_scene.sensitivities.error_control) {
+        // the state alone: its components weighted so that the RMS over all n + nk components
+        // is the state's own RMS; S weighted 0
+        l.weights.assign(m_n, std::sqrt(double(m_n + nk) / double(m_n)));
+        l.weights.resize(m_n + nk, 0.0);
+    }
+    return l;
 }
 
 Eigen::MatrixXd sensitivity_run::state_sensitivity(Eigen::Ref<const Eigen::VectorXd> y) const {
     const auto n = static_cast<Eigen::Index>(m_n), k = static_cast<Eigen::Index>(keys());
-    return Eigen::Map<const row_major>(y.data() + n, n, k) / m_scale;
+    return Eigen::Map<const row_major>(y.data() + n, n, k);
 }
 
 std::vector<double> sensitivity_run::column_derivatives(double t,

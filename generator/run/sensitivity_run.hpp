@@ -3,10 +3,9 @@
 // S(t0) from the exact start (run/sensitivity_start.hpp). The runtime integrates it as any system,
 // so S goes through the steppers' error estimates and dense output with y.
 //
-// `error_control: false` keeps S out of the error norm (the state alone, as CVODES' errconS =
-// false) without a change to the runtime: the run integrates c S with c = 2^-300, whose errors
-// are then negligible against atol, and scales rtol and atol by sqrt(n / (n + n k)), so that the
-// RMS norm over the augmented state equals the state's own.
+// The step's error norm (runtime/step_control.hpp's error_layout): the state's components as the
+// form's layout says, each entry of S relative to itself; `error_control: false` keeps S out of it
+// (weight 0, as CVODES' errconS = false) and weights the state so that the norm is the state's own.
 //
 // A run with sensitivities keeps its chart: a run that would switch (run/engine.hpp) is refused.
 #pragma once
@@ -40,8 +39,8 @@ class sensitivity_run {
     Eigen::VectorXd augmented(const Eigen::VectorXd& y0) const;
     // The augmented system (refers to this object).
     loaded_system system() const;
-    // The factor on rtol and atol (error_control false; else 1) for a state of size n.
-    static double tolerance_factor(const scene_spec& scene, std::size_t n);
+    // The augmented state's error layout, from the form state's (above).
+    error_layout layout(const error_layout& state) const;
     std::size_t keys() const { return m_keys.size(); }
 
     // S and the recorded columns' derivatives at the samples of `samples` that have rows (the
@@ -72,7 +71,6 @@ class sensitivity_run {
     loaded_system m_base;
     std::vector<std::string> m_keys;
     start_derivatives m_start;
-    double m_scale = 1;
     std::size_t m_n = 0;
     mutable Eigen::MatrixXd m_jacobian, m_dfdp; // scratch (row-major data), one run at a time
     mutable Eigen::MatrixXd m_forcing;          // scratch: (d f/d P) dP/ds

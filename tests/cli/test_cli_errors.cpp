@@ -82,5 +82,5 @@ TEST_CASE("cli: emit into a path that is a file names it and leaves it alone", "
 TEST_CASE("cli: an unknown command gives one line and exit 2", "[cli][errors]") {
     check_usage_error(run_rotgen("frobnicate"),
                       "unknown command 'frobnicate' (expected inspect, emit, simulate, "
-                      "bench, sweep, view or tune; see rotgen --help)");
+                      "bench, sweep, view, tune or fit; see rotgen --help)");
 }

@@ -98,7 +98,10 @@ TEST_CASE("specialising never makes a kernel bigger than the runtime-parameter o
                 // from prepared<T> (what a call given params<T> computes): hoisting gathers the
                 // parameters of a product into one factor, and one folded kernel is one operation
                 // larger than that (free_asymmetric_top, hamiltonian, jacobian: 92 vs 85 + 6).
-                const double allowed = model == "satellite_zyx" ? 1.05 : 1.02;
+                // The gyrostats (gyrostat_satellite, momentum_wheels) show the same one operation
+                // on kernels of 22-39 (observed 40 vs 39, 23 vs 22): 4.5% of the smallest.
+                const bool wheels = model == "gyrostat_satellite" || model == "momentum_wheels";
+                const double allowed = model == "satellite_zyx" || wheels ? 1.05 : 1.02;
                 CHECK(f.at(function).total() <= allowed * ops.total());
                 CHECK(f.at(function).div <= ops.div);
                 CHECK(f.at(function).call <= ops.call);
