@@ -484,7 +484,7 @@ TEST_CASE("an impulse on a gyrostat changes omega by I^-1 J and keeps the wheel'
             worst_omega = std::max(worst_omega, std::abs(after[3 + k] - before[3 + k] - jump[k]));
             dL2 += (after[7 + k] - before[7 + k]) * (after[7 + k] - before[7 + k]);
         }
-        CHECK(worst_omega < 2e-15); // measured 2.1e-16
+        CHECK(worst_omega < 2e-15);                                // measured 2.1e-16
         CHECK(after[6] == before[6]);                              // p_wheel kept exactly
         CHECK(std::abs(std::sqrt(dL2) - std::sqrt(0.14)) < 2e-15); // |Delta L| = |J|: 2.2e-16
     }
