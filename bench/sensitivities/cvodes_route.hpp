@@ -60,9 +60,10 @@ int sensitivity_rhs(int count, sunrealtype t, N_Vector y, N_Vector, N_Vector* S,
     return 0;
 }
 
-// S(t_end), row-major n x (n + k) (the columns CVODES does not carry are 0); Newton with the dense
-// solver and the emitted Jacobian, or fixed-point iteration (the non-stiff setting, as the
-// work-precision bench's CVODE Adams peer).
+// S(t_end), row-major n x (n + k) (the columns CVODES does not carry are 0), from y0 with the
+// default parameters at rtol, atol = rtol / 100 (state and S); Newton with the dense solver and
+// the emitted Jacobian, or fixed-point iteration (the non-stiff setting, as the work-precision
+// bench's CVODE Adams peer). Empty when a CVODES call failed or it did not reach t_end.
 template <class U>
 std::vector<double> sensitivities(const std::vector<double>& y0, double t_end, double rtol,
                                   bool initial, bool newton) {
@@ -84,25 +85,26 @@ std::vector<double> sensitivities(const std::vector<double>& y0, double t_end, d
         if (u.first_column + c < n) N_VGetArrayPointer(S[c])[u.first_column + c] = 1.0;
     }
     std::vector<double> atols(count, rtol / 100);
-    CVodeInit(memory, rhs<U>, 0.0, y);
-    CVodeSStolerances(memory, rtol, rtol / 100);
-    CVodeSetUserData(memory, &u);
-    CVodeSetLinearSolver(memory, solver, A);
-    CVodeSetJacFn(memory, jacobian<U>);
-    CVodeSetMaxNumSteps(memory, 10000000);
-    CVodeSensInit(memory, static_cast<int>(count), CV_STAGGERED, sensitivity_rhs<U>, S);
+    bool ok = CVodeInit(memory, rhs<U>, 0.0, y) == CV_SUCCESS;
+    ok = ok && CVodeSStolerances(memory, rtol, rtol / 100) == CV_SUCCESS;
+    ok = ok && CVodeSetUserData(memory, &u) == CV_SUCCESS;
+    ok = ok && CVodeSetLinearSolver(memory, solver, A) == CV_SUCCESS;
+    ok = ok && CVodeSetJacFn(memory, jacobian<U>) == CV_SUCCESS;
+    ok = ok && CVodeSetMaxNumSteps(memory, 10000000) == CV_SUCCESS;
+    ok = ok && CVodeSensInit(memory, static_cast<int>(count), CV_STAGGERED, sensitivity_rhs<U>,
+                             S) == CV_SUCCESS;
     SUNNonlinearSolver fixed = SUNNonlinSol_FixedPoint(y, 0, context);
     SUNNonlinearSolver fixed_sens =
         SUNNonlinSol_FixedPointSens(static_cast<int>(count), y, 0, context);
     if (!newton) {
-        CVodeSetNonlinearSolver(memory, fixed);
-        CVodeSetNonlinearSolverSensStg(memory, fixed_sens);
+        ok = ok && CVodeSetNonlinearSolver(memory, fixed) == CV_SUCCESS &&
+             CVodeSetNonlinearSolverSensStg(memory, fixed_sens) == CV_SUCCESS;
     }
-    CVodeSensSStolerances(memory, rtol, atols.data());
-    CVodeSetSensErrCon(memory, SUNTRUE);
+    ok = ok && CVodeSensSStolerances(memory, rtol, atols.data()) == CV_SUCCESS;
+    ok = ok && CVodeSetSensErrCon(memory, SUNTRUE) == CV_SUCCESS;
     double t = 0;
-    CVode(memory, t_end, y, &t, CV_NORMAL);
-    CVodeGetSens(memory, &t, S);
+    ok = ok && CVode(memory, t_end, y, &t, CV_NORMAL) >= 0 &&
+         CVodeGetSens(memory, &t, S) == CV_SUCCESS && t == t_end;
     std::vector<double> out(n * nk, 0.0);
     for (std::size_t c = 0; c < count; ++c)
         for (std::size_t i = 0; i < n; ++i)
@@ -115,6 +117,7 @@ std::vector<double> sensitivities(const std::vector<double>& y0, double t_end, d
     SUNNonlinSolFree(fixed);
     SUNNonlinSolFree(fixed_sens);
     SUNContext_Free(&context);
+    if (!ok) out.clear();
     return out;
 }
 

@@ -16,6 +16,7 @@
 #include <rotgen.hpp>
 
 #include "cvodes_route.hpp"
+#include "sensitivity_unit.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -30,57 +31,12 @@ namespace {
 constexpr double t_end = 10;
 const std::vector<double> y0{0.1, 0.5, 0.0, 0.3, 0.2, 10.0};
 
-// A generated unit's kernels, with parameters as a vector (parameter_names order).
-#define SENSITIVITY_UNIT(type, u)                                                                  \
-    struct type {                                                                                  \
-        using P = rotgen::models::u::params<double>;                                               \
-        static constexpr std::size_t n = rotgen::models::u::state_size;                            \
-        static constexpr std::size_t k = rotgen::models::u::sensitivity_count;                     \
-        static constexpr const char* name = #u;                                                    \
-        template <class... A> static void rhs(A&&... a) {                                          \
-            rotgen::models::u::rhs(std::forward<A>(a)...);                                         \
-        }                                                                                          \
-        template <class... A> static void jacobian(A&&... a) {                                     \
-            rotgen::models::u::jacobian(std::forward<A>(a)...);                                    \
-        }                                                                                          \
-        template <class... A> static void parameter_jacobian(A&&... a) {                           \
-            rotgen::models::u::parameter_jacobian(std::forward<A>(a)...);                          \
-        }                                                                                          \
-        template <class... A> static void variational_rhs(A&&... a) {                              \
-            rotgen::models::u::variational_rhs(std::forward<A>(a)...);                             \
-        }                                                                                          \
-        static auto prepare(const P& p) { return rotgen::models::u::prepare(p); }                  \
-        static std::size_t parameter_index(std::size_t key) {                                      \
-            const auto& names = rotgen::models::u::parameter_names;                                \
-            const std::string want = rotgen::models::u::sensitivity_names[key];                    \
-            for (std::size_t i = 0; i < names.size(); ++i)                                         \
-                if (want == names[i]) return i;                                                    \
-            return names.size();                                                                   \
-        }                                                                                          \
-    };
-
-SENSITIVITY_UNIT(k1, heavy_top_k1)
-SENSITIVITY_UNIT(k4, heavy_top_k4)
-SENSITIVITY_UNIT(k11, heavy_top_k11)
+ROTGEN_SENSITIVITY_UNIT(k1, heavy_top_k1)
+ROTGEN_SENSITIVITY_UNIT(k4, heavy_top_k4)
+ROTGEN_SENSITIVITY_UNIT(k11, heavy_top_k11)
 
 template <class U> double& parameter(typename U::P& p, std::size_t i) {
     return reinterpret_cast<double*>(&p)[i]; // params<double> is parameter_count doubles
-}
-
-// S(t_end), row-major n x (n + k), by DOP853 on variational_rhs.
-template <class U> std::vector<double> variational(double rtol) {
-    constexpr std::size_t n = U::n, nk = U::n + U::k, size = n + n * nk;
-    const auto prepared = U::prepare(typename U::P{});
-    auto sys = rotgen::make_system<double, size>([&](double t, const double* z, double* dz) {
-        U::variational_rhs(t, z, z + n, dz, dz + n, prepared);
-    });
-    rotgen::state_vector<double, decltype(sys)> z = decltype(z)::Zero();
-    for (std::size_t i = 0; i < n; ++i) {
-        z[static_cast<Eigen::Index>(i)] = y0[i];
-        z[static_cast<Eigen::Index>(n + i * nk + i)] = 1.0;
-    }
-    rotgen::integrate(sys, rotgen::dop853<double>(rtol, rtol / 100), 0.0, z, t_end);
-    return std::vector<double>(z.data() + n, z.data() + size);
 }
 
 // y(t_end) by DOP853 on rhs, from y_start with parameters p.
@@ -122,10 +78,11 @@ template <class U> std::vector<double> differences(double rtol, bool initial) {
     return S;
 }
 
-// The largest error of the key columns against the reference.
+// The largest error of the key columns against the reference (inf for a failed run).
 template <class U>
 double error_of(const std::vector<double>& S, const std::vector<double>& ref, bool initial) {
     constexpr std::size_t n = U::n, nk = U::n + U::k;
+    if (S.size() != ref.size()) return HUGE_VAL; // the run failed: printed as inf
     double worst = 0;
     for (std::size_t c = initial ? 0 : n; c < nk; ++c) {
         double scale = 1e-3, e = 0;
@@ -152,10 +109,10 @@ template <class F> double median_seconds(F&& f) {
 
 // One row per route and tolerance: keys | route | rtol | ms | error of S.
 template <class U> void rows(const char* keys, bool initial) {
-    const std::vector<double> ref = variational<U>(1e-14);
+    const std::vector<double> ref = sensitivity_routes::variational<U>(y0, t_end, 1e-14);
     for (double rtol = 1e-5; rtol > 1e-13 * 0.5; rtol /= 10) {
         std::vector<double> S;
-        double s = median_seconds([&] { S = variational<U>(rtol); });
+        double s = median_seconds([&] { S = sensitivity_routes::variational<U>(y0, t_end, rtol); });
         std::printf("| %s | variational | %.0e | %.3f | %.1e |\n", keys, rtol, 1e3 * s,
                     error_of<U>(S, ref, initial));
         s = median_seconds([&] { S = differences<U>(rtol, initial); });
