@@ -175,3 +175,31 @@ TEST_CASE("rotgen tune writes a scene that simulate runs, and exits 2 below the 
     r = run_rotgen("tune '" + scene + "' --error 2");
     CHECK(r.status == 2);
 }
+
+TEST_CASE("method auto chooses for a scene with sensitivities only methods that integrate them",
+          "[tune][sensitivities]") {
+    // At error 1e-8 on the nutating top auto's fastest is the Taylor method
+    // (bench/results/auto.md), which does not integrate sensitivities: with a `sensitivities:` key
+    // it must not be chosen.
+    fresh_tune_cache();
+    const scratch_file scene("auto_sensitivities.yaml", "model: " + model_path("heavy_top") + R"(
+form: lagrangian
+initial: {phi: 0, theta: 0.5, psi: 0, phi_dot: 0, theta_dot: 0, psi_dot: 30}
+time: {start: 0, end: 2, samples: 101}
+integrator: {method: auto, error: 1e-8}
+record: [theta]
+switch_chart: false
+sensitivities: [parameters.h]
+)");
+    rotgen::scene_spec s = rotgen::load_scene(scene.path);
+    rotgen::resolve_auto(s);
+    INFO(s.integrator.auto_choice);
+    CHECK((s.integrator.method == "dop853" || s.integrator.method == "dopri5"));
+    CHECK(s.sensitivities.active());
+    const run_result r = run_rotgen("simulate '" + scene.path + "' -o '" +
+                                    std::string(ROTGEN_BINARY_DIR) + "/auto_sensitivities.csv'");
+    INFO(r.out << r.err);
+    REQUIRE(r.status == 0);
+    CHECK(read_csv(std::string(ROTGEN_BINARY_DIR) + "/auto_sensitivities.csv").header.back() ==
+          "d(theta)/d(parameters.h)");
+}
