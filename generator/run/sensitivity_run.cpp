@@ -2,11 +2,13 @@
 
 #include "run/engine.hpp"
 #include "run/prepared.hpp"
+#include "scene/sensitivities.hpp"
 #include "support/error.hpp"
 #include "support/format.hpp"
 
 #include <cmath>
 #include <mutex>
+#include <stdexcept>
 
 namespace rotgen {
 
@@ -21,6 +23,10 @@ sensitivity_run::sensitivity_run(const prepared_scene& prepared, const member_va
                                  const initial_kinematics& k0)
     : m_scene(prepared.scene()), m_cf(cf), m_parameters(parameters), m_base(cf.system(parameters)),
       m_keys(sensitivity_key_names(m_scene, cf.f)), m_n(cf.f.state.size()) {
+    // scene reading refuses the others with a located line; a scene_spec set up in code (the
+    // tuner's candidates) must not reach here with one
+    if (!method_takes_sensitivities(m_scene.integrator.method))
+        throw std::logic_error("run: sensitivities with the method " + m_scene.integrator.method);
     {
         std::lock_guard<std::mutex> lock(symbolic_mutex());
         m_start = start_derivatives_of(m_scene, prepared.derived(), cf.f, values, k0);
