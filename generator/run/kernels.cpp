@@ -8,6 +8,8 @@
 #include "lower/lower.hpp"
 #include "run/angle_chart.hpp"
 #include "run/records.hpp"
+#include "run/sensitivity_start.hpp"
+#include "run/variational.hpp"
 #include "support/error.hpp"
 
 #include <algorithm>
@@ -287,8 +289,12 @@ compiled_form compile_form(const scene_spec& scene, form_expressions f, bool ori
     for (const auto& k : lowered.constants)
         constants.push_back(k.name.substr(2)); // p.c000 -> c000
     const std::string source =
-        header.text + entry_points(c.f, header.unit, program, events, c.taylor_call, constants,
-                                   sensitivity_programs(scene, c.f, program, events));
+        header.text +
+        entry_points(c.f, header.unit, program, events, c.taylor_call, constants,
+                     sensitivity_programs(scene, c.f, program, events)) +
+        (scene.sensitivities.active()
+             ? variational_entry(c.f, sensitivity_key_names(scene, c.f).size())
+             : "");
     const std::string flags = taylor ? host_exact_vector_flags() : "";
     c.lib = timings.time("compile", header.unit,
                          [&] { return compile_and_load(source, header.unit, flags); });
@@ -307,6 +313,7 @@ compiled_form compile_form(const scene_spec& scene, form_expressions f, bool ori
             reinterpret_cast<loaded_system::kernel>(c.lib.symbol("rotgen_parameter_jacobian"));
         c.record_jacobian =
             reinterpret_cast<loaded_system::kernel>(c.lib.symbol("rotgen_record_jacobian"));
+        c.variational = reinterpret_cast<loaded_system::kernel>(c.lib.symbol("rotgen_variational"));
         for (std::size_t e = 0; e < events.size(); ++e)
             c.event_jacobians.push_back(reinterpret_cast<loaded_system::kernel>(
                 c.lib.symbol("rotgen_event_jacobian_" + std::to_string(e))));

@@ -80,6 +80,8 @@ struct compiled_form {
     // form's parameters, v as for record); the record program's outputs by (y, P), row-major
     // outputs x (n + P)
     loaded_system::kernel parameter_jacobian = nullptr, record_jacobian = nullptr;
+    // With sensitivities, (v, t, y, out): the augmented system (y, S)' (run/variational.hpp)
+    loaded_system::kernel variational = nullptr;
     std::vector<loaded_system::kernel> event_jacobians; // g of each event by (y, P, t): n + P + 1
     std::vector<value_source> columns;    // one per quantity column (body_x expands to 3)
     std::vector<value_source> invariants; // as the invariants are listed

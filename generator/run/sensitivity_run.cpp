@@ -31,10 +31,11 @@ sensitivity_run::sensitivity_run(const prepared_scene& prepared, const member_va
         std::lock_guard<std::mutex> lock(symbolic_mutex());
         m_start = start_derivatives_of(m_scene, prepared.derived(), cf.f, values, k0);
     }
-    const auto n = static_cast<Eigen::Index>(m_n);
-    m_jacobian.resize(n, n);
-    m_dfdp.resize(n, static_cast<Eigen::Index>(cf.f.parameters.size()));
-    m_forcing.resize(n, static_cast<Eigen::Index>(keys()));
+    // the variational kernel's v: the parameter values, then dP/ds row-major
+    m_context = m_parameters;
+    for (Eigen::Index p = 0; p < m_start.dP.rows(); ++p)
+        for (Eigen::Index j = 0; j < m_start.dP.cols(); ++j)
+            m_context.push_back(m_start.dP(p, j));
     for (const value_source& c : cf.columns)
         if (c.kind == value_source::compiled)
             m_columns.push_back(static_cast<std::size_t>(c.index));
@@ -48,27 +49,11 @@ Eigen::VectorXd sensitivity_run::augmented(const Eigen::VectorXd& y0) const {
     return y;
 }
 
-// (y, S)' = (f, (d f/d y) S + c (d f/d P) dP/ds), S scaled by c.
-void sensitivity_run::rhs(const double* self, double t, const double* y, double* dydt) {
-    const auto& r = *reinterpret_cast<const sensitivity_run*>(self);
-    const auto n = static_cast<Eigen::Index>(r.m_n), k = static_cast<Eigen::Index>(r.keys());
-    r.m_base.rhs(t, y, dydt);
-    r.m_base.jacobian(t, y, r.m_jacobian.data()); // row-major into the column-major scratch:
-    r.m_cf.parameter_jacobian(r.m_parameters.data(), t, y, r.m_dfdp.data()); // read transposed
-    const Eigen::Map<const row_major> J(r.m_jacobian.data(), n, n),
-        dfdp(r.m_dfdp.data(), n, r.m_dfdp.cols());
-    const Eigen::Map<const row_major> S(y + n, n, k);
-    Eigen::Map<row_major> dS(dydt + n, n, k);
-    dS.noalias() = J * S;
-    r.m_forcing.noalias() = dfdp * r.m_start.dP; // into scratch: no allocation per call
-    dS.noalias() += r.m_forcing;
-}
-
 loaded_system sensitivity_run::system() const {
     loaded_system s;
     s.n = m_n + m_n * keys();
-    s.f = &sensitivity_run::rhs;
-    s.w = reinterpret_cast<const double*>(this); // rhs casts it back: the kernel's context
+    s.f = m_cf.variational; // (y, S)' compiled as one kernel (run/variational.hpp)
+    s.w = m_context.data();
     s.p = m_parameters.data();
     return s;
 }

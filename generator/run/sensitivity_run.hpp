@@ -1,5 +1,6 @@
 // rotgen — sensitivities integrated with the motion: the augmented system y (+) S, S = dy/ds
-// (n x k, row-major after y), Sdot = (d f/d y) S + (d f/d P) dP/ds (the variational equations),
+// (n x k, row-major after y), Sdot = (d f/d y) S + (d f/d P) dP/ds (the variational equations,
+// compiled with f as one kernel: run/variational.hpp),
 // S(t0) from the exact start (run/sensitivity_start.hpp). The runtime integrates it as any system,
 // so S goes through the steppers' error estimates and dense output with y.
 //
@@ -37,7 +38,8 @@ class sensitivity_run {
 
     // The augmented state at t0: y0, then S(t0) (scaled).
     Eigen::VectorXd augmented(const Eigen::VectorXd& y0) const;
-    // The augmented system (refers to this object).
+    // The augmented system: the form's compiled variational kernel (run/variational.hpp) with
+    // this member's parameters and dP/ds (refers to this object).
     loaded_system system() const;
     // The augmented state's error layout, from the form state's (above).
     error_layout layout(const error_layout& state) const;
@@ -55,7 +57,6 @@ class sensitivity_run {
                       run_result& result) const;
 
   private:
-    static void rhs(const double* self, double t, const double* y, double* dydt);
     Eigen::MatrixXd state_sensitivity(Eigen::Ref<const Eigen::VectorXd> y) const;
     // dt_e/ds (1 x k) of the event `which` at (t, y), and S moved to the event (S + f dt_e/ds).
     Eigen::RowVectorXd event_time(std::size_t which, double t, Eigen::Ref<const Eigen::VectorXd> y,
@@ -72,9 +73,7 @@ class sensitivity_run {
     std::vector<std::string> m_keys;
     start_derivatives m_start;
     std::size_t m_n = 0;
-    mutable Eigen::MatrixXd m_jacobian, m_dfdp; // scratch (row-major data), one run at a time
-    mutable Eigen::MatrixXd m_forcing;          // scratch: (d f/d P) dP/ds
-    mutable std::vector<double> m_scratch;
+    std::vector<double> m_context; // the variational kernel's v: the parameters, then dP/ds
 };
 
 // Refuses the chart switch of a run with sensitivities (user_error at its `sensitivities:`).
