@@ -65,11 +65,12 @@ member_outcome run_one(const prepared_scene& prepared, const summary_layout& lay
 member_outcome outcome_of(const prepared_scene& prepared, const summary_layout& layout,
                           const run_result& r, bool keep_trajectory) {
     member_outcome o;
-    const std::size_t width = 1 + layout.columns.size();
+    const std::size_t width = trajectory_columns(layout).size(), kept = 1 + layout.columns.size();
+    const bool sensitivities = r.sensitivity_columns == layout.sensitivities;
     if (keep_trajectory)
         o.trajectory.assign(layout.samples * width, std::numeric_limits<double>::quiet_NaN());
     if (!r.rows.empty()) o.final_row = r.rows.back();
-    if (!r.sensitivity_rows.empty() && r.sensitivity_columns == layout.sensitivities)
+    if (!r.sensitivity_rows.empty() && sensitivities)
         o.final_sensitivities = r.sensitivity_rows.back(); // a member started in another form: none
     for (const auto& d : r.invariants)
         o.drifts.push_back(d.drift);
@@ -90,10 +91,21 @@ member_outcome outcome_of(const prepared_scene& prepared, const summary_layout& 
         o.status = "stopped at t = " +
                    format_double(r.rows.empty() ? prepared.scene().t_start : r.rows.back()[0]) +
                    ": " + r.message;
-    for (std::size_t s = 0; keep_trajectory && s < r.rows.size() && s < layout.samples; ++s)
-        for (std::size_t c = 0; c < width && c < r.rows[s].size(); ++c)
+    for (std::size_t s = 0; keep_trajectory && s < r.rows.size() && s < layout.samples; ++s) {
+        for (std::size_t c = 0; c < kept && c < r.rows[s].size(); ++c)
             o.trajectory[s * width + c] = r.rows[s][c];
+        if (!sensitivities || s >= r.sensitivity_rows.size()) continue;
+        for (std::size_t c = 0; c < layout.sensitivities.size(); ++c)
+            o.trajectory[s * width + kept + c] = r.sensitivity_rows[s][c];
+    }
     return o;
+}
+
+std::vector<std::string> trajectory_columns(const summary_layout& layout) {
+    std::vector<std::string> c{"t"};
+    c.insert(c.end(), layout.columns.begin(), layout.columns.end());
+    c.insert(c.end(), layout.sensitivities.begin(), layout.sensitivities.end());
+    return c;
 }
 
 void write_summary_header(std::ostream& os, const sweep_plan& plan, const summary_layout& layout) {

@@ -22,7 +22,9 @@ struct member_outcome {
     std::uint64_t steps = 0, rhs_evals = 0;
     std::string status = "ok"; // or why the member stopped (or could not start)
     bool in_lanes = false;     // run in a batch of lanes (sweep --lanes), not alone
-    // With trajectories: samples x (1 + columns), row-major; NaN past the last sample reached.
+    // With trajectories: samples x trajectory_columns(layout) (t, the recorded columns, then the
+    // d(...) columns of the sensitivities), row-major; NaN past the last sample reached (and in
+    // the d(...) columns of a member that started in another form, which has none).
     std::vector<double> trajectory;
     // Its line of summary.csv, formatted where the member ran (on every thread and rank at once),
     // so that the one writer only appends it.
@@ -42,6 +44,8 @@ struct summary_layout {
     std::size_t samples = 0;
 };
 summary_layout layout_of(const prepared_scene& prepared);
+// The names of a trajectory's columns: t, the recorded columns, then the sensitivities' d(...).
+std::vector<std::string> trajectory_columns(const summary_layout& layout);
 
 // Runs one member. A user error of this member (its values cannot start a run) and a run that
 // stops early are outcomes (status), not exceptions.

@@ -176,7 +176,7 @@ std::size_t window_of(const sweep_request& q, const ensemble& e, unsigned jobs, 
         return std::max<std::size_t>(std::strtoul(v, nullptr, 10), q.lanes);
     const std::size_t numbers =
         1 + e.layout.columns.size() + e.layout.events.size() + e.layout.invariants.size() +
-        (q.trajectories ? e.layout.samples * (1 + e.layout.columns.size()) : 0);
+        (q.trajectories ? e.layout.samples * trajectory_columns(e.layout).size() : 0);
     const std::size_t budget = std::size_t(32) << 20, member = 256 + 8 * numbers;
     const std::size_t least = 4 * std::size_t(q.lanes) * (std::size_t(jobs) + std::size_t(ranks));
     return std::min(std::max(budget / member, least), std::max<std::size_t>(e.table.size(), 1));
@@ -234,7 +234,7 @@ int finish(const sweep_request& q, const ensemble& e, const std::string& workers
     summary << "  wrote   " << w.summary_path() << " (" << all << " members)\n";
     if (q.trajectories)
         summary << "  wrote   " << w.trajectories_path() << " (" << all << " x " << e.layout.samples
-                << " x " << e.layout.columns.size() + 1 << ")\n";
+                << " x " << trajectory_columns(e.layout).size() << ")\n";
     if (q.timings) timings.print(std::cerr);
     if (w.failed() == 0) return 0;
     report_failures(q.scene, w);

@@ -1,9 +1,11 @@
 // rotgen sweep --trajectories — every member's samples in one HDF5 file (the HDF5 C library):
 //
 //   /trajectories    double [member, sample, column]: t and the recorded columns at each sample
-//                    time; NaN past the last sample a member reached (a failed member)
-//     attributes     columns (strings: t, then the recorded columns), varied_keys (strings, as
-//                    written), scene (the scene file's text), scene_file
+//                    time, then with the scene's sensitivities the d(<column>)/d(<key>) columns
+//                    (summary.csv's final.d(...) at every sample); NaN past the last sample a
+//                    member reached (a failed member)
+//     attributes     columns (strings: t, the recorded columns, the d(...) columns), varied_keys
+//                    (strings, as written), scene (the scene file's text), scene_file
 //   /varied_values   double [member, key]: each member's values of the varied keys
 //                    (a dataset: HDF5 keeps an attribute under 64 KiB; attribute keys names them)
 //

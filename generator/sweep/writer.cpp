@@ -31,8 +31,7 @@ std::string gigabytes(double bytes) {
 trajectory_file header_of(const scene_spec& scene, const sweep_plan& plan,
                           const summary_layout& layout, std::size_t members) {
     trajectory_file f;
-    f.columns = {"t"};
-    f.columns.insert(f.columns.end(), layout.columns.begin(), layout.columns.end());
+    f.columns = trajectory_columns(layout);
     for (const auto& k : plan.keys)
         f.keys.push_back(k.key);
     std::ifstream in(scene.file, std::ios::binary);
@@ -93,6 +92,9 @@ std::uint64_t estimated_output(const scene_spec& scene, const sweep_plan& plan, 
     std::uint64_t columns = 0;
     for (const auto& name : scene.record)
         columns += record_columns(name).size();
+    // with sensitivities each column has a d(...) column per key (all_initial: about 7, the body
+    // form's state)
+    columns *= 1 + (scene.sensitivities.all_initial ? 7 : scene.sensitivities.keys.size());
     // a row: the varied values, final.t and the columns, the events, the energy's drift, 24
     // bytes each, and the member, steps, rhs_evals and status in about 40
     const std::uint64_t row = 24 * (plan.keys.size() + 1 + columns + scene.events.size() + 1) + 40;

@@ -269,8 +269,9 @@ class SweepResult:
     summary_csv : str
         The text of summary.csv, the same bytes as the CLI's.
     trajectories : ndarray or None
-        Every member's samples, shape (members, samples, 1 + columns): ``t`` then the recorded
-        columns (``columns``); NaN past the last sample a member reached. None with
+        Every member's samples, shape (members, samples, len(columns)): ``t``, the recorded
+        columns, then with the scene's sensitivities every ``d(<column>)/d(<key>)`` (as
+        trajectories.h5 holds them); NaN past the last sample a member reached. None with
         ``trajectories=False``.
     columns : list of str
         The names along the last axis of ``trajectories`` (``t`` first).

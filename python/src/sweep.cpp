@@ -79,7 +79,7 @@ void prepare(ensemble& e, const std::string& text, const sweep_options& o) {
 // What the members leave: each member's summary row (text) and samples, in its own slot.
 struct ensemble_output {
     std::vector<std::string> rows;
-    double* samples = nullptr; // [member, sample, t and the columns], or null
+    double* samples = nullptr; // [member, sample, trajectory_columns], or null
     std::size_t failed = 0, in_lanes = 0;
     std::uint64_t steps = 0, rhs_evals = 0;
     double seconds = 0; // running the members
@@ -92,7 +92,7 @@ void keep(const ensemble& e, std::size_t member, const member_outcome& o, ensemb
     write_summary_row(row, member, e.table->row(member), e.layout, o);
     out.rows[member] = row.str();
     if (out.samples) { // a member that could not start has no samples
-        const std::size_t size = e.layout.samples * (e.layout.columns.size() + 1);
+        const std::size_t size = e.layout.samples * trajectory_columns(e.layout).size();
         double* to = out.samples + member * size;
         const std::size_t n = std::min(size, o.trajectory.size());
         std::copy(o.trajectory.begin(), o.trajectory.begin() + n, to);
@@ -156,7 +156,7 @@ py::dict summary_of(const ensemble& e, const sweep_options& o, const ensemble_ou
 py::dict sweep_scene(const std::string& path, const std::string& text, const sweep_options& o) {
     ensemble e(path);
     prepare(e, text, o);
-    const std::size_t width = e.layout.columns.size() + 1;
+    const std::size_t width = trajectory_columns(e.layout).size();
     ensemble_output out;
     out.rows.resize(e.table->size());
     py::object trajectories = py::none();
@@ -172,9 +172,7 @@ py::dict sweep_scene(const std::string& path, const std::string& text, const swe
         summary << row;
     py::dict d;
     d["summary_csv"] = summary.str();
-    std::vector<std::string> columns{"t"};
-    columns.insert(columns.end(), e.layout.columns.begin(), e.layout.columns.end());
-    d["columns"] = columns;
+    d["columns"] = trajectory_columns(e.layout); // t, the columns, the sensitivities' d(...)
     std::vector<std::string> keys;
     for (const auto& k : e.plan->keys)
         keys.push_back(k.key);

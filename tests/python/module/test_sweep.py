@@ -56,6 +56,20 @@ def test_trajectories_are_the_members_runs(in_tmp):
         is None
 
 
+def test_trajectories_carry_the_sensitivities(in_tmp):
+    scene = short(NUTATION).with_(sensitivities=["initial.theta", "parameters.h"])
+    thetas = [0.2, 0.6]
+    sw = rotgen.sweep(scene, vary={"initial.theta": thetas}, threads=2)
+    r = rotgen.simulate(scene.with_(initial={"theta": thetas[1]}))
+    d = [f"d({c})/d({k})" for c in r.columns for k in r.sensitivity_keys]
+    assert sw.columns == ["t"] + r.columns + d
+    assert sw.trajectories.shape == (2, 201, 1 + len(r.columns) + len(d))
+    # the member's own run: its d(...) columns, samples x columns x keys, in record then key order
+    got = sw.trajectories[1, :, 1 + len(r.columns):]
+    assert np.array_equal(got, r.sensitivities.reshape(201, -1), equal_nan=True)
+    assert np.abs(got).max() > 1e-3
+
+
 def test_the_scene_sweep_section_is_used_without_vary(in_tmp):
     d = short(NUTATION).to_dict()
     d["sweep"] = {"mode": "zip", "vary": {"initial.theta": {"values": [0.3, 0.4]},
