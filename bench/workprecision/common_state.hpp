@@ -14,6 +14,11 @@
 //                `compared` set, listed in results.md) of |x - x_ref|; phi and psi are compared
 //                modulo 2 pi.
 //   orientation  the angle of A_ref A^T (rotation.hpp: orientation_error), if A is known.
+//   sampled error  the bench's error (issue 50: the measure of generator/bench/sampled_error.hpp
+//                `rotgen bench`'s choice and `method: auto` use), max over the scene's samples of
+//                the attitude angle (where every configuration determines A) and of
+//                |omega - omega_ref| / max |omega_ref| (where every one determines omega); with
+//                neither, of each compared quantity's |x - x_ref| / max(1, max |x_ref|).
 // Everything is evaluated in long double from the final state, whatever the scalar of the run.
 #pragma once
 
@@ -24,6 +29,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 namespace rotgen::bench {
 
@@ -117,6 +123,87 @@ inline long double state_error(const common_state& c, const common_state& ref,
 inline long double attitude_error(const common_state& c, const common_state& ref) {
     if (!c.has_A || !ref.has_A) return std::numeric_limits<long double>::quiet_NaN();
     return orientation_error(ref.A, c.A);
+}
+
+// What every configuration of the sweep determines: the quantities, and the attitude A.
+struct comparison {
+    std::array<bool, n_quantities> q{};
+    bool attitude = false;
+    bool has(int k) const { return q[static_cast<std::size_t>(k)]; }
+};
+
+// The sampled error (the top of this file) and the largest attitude angle over the samples of
+// `run` against `ref` (same sample times; NaN where either lacks the attitude); NaN error when
+// the run has another number of samples.
+struct sampled_measure {
+    long double error = 0, orientation = 0;
+};
+
+namespace measure_detail {
+
+inline long double omega_norm(const common_state& c) {
+    using std::sqrt;
+    return sqrt(c.v[q_omega1] * c.v[q_omega1] + c.v[q_omega2] * c.v[q_omega2] +
+                c.v[q_omega3] * c.v[q_omega3]);
+}
+
+// Each compared quantity's largest |x_ref| over the samples, at least 1 (the scale of its error
+// where neither the attitude nor omega is compared).
+inline std::array<long double, n_quantities>
+reference_scales(const std::vector<common_state>& ref) {
+    std::array<long double, n_quantities> s;
+    s.fill(1);
+    for (const auto& r : ref)
+        for (std::size_t k = 0; k < s.size(); ++k)
+            s[k] = std::max(s[k], std::abs(r.v[k]));
+    return s;
+}
+
+} // namespace measure_detail
+
+inline sampled_measure sampled_error(const std::vector<common_state>& run,
+                                     const std::vector<common_state>& ref, const comparison& cmp) {
+    const long double nan = std::numeric_limits<long double>::quiet_NaN();
+    if (run.size() != ref.size() || ref.empty()) return {nan, nan};
+    const bool omega = cmp.has(q_omega1) && cmp.has(q_omega2) && cmp.has(q_omega3);
+    long double w_scale = 0;
+    for (const auto& r : ref)
+        w_scale = std::max(w_scale, measure_detail::omega_norm(r));
+    if (!(w_scale > 0)) w_scale = 1;
+    const auto scales = measure_detail::reference_scales(ref);
+    sampled_measure m;
+    m.orientation = run.front().has_A && ref.front().has_A ? 0 : nan;
+    for (std::size_t i = 0; i < ref.size(); ++i) {
+        const common_state &c = run[i], &r = ref[i];
+        long double e = 0;
+        const long double a = attitude_error(c, r); // NaN without the attitude
+        if (!std::isnan(m.orientation)) m.orientation = std::max(m.orientation, a);
+        if (cmp.attitude) {
+            if (std::isnan(a)) return {nan, nan};
+            e = std::max(e, a);
+        }
+        if (omega) {
+            common_state d = c; // omega - omega_ref
+            for (int k : {q_omega1, q_omega2, q_omega3})
+                d.v[static_cast<std::size_t>(k)] -= r.v[static_cast<std::size_t>(k)];
+            const long double dw = measure_detail::omega_norm(d) / w_scale;
+            if (std::isnan(dw)) return {nan, nan};
+            e = std::max(e, dw);
+        }
+        if (!omega && !cmp.attitude) { // each compared quantity relative to its scale
+            std::array<bool, n_quantities> one{};
+            for (int k = 0; k < n_quantities; ++k) {
+                if (!cmp.has(k)) continue;
+                one.fill(false);
+                one[static_cast<std::size_t>(k)] = true;
+                const long double d = state_error(c, r, one);
+                if (std::isnan(d)) return {nan, nan};
+                e = std::max(e, d / scales[static_cast<std::size_t>(k)]);
+            }
+        }
+        m.error = std::max(m.error, e);
+    }
+    return m;
 }
 
 } // namespace rotgen::bench

@@ -23,6 +23,7 @@
 //
 // PLAN, one directive per line:
 //     span T0 T1                    the time span
+//     samples N                     the scene's N sample times, evenly from T0 to T1 (the error's)
 //     timing TARGET REPEATS         seconds per timed loop, number of repeats (>= 5)
 //     autonomous 0|1                rodas4 skips df/dt when the model has no driving torque
 //     exact I1 I2 I3 W1 W2 W3 PHI THETA PSI   an exact reference: the free body (principal
@@ -33,11 +34,14 @@
 //     run V PEER METHOD SCALAR TOL STEP        one configuration (rotgen|odeint|cvode)
 //     drift V METHOD TOL STEP T_END SAMPLES LABEL   a long run: relative energy error over time
 // OUT, one record per line (whitespace separated, numbers with 21 significant digits):
-//     compared NAME...              the quantities in the error's max-norm
-//     reference SOURCE ERROR_ESTIMATE ORIENTATION_ESTIMATE
+//     compared NAME...              the quantities the error compares (common_state.hpp)
+//     reference SOURCE ERROR_ESTIMATE ORIENTATION_ESTIMATE   (the floor: the check run's error)
 //     row V PEER METHOD FORM SCALAR TOL STEP STATUS ERROR ORIENTATION RHS JAC STEPS MEDIAN MIN
 //         MAX ENERGY_DRIFT MOMENTUM_DRIFT N Y1..YN
 //     drift LABEL STEPS RHS T RELATIVE_ENERGY_ERROR
+// ERROR and ORIENTATION are the sampled error (common_state.hpp: max over the samples of the
+// attitude angle and |omega - omega_ref| / max |omega_ref|) and the largest attitude angle, each
+// run's samples against the reference's.
 // The pieces: runners.hpp and run_one.hpp (one configuration: rotgen's integrators, and the
 // peers of peers.hpp), drift.hpp (the long runs), common_state.hpp and exact_reference.hpp (the
 // error), timing.hpp.
@@ -83,6 +87,16 @@ template <class Tuple, class F> void with_variant(int index, F&& f) {
 template <class V> common_state common_of(const std::vector<long double>& y) {
     common_state c;
     if (y.size() == V::state_size) V::common(y.data(), c);
+    return c;
+}
+
+// The common representation of each sample.
+template <class V>
+std::vector<common_state> common_samples(const std::vector<std::vector<long double>>& ys) {
+    std::vector<common_state> c;
+    c.reserve(ys.size());
+    for (const auto& y : ys)
+        c.push_back(common_of<V>(y));
     return c;
 }
 
@@ -134,8 +148,6 @@ struct driver_plan {
     std::vector<drift_spec> drift_runs;
 };
 
-using compared_set = std::array<bool, n_quantities>;
-
 // One directive into p; false (after a message) on a malformed line.
 inline bool read_plan_line(const std::string& line, driver_plan& p) {
     std::istringstream in(line);
@@ -143,6 +155,14 @@ inline bool read_plan_line(const std::string& line, driver_plan& p) {
     if (!(in >> what) || what[0] == '#') return true;
     if (what == "span") {
         in >> p.s.t0 >> p.s.t1;
+    } else if (what == "samples") {
+        long n = 0;
+        in >> n;
+        p.s.times.assign(static_cast<std::size_t>(std::max(n, 2L)), p.s.t0);
+        for (std::size_t i = 0; i < p.s.times.size(); ++i) // as run/engine.hpp's sample_times
+            p.s.times[i] = i + 1 == p.s.times.size() ? p.s.t1
+                                                     : p.s.t0 + (p.s.t1 - p.s.t0) * double(i) /
+                                                                    double(p.s.times.size() - 1);
     } else if (what == "timing") {
         in >> p.s.target >> p.s.repeats;
     } else if (what == "autonomous") {
@@ -175,8 +195,8 @@ inline bool read_plan_line(const std::string& line, driver_plan& p) {
 }
 
 // The compared quantities: those every variant in the plan determines. Writes `compared ...`.
-template <class Variants> compared_set write_compared(const driver_plan& p, std::ostream& out) {
-    compared_set compared;
+template <class Variants> comparison write_compared(const driver_plan& p, std::ostream& out) {
+    std::array<bool, n_quantities> compared;
     compared.fill(true);
     bool all_have_A = true;
     std::vector<bool> used(std::tuple_size_v<Variants>, false);
@@ -197,14 +217,14 @@ template <class Variants> compared_set write_compared(const driver_plan& p, std:
     for (int q = 0; q < n_quantities; ++q)
         if (compared[static_cast<std::size_t>(q)]) out << " " << quantity_name(q);
     out << (all_have_A ? " (attitude everywhere)" : "") << "\n";
-    return compared;
+    return comparison{compared, all_have_A};
 }
 
 // DOP853 in long double on the reference variant at ref_rtol (into ref) and ref_check (into
-// check); false when that variant has no long double DOP853.
+// check), each at the sample times; false when that variant has no long double DOP853.
 template <class Variants>
-bool long_double_reference(const driver_plan& p, common_state& ref, common_state& check,
-                           std::ostream& out) {
+bool long_double_reference(const driver_plan& p, std::vector<common_state>& ref,
+                           std::vector<common_state>& check, std::ostream& out) {
     bool have_check = false;
     with_variant<Variants>(p.ref_variant, [&](auto* tag) {
         using V = std::remove_pointer_t<decltype(tag)>;
@@ -212,15 +232,13 @@ bool long_double_reference(const driver_plan& p, common_state& ref, common_state
             using system = variant_system<V, long double>;
             const system sys{V::template parameters<long double>()};
             for (int pass = 0; pass < 2; ++pass) {
-                auto y = initial_state<V, long double>();
                 const double rtol = pass ? p.ref_check : p.ref_rtol;
                 dop853<long double> m(rtol, rtol);
                 m.max_steps = 100000000;
-                const auto r = integrate(sys, m, (long double)p.s.t0, y, (long double)p.s.t1);
-                std::vector<long double> yl(y.data(), y.data() + y.size());
-                (pass ? check : ref) = common_of<V>(yl);
-                out << "reference_run " << rtol << " " << status_name(r.code) << " "
-                    << r.stats.steps << "\n";
+                (pass ? check : ref) = common_samples<V>(sampled_states<long double>(
+                    sys, m, initial_state<V, long double>(), p.s.times));
+                out << "reference_run " << rtol << " "
+                    << ((pass ? check : ref).empty() ? "failed" : "ok") << "\n";
             }
             have_check = true;
         }
@@ -228,76 +246,82 @@ bool long_double_reference(const driver_plan& p, common_state& ref, common_state
     return have_check;
 }
 
-// The free body's exact state at t1.
-inline common_state exact_state(const free_body_exact<long double>& exact, double t1) {
+// The free body's exact state at t.
+inline common_state exact_state(const free_body_exact<long double>& exact, double t) {
     common_state e;
-    const auto w = exact.omega((long double)t1);
+    const auto w = exact.omega((long double)t);
     e.set(q_omega1, w[0]);
     e.set(q_omega2, w[1]);
     e.set(q_omega3, w[2]);
-    e.set_rotation(exact.rotation((long double)t1));
+    e.set_rotation(exact.rotation((long double)t));
     e.angles_from_rotation();
     e.rates_from_omega();
     return e;
 }
 
-// The reference at the end time, and the line `reference SOURCE ERROR ORIENTATION`.
+// The reference at the samples, and the line `reference SOURCE ERROR ORIENTATION`: the check
+// run's sampled error against it (the reference's floor).
 template <class Variants>
-common_state write_reference(const driver_plan& p, const compared_set& compared,
-                             std::ostream& out) {
-    common_state ref, check;
+std::vector<common_state> write_reference(const driver_plan& p, const comparison& compared,
+                                          std::ostream& out) {
+    std::vector<common_state> ref, check;
     bool have_check = false;
     if (p.ref_variant >= 0) have_check = long_double_reference<Variants>(p, ref, check, out);
+    const long double nan = std::numeric_limits<long double>::quiet_NaN();
     if (p.exact) {
         // the exact reference; the DOP853 run above, if any, is its cross-check
-        const common_state e = exact_state(*p.exact, p.s.t1);
+        std::vector<common_state> e;
+        for (double t : p.s.times)
+            e.push_back(exact_state(*p.exact, t));
         if (p.ref_variant >= 0) check = ref;
         ref = e;
-        out << "reference exact_" << p.exact->kind_name() << " "
-            << number(have_check ? state_error(check, ref, compared) : NAN) << " "
-            << number(have_check ? attitude_error(check, ref) : NAN) << "\n";
+        const sampled_measure m =
+            have_check ? sampled_error(check, ref, compared) : sampled_measure{nan, nan};
+        out << "reference exact_" << p.exact->kind_name() << " " << number(m.error) << " "
+            << number(m.orientation) << "\n";
     } else if (have_check) {
-        out << "reference dop853_long_double " << number(state_error(check, ref, compared)) << " "
-            << number(attitude_error(check, ref)) << "\n";
+        const sampled_measure m = sampled_error(check, ref, compared);
+        out << "reference dop853_long_double " << number(m.error) << " " << number(m.orientation)
+            << "\n";
     } else {
         out << "reference none nan nan\n";
     }
     return ref;
 }
 
-// One `row ...` line: the configuration, its errors against ref, counters, times, drifts, state.
-template <class V>
-void write_row(const run_record& rec, const common_state& ref, const compared_set& compared,
-               std::ostream& out) {
+// One `row ...` line: the configuration, its sampled errors, counters, times, drifts, state.
+template <class V> void write_row(const run_record& rec, std::ostream& out) {
     const run_spec& spec = rec.spec;
-    const common_state c = common_of<V>(rec.y);
     const long double nan = std::numeric_limits<long double>::quiet_NaN();
     const bool ok = rec.status == "ok";
-    const long double err = ok ? state_error(c, ref, compared) : nan;
-    const long double orient = ok ? attitude_error(c, ref) : nan;
     const auto [ed, md] = ok ? drifts<V>(rec.y) : std::pair<long double, long double>{nan, nan};
     out << "row " << spec.variant << " " << spec.peer << " " << spec.method << " " << V::form << " "
         << spec.scalar << " " << number(spec.tol) << " " << number(spec.step) << " " << rec.status
-        << " " << number(err) << " " << number(orient) << " " << rec.rhs_evals << " "
-        << rec.jac_evals << " " << rec.steps << " " << number(rec.time.median) << " "
-        << number(rec.time.min) << " " << number(rec.time.max) << " " << number(ed) << " "
-        << number(md) << " " << rec.y.size();
+        << " " << number(ok ? rec.error : nan) << " " << number(ok ? rec.orientation : nan) << " "
+        << rec.rhs_evals << " " << rec.jac_evals << " " << rec.steps << " "
+        << number(rec.time.median) << " " << number(rec.time.min) << " " << number(rec.time.max)
+        << " " << number(ed) << " " << number(md) << " " << rec.y.size();
     for (long double v : rec.y)
         out << " " << number(v);
     out << "\n";
 }
 
-// The sweep: every configuration run once (final state, counters), then timed in rounds.
+// The sweep: every configuration run once (final state, counters) and once more at the samples
+// (its error against ref, the samples then dropped), then timed in rounds.
 template <class Variants>
-void run_sweep(const driver_plan& p, const common_state& ref, const compared_set& compared,
-               std::ostream& out) {
+void run_sweep(const driver_plan& p, const std::vector<common_state>& ref,
+               const comparison& compared, std::ostream& out) {
     std::vector<run_record> records;
     records.reserve(p.runs.size());
     for (const auto& spec : p.runs)
         with_variant<Variants>(spec.variant, [&](auto* tag) {
             using V = std::remove_pointer_t<decltype(tag)>;
             records.push_back(run_one<V>(spec, p.s));
-            calibrate(records.back().job, p.s.target);
+            run_record& rec = records.back();
+            const sampled_measure m = sampled_error(common_samples<V>(rec.samples), ref, compared);
+            rec.error = m.error, rec.orientation = m.orientation;
+            rec.samples = {};
+            calibrate(rec.job, p.s.target);
         });
     for (int round = 0; round < p.s.repeats; ++round)
         for (auto& rec : records)
@@ -306,7 +330,7 @@ void run_sweep(const driver_plan& p, const common_state& ref, const compared_set
         rec.time = summary(rec.job);
         rec.job.once = nullptr; // release the configuration's state (CVODE memory, ...)
         with_variant<Variants>(rec.spec.variant, [&](auto* tag) {
-            write_row<std::remove_pointer_t<decltype(tag)>>(rec, ref, compared, out);
+            write_row<std::remove_pointer_t<decltype(tag)>>(rec, out);
         });
     }
 }
@@ -326,9 +350,10 @@ template <class Variants> int run_driver(int argc, char** argv) {
     std::string line;
     while (std::getline(plan, line))
         if (!read_plan_line(line, p)) return 2;
+    if (p.s.times.empty()) p.s.times = {p.s.t0, p.s.t1};
 
-    const compared_set compared = write_compared<Variants>(p, out);
-    const common_state ref = write_reference<Variants>(p, compared, out);
+    const comparison compared = write_compared<Variants>(p, out);
+    const std::vector<common_state> ref = write_reference<Variants>(p, compared, out);
     out.flush();
     run_sweep<Variants>(p, ref, compared, out);
     out.flush();

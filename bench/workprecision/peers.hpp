@@ -21,6 +21,7 @@
 //     interpolate); memory and solvers are created once per configuration, every timed run is
 //     CVodeReInit + CVode. Evaluations are CVODE's own counters (CVodeGetNumRhsEvals +
 //     CVodeGetNumLinRhsEvals, CVodeGetNumJacEvals).
+//   The error's samples come from one more untimed run of each (odeint_samples, cvode_samples).
 #pragma once
 
 #include "run_record.hpp"
@@ -40,6 +41,7 @@
 #include <cstddef>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace rotgen::bench {
 
@@ -56,8 +58,36 @@ template <class V> struct odeint_rhs {
 // Odeint's methods, one bit each (a variant compiles only those its plan uses).
 enum odeint_method : unsigned { odeint_dopri5 = 1, odeint_rkf78 = 2, odeint_rk4 = 4 };
 
+// The states at the sample times `at` of one untimed run from x0 (Odeint's integrate_times: on
+// the dense output for dopri5; the other steppers step to each sample).
+template <class V, unsigned Method, class State>
+std::vector<std::vector<long double>> odeint_samples(const typename V::template params<double>& p,
+                                                     const State& x0, double tol, double h,
+                                                     double dt0, const std::vector<double>& at) {
+    namespace oi = boost::numeric::odeint;
+    std::size_t count = 0;
+    const odeint_rhs<V> f{&p, &count};
+    State x = x0;
+    std::vector<std::vector<long double>> out;
+    const auto obs = [&](const State& y, double) { out.emplace_back(y.begin(), y.end()); };
+    if constexpr (Method == odeint_dopri5)
+        oi::integrate_times(oi::make_dense_output(tol, tol, oi::runge_kutta_dopri5<State>()), f, x,
+                            at.begin(), at.end(), dt0, obs);
+    else if constexpr (Method == odeint_rkf78) {
+        if (h > 0)
+            oi::integrate_times(oi::runge_kutta_fehlberg78<State>(), f, x, at.begin(), at.end(), h,
+                                obs);
+        else
+            oi::integrate_times(oi::make_controlled(tol, tol, oi::runge_kutta_fehlberg78<State>()),
+                                f, x, at.begin(), at.end(), dt0, obs);
+    } else
+        oi::integrate_times(oi::runge_kutta4<State>(), f, x, at.begin(), at.end(), h, obs);
+    return out;
+}
+
 template <class V, unsigned Method>
-run_record run_odeint(const run_spec& spec, double t0, double t1, double dt0) {
+run_record run_odeint(const run_spec& spec, double t0, double t1, double dt0,
+                      const std::vector<double>& times) {
     namespace oi = boost::numeric::odeint;
     using state = std::array<double, V::state_size>;
     struct context {
@@ -109,6 +139,8 @@ run_record run_odeint(const run_spec& spec, double t0, double t1, double dt0) {
             return rec;
         }
         rec.job.once = once;
+        rec.samples = odeint_samples<V, Method>(
+            c->p, c->x0, tol, fixed ? (t1 - t0) / double(n_steps) : 0, dt0, times);
     } catch (const std::exception&) {
         rec.status = "odeint_error";
     }
@@ -208,7 +240,24 @@ inline void cvode_counters(const cvode_context& c, bool bdf, std::size_t n, run_
         rec.y.push_back(N_VGetArrayPointer(c.y)[i]);
 }
 
-template <class V> run_record run_cvode(const run_spec& spec, double t0, double t1) {
+// The states at the sample times `at` (at[0] = t0) of one more run (CVODE's own steps,
+// interpolated at each sample, CV_NORMAL); empty if it fails.
+inline std::vector<std::vector<long double>> cvode_samples(cvode_context& c, std::size_t n,
+                                                           const std::vector<double>& at) {
+    std::vector<std::vector<long double>> out;
+    N_VScale(1.0, c.y0, c.y);
+    CVodeReInit(c.mem, at.front(), c.y);
+    for (std::size_t i = 0; i < at.size(); ++i) {
+        realtype tret = at.front();
+        if (i > 0 && CVode(c.mem, at[i], c.y, &tret, CV_NORMAL) < 0) return {};
+        const double* y = N_VGetArrayPointer(c.y);
+        out.emplace_back(y, y + n);
+    }
+    return out;
+}
+
+template <class V>
+run_record run_cvode(const run_spec& spec, double t0, double t1, const std::vector<double>& times) {
     run_record rec;
     rec.spec = spec;
     const bool bdf = spec.method == "bdf";
@@ -239,6 +288,7 @@ template <class V> run_record run_cvode(const run_spec& spec, double t0, double 
         rec.status = "cvode_flag_" + std::to_string(c->last);
     else
         rec.job.once = once;
+    if (c->last >= 0) rec.samples = cvode_samples(*c, V::state_size, times);
     return rec;
 }
 

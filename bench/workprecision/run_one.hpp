@@ -1,5 +1,8 @@
 // rotgen bench — one configuration of the plan run: rotgen's integrators (those the variant's
-// method masks compile) and the peers (peers.hpp) on the same kernels.
+// method masks compile) and the peers (peers.hpp) on the same kernels. rotgen's adaptive methods
+// are calibrated as `rotgen simulate` calibrates them (step_control.hpp: calibrate() with the
+// variant's error layout), so that a bench tolerance is simulate's rtol = atol = tol; the peers
+// keep their own meaning of a tolerance.
 #pragma once
 
 #include "peers.hpp"
@@ -29,12 +32,14 @@ run_record run_rotgen(const run_spec& spec, const driver_settings& s) {
     if constexpr ((Mask & dopri5_bit) != 0)
         if (spec.method == "dopri5") {
             dopri5<T> m(tol, tol);
+            rotgen::calibrate(m, V::layout()); // rtol as `rotgen simulate` means it
             m.max_steps = budget;
             return run_method<V, T>(m, spec, s);
         }
     if constexpr ((Mask & dop853_bit) != 0)
         if (spec.method == "dop853") {
             dop853<T> m(tol, tol);
+            rotgen::calibrate(m, V::layout());
             m.fixed_step = step; // > 0: fixed steps, no error control
             m.max_steps = budget;
             return run_method<V, T>(m, spec, s);
@@ -49,6 +54,7 @@ run_record run_rotgen(const run_spec& spec, const driver_settings& s) {
     if constexpr ((Mask & rodas4_bit) != 0)
         if (spec.method == "rodas4") {
             rodas4<T> m(tol, tol);
+            rotgen::calibrate(m, V::layout());
             m.autonomous = s.autonomous;
             m.max_steps = budget;
             return run_method<V, T>(m, spec, s);
@@ -82,16 +88,19 @@ template <class V> run_record run_one(const run_spec& spec, const driver_setting
         if constexpr ((V::peers & odeint_dopri5) != 0)
             if (spec.method == "dopri5")
                 return run_odeint<V, odeint_dopri5>(spec, s.t0, s.t1,
-                                                    odeint_initial_step<V>(spec, s));
+                                                    odeint_initial_step<V>(spec, s), s.times);
         if constexpr ((V::peers & odeint_rkf78) != 0)
             if (spec.method == "rkf78")
                 return run_odeint<V, odeint_rkf78>(
-                    spec, s.t0, s.t1, spec.step > 0 ? 0.0 : odeint_initial_step<V>(spec, s));
+                    spec, s.t0, s.t1, spec.step > 0 ? 0.0 : odeint_initial_step<V>(spec, s),
+                    s.times);
         if constexpr ((V::peers & odeint_rk4) != 0)
-            if (spec.method == "rk4") return run_odeint<V, odeint_rk4>(spec, s.t0, s.t1, spec.step);
+            if (spec.method == "rk4")
+                return run_odeint<V, odeint_rk4>(spec, s.t0, s.t1, spec.step, s.times);
     }
     if constexpr ((V::peers & cvode_bit) != 0)
-        if (spec.peer == "cvode" && spec.scalar == "double") return run_cvode<V>(spec, s.t0, s.t1);
+        if (spec.peer == "cvode" && spec.scalar == "double")
+            return run_cvode<V>(spec, s.t0, s.t1, s.times);
     run_record rec;
     rec.spec = spec;
     rec.status = "not_compiled";

@@ -1,5 +1,6 @@
-// rotgen bench — what one configuration's run produced: the final state (for the error, computed
-// later in long double against the reference), the work counters, the status and the timing.
+// rotgen bench — what one configuration's run produced: the final state, the states at the
+// samples (for the error, computed in long double against the reference), the work counters, the
+// status and the timing.
 #pragma once
 
 #include "timing.hpp"
@@ -27,6 +28,10 @@ struct run_record {
     run_spec spec;
     std::string status = "ok";
     std::vector<long double> y; // the final state at the end time (in the variant's layout)
+    // the state at each of the scene's sample times (driver_settings::times), from one more
+    // untimed run that delivers them as `rotgen simulate` does (dense output, same steps)
+    std::vector<std::vector<long double>> samples;
+    long double error = 0, orientation = 0; // the sampled error (common_state.hpp), from samples
     std::size_t rhs_evals = 0, jac_evals = 0, steps = 0;
     timed_job job; // what is timed: the same integration again, from the initial state
     timing time;   // filled by the driver from job's samples

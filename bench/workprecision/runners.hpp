@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace rotgen::bench {
 
@@ -36,7 +37,26 @@ struct driver_settings {
     int repeats = 5;
     bool autonomous = true;
     std::array<double, 3> moments{}; // the split methods' principal moments (split_taylor.hpp)
+    std::vector<double> times;       // the scene's sample times, t0 .. t1 (the error's samples)
 };
+
+// The states at `times` of one untimed run of `m` on `sys` from y0: the runtime's sampler, as
+// `rotgen simulate` samples a scene (dense output between the same steps).
+template <class T, class System, class Method, class Vector>
+std::vector<std::vector<long double>> sampled_states(const System& sys, const Method& m,
+                                                     const Vector& y0,
+                                                     const std::vector<double>& times) {
+    std::vector<std::vector<long double>> out;
+    std::vector<T> at(times.begin(), times.end());
+    Vector y = y0;
+    const auto r = integrate(sys, m, at.front(), y, at, [&](T, const Vector& x) {
+        out.emplace_back();
+        for (Eigen::Index i = 0; i < x.size(); ++i)
+            out.back().push_back(static_cast<long double>(x[i]));
+    });
+    if (!r.ok()) out.clear();
+    return out;
+}
 
 // One configuration: `sys` (shared with the timed job) integrated by `m` from y0 over the span,
 // once now (the final state, the counters) and again each time the job is timed.
@@ -71,6 +91,7 @@ run_record run_system(std::shared_ptr<const System> sys, const Method& m, const 
         return rec;
     }
     rec.job.once = once;
+    rec.samples = sampled_states<T>(*st->sys, st->method, st->y0, s.times);
     return rec;
 }
 

@@ -64,6 +64,7 @@ template <class V, int Order> run_record run_split(const run_spec& spec, const d
         return run_system<double>(sys, m, y0, spec, s);
     }
     split_controlled<double, Order> m(spec.tol, spec.tol);
+    rotgen::calibrate(m, V::layout()); // as generator/run/split_run.cpp does
     m.max_steps = 100000000;
     return run_system<double>(sys, m, y0, spec, s);
 }
@@ -76,6 +77,7 @@ std::optional<run_record> run_split_taylor(const run_spec& spec, const driver_se
             using system = variant_taylor_system<V, T>;
             taylor<T> m;
             m.rtol = m.atol = T(spec.tol);
+            rotgen::calibrate(m, V::layout());
             m.step = T(spec.step);
             m.max_steps = 100000000;
             return run_system<T>(

@@ -10,7 +10,7 @@ exponent tends to 0). Every TAU time units the run's state-transition matrix Phi
 `sensitivities: {keys: all_initial}`, r.stm) carries a tangent vector v; ln |Phi v| is summed and
 v renormalised, and the next interval starts from the last state (lambda(t) = sum / t). Prints both
 exponents at T (default 1000) and writes the figure lambda(t) (default lyapunov.png;
-docs/lyapunov.png is this figure).
+docs/lyapunov.png is this figure at T = 10000).
 
 The samples record the quaternion with q0 >= 0 (q and -q are one attitude); the run's own state
 turns continuously, so where the recorded q changes sign between two samples the state's

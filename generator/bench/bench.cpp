@@ -227,7 +227,7 @@ void bench_run::print_summary(double wall_seconds) const {
               << "  variants  ";
     for (std::size_t i = 0; i < c.variants.variants.size(); ++i)
         std::cout << (i ? ", " : "") << c.variants.variants[i].label;
-    std::cout << "\n  reference " << out.reference_source << " (check "
+    std::cout << "\n  reference " << out.reference_source << " (floor "
               << short_number(out.reference_error) << ")\n  compared  " << out.compared << "\n"
               << "  runs      " << out.rows.size() << " configurations (" << failed << " failed), "
               << c.plan.drift_labels.size() << " long runs\n"

@@ -62,7 +62,9 @@ struct result_row {
     std::size_t rhs = 0, jac = 0, steps = 0;
     double median = NAN, min = NAN, max = NAN, energy_drift = NAN, momentum_drift = NAN;
     std::vector<std::string> y;
-    bool ok() const { return status == "ok" && std::isfinite(error); }
+    bool at_floor = false; // error <= floor_factor x the reference's floor (read_output)
+    // a run the tables, plots and choices rank: it ran, and its error is not the reference's own
+    bool ok() const { return status == "ok" && std::isfinite(error) && !at_floor; }
 };
 
 // One sample of a long run.
@@ -82,7 +84,8 @@ struct driver_output {
     std::map<std::string, std::string> drift_failed; // long run label -> why
 };
 
-// raw.txt read; throws std::runtime_error if it has no result rows.
+// raw.txt read (rows at the reference's floor marked at_floor); throws std::runtime_error if it
+// has no result rows.
 driver_output read_output(const std::filesystem::path& raw);
 
 } // namespace rotgen::bench

@@ -295,6 +295,7 @@ bench_plan make_plan(const scene_spec& scene, const model_spec& spec,
     plan_builder plan;
     plan.variants = &set.variants;
     plan.text << "span " << plain(p.t0) << " " << plain(p.t1) << "\n"
+              << "samples " << scene.samples << "\n"
               << "timing " << plain(p.target) << " " << p.repeats << "\n"
               << "autonomous " << (spec.has_torque ? 0 : 1) << "\n";
     p.ref_variant = plan_reference(plan, spec, parameter_values, k0, conservative);

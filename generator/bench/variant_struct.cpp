@@ -3,6 +3,7 @@
 #include "bench/plan.hpp"
 #include "bench/variants.hpp"
 #include "expr/symbols.hpp"
+#include "run/tolerance_layout.hpp"
 
 #include <rotgen.hpp> // runtime: taylor<double>::order_for
 
@@ -16,7 +17,7 @@ namespace rotgen::bench {
 
 namespace {
 
-// Its label, sizes and method bits; its run-time parameters and initial state.
+// Its label, sizes and method bits; its run-time parameters, initial state and error layout.
 void write_data(std::ostream& s, const variant& v, std::size_t index, const std::string& ns,
                 const scene_spec& scene, const kinematics& k) {
     const std::size_t n = v.f.state.size();
@@ -38,6 +39,13 @@ void write_data(std::ostream& s, const variant& v, std::size_t index, const std:
     for (std::size_t i = 0; i < n; ++i)
         s << (i ? ", " : "") << ld_literal(state_value(k, v.f.angles, v.f.state[i].name));
     s << "}};\n    }\n";
+    // what a tolerance is relative to, as `rotgen simulate` gives it to the form's methods
+    s << "    static rotgen::error_layout layout() {\n        rotgen::error_layout l;\n"
+      << "        l.groups = {";
+    const error_layout layout = tolerance_layout(v.f.state);
+    for (std::size_t i = 0; i < layout.groups.size(); ++i)
+        s << (i ? ", " : "") << int(layout.groups[i]);
+    s << "};\n        return l;\n    }\n";
 }
 
 // The Taylor variant's expansion: the orders of the plan's tolerances as straight-line code

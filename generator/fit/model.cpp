@@ -1,11 +1,13 @@
 #include "fit/model.hpp"
 
+#include "run/sensitivity_run.hpp"
 #include "scene/sensitivities.hpp"
 #include "support/error.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <mutex>
+#include <stdexcept>
 
 namespace rotgen {
 
@@ -92,20 +94,13 @@ fit_model::fit_model(const scene_spec& scene, const measured_data& data, std::ve
     if (scene.t_end < scene.t_start) // a backward run samples from the latest time down
         for (auto& s : m_sample_of)
             s = m_times.size() - 1 - s;
-    // the sensitivities where the run integrates them (a chart switch would refuse them)
-    m_sensitivities = method_takes_sensitivities(scene.integrator.method) && !scene.model.rotor &&
-                      scene.form == form_kind::body;
+    // the sensitivities wherever the run integrates them, in every form (a run that switches
+    // chart refuses them: then differences, evaluate())
+    m_sensitivities = method_takes_sensitivities(scene.integrator.method) && !scene.model.rotor;
     {
         const std::lock_guard<std::mutex> lock(symbolic_mutex()); // GiNaC: one thread at a time
         m_prepared = std::make_unique<prepared_scene>(
             sampled_at(scene, measured_records(data), m_times, m_keys, m_sensitivities), timings);
-    }
-    if (m_sensitivities) { // compiled() takes the lock itself
-        bool cached = true;
-        const auto& state = m_prepared->compiled(form_kind::body, timings, &cached).f.state;
-        for (const char* q : {"qw", "qx", "qy", "qz"})
-            for (std::size_t i = 0; i < state.size(); ++i)
-                if (state[i].name == q) m_q_state.push_back(i);
     }
     for (const auto& name : m_prepared->scene().record)
         for (const auto& c : record_columns(name))
@@ -121,6 +116,17 @@ fit_model::fit_model(const scene_spec& scene, const measured_data& data, std::ve
 fit_model::~fit_model() {
     const std::lock_guard<std::mutex> lock(symbolic_mutex());
     m_prepared.reset();
+    m_plain.reset();
+}
+
+// The run switched chart, which sensitivities do not cross: from now on the scene without them,
+// its Jacobian by differences.
+void fit_model::without_sensitivities() const {
+    scene_spec plain = m_prepared->scene(); // its records and sample times
+    plain.sensitivities = {};
+    const std::lock_guard<std::mutex> lock(symbolic_mutex());
+    m_plain = std::make_unique<prepared_scene>(plain, m_timings);
+    m_sensitivities = false;
 }
 
 std::size_t fit_model::column(const std::string& name) const {
@@ -151,7 +157,9 @@ run_result fit_model::run_at(const member_values& v) const {
     run_result r;
     stage_timings scratch; // not the command's: thousands of runs
     try {
-        r = run_member(*m_prepared, v, scratch);
+        r = run_member(m_plain ? *m_plain : *m_prepared, v, scratch);
+    } catch (const sensitivity_switch_refused&) {
+        throw;
     } catch (const user_error& e) {
         throw model_failure(e.problem());
     }
@@ -177,14 +185,21 @@ Eigen::MatrixXd fit_model::columns_at(const member_values& v) const {
 
 model_columns fit_model::evaluate(const Eigen::VectorXd& x, bool derivatives) const {
     const member_values v = values_at(x);
-    if (m_sensitivities) return integrated(v); // one run gives both
+    if (m_sensitivities) {
+        try {
+            return integrated(v); // one run gives both
+        } catch (const sensitivity_switch_refused&) {
+            without_sensitivities();
+        }
+    }
     model_columns m;
     m.y = columns_at(v);
     return derivatives ? differences(v, std::move(m)) : m;
 }
 
 // The columns and their derivatives from one run with the keys' sensitivities: d(column)/d(key)
-// as the run gives it, the body form's attitude from the state's sensitivity (below).
+// as the run gives it for every recorded column (the attitude q0..q3 with its sign q0 >= 0, the
+// angles with their wrap: the derivatives of the records themselves).
 model_columns fit_model::integrated(const member_values& v) const {
     const run_result r = run_at(v);
     model_columns m;
@@ -196,9 +211,8 @@ model_columns fit_model::integrated(const member_values& v) const {
             const std::string name = "d(" + m_columns[c] + ")/d(" + m_keys[k].key + ")";
             const auto& sc = r.sensitivity_columns;
             const auto at = std::find(sc.begin(), sc.end(), name);
-            const bool quaternion = m_columns[c].size() == 2 && m_columns[c][0] == 'q';
-            if (at == sc.end() && m_needed[c] && !quaternion)
-                return differences(v, std::move(m)); // a column the run does not derive
+            if (at == sc.end() && m_needed[c])
+                throw std::logic_error("fit: the run does not give " + name);
             for (Eigen::Index s = 0; at != sc.end() && s < samples; ++s)
                 d(s, static_cast<Eigen::Index>(c)) =
                     r.sensitivity_rows[static_cast<std::size_t>(s)]
@@ -206,38 +220,11 @@ model_columns fit_model::integrated(const member_values& v) const {
         }
         m.dy.push_back(d);
     }
-    quaternion_derivatives(r, m);
     return m;
 }
 
-// The recorded attitude is q / |q| of the state's quaternion with q0 >= 0: its derivative is the
-// state's sensitivity S_q less its radial part, d q^ = sign (S_q - q^ (q^ . S_q)) (|q| = 1 to the
-// integrator's accuracy), the sign that of the state's quaternion against the record's, followed
-// sample by sample from the start (t_start, sample 0), where the state's quaternion has q0 >= 0.
-void fit_model::quaternion_derivatives(const run_result& r, model_columns& m) const {
-    const std::size_t q0 = column("q0");
-    if (q0 == m_columns.size() || m_q_state.size() != 4) return;
-    const std::size_t k = m_keys.size();
-    double sign = 1;
-    Eigen::Vector4d previous = m.y.block(0, static_cast<Eigen::Index>(q0), 1, 4).transpose();
-    for (std::size_t s = 0; s < r.rows.size(); ++s) {
-        const auto si = static_cast<Eigen::Index>(s);
-        const Eigen::Vector4d q = m.y.block(si, static_cast<Eigen::Index>(q0), 1, 4).transpose();
-        if (q.dot(previous) < 0) sign = -sign;
-        previous = q;
-        const std::vector<double>& S = r.state_sensitivities[s];
-        for (std::size_t key = 0; key < k; ++key) {
-            Eigen::Vector4d dq;
-            for (int i = 0; i < 4; ++i)
-                dq[i] = S[m_q_state[static_cast<std::size_t>(i)] * k + key];
-            m.dy[key].block(si, static_cast<Eigen::Index>(q0), 1, 4) =
-                (sign * (dq - q * q.dot(dq))).transpose();
-        }
-    }
-}
-
-// Where the run does not integrate the sensitivities (a method or form that does not take them,
-// a column it does not derive): the derivatives by central differences of whole runs, step
+// Where the run does not integrate the sensitivities (a method that does not take them, a linear
+// rotor, a run that switches chart): the derivatives by central differences of whole runs, step
 // 1e-5 max(|value|, 1) per key (one-sided where a side is refused: the edge of the physical
 // inertias); angle columns differenced modulo 2 pi.
 model_columns fit_model::differences(const member_values& v, model_columns m) const {

@@ -71,7 +71,8 @@ class fit_model {
     model_columns evaluate(const Eigen::VectorXd& x, bool derivatives) const;
     std::size_t runs() const { return m_runs; }
     // Whether the derivatives are the sensitivities integrated with the run (every run computes
-    // them then), or central differences of runs (a method or form that does not take them).
+    // them then), or central differences of runs (a method that does not take them, a linear
+    // rotor, a run that switches chart).
     bool sensitivities() const { return m_sensitivities; }
 
   private:
@@ -80,17 +81,17 @@ class fit_model {
     Eigen::MatrixXd columns_at(const member_values& v) const;
     model_columns differences(const member_values& v, model_columns m) const;
     model_columns integrated(const member_values& v) const;
-    void quaternion_derivatives(const run_result& r, model_columns& m) const;
+    void without_sensitivities() const;
 
     std::vector<fit_key> m_keys;
     std::vector<double> m_times;
     std::vector<std::size_t> m_sample_of; // per data row: its sample (t_start is sample 0)
-    bool m_sensitivities = false;
-    std::vector<std::size_t> m_q_state; // the body form's qw, qx, qy, qz in its state
+    mutable bool m_sensitivities = false; // false after a run switched chart
     std::vector<std::string> m_columns;
     std::vector<bool> m_needed; // per column: measured
     member_values m_base;
     std::unique_ptr<prepared_scene> m_prepared;
+    mutable std::unique_ptr<prepared_scene> m_plain; // without sensitivities, after a switch
     stage_timings& m_timings;
     mutable std::size_t m_runs = 0;
 };

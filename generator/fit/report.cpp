@@ -73,7 +73,8 @@ std::string fit_summary(const fit_result& r, const std::string& data_file) {
     out += r.sigma_given ? "; covariance from the given sigmas\n"
                          : "; covariance scaled by the residual variance chi2/dof\n";
     out += std::to_string(r.iterations) + " iterations, " + std::to_string(r.evaluations) +
-           " evaluations, " + std::to_string(r.jacobians) + " Jacobians (" +
+           " evaluations, " + std::to_string(r.jacobians) + " Jacobians " +
+           (r.sensitivities ? "from the sensitivities (" : "by central differences (") +
            std::to_string(r.runs) + " runs); stopped: " + r.stop + "\n";
     out += "condition number of the scaled J^T W J: " + short_number(r.condition) + "\n";
     return out;

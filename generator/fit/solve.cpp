@@ -230,6 +230,7 @@ fit_result solve_fit(const fit_model& model, const fit_residuals& res, Eigen::Ve
     }
     at_solution(model, res, x, where, out);
     out.runs = model.runs();
+    out.sensitivities = model.sensitivities();
     return out;
 }
 

@@ -36,8 +36,9 @@ struct fit_result {
     long dof = 0;
     int iterations = 0, evaluations = 0, jacobians = 0;
     std::size_t runs = 0;
-    double condition = 0; // of the scaled normal matrix at the solution
-    std::string stop;     // why the solver stopped
+    bool sensitivities = false; // the Jacobian from the run's sensitivities (else differences)
+    double condition = 0;       // of the scaled normal matrix at the solution
+    std::string stop;           // why the solver stopped
     bool converged = false;
     // Per data row: t and the residual of each residual column (model - measured; NaN missing).
     std::vector<double> t;

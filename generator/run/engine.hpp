@@ -66,12 +66,13 @@ struct run_result {
     std::string message;    // why not, when !ok
     double integrate_seconds = 0;
     // With the scene's sensitivities (run/sensitivity_run.hpp): the keys (k of them); the columns
-    // d(<column>)/d(<key>), record order then key order, of the recorded columns the record
-    // program computes; per row of `rows`, their values and the state's sensitivity S = dy/ds
-    // (n x k, row-major: S[i * k + j] = d y_i/d key_j, y the state of `form`).
+    // d(<column>)/d(<key>), record order then key order, of every recorded column (the attitude
+    // and the body form's angles too); per row of `rows`, their values and the state's
+    // sensitivity S = dy/ds (n x k, row-major: S[i * k + j] = d y_i/d key_j, y the state of
+    // `form`).
     std::vector<std::string> sensitivity_keys, sensitivity_columns;
     std::vector<std::vector<double>> sensitivity_rows, state_sensitivities;
-    // Per event row: d(t_event)/d(<key>) for each key, then the derived columns' derivatives
+    // Per event row: d(t_event)/d(<key>) for each key, then the recorded columns' derivatives
     // with the state's sensitivity at the event, S + f dt_e/ds (named in that order). A terminal
     // event's sample row carries the same.
     std::vector<std::string> event_sensitivity_columns;

@@ -9,6 +9,7 @@
 #include "run/angle_chart.hpp"
 #include "run/records.hpp"
 #include "run/sensitivity_start.hpp"
+#include "run/source_value.hpp"
 #include "run/variational.hpp"
 #include "support/error.hpp"
 
@@ -38,10 +39,10 @@ std::optional<ex> record_expression(const form_expressions& f, const std::string
 // quaternion and omega at each sample.
 class source_finder {
   public:
-    source_finder(const model_spec& spec, const compiled_form& c, bool orientation,
+    source_finder(const scene_spec& scene, const compiled_form& c, bool orientation,
                   std::vector<ex>& program)
-        : m_spec(spec), m_c(c), m_body_with_angles(c.form == form_kind::body && orientation),
-          m_program(program) {}
+        : m_spec(scene.model), m_c(c), m_body_with_angles(c.form == form_kind::body && orientation),
+          m_sensitive(scene.sensitivities.active()), m_program(program) {}
 
     value_source operator()(const std::string& name, const source_location& where) {
         if (auto e = record_expression(m_c.f, name)) return compiled(*e);
@@ -75,10 +76,11 @@ class source_finder {
     }
 
   private:
-    // p = J^T l, l = I omega, or for a gyrostat the total I omega + h from the record program.
+    // p = J^T l, l = I omega, or for a gyrostat the total I omega + h, from the record program
+    // (with sensitivities: its derivatives by the parameters come with it).
     value_source canonical_momentum(int i) {
         value_source v{value_source::canonical_momentum, i};
-        if (m_spec.wheels.empty()) return v;
+        if (m_spec.wheels.empty() && !m_sensitive) return v;
         const auto& Q = symbols().omega;
         const auto l = gyrostat_momentum(m_spec, {Q[0], Q[1], Q[2]});
         v.momentum = compiled(l[0]).index;
@@ -91,7 +93,7 @@ class source_finder {
     }
     const model_spec& m_spec;
     const compiled_form& m_c;
-    bool m_body_with_angles;
+    bool m_body_with_angles, m_sensitive;
     std::vector<ex>& m_program;
 };
 
@@ -99,7 +101,7 @@ class source_finder {
 std::vector<ex> record_program(const scene_spec& scene, compiled_form& c, bool orientation,
                                const std::vector<invariant>& invariants) {
     std::vector<ex> program;
-    source_finder source(scene.model, c, orientation, program);
+    source_finder source(scene, c, orientation, program);
     for (std::size_t r = 0; r < scene.record.size(); ++r) {
         const std::string& name = scene.record[r];
         if (name.rfind("body_", 0) == 0)
@@ -326,54 +328,10 @@ compiled_form compile_form(const scene_spec& scene, form_expressions f, bool ori
     return c;
 }
 
-namespace {
-
-// l = I omega, or a gyrostat's total from the record program (value_source::momentum).
-Eigen::Vector3d momentum_of(const value_source& src, const std::vector<double>& out,
-                            const Eigen::Matrix3d& inertia, const Eigen::Vector3d& w) {
-    if (src.momentum < 0) return inertia * w;
-    const auto m = static_cast<std::size_t>(src.momentum);
-    return Eigen::Vector3d(out[m], out[m + 1], out[m + 2]);
-}
-
-} // namespace
-
 double source_value(const euler_sequence& s, const value_source& src,
                     Eigen::Ref<const Eigen::VectorXd> y, const std::vector<double>& out,
                     const Eigen::Matrix3d& inertia, std::optional<std::array<double, 3>>& e) {
-    if (src.kind == value_source::compiled) return out[static_cast<std::size_t>(src.index)];
-    if (src.kind == value_source::quaternion_of_state ||
-        src.kind == value_source::quaternion_of_angles) {
-        Eigen::Quaterniond q = src.kind == value_source::quaternion_of_state
-                                   ? Eigen::Quaterniond(y[0], y[1], y[2], y[3]).normalized()
-                                   : quaternion_of_angles(s, y[0], y[1], y[2]);
-        if (q.w() < 0) q.coeffs() = -q.coeffs(); // q and -q: the same attitude
-        const double c[4] = {q.w(), q.x(), q.y(), q.z()};
-        return c[src.index];
-    }
-    if (!e) e = angles_of_quaternion(s, Eigen::Quaterniond(y[0], y[1], y[2], y[3]));
-    const Eigen::Vector3d w(y[4], y[5], y[6]);
-    if (src.kind == value_source::angle) return (*e)[static_cast<std::size_t>(src.index)];
-    if (!s.is_zxz()) {
-        const Eigen::Matrix3d J = omega_jacobian_at(s, *e); // undefined on the singular set
-        const Eigen::Vector3d v =
-            src.kind == value_source::euler_rate
-                ? Eigen::Vector3d(J.lu().solve(w))
-                : Eigen::Vector3d(J.transpose() * momentum_of(src, out, inertia, w));
-        return v[src.index];
-    }
-    const double st = std::sin((*e)[1]), ct = std::cos((*e)[1]), sp = std::sin((*e)[2]),
-                 cp = std::cos((*e)[2]);
-    if (src.kind == value_source::euler_rate) {
-        const double phi_dot = (w[0] * sp + w[1] * cp) / st; // undefined at theta = 0, pi
-        return src.index == 0   ? phi_dot
-               : src.index == 1 ? w[0] * cp - w[1] * sp
-                                : w[2] - phi_dot * ct;
-    }
-    const Eigen::Vector3d l = momentum_of(src, out, inertia, w); // p = J^T l, J of (5.30)
-    return src.index == 0   ? st * sp * l[0] + st * cp * l[1] + ct * l[2]
-           : src.index == 1 ? cp * l[0] - sp * l[1]
-                            : l[2];
+    return source_value_of<double>(s, src, y.data(), out.data(), inertia, e);
 }
 
 } // namespace rotgen

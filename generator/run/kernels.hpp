@@ -57,8 +57,8 @@ struct value_source {
         quaternion_of_angles, // Euler-angle forms: of qz(phi) (x) qx(theta) (x) qz(psi), q0 >= 0
     } kind;
     int index;
-    // canonical_momentum of a gyrostat: where the record program holds the total L1..L3
-    // (I omega + h, run/wheel_records.cpp); -1: I omega.
+    // canonical_momentum of a gyrostat or of a run with sensitivities: where the record program
+    // holds the total L1..L3 (I omega + h, run/wheel_records.cpp); -1: I omega.
     int momentum = -1;
 };
 

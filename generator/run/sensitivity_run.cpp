@@ -2,6 +2,7 @@
 
 #include "run/engine.hpp"
 #include "run/prepared.hpp"
+#include "run/source_value.hpp"
 #include "scene/sensitivities.hpp"
 #include "support/error.hpp"
 #include "support/format.hpp"
@@ -16,13 +17,24 @@ namespace {
 
 using row_major = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
+// d(<column>)/d(<key>) for every recorded column, record order then key order.
+std::vector<std::string> derivative_names(const std::vector<std::string>& columns,
+                                          const std::vector<std::string>& keys) {
+    std::vector<std::string> names;
+    for (const auto& column : columns)
+        for (const auto& key : keys)
+            names.push_back("d(" + column + ")/d(" + key + ")");
+    return names;
+}
+
 } // namespace
 
 sensitivity_run::sensitivity_run(const prepared_scene& prepared, const member_values& values,
                                  const compiled_form& cf, const std::vector<double>& parameters,
                                  const initial_kinematics& k0)
     : m_scene(prepared.scene()), m_cf(cf), m_parameters(parameters), m_base(cf.system(parameters)),
-      m_keys(sensitivity_key_names(m_scene, cf.f)), m_n(cf.f.state.size()) {
+      m_keys(sensitivity_key_names(m_scene, cf.f)), m_n(cf.f.state.size()),
+      m_sequence(sequence_of(m_scene.model.angles)) {
     // scene reading refuses the others with a located line; a scene_spec set up in code (the
     // tuner's candidates) must not reach here with one
     if (!method_takes_sensitivities(m_scene.integrator.method))
@@ -37,8 +49,7 @@ sensitivity_run::sensitivity_run(const prepared_scene& prepared, const member_va
         for (Eigen::Index j = 0; j < m_start.dP.cols(); ++j)
             m_context.push_back(m_start.dP(p, j));
     for (const value_source& c : cf.columns)
-        if (c.kind == value_source::compiled)
-            m_columns.push_back(static_cast<std::size_t>(c.index));
+        m_sampled = m_sampled || c.kind != value_source::compiled;
 }
 
 Eigen::VectorXd sensitivity_run::augmented(const Eigen::VectorXd& y0) const {
@@ -76,18 +87,42 @@ Eigen::MatrixXd sensitivity_run::state_sensitivity(Eigen::Ref<const Eigen::Vecto
     return Eigen::Map<const row_major>(y.data() + n, n, k);
 }
 
+// Every recorded column's d(column)/d(key): the record program's outputs by the chain rule through
+// their generated derivatives, d out = (d out/d y) S + (d out/d P) dP/ds; the columns computed at
+// the sample (angles from the quaternion, q from the angles, ...) by the same code on duals whose
+// derivatives are S's rows and those of the outputs (run/source_value.hpp).
 std::vector<double> sensitivity_run::column_derivatives(double t,
                                                         Eigen::Ref<const Eigen::VectorXd> y,
                                                         const Eigen::MatrixXd& S) const {
-    const std::size_t n = m_n, np = m_cf.f.parameters.size();
-    std::vector<double> jac(m_cf.outputs * (n + np)), out;
+    const auto n = static_cast<Eigen::Index>(m_n), k = static_cast<Eigen::Index>(keys());
+    const auto np = static_cast<Eigen::Index>(m_cf.f.parameters.size()),
+               outputs = static_cast<Eigen::Index>(m_cf.outputs);
+    std::vector<double> jac(m_cf.outputs * static_cast<std::size_t>(n + np));
     m_cf.record_jacobian(m_parameters.data(), t, y.data(), jac.data());
-    out.reserve(m_columns.size() * keys());
-    for (const std::size_t o : m_columns) {
-        const Eigen::Map<const Eigen::RowVectorXd> by_y(&jac[o * (n + np)],
-                                                        static_cast<Eigen::Index>(n)),
-            by_p(&jac[o * (n + np) + n], static_cast<Eigen::Index>(np));
-        const Eigen::RowVectorXd d = by_y * S + by_p * m_start.dP; // the chain rule
+    const Eigen::Map<const row_major> by(jac.data(), outputs, n + np);
+    const Eigen::MatrixXd dout =
+        by.leftCols(n) * S + by.rightCols(np) * m_start.dP; // the chain rule
+    std::vector<dual> yd, od; // with the sampled columns: the state and the outputs as duals
+    if (m_sampled) {
+        std::vector<double> values(m_cf.outputs);
+        m_cf.record(m_parameters.data(), t, y.data(), values.data());
+        for (Eigen::Index i = 0; i < n; ++i)
+            yd.emplace_back(y[i], S.row(i).transpose());
+        for (Eigen::Index o = 0; o < outputs; ++o)
+            od.emplace_back(values[static_cast<std::size_t>(o)], dout.row(o).transpose());
+    }
+    const mat3<dual> unused = mat3<dual>::Zero(); // l = I omega comes from the record program
+    std::optional<std::array<dual, 3>> e;
+    std::vector<double> out;
+    out.reserve(m_cf.columns.size() * keys());
+    for (const value_source& c : m_cf.columns) {
+        Eigen::VectorXd d = Eigen::VectorXd::Zero(k);
+        if (c.kind == value_source::compiled)
+            d = dout.row(c.index).transpose();
+        else if (const dual v =
+                     source_value_of<dual>(m_sequence, c, yd.data(), od.data(), unused, e);
+                 v.d.size() == k)
+            d = v.d;
         out.insert(out.end(), d.data(), d.data() + d.size());
     }
     return out;
@@ -112,10 +147,7 @@ void sensitivity_run::record(const sample_states& samples, std::size_t rows, boo
                              run_result& result) const {
     const std::size_t n = m_n, k = keys();
     result.sensitivity_keys = m_keys;
-    for (std::size_t c = 0; c < m_cf.columns.size(); ++c)
-        if (m_cf.columns[c].kind == value_source::compiled)
-            for (const auto& key : m_keys)
-                result.sensitivity_columns.push_back("d(" + result.columns[c] + ")/d(" + key + ")");
+    result.sensitivity_columns = derivative_names(result.columns, m_keys);
     for (std::size_t s = 0; s < rows; ++s) {
         if (!every && s + 1 != rows) continue;
         const Eigen::Map<const Eigen::VectorXd> y = samples.y(s);
@@ -135,11 +167,8 @@ void sensitivity_run::record_event(std::size_t which, double t, Eigen::Ref<const
     if (result.event_sensitivity_columns.empty()) {
         for (const auto& key : m_keys)
             result.event_sensitivity_columns.push_back("d(t_event)/d(" + key + ")");
-        for (std::size_t c = 0; c < m_cf.columns.size(); ++c)
-            if (m_cf.columns[c].kind == value_source::compiled)
-                for (const auto& key : m_keys)
-                    result.event_sensitivity_columns.push_back("d(" + result.columns[c] + ")/d(" +
-                                                               key + ")");
+        for (const auto& name : derivative_names(result.columns, m_keys))
+            result.event_sensitivity_columns.push_back(name);
     }
     Eigen::MatrixXd S = state_sensitivity(y);
     const Eigen::RowVectorXd dt = event_time(which, t, y, S);
@@ -150,11 +179,11 @@ void sensitivity_run::record_event(std::size_t which, double t, Eigen::Ref<const
 }
 
 void refuse_sensitivity_switch(const scene_spec& scene, double t) {
-    throw user_error(scene.sensitivities.where,
-                     "sensitivities are not carried across the chart switch this run makes at "
-                     "t = " +
-                         short_number(t) +
-                         "; give switch_chart: false, or form: body, to run them");
+    throw sensitivity_switch_refused(
+        scene.sensitivities.where,
+        "sensitivities are not carried across the chart switch this run makes at "
+        "t = " +
+            short_number(t) + "; give switch_chart: false, or form: body, to run them");
 }
 
 } // namespace rotgen

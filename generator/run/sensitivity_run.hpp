@@ -14,6 +14,7 @@
 #include "run/kernels.hpp"
 #include "run/sample_states.hpp"
 #include "run/sensitivity_start.hpp"
+#include "support/error.hpp"
 
 #include <Eigen/Dense>
 
@@ -61,10 +62,9 @@ class sensitivity_run {
     // dt_e/ds (1 x k) of the event `which` at (t, y), and S moved to the event (S + f dt_e/ds).
     Eigen::RowVectorXd event_time(std::size_t which, double t, Eigen::Ref<const Eigen::VectorXd> y,
                                   Eigen::MatrixXd& S) const;
-    // The derived columns' d(column)/d(key) at (t, y) with the state's sensitivity S.
+    // Every recorded column's d(column)/d(key) at (t, y) with the state's sensitivity S.
     std::vector<double> column_derivatives(double t, Eigen::Ref<const Eigen::VectorXd> y,
                                            const Eigen::MatrixXd& S) const;
-    std::vector<std::size_t> m_columns; // the record program's output of each derived column
 
     const scene_spec& m_scene;
     const compiled_form& m_cf;
@@ -73,10 +73,19 @@ class sensitivity_run {
     std::vector<std::string> m_keys;
     start_derivatives m_start;
     std::size_t m_n = 0;
+    euler_sequence m_sequence;
+    bool m_sampled = false; // some column is computed at the sample, not by the record program
     std::vector<double> m_context; // the variational kernel's v: the parameters, then dP/ds
 };
 
-// Refuses the chart switch of a run with sensitivities (user_error at its `sensitivities:`).
+// The refusal of a chart switch in a run with sensitivities: a user_error (the command's located
+// line) that a fit tells apart, to take its Jacobian by differences of runs instead.
+struct sensitivity_switch_refused : user_error {
+    using user_error::user_error;
+};
+
+// Refuses the chart switch of a run with sensitivities (sensitivity_switch_refused at its
+// `sensitivities:`).
 [[noreturn]] void refuse_sensitivity_switch(const scene_spec& scene, double t);
 
 } // namespace rotgen

@@ -41,8 +41,7 @@ summary_layout layout_of(const prepared_scene& prepared) {
         const std::vector<std::string> keys = sensitivity_key_names(scene, cf.f);
         for (std::size_t c = 0; c < cf.columns.size() && c < l.columns.size(); ++c)
             for (const auto& key : keys)
-                if (cf.columns[c].kind == value_source::compiled)
-                    l.sensitivities.push_back("d(" + l.columns[c] + ")/d(" + key + ")");
+                l.sensitivities.push_back("d(" + l.columns[c] + ")/d(" + key + ")");
     }
     return l;
 }

@@ -42,6 +42,9 @@ class FitResult:
     chi2, dof, iterations, evaluations, stop, condition
         chi2 and its degrees of freedom; the solver's iterations, residual evaluations, why it
         stopped; the condition number of the scaled J^T W J at the solution.
+    runs, sensitivities
+        The runs the fit made, and whether its Jacobian came from the runs' sensitivities (one
+        run per Jacobian) rather than central differences of runs (2k more per Jacobian).
     summary : str
         What ``rotgen fit`` prints.
     """
@@ -63,6 +66,8 @@ class FitResult:
         self.evaluations = d["evaluations"]
         self.stop = d["stop"]
         self.condition = d["condition"]
+        self.runs = d["runs"]
+        self.sensitivities = d["sensitivities"]
         self.converged = d["converged"]
         self.summary = d["summary"]
         self.scene = Scene(yaml_text=d["fitted_yaml"])

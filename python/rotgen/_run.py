@@ -56,8 +56,8 @@ class SimulateResult:
         The scene's ``sensitivities`` keys in order (``y0.<state>`` for ``all_initial``); empty
         without them.
     sensitivities : ndarray or None
-        d(column)/d(key), shape (samples, columns, keys): NaN for a column without a derivative
-        (the body form's angles, rates, momenta and quaternion); None without sensitivities.
+        d(column)/d(key), shape (samples, columns, keys), every recorded column (the attitude
+        and the body form's angles, rates and momenta too); None without sensitivities.
     state_sensitivities : ndarray or None
         S = dy/d(key) of the run form's state y, shape (samples, n, keys); None without them.
     stm : ndarray or None

@@ -37,6 +37,7 @@ py::dict result_of(const fit_result& r, const std::string& fitted_yaml) {
     d["evaluations"] = r.evaluations;
     d["jacobians"] = r.jacobians;
     d["runs"] = r.runs;
+    d["sensitivities"] = r.sensitivities;
     d["condition"] = r.condition;
     d["stop"] = r.stop;
     d["converged"] = r.converged;

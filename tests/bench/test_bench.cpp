@@ -1,16 +1,19 @@
 // `rotgen bench --quick` end to end (issue 5): the work-precision harness on a tiny sweep of the
 // free asymmetric top writes results.csv with the columns of DESIGN.md "Interfaces", results.md
 // and the three plots, and its error figures agree with an independent computation of the same
-// runs:
+// runs. The error is the one error measure (issue 50): the largest over the scene's samples of
+// |omega - omega_ref| / max |omega_ref| (omega is all that every form here determines):
 //   - each final state (final_states.csv) against the exact solution, computed here with
 //     runtime/exact_free_top.hpp (the harness uses its own attitude-aware reference,
 //     bench/workprecision/exact_reference.hpp), mapping Euler-angle states to omega by (5.30)
-//     written out here (the body form with the quaternion: its last three states);
+//     written out here (the body form with the quaternion: its last three states): the end time
+//     is a sample, so the row's error is at least the end time's;
 //   - the rows of the split methods and the Taylor method (issues 17 and 18) are there, on their
 //     forms, with errors consistent with their tolerances;
 //   - one configuration re-run here with the runtime on the checked-in generated header
-//     (generated/free_asymmetric_top_body.hpp, run-time parameters): same RHS count, same final
-//     state, same error.
+//     (generated/free_asymmetric_top_body.hpp, run-time parameters), calibrated as simulate
+//     calibrates it: same RHS count, same final state, and the same sampled error, which is far
+//     above its error at the end time (the bench's tables measured that before issue 50).
 // The driver is compiled once and cached in <build>/bench-cache (the first run compiles it).
 #include "support.hpp"
 
@@ -133,12 +136,25 @@ std::array<long double, 3> omega_of(const std::vector<long double>& y) {
             fd * std::sin(th) * std::cos(ps) - td * std::sin(ps), fd * std::cos(th) + pd};
 }
 
-long double max_error(const std::array<long double, 3>& w, const std::array<long double, 3>& ref) {
-    long double e = 0;
-    for (int i = 0; i < 3; ++i)
-        e = std::max(e,
-                     std::abs(w[static_cast<std::size_t>(i)] - ref[static_cast<std::size_t>(i)]));
-    return e;
+// |w - ref|
+long double distance(const std::array<long double, 3>& w, const std::array<long double, 3>& ref) {
+    return std::hypot(w[0] - ref[0], w[1] - ref[1], w[2] - ref[2]);
+}
+
+// The scene's 1001 sample times on [0, 100].
+std::vector<double> sample_times() {
+    std::vector<double> t(1001);
+    for (std::size_t i = 0; i < t.size(); ++i)
+        t[i] = i + 1 == t.size() ? 100.0 : 100.0 * double(i) / 1000.0;
+    return t;
+}
+
+// max |omega_exact| over the samples: the scale of the rate error.
+long double omega_scale(const rotgen::free_top_exact<long double>& exact) {
+    long double s = 0;
+    for (double t : sample_times())
+        s = std::max(s, distance(exact((long double)t), {0, 0, 0}));
+    return s;
 }
 
 } // namespace
@@ -182,6 +198,7 @@ TEST_CASE("rotgen bench --quick: columns, plots, and errors that match an indepe
     // every error recomputed from the written final state against the exact solution
     const rotgen::free_top_exact<long double> exact(inertia, omega0);
     const auto w_end = exact(100.0L);
+    const long double scale = omega_scale(exact);
     int checked = 0, lagrangian = 0, quaternion = 0;
     for (std::size_t i = 0; i < csv.rows.size(); ++i) {
         const auto& row = csv.rows[i];
@@ -213,9 +230,9 @@ TEST_CASE("rotgen bench --quick: columns, plots, and errors that match an indepe
         } else {
             continue;
         }
-        const double expected = double(max_error(w, w_end));
+        const double at_end = double(distance(w, w_end) / scale);
         const double reported = std::stod(row.at("error"));
-        CHECK(reported == Approx(expected).epsilon(1e-4).margin(1e-15));
+        CHECK(reported >= at_end * (1 - 1e-4) - 1e-16);
         ++checked;
     }
     CHECK(checked >= 15);
@@ -226,8 +243,8 @@ TEST_CASE("rotgen bench --quick: columns, plots, and errors that match an indepe
     // method (on the scene's form) are rows like the others, their errors consistent with the
     // tolerance. Without a torque the free flows are exact and the split methods' step-doubling
     // estimate is rounding, so their steps double up to the span: the error is rounding whatever
-    // the tolerance (observed 3.1e-14 .. 1.1e-13 for the three orders, in 110 .. 290 kicks); Taylor
-    // follows its tolerance (observed 9.6e-6 at 1e-5, 1.9e-9 at 1e-8).
+    // the tolerance (observed 2.6e-14 .. 3.3e-13 for the three orders, in 104 .. 290 kicks); Taylor
+    // follows its tolerance (observed 6.8e-6 at 1e-5, 3.9e-9 at 1e-8: sampled, calibrated).
     std::map<std::string, int> extra;
     for (const auto& row : csv.rows) {
         const std::string m = row.at("method");
@@ -239,7 +256,7 @@ TEST_CASE("rotgen bench --quick: columns, plots, and errors that match an indepe
         if (m == "taylor") {
             CHECK(row.at("form") == "body:omega");
             CHECK(err <= tol);
-            CHECK(err >= tol / 100);
+            CHECK(err >= tol / 30); // observed 0.39 tol
         } else {
             CHECK(row.at("form") == "body:quaternion");
             CHECK(err < 1e-12);
@@ -250,10 +267,10 @@ TEST_CASE("rotgen bench --quick: columns, plots, and errors that match an indepe
           std::map<std::string, int>{{"split2", 2}, {"split4", 2}, {"split6", 2}, {"taylor", 2}});
 
     // issue 50: the summary ends with the choice in scene terms. At 1e-11, where no DOP853 run
-    // gets, a split row (at rounding: observed split2 tol 1e-8, bench error 4.5e-14, run 1.5e-13)
+    // gets, a split row (at rounding: observed split2 tol 1e-8, bench error 2.6e-14, run 1.7e-13)
     // is chosen, never long double (bench only); each printed scene block, run as a scene,
-    // reproduces an error within its level (observed 6.8e-5 at 1e-3 .. 1.5e-13 at 1e-11); levels
-    // below 3x the verifying reference's floor (2.4e-12 here) get no choice
+    // reproduces an error within its level (observed 4.2e-10 at 1e-3 .. 1.7e-13 at 1e-11); levels
+    // below 3x the verifying reference's floor (1.45e-13 here) get no choice
     const std::vector<choice> choices = read_choices(r.out);
     REQUIRE(choices.size() >= 6);
     for (const choice& c : choices) {
@@ -281,7 +298,21 @@ TEST_CASE("rotgen bench --quick: columns, plots, and errors that match an indepe
     namespace model = rotgen::models::free_asymmetric_top_body;
     const auto sys = ROTGEN_GENERATED_SYSTEM(model, double);
     Eigen::Vector3d y(1.0, 0.1, 0.5);
-    const auto res = rotgen::integrate(sys, rotgen::dop853<double>(1e-8, 1e-8), 0.0, y, 100.0);
+    rotgen::dop853<double> method(1e-8, 1e-8);
+    rotgen::error_layout layout; // the body form's omega: one rate group (tolerance_layout)
+    layout.groups = {0, 0, 0};
+    rotgen::calibrate(method, layout);
+    const auto res = rotgen::integrate(sys, method, 0.0, y, 100.0); // what the bench times
+    // the same steps sampled on their dense output (3 more RHS evaluations a step)
+    Eigen::Vector3d ys(1.0, 0.1, 0.5);
+    long double sampled = 0;
+    const auto res_sampled =
+        rotgen::integrate(sys, method, 0.0, ys, sample_times(), [&](double t, const auto& x) {
+            sampled =
+                std::max(sampled, distance({x[0], x[1], x[2]}, exact((long double)t)) / scale);
+        });
+    REQUIRE(res_sampled.ok());
+    CHECK(res_sampled.stats.steps == res.stats.steps);
     REQUIRE(res.ok());
     bool found = false;
     for (std::size_t i = 0; i < csv.rows.size(); ++i) {
@@ -298,8 +329,11 @@ TEST_CASE("rotgen bench --quick: columns, plots, and errors that match an indepe
             state >> v;
             CHECK(std::stod(v) == Approx(y[k]).margin(1e-13));
         }
-        const double mine = double(max_error({y[0], y[1], y[2]}, w_end));
-        CHECK(std::stod(row.at("error")) == Approx(mine).epsilon(1e-4));
+        const double at_end = double(distance({y[0], y[1], y[2]}, w_end) / scale);
+        INFO("sampled here " << double(sampled) << ", at the end " << at_end);
+        CHECK(std::stod(row.at("error")) == Approx(double(sampled)).epsilon(1e-4));
+        // the scene tells the two measures apart: observed 4.35e-9 against 1.5e-9 at t = 100
+        CHECK(sampled > 2 * at_end);
     }
     CHECK(found);
 

@@ -6,7 +6,12 @@
 
 #include <catch2/catch.hpp>
 
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
 #include <vector>
 
 using namespace rotgen::bench;
@@ -120,4 +125,27 @@ TEST_CASE("bench summary: a method whose every run is past the levels' decades s
     CHECK(why_none(rows, true, 1e-12) ==
           "best reached 2e-10 (odeint rkf78 double lagrangian tol 1e-10), above 1e-12");
     CHECK(why_none({}, true, 1e-12) == "no successful run");
+}
+
+// Issue 50: rows whose error is at the reference's own floor (at most floor_factor = 3 times the
+// `reference` line's estimate) are marked when raw.txt is read, and never ranked.
+TEST_CASE("bench summary: rows at the reference's floor are marked and not ranked", "[bench]") {
+    const std::filesystem::path raw =
+        std::filesystem::temp_directory_path() / ("rotgen_floor_raw_" + std::to_string(::getpid()));
+    std::ofstream(raw) << "compared omega1 omega2 omega3\n"
+                          "reference exact_asymmetric 1e-14 nan\n"
+                          "row 0 rotgen dop853 body double 1e-12 0 ok 2e-14 nan 100 0 10 1e-5 "
+                          "1e-5 1e-5 nan nan 0\n"
+                          "row 0 odeint rkf78 body double 1e-12 0 ok 5e-14 nan 200 0 10 2e-5 "
+                          "2e-5 2e-5 nan nan 0\n";
+    const driver_output out = read_output(raw);
+    std::filesystem::remove(raw);
+    REQUIRE(out.rows.size() == 2);
+    CHECK(out.rows[0].at_floor); // 2e-14 <= 3 x 1e-14
+    CHECK_FALSE(out.rows[0].ok());
+    CHECK_FALSE(out.rows[1].at_floor); // 5e-14
+    const bench_summary s = summarise(out.rows);
+    const std::size_t l13 = level_index(s, 1e-13);
+    CHECK(s.best[l13].rotgen == nullptr); // its 2e-14 would be matched at 1e-13
+    CHECK(s.best[l13].peer == &out.rows[1]);
 }
