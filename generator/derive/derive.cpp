@@ -109,20 +109,37 @@ void refuse_rotor(const model_spec& spec) {
                              spec.file + "' prints its equations");
 }
 
-// Q = -c q_dot + J^T tau (virtual work of a body torque: tau . J dq); tau may use omega (body
-// damping -c_i omega_i), which is J q_dot here (5.30).
-vector3 generalized_force(const model_spec& spec, const derivation& d) {
+// J^T tau for a body-axis torque tau that may use omega, which is J q_dot here (5.30): the
+// virtual work tau . J dq.
+vector3 torque_force(const derivation& d, const vector3& tau) {
     const auto& s = symbols();
     GiNaC::exmap omega_of_rates;
     for (int i = 0; i < 3; ++i)
         omega_of_rates[s.omega[i]] = d.omega[i];
     vector3 Q;
     for (int i = 0; i < 3; ++i) {
-        ex q = -spec.damping[i] * s.qd[i];
+        Q[i] = 0;
         for (int k = 0; k < 3; ++k)
-            q += d.omega_jacobian[k][i] * spec.torque[k].subs(omega_of_rates);
-        Q[i] = canonical(q);
+            Q[i] += d.omega_jacobian[k][i] * tau[k].subs(omega_of_rates);
     }
+    return Q;
+}
+
+// Q = -c q_dot + J^T tau (body damping -c_i omega_i may be in tau).
+vector3 generalized_force(const model_spec& spec, const derivation& d) {
+    const vector3 torque = torque_force(d, spec.torque);
+    vector3 Q;
+    for (int i = 0; i < 3; ++i)
+        Q[i] = canonical(-spec.damping[i] * symbols().qd[i] + torque[i]);
+    return Q;
+}
+
+// The motors' reaction on the body as a generalised force, J^T motor (motor = -sum tau_k a_k).
+// The Lagrangian forcing only: wheels.hpp.
+vector3 motor_force(const derivation& d) {
+    vector3 Q = torque_force(d, d.wheels.motor);
+    for (auto& q : Q)
+        q = canonical(q);
     return Q;
 }
 
@@ -162,7 +179,6 @@ void hamiltonian_side(derivation& d) {
 
 derivation derive(const model_spec& model) {
     refuse_rotor(model);
-    refuse_torque_wheels(model, "the derivation");
     const model_spec spec = gyrostat_body(model);
     const auto& s = symbols();
     derivation d;
@@ -207,11 +223,12 @@ derivation derive(const model_spec& model) {
             d.mass_matrix[i][j] = canonical(d.momenta[i].diff(s.qd[j]));
 
     d.generalized_force = generalized_force(spec, d);
+    const vector3 reaction = motor_force(d); // torque-driven wheels: wheels.hpp
 
     // f_i = dL/dq_i - sum_j (dp_i/dq_j) q_dot_j + Q_i, so that d/dt p_i - dL/dq_i = Q_i reads
     // M q_ddot = f.
     for (int i = 0; i < 3; ++i) {
-        ex f = d.lagrangian.diff(s.q[i]) + d.generalized_force[i];
+        ex f = d.lagrangian.diff(s.q[i]) + d.generalized_force[i] + reaction[i];
         for (int j = 0; j < 3; ++j)
             f -= d.momenta[i].diff(s.q[j]) * s.qd[j];
         if (wh.driven) f -= d.momenta[i].diff(s.t); // a rate drive: p depends on t

@@ -24,7 +24,7 @@ wheel_terms wheel_terms_of(const model_spec& spec) {
     const ex t = symbols().t;
     wheel_terms r;
     for (int i = 0; i < 3; ++i)
-        r.h[i] = r.h_driven[i] = r.h_dot[i] = 0;
+        r.h[i] = r.h_driven[i] = r.h_dot[i] = r.motor[i] = 0;
     for (const wheel_spec& w : spec.wheels) {
         r.any = true;
         if (w.drive == drive::rate) {
@@ -38,9 +38,12 @@ wheel_terms wheel_terms_of(const model_spec& spec) {
             }
             r.kinetic += w.inertia * omega * omega / 2;
             r.routh += w.inertia * omega * omega / 2;
-        } else if (w.drive == drive::free) {
-            for (int i = 0; i < 3; ++i)
+        } else { // free or torque-driven: p_k a parameter or a state
+            if (w.drive == drive::torque) r.torqued = true;
+            for (int i = 0; i < 3; ++i) {
                 r.h[i] += w.momentum * w.axis[i];
+                if (w.drive == drive::torque) r.motor[i] -= w.drive_value * w.axis[i];
+            }
             r.kinetic += w.momentum * w.momentum / (2 * w.inertia);
             r.routh -= w.momentum * w.momentum / (2 * w.inertia);
         }
@@ -99,13 +102,27 @@ std::vector<ex> wheel_rates(const model_spec& spec, const vector3& omega) {
     return r;
 }
 
-void refuse_torque_wheels(const model_spec& spec, const std::string& what) {
+void refuse_torque_wheels(const model_spec& spec, const std::string& what,
+                          const std::string& instead) {
     for (const wheel_spec& w : spec.wheels)
         if (w.drive == drive::torque)
-            throw user_error(w.drive_where,
-                             "wheel '" + w.name + "' has a torque drive, which " + what +
-                                 " does not take yet (its momentum would be a state of the "
-                                 "run); give it drive: free or {rate: ...}");
+            throw user_error(w.drive_where, "wheel '" + w.name + "' has a torque drive, which " +
+                                                what + " does not take (its momentum p_" + w.name +
+                                                " is a state of the run); " + instead);
+}
+
+std::vector<ex> wheel_torques(const model_spec& spec) {
+    std::vector<ex> r;
+    for (const wheel_spec& w : spec.wheels)
+        if (w.drive == drive::torque) r.push_back(w.drive_value);
+    return r;
+}
+
+std::vector<const wheel_spec*> torque_wheels(const model_spec& spec) {
+    std::vector<const wheel_spec*> r;
+    for (const wheel_spec& w : spec.wheels)
+        if (w.drive == drive::torque) r.push_back(&w);
+    return r;
 }
 
 } // namespace rotgen

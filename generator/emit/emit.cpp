@@ -538,7 +538,7 @@ emitted_header emit_header(const model_spec& spec, const lowered_form& lf,
             {fn.name, b.before, b.after, b.temporaries, constants_op_count(fn.program), ""});
         functions += function_text(lf, fn, b);
     }
-    if (lf.form == form_kind::body && lf.state_names.size() == 7)
+    if (lf.form == form_kind::body && lf.state_names.front() == "qw") // the quaternion is kept
         functions += quaternion_functions(spec.angles);
     const std::string params = fill_template("params.hpp.in", {{"model_file", one_line(spec.file)},
                                                                {"members", params_members(lf)}}) +

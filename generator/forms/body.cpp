@@ -161,6 +161,17 @@ void add_applied_torque(const model_spec& spec, euler_chart& chart, body_torque&
     }
 }
 
+// The torque-driven wheels' reaction -sum tau_k a_k (derive/wheels.hpp), through the chart where
+// the torques mention angles or rates.
+void add_motor_reaction(const derivation& d, euler_chart& chart, body_torque& b) {
+    if (!d.wheels.torqued) return;
+    for (int i = 0; i < 3; ++i) {
+        const ex t = chart(d.wheels.motor[i]);
+        if (!t.is_equal(d.wheels.motor[i])) b.needs_orientation = true;
+        b.tau[i] += t;
+    }
+}
+
 body_torque torque_of(const model_spec& spec, const derivation& d, const vec& e,
                       euler_chart& chart) {
     body_torque b;
@@ -175,6 +186,7 @@ body_torque torque_of(const model_spec& spec, const derivation& d, const vec& e,
     add_other_potential(d, chart, v_rest, b);
     add_damping(spec, d, chart, b);
     add_applied_torque(spec, chart, b);
+    add_motor_reaction(d, chart, b);
     return b;
 }
 
@@ -278,6 +290,7 @@ void build_body(const model_spec& spec, const derivation& d, form_expressions& f
     const body_torque torque = torque_of(spec, d, e, chart);
     const bool quaternion = torque.needs_orientation || orientation;
     body_state_and_rates(spec, d, w, torque.tau, quaternion, f);
+    add_wheel_states(spec, f, [&chart](const ex& e) { return chart(e); });
     body_notes(spec, quaternion, chart.used(), f);
     body_outputs(spec, d, w, torque.potential, R, quaternion, f);
 }

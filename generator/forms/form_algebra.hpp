@@ -12,6 +12,7 @@
 #include <ginac/ginac.h>
 
 #include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -51,9 +52,16 @@ hamilton_parts hamilton(const derivation& d);
 
 // The forms (each appends its state, rates, notes and outputs to f).
 void build_lagrangian(const model_spec& spec, const derivation& d, form_expressions& f);
-void build_hamiltonian(const derivation& d, form_expressions& f);
+void build_hamiltonian(const model_spec& spec, const derivation& d, form_expressions& f);
 void build_reduced(const model_spec& spec, const derivation& d, form_expressions& f);
 void build_body(const model_spec& spec, const derivation& d, form_expressions& f, bool orientation);
+// The torque-driven wheels' momenta appended to the state (forms/wheel_states.cpp): p_k' = tau_k
+// with in_state(tau_k) in the form's variables; their parameters p_<wheel> leave f.parameters.
+void add_wheel_states(const model_spec& spec, form_expressions& f,
+                      const std::function<GiNaC::ex(const GiNaC::ex&)>& in_state);
+// user_error where the form takes no torque-driven wheel (the reduced form).
+void refuse_torque_wheels_in(const model_spec& spec, form_kind form);
+
 // The linear rotor in chart 1 (form rotor) or 2 (rotor_x): forms/rotor.cpp.
 void build_rotor(const model_spec& spec, form_expressions& f, int chart);
 

@@ -83,7 +83,7 @@ std::vector<ex> derivatives(const form_expressions& f, const std::vector<ex>& ra
     std::vector<ex> J(n * m);
     const bool solve = f.form == form_kind::lagrangian && f.strategy == lagrangian_strategy::solve;
     for (std::size_t i = 0; i < n; ++i) {
-        if (solve && i >= 3) continue;
+        if (solve && i >= 3 && i < 6) continue; // 6..: a torque-driven wheel's p, by diff
         for (std::size_t k = 0; k < m; ++k)
             J[i * m + k] = d_by(rates[i], variables[k]);
     }
@@ -121,12 +121,13 @@ form_expressions build_form(const model_spec& model, const derivation& d, form_k
     f.strategy = strategy;
     f.time = symbols().t;
     f.parameters = model_parameters(spec);
+    refuse_torque_wheels_in(model, form);
     switch (form) {
     case form_kind::lagrangian:
         build_lagrangian(spec, d, f);
         break;
     case form_kind::hamiltonian:
-        build_hamiltonian(d, f);
+        build_hamiltonian(spec, d, f);
         break;
     case form_kind::reduced:
         build_reduced(spec, d, f);

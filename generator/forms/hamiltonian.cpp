@@ -8,7 +8,7 @@
 
 namespace rotgen::form_detail {
 
-void build_hamiltonian(const derivation& d, form_expressions& f) {
+void build_hamiltonian(const model_spec& spec, const derivation& d, form_expressions& f) {
     const auto& s = symbols();
     const auto& q_names = f.angles.names;
     for (int i = 0; i < 3; ++i)
@@ -26,6 +26,12 @@ void build_hamiltonian(const derivation& d, form_expressions& f) {
     }
     f.alternative_rates.push_back({d.hamilton_qdot[0], d.hamilton_qdot[1], d.hamilton_qdot[2],
                                    d.hamilton_pdot[0], d.hamilton_pdot[1], d.hamilton_pdot[2]});
+    GiNaC::exmap in_state; // a wheel's torque: omega = I^{-1} (l - h), q_dot = J^{-1} omega
+    for (int i = 0; i < 3; ++i) {
+        in_state[s.omega[i]] = h.w[i];
+        in_state[s.qd[i]] = h.qdot[i];
+    }
+    add_wheel_states(spec, f, [&](const GiNaC::ex& e) { return e.subs(in_state); });
     f.notes.push_back(
         "l = J^{-T} p (body angular momentum), omega = I^{-1} l, q_dot = J^{-1} omega = dH/dp, "
         "p_dot = -dH/dq + Q; " +

@@ -46,8 +46,13 @@ vec euler_equations_q_ddot(const model_spec& spec, const derivation& d) {
     const vec Iw = mat_vec(spec.inertia, d.omega);
     const vec gyro = cross(d.omega, momentum_of(d, Iw)); // omega x (I omega + h)
     vec b;
+    GiNaC::exmap omega_of_rates; // the motors' reaction (torque-driven wheels): -sum tau a
     for (int i = 0; i < 3; ++i)
+        omega_of_rates[s.omega[i]] = d.omega[i];
+    for (int i = 0; i < 3; ++i) {
         b[i] = d.wheels.driven ? tau[i] - gyro[i] - d.wheels.h_dot[i] : tau[i] - gyro[i];
+        if (d.wheels.torqued) b[i] += d.wheels.motor[i].subs(omega_of_rates);
+    }
     const vec wd = mat_vec(d.inverse_inertia, b);
     vec a;
     for (int i = 0; i < 3; ++i) {
@@ -109,6 +114,10 @@ void build_lagrangian(const model_spec& spec, const derivation& d, form_expressi
         solve_rates(d, f);
     for (int i = 0; i < 3; ++i)
         f.rate_names.push_back(q_names[i] + "_ddot");
+    GiNaC::exmap in_state; // a wheel's torque: omega = J q_dot
+    for (int i = 0; i < 3; ++i)
+        in_state[s.omega[i]] = d.omega[i];
+    add_wheel_states(spec, f, [&](const ex& e) { return e.subs(in_state); });
 
     // omega = J q_dot (5.30); T = 1/2 omega . I omega (5.38); p = J^T I omega.
     const vec w = d.omega;

@@ -58,6 +58,10 @@ std::string wheels_text(const model_spec& spec) {
        << "  T above is the total kinetic energy (body and wheels); L is Routh's function, the\n"
        << "  free wheels' angles eliminated (cyclic: their momenta p_k are parameters);\n"
        << "  Euler: I omega_dot + omega x (I omega + h) = tau - h_dot\n";
+    if (t.torqued)
+        os << "  torque-driven wheels: p_k' = tau_k, states of the run (the parameters p_k are\n"
+           << "  their initial values); the body feels -tau_k a_k (in f; not in p_dot: p includes "
+              "h)\n";
     return os.str();
 }
 

@@ -129,6 +129,7 @@ initial_kinematics scene_run::exact_start() {
     m_inertia = start.inertia;
     check_physical_inertia(m_scene, m_inertia);
     m_model_parameters = std::move(start.model_parameters);
+    start_wheel_states(m_scene, m_model_parameters, start.k0); // torque-driven wheels' p
     if (m_scene.initial == initial_kind::momenta && !start.k0.have_rates)
         throw user_error(m_scene.initial_where,
                          "momenta cannot give the rates at " + singular_words(m_angles) +
@@ -336,6 +337,7 @@ void scene_run::switch_chart(next to, Eigen::VectorXd& y, double& t_from) {
     } else if (!is_rotor_form(target)) {
         k = from_body(m_sequence, last.y, m_inertia);
     }
+    carry_wheel_states(m_scene, from.f, last.y, k);
     const double st = sin_theta_of(m_sequence, from.form, last.y);
     const std::string failed = is_rotor_form(target) ? "; the run in the first chart failed: "
                                                      : "; the Euler-angle run failed: ";

@@ -185,6 +185,8 @@ long double state_value(const initial_kinematics& k, const angle_convention& c,
         if (name == "p_" + q) return k.p[u];
         if (name == "omega" + std::to_string(i + 1)) return k.omega[u];
     }
+    for (const auto& [wheel, value] : k.wheels)
+        if (name == wheel) return value;
     if (name == "qw") return k.quat.w();
     if (name == "qx") return k.quat.x();
     if (name == "qy") return k.quat.y();
@@ -221,7 +223,9 @@ Eigen::VectorXd form_state(const form_expressions& f, const initial_kinematics& 
     Eigen::VectorXd y(static_cast<Eigen::Index>(f.state.size()));
     for (std::size_t s = 0; s < f.state.size(); ++s) {
         const std::string& name = f.state[s].name;
-        const bool needs_rates = name.find("_dot") != std::string::npos || name.rfind("p_", 0) == 0;
+        bool needs_rates = name.find("_dot") != std::string::npos || name.rfind("p_", 0) == 0;
+        for (const auto& w : k.wheels)
+            needs_rates = needs_rates && w.first != name;
         // Unreachable from a scene: without rates (|sin theta| < 1e-12) an Euler-angle form
         // either starts in the body form (decide_chart: the switch below 0.1) or is refused by
         // decide_chart (|sin theta| < 1e-10 without the switch), and a switch back to it happens

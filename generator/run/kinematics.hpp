@@ -27,6 +27,8 @@ struct initial_kinematics {
     std::array<long double, 3> q{}, qd{}, p{}, omega{};
     bool have_rates = true;
     Eigen::Quaternion<long double> quat; // body -> space, from the angles (scalar first: w x y z)
+    // The torque-driven wheels' momenta p_<wheel> (states of the run), by name.
+    std::vector<std::pair<std::string, long double>> wheels;
 };
 
 // The exact value of a scene's number: the expression it was written as while `current` is still
@@ -68,6 +70,14 @@ std::vector<double> form_parameter_values(const scene_spec& scene,
 // the initial kinematics, the angles named by c. std::logic_error for another name.
 long double state_value(const initial_kinematics& k, const angle_convention& c,
                         const std::string& name);
+
+// A torque-driven wheel's momentum (run/wheel_states.cpp): k.wheels at the start, the parameters
+// p_<wheel> of the member (model_values in the order of the model's parameters); after a change of
+// chart, the values the state y of form f holds.
+void start_wheel_states(const scene_spec& scene, const std::vector<long double>& model_values,
+                        initial_kinematics& k);
+void carry_wheel_states(const scene_spec& scene, const form_expressions& f,
+                        const Eigen::VectorXd& y, initial_kinematics& k);
 
 // The state vector of form f (a three-angle form's, or a linear rotor's) from the initial
 // kinematics, rounded to double; `scene_form` names the scene's form in the logic_error of a start

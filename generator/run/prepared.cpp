@@ -81,7 +81,8 @@ void prepared_scene::default_record_follows_form(stage_timings& timings) {
 // The energy, and every momentum the derivation found conserved.
 void prepared_scene::list_invariants() {
     const model_spec& spec = m_scene.model;
-    m_invariants = {{"energy", !spec.has_damping && !spec.has_torque}};
+    const bool motors = m_d.wheels.driven || m_d.wheels.torqued; // wheels' motors do work
+    m_invariants = {{"energy", !spec.has_damping && !spec.has_torque && !motors}};
     for (int i : m_d.cyclic)
         if (m_scene.form != form_kind::reduced)
             m_invariants.push_back({"p_" + spec.angles.names[i], true});

@@ -203,9 +203,14 @@ start_derivatives start_derivatives_of(const scene_spec& scene, const derivation
     for (Eigen::Index j = 0; j < k; ++j) {
         const kinematics_derivative dk =
             differentiate.by(scene.sensitivities.keys[static_cast<std::size_t>(j)]);
-        for (Eigen::Index i = 0; i < n; ++i)
-            r.dy0(i, j) =
-                state_derivative(dk, scene.model.angles, f.state[static_cast<std::size_t>(i)].name);
+        for (Eigen::Index i = 0; i < n; ++i) {
+            const std::string& name = f.state[static_cast<std::size_t>(i)].name;
+            bool wheel = false; // a torque-driven wheel's p starts at its parameter's value
+            for (const parameter& p : scene.model.parameters)
+                wheel = wheel || (p.wheel_state && p.name == name);
+            r.dy0(i, j) = wheel ? parameter_derivative(dk, scene.model, name)
+                                : state_derivative(dk, scene.model.angles, name);
+        }
         for (Eigen::Index i = 0; i < np; ++i)
             r.dP(i, j) = parameter_derivative(dk, scene.model,
                                               f.parameters[static_cast<std::size_t>(i)].name);

@@ -36,7 +36,10 @@ class initial_reader {
         for (const auto& g : m_rates)
             allowed.insert(allowed.end(), g.begin(), g.end());
         for (const auto& p : m_scene.model.parameters) // free wheels: scene/wheel_initial.cpp
-            if (p.wheel_momentum) allowed.push_back(p.name);
+            if (p.wheel_momentum) {                    // p_<wheel> or <wheel>_dot
+                allowed.push_back(p.name);
+                allowed.push_back(p.name.substr(2) + "_dot");
+            }
         check_keys(m_n, allowed, m_file, "initial");
         const int att = chosen(m_attitude, "give the attitude one way only: the angles, a "
                                            "quaternion q0..q3 or the matrix A");

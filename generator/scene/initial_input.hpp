@@ -22,8 +22,11 @@ namespace rotgen::scene_detail {
 void read_initial_state(scene_spec& scene, const YAML::Node& n, const source_location& key,
                         const value_reader& values, const std::string& file);
 
-// A free wheel's momentum p_<wheel> written in `initial` (scene/wheel_initial.cpp): the value of
-// the model parameter of that name; refused when `parameters` gives it too.
+// A free or torque-driven wheel's momentum p_<wheel> written in `initial`
+// (scene/wheel_initial.cpp): the value of the model parameter of that name; refused when
+// `parameters` gives it too. Or its rate <wheel>_dot relative to the body: p_<wheel> = J (a .
+// omega0 + <wheel>_dot), omega0 the body's initial angular velocity (after read_initial_state), J
+// and a at the scene's parameters.
 void read_wheel_initial(scene_spec& scene, const YAML::Node& n, const YAML::Node& parameters,
                         const value_reader& values, const std::string& file);
 

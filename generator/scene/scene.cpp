@@ -150,6 +150,7 @@ class scene_reader {
         // A new parameters mapping (a value may be an alias shared with other nodes).
         YAML::Node values(YAML::NodeType::Map);
         for (std::size_t i = 0; i < m_scene.parameters.size(); ++i) {
+            if (m_scene.model.parameters[i].wheel_momentum) continue; // the wheels' own, below
             char text[32];
             std::snprintf(text, sizeof text, "%.17g", m_scene.parameters[i]);
             values[m_scene.model.parameters[i].name] = std::string(text);

@@ -36,6 +36,9 @@ struct parameter {
     // A free wheel's axial momentum p_<wheel> (spec/wheels_input.cpp): initial data of a run
     // (the scene's `initial`), not a model constant, so never specialised.
     bool wheel_momentum = false;
+    // A torque-driven wheel's p_<wheel>: its momentum is a state of the run (p' = tau) and this
+    // parameter only its initial value; the forms take the symbol as that state.
+    bool wheel_state = false;
 };
 
 // A wheel (rotor) spinning about an axis fixed in the body (a gyrostat; spec/wheels_input.cpp).
@@ -49,7 +52,7 @@ struct wheel_spec {
     drive_kind drive = drive_kind::free;
     // rate: alpha_dot(t); torque: the motor torque on the wheel about its axis. Free: 0.
     GiNaC::ex drive_value;
-    GiNaC::ex momentum; // free: the parameter p_<name> (conserved); otherwise 0
+    GiNaC::ex momentum; // free: the parameter p_<name> (conserved); torque: the state p_<name>
     source_location where, drive_where;
 };
 

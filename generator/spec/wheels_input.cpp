@@ -9,7 +9,8 @@
 // The model's inertia holds the wheels' masses and transverse moments but not J a a^T. A free
 // wheel's axial momentum p = J (a . omega + alpha_dot) is conserved: it becomes the parameter
 // p_<name> (default 0), initial data that a scene's `initial` or `parameters` sets. A `rate`
-// drive prescribes alpha_dot(t); a `torque` drive is read and refused by the derivation.
+// drive prescribes alpha_dot(t). A `torque` drive's p_<name> is a state of the run (p' = tau): the
+// parameter p_<name> (wheel_state) is its initial value, and the symbol names the state.
 #include "spec/spec_detail.hpp"
 
 #include "expr/symbols.hpp"
@@ -35,13 +36,17 @@ void model_reader::read_wheels(const YAML::Node& n) {
             taken.push_back(s);
     for (const auto& item : n) {
         wheel_spec w = read_wheel(item, taken);
-        if (w.drive == wheel_spec::drive_kind::free) {
+        if (w.drive != wheel_spec::drive_kind::rate) {
+            const bool free = w.drive == wheel_spec::drive_kind::free;
             parameter p;
             p.name = "p_" + w.name;
-            p.description = "axial momentum of the free wheel '" + w.name + "' (conserved)";
+            p.description = free ? "axial momentum of the free wheel '" + w.name + "' (conserved)"
+                                 : "initial axial momentum of the torque-driven wheel '" + w.name +
+                                       "' (a state of the run)";
             p.symbol = GiNaC::realsymbol(p.name);
             p.where = w.where;
             p.wheel_momentum = true;
+            p.wheel_state = !free;
             w.momentum = p.symbol;
             m_names[p.name] = p.symbol;
             m_spec.parameters.push_back(p);

@@ -64,6 +64,13 @@ view_body view_body_of(const scene_spec& scene) {
     const bool off_centre = com.norm() > 0;
     const Eigen::Vector3d centre = off_centre ? Eigen::Vector3d(0.5 * com / com.norm()) : com;
     b.centre = {centre[0], centre[1], centre[2]};
+    for (const wheel_spec& w : scene.model.wheels) {
+        Eigen::Vector3d a(value_at(w.axis[0], scene), value_at(w.axis[1], scene),
+                          value_at(w.axis[2], scene));
+        a.normalize();
+        b.wheel_names.push_back(w.name);
+        b.wheel_axes.push_back({a[0], a[1], a[2]});
+    }
     if (scene.model.rotor) { // the line is body axis 3
         b.kind = "rod";
         b.size = {0.06, 0.06, off_centre ? 1.0 : 1.6};
@@ -202,7 +209,12 @@ std::string json_of(const view_data& d) {
        << ",\"columns\":" << json_strings(d.columns) << ",\"values\":" << json_numbers(d.values, 9)
        << ",\"speed\":1,\"gravity\":" << (b.gravity ? "true" : "false")
        << ",\"body\":{\"kind\":" << json_string(b.kind) << ",\"size\":" << json_numbers(b.size)
-       << ",\"centre\":" << json_numbers(b.centre) << ",\"axes\":" << json_numbers(b.axes) << "}}";
+       << ",\"centre\":" << json_numbers(b.centre) << ",\"axes\":" << json_numbers(b.axes)
+       << ",\"wheels\":[";
+    for (std::size_t k = 0; k < b.wheel_axes.size(); ++k)
+        os << (k ? "," : "") << "{\"name\":" << json_string(b.wheel_names[k])
+           << ",\"axis\":" << json_numbers(b.wheel_axes[k]) << "}";
+    os << "]}}";
     return os.str();
 }
 

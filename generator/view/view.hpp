@@ -3,11 +3,11 @@
 //
 // The page shows the body as a solid whose shape follows its inertia (a uniform box whose
 // principal moments are in the body's proportions, along the principal axes; a rod for a linear
-// rotor), its body axes, the fixed point, gravity's direction, the angular momentum L in space,
-// and the trace of the figure axis's tip (body axis 3) on the unit sphere. Attitudes between
-// samples are interpolated by quaternion slerp. Conventions: the attitude is the unit quaternion
-// q = (q0, q1, q2, q3), scalar first, rotating body axes into space axes (R(q) = A^T, A the
-// passive z-x-z matrix of (5.25)); space z is up.
+// rotor), its body axes, a gyrostat's wheels (a disc on each wheel's axis), the fixed point,
+// gravity's direction, the angular momentum L in space, and the trace of the figure axis's tip
+// (body axis 3) on the unit sphere. Attitudes between samples are interpolated by quaternion slerp.
+// Conventions: the attitude is the unit quaternion q = (q0, q1, q2, q3), scalar first, rotating
+// body axes into space axes (R(q) = A^T, A the passive z-x-z matrix of (5.25)); space z is up.
 #pragma once
 
 #include "scene/scene.hpp"
@@ -25,6 +25,9 @@ struct view_body {
     std::array<double, 3> centre{};         // the solid's centre in body axes (the centre of mass)
     std::array<double, 4> axes{1, 0, 0, 0}; // principal frame in body axes, as a quaternion
     bool gravity = false;                   // the model has uniform gravity (drawn along -z)
+    // A gyrostat's wheels (drawn as discs on their axes): names and unit axes in body axes.
+    std::vector<std::string> wheel_names;
+    std::vector<std::array<double, 3>> wheel_axes;
 };
 
 struct view_data {

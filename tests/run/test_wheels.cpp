@@ -260,8 +260,6 @@ TEST_CASE("bad wheels: exit 2, one line naming file and place", "[wheels]") {
             "6:12", "already taken");
     refused("wheels:\n  - {name: Jw, axis: [0, 0, 1], inertia: Jw}\n", "5:12", "already taken");
     refused("wheels:\n  - {name: w, axis: [0, 0, 1], inertia: -Jw}\n", "5:41", "must be positive");
-    refused("wheels:\n  - {name: w, axis: [0, 0, 1], inertia: Jw, drive: {torque: t}}\n", "5:61",
-            "torque drive");
 }
 
 TEST_CASE("split methods refuse a model with wheels", "[wheels]") {
@@ -338,4 +336,186 @@ TEST_CASE("rotgen sweep varies a free wheel's momentum like any parameter", "[wh
     // beyond the threshold h/omega = 1 body axis 2 stays up: observed 0.99978, 0.99995
     CHECK(t.rows[1][t.column("final.body_y_z")] > 0.98);
     CHECK(t.rows[2][t.column("final.body_y_z")] > 0.98);
+}
+
+// Torque-driven wheels (`drive: {torque: ...}`), against truth computed here:
+//   * three skewed wheels whose motors use t, omega, an angle and a rate, no external torque: the
+//     total angular momentum in space is constant (the motor torques are internal), and the
+//     energy changes by the motors' work, E(t) - E(0) = integral of sum_k tau_k alpha_dot_k dt
+//     = integral of sum_k <wheel>_dot dp_k (p_k' = tau_k), in the lagrangian, hamiltonian and
+//     body forms;
+//   * the shipped reaction-wheel slew (models/scenes/reaction_wheel_slew.yaml) reaches its target;
+//   * `initial` takes a wheel's rate <wheel>_dot instead of its momentum;
+//   * the reduced form and the split methods are refused with one located line;
+//   * sensitivities (a wheel's momentum is a state) against central differences.
+namespace {
+
+const std::string torque_model = R"yaml(model:
+  name: torque_wheels_run
+  parameters: {A: 2.0, B: 3.0, C: 4.5, D: 0.2, Jw: 0.1, k: 0.3}
+  inertia: [[A, D, 0], [D, B, -D], [0, -D, C]]
+  wheels:
+    - {name: w1, axis: [1, 0.2, 0], inertia: Jw, drive: {torque: "k*sin(t) - 0.2*omega1"}}
+    - {name: w2, axis: [0, 1, 0.3], inertia: Jw, drive: {torque: "0.4*cos(theta) + 0.1*phi_dot"}}
+    - {name: w3, axis: [0.1, -0.2, 1], inertia: Jw, drive: {torque: "0.3*omega2*omega3 - 0.2*sin(psi)"}}
+)yaml";
+
+} // namespace
+
+TEST_CASE("torque-driven wheels: L in space is conserved and the energy changes by the motors' "
+          "work",
+          "[wheels][torque]") {
+    for (const std::string form : {"lagrangian", "hamiltonian", "body"}) {
+        INFO(form);
+        const csv_table t = run_scene(
+            "torque_wheels_" + form,
+            torque_model + "form: " + form + "\nswitch_chart: false\n" +
+                "initial: {phi: 0.3, theta: 1.0, psi: 0.2, omega1: 0.5, omega2: -0.4, omega3: "
+                "0.9, p_w1: 0.3, p_w2: -0.5, p_w3: 0.8}\ntime: {start: 0, end: 10, samples: "
+                "10001}\nintegrator: {method: dop853, rtol: 1e-12, atol: 1e-12}\nrecord: [Lx, Ly, "
+                "Lz, energy, p_w1, p_w2, p_w3, w1_dot, w2_dot, w3_dot]\n");
+        const auto& r0 = t.rows.front();
+        // The work to sample i by the trapezoid of sum wheel_dot dp over steps of `every` samples
+        const auto work_to = [&](std::size_t i, std::size_t every) {
+            double w = 0;
+            for (std::size_t j = every; j <= i; j += every)
+                for (const std::string k : {"w1", "w2", "w3"}) {
+                    const std::size_t p = t.column("p_" + k), d = t.column(k + "_dot");
+                    w += (t.rows[j][p] - t.rows[j - every][p]) *
+                         (t.rows[j][d] + t.rows[j - every][d]) / 2;
+                }
+            return w;
+        };
+        double drift_L = 0, change = 0, p_change = 0;
+        for (const auto& r : t.rows) {
+            for (const char* n : {"Lx", "Ly", "Lz"})
+                drift_L = std::max(drift_L, std::abs(r[t.column(n)] - r0[t.column(n)]));
+            for (const char* n : {"p_w1", "p_w2", "p_w3"})
+                p_change = std::max(p_change, std::abs(r[t.column(n)] - r0[t.column(n)]));
+            change = std::max(change, std::abs(r[t.column("energy")] - r0[t.column("energy")]));
+        }
+        double worst = 0; // at every 1000th sample, the trapezoid's h^2 error extrapolated away
+        for (std::size_t i = 1000; i < t.rows.size(); i += 1000) {
+            const double w = (4 * work_to(i, 1) - work_to(i, 2)) / 3;
+            const double e = t.rows[i][t.column("energy")] - r0[t.column("energy")];
+            worst = std::max(worst, std::abs(e - w));
+        }
+        CHECK(p_change > 0.3);  // the motors change the wheels' momenta: observed 0.83
+        CHECK(change > 0.1);    // the motors do work: observed 3.6
+        CHECK(worst < 1.5e-12); // observed 1.3e-13 (hamiltonian), 8.1e-14 (lagrangian)
+        CHECK(drift_L < 1e-11); // observed 1.0e-12 (lagrangian), 2.8e-13 (body)
+    }
+}
+
+TEST_CASE("the reaction-wheel slew reaches its target attitude from rest", "[wheels][torque]") {
+    // models/scenes/reaction_wheel_slew.yaml: from yaw 60, pitch -30, roll 45 degrees at rest to
+    // the space frame (87 degrees) by the PD law through the three wheels' motors.
+    const std::string scene =
+        std::string(ROTGEN_SOURCE_DIR) + "/models/scenes/reaction_wheel_slew.yaml";
+    const std::string csv = std::string(ROTGEN_BINARY_DIR) + "/reaction_wheel_slew.csv";
+    const run_result r = run_rotgen("simulate '" + scene + "' -o '" + csv + "'");
+    INFO(r.out << r.err);
+    REQUIRE(r.status == 0);
+    const csv_table t = read_csv(csv);
+    std::remove(csv.c_str());
+    const auto error = [&](std::size_t i) { // the angle of the attitude from the target
+        return 2 * std::acos(std::min(1.0, std::abs(t.rows[i][t.column("q0")])));
+    };
+    double largest_L = 0, largest_p = 0;
+    for (const auto& row : t.rows) {
+        for (const char* n : {"Lx", "Ly", "Lz"})
+            largest_L = std::max(largest_L, std::abs(row[t.column(n)]));
+        largest_p = std::max(largest_p, std::abs(row[t.column("p_wheel_x")]));
+    }
+    CHECK(error(0) == Approx(1.5244).margin(1e-4)); // 87.3 degrees at the start
+    CHECK(error(t.rows.size() / 4) > 0.05);         // still turning at t = 10: observed 0.083
+    CHECK(error(t.rows.size() - 1) < 3e-5);         // at t = 40: observed 3.2e-6 rad
+    CHECK(largest_p > 0.5);                         // the wheels took the turn: observed 0.67
+    CHECK(std::abs(t.rows.back()[t.column("p_wheel_x")]) < 1e-6); // and gave it back: 9.7e-8
+    CHECK(largest_L < 3e-15); // the motors' torques are internal: observed 3.1e-16
+}
+
+TEST_CASE("initial takes a wheel's rate relative to the body instead of its momentum",
+          "[wheels][torque]") {
+    // p = J (a . omega0 + wheel_dot): J = 0.1, a = (1, 0.2, 0) / |a|, omega0 from the rates
+    const csv_table t = run_scene(
+        "torque_wheels_rate",
+        torque_model + "form: body\ninitial: {phi: 0.3, theta: 1.0, psi: 0.2, phi_dot: 0.5, "
+                       "theta_dot: -0.4, psi_dot: 0.9, w1_dot: 7, p_w2: -0.5, w3_dot: -2}\ntime: "
+                       "{start: 0, end: 1, samples: 3}\nrecord: [omega1, omega2, omega3, w1_dot, "
+                       "w3_dot, p_w1, p_w2]\n");
+    const auto& r0 = t.rows.front();
+    CHECK(r0[t.column("w1_dot")] == Approx(7).margin(1e-13));
+    CHECK(r0[t.column("w3_dot")] == Approx(-2).margin(1e-13));
+    CHECK(r0[t.column("p_w2")] == Approx(-0.5).margin(1e-15));
+    const double a = std::sqrt(1.04);
+    const double w = (r0[t.column("omega1")] + 0.2 * r0[t.column("omega2")]) / a;
+    CHECK(r0[t.column("p_w1")] == Approx(0.1 * (w + 7)).margin(1e-14));
+    // and for a free wheel
+    const csv_table f = run_scene(
+        "free_wheel_rate",
+        "model:\n  name: free_rate\n  parameters: {A: 2.0, B: 3.0, C: 4.0, Jw: 0.2}\n  inertia: "
+        "[A, B, C]\n  wheels:\n    - {name: wheel, axis: [0, 0, 1], inertia: Jw}\ninitial: {phi: "
+        "0.3, theta: 1.0, psi: 0.2, omega1: 0.5, omega2: -0.4, omega3: 0.9, wheel_dot: 3}\n"
+        "time: {start: 0, end: 1, samples: 3}\nrecord: [wheel_dot, p_wheel]\n");
+    CHECK(f.rows.front()[f.column("p_wheel")] == Approx(0.2 * (0.9 + 3)).margin(1e-15));
+    CHECK(f.rows.front()[f.column("wheel_dot")] == Approx(3).margin(1e-14));
+}
+
+TEST_CASE("torque-driven wheels: what is refused is one located line, exit 2", "[wheels][torque]") {
+    const auto refused = [](const std::string& text, const std::string& where,
+                            const std::string& what) {
+        const scratch_file scene("torque_wheels_bad.yaml", text);
+        const run_result r = run_rotgen("simulate '" + scene.path + "' -o -");
+        INFO(r.out << r.err);
+        CHECK(r.status == 2);
+        CHECK(r.err.find(where) != std::string::npos);
+        CHECK(r.err.find(what) != std::string::npos);
+        CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    };
+    const std::string initial = "initial: {phi: 0.3, theta: 1.0, psi: 0.2, omega1: 0.5, omega2: "
+                                "-0.4, omega3: 0.9";
+    const std::string time = "time: {start: 0, end: 1, samples: 3}\n";
+    refused(torque_model + "form: reduced\n" + initial + "}\n" + time,
+            "torque_wheels_bad.yaml:6:67: ",
+            "wheel 'w1' has a torque drive, which the reduced form does not take (its momentum "
+            "p_w1 is a state of the run); use the lagrangian, hamiltonian or body form");
+    refused(torque_model + initial + "}\n" + time + "integrator: {method: split4, step: 0.01}\n",
+            "torque_wheels_bad.yaml:", "carries wheels");
+    refused(torque_model + initial + ", p_w1: 1, w1_dot: 2}\n" + time,
+            "torque_wheels_bad.yaml:9:100: ",
+            "give the wheel's momentum 'p_w1' or its rate 'w1_dot', not both");
+}
+
+TEST_CASE("torque-driven wheels: sensitivities against central differences of the run",
+          "[wheels][torque][sensitivities]") {
+    // d(omega1)/d(k) and d(p_w1)/d(p_w1 at t0) at t = 2 against runs with k and p_w1 moved by
+    // +-1e-4 (a scene's `parameters` on a model with wheels: the override is checked without
+    // the wheels' own parameters)
+    const std::string start = "initial: {phi: 0.3, theta: 1.0, psi: 0.2, omega1: 0.5, omega2: "
+                              "-0.4, omega3: 0.9, p_w2: -0.5, p_w3: 0.8";
+    const std::string rest = "time: {start: 0, end: 2, samples: 3}\nintegrator: {method: dop853, "
+                             "rtol: 1e-12, atol: 1e-12}\nrecord: [omega1, p_w1]\n";
+    const csv_table s =
+        run_scene("torque_wheels_sens", torque_model + "form: body\n" + start + ", p_w1: 0.3}\n" +
+                                            rest + "sensitivities: [parameters.k]\n");
+    const auto at_end = [&](const std::string& k, const std::string& p, const char* column) {
+        const csv_table t =
+            run_scene("torque_wheels_fd", torque_model + "form: body\nparameters: {k: " + k +
+                                              "}\n" + start + ", p_w1: " + p + "}\n" + rest);
+        return t.rows.back()[t.column(column)];
+    };
+    const double dk =
+        (at_end("0.3001", "0.3", "omega1") - at_end("0.2999", "0.3", "omega1")) / 2e-4;
+    const double dp = (at_end("0.3", "0.3001", "p_w1") - at_end("0.3", "0.2999", "p_w1")) / 2e-4;
+    const auto& last = s.rows.back();
+    CHECK(std::abs(last[s.column("d(omega1)/d(parameters.k)")]) > 0.01); // observed -0.115
+    // observed 2.3e-10 apart (the differences' own error)
+    CHECK(last[s.column("d(omega1)/d(parameters.k)")] == Approx(dk).margin(3e-9));
+    const csv_table p =
+        run_scene("torque_wheels_sens_p", torque_model + "form: body\n" + start + ", p_w1: 0.3}\n" +
+                                              rest + "sensitivities: [parameters.p_w1]\n");
+    CHECK(p.rows.front()[p.column("d(p_w1)/d(parameters.p_w1)")] == 1);
+    CHECK(p.rows.back()[p.column("d(p_w1)/d(parameters.p_w1)")] ==
+          Approx(dp).margin(2e-10)); // observed 1.9e-11 apart (0.885)
 }

@@ -155,6 +155,38 @@ def refusals(rotgen, work, scene, csv):
     refused(rotgen, work, ["view", csv, "-o", page],
             "rotgen view: give the run's scene (--scene FILE) or its model (--model FILE)", page)
 
+WHEELS = """model: {model}
+form: body
+initial: {{yaw: pi/3, pitch: -pi/6, roll: pi/4, omega1: 0, omega2: 0, omega3: 0}}
+time: {{start: 0, end: 5, samples: 51}}
+integrator: {{method: dop853, rtol: 1e-10, atol: 1e-12}}
+record: [q0, q1, q2, q3, Lx, Ly, Lz]
+"""
+
+def wheel_checks(a, work):
+    """A gyrostat's page (the reaction-wheel slew): a disc on each wheel's axis, drawn at 0.8 R(q) a
+    with a = body x, y, z (models/reaction_wheels.yaml), and no L arrow (L is zero)."""
+    scene = os.path.join(work, "wheels.yaml")
+    open(scene, "w").write(WHEELS.format(model=os.path.join(a.source, "models",
+                                                            "reaction_wheels.yaml")))
+    csv, page = os.path.join(work, "wheels.csv"), os.path.join(work, "wheels.html")
+    subprocess.run([a.rotgen, "simulate", scene, "-o", csv, "-q", "--view", page], check=True)
+    rows = [[float(v) for v in line.split(",")] for line in open(csv).read().splitlines()[2:]]
+    for t in (0.0, 2.5):
+        dom, _ = chromium(["--dump-dom"], a.chromium, page, f"?t={t}", work)
+        state = shown_state(dom)
+        drawn = state.get("drawn") if state else None
+        wheels = drawn.get("wheels") if drawn else None
+        check(wheels is not None and len(wheels) == 3, f"t = {t}: three wheels drawn ({wheels})")
+        if not wheels or len(wheels) != 3:
+            continue
+        r = rotation(expected_attitude(rows, t))
+        err = max(abs(wheels[k][i] - 0.8 * r[i][k]) for k in range(3) for i in range(3))
+        # observed 0 (exact: a unit axis, 0.8, the body's matrix)
+        check(err <= 1e-15, f"t = {t}: each wheel's disc is drawn at 0.8 R(q) a ({err:.2e})")
+        check('id="legend-wheels"' in dom and "(L in space is zero)" in dom,
+              f"t = {t}: the legend names the wheel axes and says L is zero")
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--rotgen", required=True)
@@ -197,6 +229,10 @@ def main():
         # observed 5.6e-17
         check(err <= 1e-15, f"t = {t}: the figure axis's tip is the third column of R(q) ({err:.2e})")
         drawn_checks(state.get("drawn"), want, t)
+        check(state.get("drawn", {}).get("wheels") == [] and 'id="legend-wheels"' not in dom,
+              f"t = {t}: a body without wheels draws none")
+
+    wheel_checks(a, work)
 
     shot = os.path.join(work, "shot.png")
     chromium([f"--screenshot={shot}", "--window-size=900,650"], a.chromium, page, "?t=1", work,
