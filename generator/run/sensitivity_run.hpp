@@ -37,7 +37,8 @@ class sensitivity_run {
 
     // The augmented state at t0: y0, then S(t0) (scaled).
     Eigen::VectorXd augmented(const Eigen::VectorXd& y0) const;
-    // The augmented system (refers to this object).
+    // The augmented system (refers to this object); under the Taylor method with the Taylor
+    // coefficients of (y, S) (run/taylor_sensitivity.hpp).
     loaded_system system() const;
     // The augmented state's error layout, from the form state's (above).
     error_layout layout(const error_layout& state) const;
@@ -75,6 +76,7 @@ class sensitivity_run {
     mutable Eigen::MatrixXd m_jacobian, m_dfdp; // scratch (row-major data), one run at a time
     mutable Eigen::MatrixXd m_forcing;          // scratch: (d f/d P) dP/ds
     mutable std::vector<double> m_scratch;
+    std::vector<double> m_taylor_values; // the Taylor method's: parameters, dP/ds inputs
 };
 
 // Refuses the chart switch of a run with sensitivities (user_error at its `sensitivities:`).
