@@ -226,6 +226,22 @@ std::string entry_points(const form_expressions& f, const std::string& unit,
     return shim.str();
 }
 
+// The Taylor coefficients of (y, S) for a Taylor run with sensitivities
+// (run/taylor_sensitivity.hpp), appended to the unit; `forcing` says what its v holds.
+std::string augmented_taylor(const scene_spec& scene, const form_expressions& f,
+                             const std::string& unit, augmented_forcing& forcing,
+                             stage_timings& timings) {
+    return timings.time("lower", "taylor sensitivities", [&] {
+        const augmented_system a = augmented_rates(scene, f);
+        forcing = a.forcing;
+        try {
+            return taylor_sensitivity_source(a, unit, f.parameters.size());
+        } catch (const taylor_unsupported& e) {
+            throw user_error(scene.integrator_where, taylor_refusal(scene.model, e));
+        }
+    });
+}
+
 } // namespace
 
 bool form_gives(const form_expressions& f, const std::string& name) {
@@ -290,13 +306,15 @@ compiled_form compile_form(const scene_spec& scene, form_expressions f, bool ori
     std::vector<std::string> constants;
     for (const auto& k : lowered.constants)
         constants.push_back(k.name.substr(2)); // p.c000 -> c000
-    const std::string source =
+    std::string source =
         header.text +
         entry_points(c.f, header.unit, program, events, c.taylor_call, constants,
                      sensitivity_programs(scene, c.f, program, events)) +
         (scene.sensitivities.active()
              ? variational_entry(c.f, sensitivity_key_names(scene, c.f).size())
              : "");
+    if (taylor && scene.sensitivities.active())
+        source += augmented_taylor(scene, c.f, header.unit, c.taylor_forcing, timings);
     const std::string flags = taylor ? host_exact_vector_flags() : "";
     c.lib = timings.time("compile", header.unit,
                          [&] { return compile_and_load(source, header.unit, flags); });
@@ -324,6 +342,12 @@ compiled_form compile_form(const scene_spec& scene, form_expressions f, bool ori
         c.sys.tay = reinterpret_cast<loaded_system::taylor_kernel>(c.lib.symbol("rotgen_taylor"));
         using count_fn = unsigned long (*)();
         c.sys.series = reinterpret_cast<count_fn>(c.lib.symbol("rotgen_taylor_series"))();
+        if (scene.sensitivities.active()) {
+            c.taylor_sensitivity = reinterpret_cast<loaded_system::taylor_kernel>(
+                c.lib.symbol("rotgen_taylor_sensitivity"));
+            c.taylor_sensitivity_series =
+                reinterpret_cast<count_fn>(c.lib.symbol("rotgen_taylor_sensitivity_series"))();
+        }
     }
     return c;
 }

@@ -10,6 +10,7 @@
 #include "emit/taylor.hpp"
 #include "forms/forms.hpp"
 #include "run/compile_cache.hpp"
+#include "run/taylor_sensitivity.hpp"
 #include "scene/scene.hpp"
 #include "support/timings.hpp"
 
@@ -83,6 +84,11 @@ struct compiled_form {
     // With sensitivities, (v, t, y, out): the augmented system (y, S)' (run/variational.hpp)
     loaded_system::kernel variational = nullptr;
     std::vector<loaded_system::kernel> event_jacobians; // g of each event by (y, P, t): n + P + 1
+    // A Taylor run with sensitivities (else null): taylor(v, t, c, order) of (y, S), v the
+    // parameters then dP/ds at taylor_forcing's inputs (run/taylor_sensitivity.hpp)
+    loaded_system::taylor_kernel taylor_sensitivity = nullptr;
+    std::size_t taylor_sensitivity_series = 0;
+    augmented_forcing taylor_forcing;
     std::vector<value_source> columns;    // one per quantity column (body_x expands to 3)
     std::vector<value_source> invariants; // as the invariants are listed
     std::size_t outputs = 0;              // of the record program

@@ -50,6 +50,8 @@ sensitivity_run::sensitivity_run(const prepared_scene& prepared, const member_va
             m_context.push_back(m_start.dP(p, j));
     for (const value_source& c : cf.columns)
         m_sampled = m_sampled || c.kind != value_source::compiled;
+    if (cf.taylor_sensitivity)
+        m_taylor_values = taylor_sensitivity_values(cf.taylor_forcing, m_parameters, m_start.dP);
 }
 
 Eigen::VectorXd sensitivity_run::augmented(const Eigen::VectorXd& y0) const {
@@ -66,6 +68,11 @@ loaded_system sensitivity_run::system() const {
     s.f = m_cf.variational; // (y, S)' compiled as one kernel (run/variational.hpp)
     s.w = m_context.data();
     s.p = m_parameters.data();
+    if (m_cf.taylor_sensitivity) {
+        s.tay = m_cf.taylor_sensitivity;
+        s.series = m_cf.taylor_sensitivity_series;
+        s.p = m_taylor_values.data(); // taylor(p, ...) reads them
+    }
     return s;
 }
 
@@ -75,8 +82,10 @@ error_layout sensitivity_run::layout(const error_layout& state) const {
     l.groups.resize(m_n + nk, error_layout::itself); // S: each entry relative to itself
     if (!m_scene.sensitivities.error_control) {
         // the state alone: its components weighted so that the RMS over all n + nk components
-        // is the state's own RMS; S weighted 0
-        l.weights.assign(m_n, std::sqrt(double(m_n + nk) / double(m_n)));
+        // is the state's own RMS (the Taylor method's norm is the largest component: 1); S
+        // weighted 0
+        const bool largest = m_scene.integrator.method == "taylor";
+        l.weights.assign(m_n, largest ? 1.0 : std::sqrt(double(m_n + nk) / double(m_n)));
         l.weights.resize(m_n + nk, 0.0);
     }
     return l;

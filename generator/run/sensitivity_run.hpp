@@ -40,7 +40,8 @@ class sensitivity_run {
     // The augmented state at t0: y0, then S(t0) (scaled).
     Eigen::VectorXd augmented(const Eigen::VectorXd& y0) const;
     // The augmented system: the form's compiled variational kernel (run/variational.hpp) with
-    // this member's parameters and dP/ds (refers to this object).
+    // this member's parameters and dP/ds, or under the Taylor method the Taylor coefficients of
+    // (y, S) (run/taylor_sensitivity.hpp); refers to this object.
     loaded_system system() const;
     // The augmented state's error layout, from the form state's (above).
     error_layout layout(const error_layout& state) const;
@@ -76,6 +77,7 @@ class sensitivity_run {
     euler_sequence m_sequence;
     bool m_sampled = false; // some column is computed at the sample, not by the record program
     std::vector<double> m_context; // the variational kernel's v: the parameters, then dP/ds
+    std::vector<double> m_taylor_values; // the Taylor method's: parameters, dP/ds inputs
 };
 
 // The refusal of a chart switch in a run with sensitivities: a user_error (the command's located

@@ -8,11 +8,11 @@
 namespace rotgen {
 
 bool method_takes_sensitivities(const std::string& method) {
-    return method == "dop853" || method == "dopri5" || method == "rk4";
+    return method == "dop853" || method == "dopri5" || method == "rk4" || method == "taylor";
 }
 
 std::string sensitivity_methods() {
-    return "dop853, dopri5 or rk4";
+    return "dop853, dopri5, rk4 or taylor";
 }
 
 namespace {

@@ -9,7 +9,8 @@
 // the other initial values at their numbers. `all_initial` names the keys y0.<state name>, in the
 // order of the run form's state: S is then the state-transition matrix. error_control (default
 // true) puts S in the step's error estimate (as CVODES' errconS); false controls the state alone.
-// Integrated by dop853, dopri5 and rk4; refused (located) with every other method.
+// Integrated by dop853, dopri5, rk4 and taylor (the recurrences of (y, S):
+// run/taylor_sensitivity.hpp); refused (located) with every other method.
 #pragma once
 
 #include "scene/value_keys.hpp"
@@ -31,7 +32,7 @@ struct sensitivity_spec {
     bool active() const { return all_initial || !keys.empty(); }
 };
 
-// The methods that integrate sensitivities, in words ("dop853, dopri5 or rk4").
+// The methods that integrate sensitivities, in words ("dop853, dopri5, rk4 or taylor").
 bool method_takes_sensitivities(const std::string& method);
 std::string sensitivity_methods();
 
