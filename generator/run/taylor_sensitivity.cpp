@@ -1,6 +1,7 @@
 #include "run/taylor_sensitivity.hpp"
 
 #include "emit/taylor.hpp"
+#include "run/variational.hpp"
 
 #include <cmath>
 #include <limits>
@@ -67,22 +68,8 @@ augmented_system augmented_rates(const scene_spec& scene, const form_expressions
             a.forcing.inputs.push_back({l, j});
         }
     a.inputs.push_back({f.time, "t", ""});
-    a.rates = f.rates;
-    for (std::size_t i = 0; i < n; ++i) {
-        std::vector<ex> dfdy(n), dfdp(np);
-        for (std::size_t m = 0; m < n; ++m)
-            dfdy[m] = f.rates[i].diff(GiNaC::ex_to<GiNaC::symbol>(f.state[m].symbol));
-        for (std::size_t l = 0; l < np; ++l)
-            dfdp[l] = f.rates[i].diff(GiNaC::ex_to<GiNaC::symbol>(f.parameters[l].symbol));
-        for (std::size_t j = 0; j < k; ++j) {
-            ex rate = 0; // S_ij' = sum_m (d f_i/d y_m) S_mj + sum_l (d f_i/d P_l) dP_l/ds_j
-            for (std::size_t m = 0; m < n; ++m)
-                if (!dfdy[m].is_zero()) rate += dfdy[m] * S[m * k + j];
-            for (std::size_t l = 0; l < np; ++l)
-                if (!dfdp[l].is_zero() && !dP[l * k + j].is_zero()) rate += dfdp[l] * dP[l * k + j];
-            a.rates.push_back(rate);
-        }
-    }
+    // S' = (d f/d y) S + (d f/d P) dP/ds, the run's variational system (run/variational.hpp)
+    a.rates = augmented_rates(variational_system_of(f), S, dP);
     return a;
 }
 

@@ -13,17 +13,17 @@ namespace {
 using GiNaC::ex;
 
 // A term of S'_ij: the local holding its factor (empty: the factor is exactly 1) and the entry of
-// S or D it multiplies, printed with the column index rg_j.
+// S or D it multiplies, printed with the column index rgv_j.
 struct product_term {
     std::string factor, entry;
 };
 
 std::string entry(const std::string& array, std::size_t row, std::size_t k) {
-    return array + "[" + std::to_string(row * k) + " + rg_j]";
+    return array + "[" + std::to_string(row * k) + " + rgv_j]";
 }
 
 // The state as y[i], the parameters as v[i] (named rg_<name>: no clash with the kernel's own
-// names), the time t.
+// names, rgv_*, whatever a parameter is called), the time t.
 std::vector<program_input> inputs_of(const form_expressions& f) {
     std::vector<program_input> in;
     for (std::size_t i = 0; i < f.state.size(); ++i)
@@ -36,7 +36,7 @@ std::vector<program_input> inputs_of(const form_expressions& f) {
 }
 
 // The factors of one block (d f/d y by S, or d f/d P by D) of S' = (d f/d y) S + (d f/d P) D:
-// its non-zero entries, an entry other than 1 appended to `program` and its name rg_<name>_i_m to
+// its non-zero entries, an entry other than 1 appended to `program` and its name rgv_<name>_i_m to
 // `locals`, in the same order.
 void add_block(const std::vector<ex>& block, std::size_t columns, const std::string& name,
                const std::string& array, std::size_t k, std::vector<ex>& program,
@@ -47,7 +47,7 @@ void add_block(const std::vector<ex>& block, std::size_t columns, const std::str
             if (e.is_zero()) continue;
             std::string local;
             if (!e.is_equal(ex(1))) {
-                local = "rg_" + name + "_" + std::to_string(i) + "_" + std::to_string(m);
+                local = "rgv_" + name + "_" + std::to_string(i) + "_" + std::to_string(m);
                 program.push_back(e);
                 locals.push_back(local);
             }
@@ -87,8 +87,8 @@ std::string variational_entry(const form_expressions& f, std::size_t k) {
     std::vector<ex> program = vs.rates; // f, then the factors in the order add_block meets them
     std::vector<std::string> locals;    // of program[n...]
     std::vector<std::vector<product_term>> rows(n);
-    add_block(vs.dfdy, n, "J", "rg_S", k, program, locals, rows);
-    add_block(vs.dfdp, np, "F", "rg_D", k, program, locals, rows);
+    add_block(vs.dfdy, n, "J", "rgv_S", k, program, locals, rows);
+    add_block(vs.dfdp, np, "F", "rgv_D", k, program, locals, rows);
     const lowered_program lowered = lower(program, inputs_of(f));
     const std::vector<bool> used = used_inputs(lowered);
     std::ostringstream c;
@@ -106,15 +106,15 @@ std::string variational_entry(const form_expressions& f, std::size_t k) {
     for (std::size_t o = 0; o < program.size(); ++o)
         c << (o < n ? "    out[" + std::to_string(o) + "]" : "    const double " + locals[o - n])
           << " = " << print_node(lowered, lowered.outputs[o], "double") << ";\n";
-    c << "    const double* rg_S = y + " << n << ";\n    const double* rg_D = v + " << np
-      << ";\n    double* rg_dS = out + " << n << ";\n    (void)rg_S;\n    (void)rg_D;\n"
-      << "    for (unsigned long rg_j = 0; rg_j < " << k << "; ++rg_j) {\n";
+    c << "    const double* rgv_S = y + " << n << ";\n    const double* rgv_D = v + " << np
+      << ";\n    double* rgv_dS = out + " << n << ";\n    (void)rgv_S;\n    (void)rgv_D;\n"
+      << "    for (unsigned long rgv_j = 0; rgv_j < " << k << "; ++rgv_j) {\n";
     for (std::size_t i = 0; i < n; ++i) {
         std::string sum;
         for (const product_term& t : rows[i])
             sum +=
                 (sum.empty() ? "" : " + ") + (t.factor.empty() ? "" : t.factor + " * ") + t.entry;
-        c << "        rg_dS[" << i * k << " + rg_j] = " << (sum.empty() ? "0.0" : sum) << ";\n";
+        c << "        rgv_dS[" << i * k << " + rgv_j] = " << (sum.empty() ? "0.0" : sum) << ";\n";
     }
     c << "    }\n}\n";
     return c.str();

@@ -88,5 +88,7 @@ TEST_CASE("the compiled variational kernel equals the Jacobian times S plus the 
               "initial.psi, initial.omega1, parameters.Ixy, parameters.cz, parameters.Izz",
               3e-13}})); // 3.4e-14
     CAPTURE(name);
-    CHECK(worst_against_product(name, scene_text(model, form, initial, keys)) < bound);
+    const double worst = worst_against_product(name, scene_text(model, form, initial, keys));
+    CAPTURE(worst);
+    CHECK(worst < bound);
 }
