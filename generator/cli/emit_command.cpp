@@ -269,8 +269,10 @@ int cmd_emit(const std::vector<std::string>& args) {
         dir, (o.has("--name") ? o.value("--name") : unit_name(spec.name, form)) + ".hpp",
         o.operand);
     const header_options header{regenerate_command(o, form, strategy), o.value("--name")};
-    const derivation d =
-        timings.time("derive", spec.name, [&] { return spec.rotor ? derivation{} : derive(spec); });
+    const derivation d = timings.time("derive", spec.name, [&]() -> derivation {
+        if (spec.rotor) return {}; // a linear rotor is derived where its form is built
+        return derive(spec);
+    });
     const form_expressions f = timings.time("forms", to_string(form), [&] {
         return build_requested_form(spec, d, form, strategy, request);
     });
