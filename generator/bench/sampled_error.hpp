@@ -39,13 +39,17 @@ struct measured_run {
 // the refusal as `why`. `ref`: null to measure nothing (the reference itself).
 measured_run measure_scene(const scene_spec& scene, const run_result* ref, int repeats);
 
-// The reference of the measure: DOP853 at rtol 1e-14, atol 1e-16 in the scene's form; its floor,
-// the measure of a run at rtol 1e-13, atol 1e-15 against it (errors up to 3x the floor are the
-// reference's own, and excluded from choices).
+// The reference of the measure in the scene's form: the Taylor method at rtol 1e-15, atol 1e-17,
+// its floor the measure of a Taylor run at rtol 1e-14, atol 1e-16 against it; where the scene
+// refuses the Taylor method (or its runs fail), DOP853 at rtol 1e-14, atol 1e-16, checked at
+// 1e-13, 1e-15. Errors up to 3x the floor are the reference's own, and excluded from choices.
+// (Measured on the shipped heavy top and free top: Taylor's two runs agree to 6e-14, DOP853's
+// rounding leaves it 3e-13 from them at any rtol: a DOP853 reference could not resolve 1e-12.)
 struct reference_run {
     run_result result;
     double floor = 0;
     double seconds = 0; // both runs' integration
+    std::string method; // the reference's: taylor or dop853
 };
 reference_run make_reference(const scene_spec& scene);
 

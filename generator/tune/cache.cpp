@@ -20,7 +20,8 @@ namespace {
 namespace fs = std::filesystem;
 
 // The tuning procedure's version: a change to what it measures or chooses makes new keys.
-constexpr const char* procedure = "tune 1: sampled error, half-decade grid, atol = rtol/100";
+constexpr const char* procedure =
+    "tune 2: sampled error against a Taylor reference, half-decade grid, atol = rtol/100";
 
 std::string text_of(const std::string& path) {
     std::string text;
