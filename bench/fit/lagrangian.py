@@ -115,7 +115,7 @@ with tempfile.TemporaryDirectory() as tmp:
     print()
     print("Made by `/usr/bin/python3 bench/fit/lagrangian.py build/rotgen BEFORE` (BEFORE: rotgen at")
     print("main 3d54143, whose fit took central differences in the Euler-angle forms) on the")
-    print("development machine (2 cores shared by five builds: noisy), 2026-11-28.")
+    print("development machine (2 cores, otherwise idle), 2026-11-28, after the compiled variational kernel.")
     print()
     print("| problem | rotgen | Jacobian | wall time (s) | evaluations | Jacobians | runs | chi2 |")
     print("|---|---|---|---|---|---|---|---|")
