@@ -306,13 +306,12 @@ compiled_form compile_form(const scene_spec& scene, form_expressions f, bool ori
     std::vector<std::string> constants;
     for (const auto& k : lowered.constants)
         constants.push_back(k.name.substr(2)); // p.c000 -> c000
-    std::string source =
-        header.text +
-        entry_points(c.f, header.unit, program, events, c.taylor_call, constants,
-                     sensitivity_programs(scene, c.f, program, events)) +
-        (scene.sensitivities.active()
-             ? variational_entry(c.f, sensitivity_key_names(scene, c.f).size())
-             : "");
+    std::string source = header.text +
+                         entry_points(c.f, header.unit, program, events, c.taylor_call, constants,
+                                      sensitivity_programs(scene, c.f, program, events)) +
+                         (scene.sensitivities.active()
+                              ? variational_entry(c.f, sensitivity_key_names(scene, c.f).size())
+                              : "");
     if (taylor && scene.sensitivities.active())
         source += augmented_taylor(scene, c.f, header.unit, c.taylor_forcing, timings);
     const std::string flags = taylor ? host_exact_vector_flags() : "";

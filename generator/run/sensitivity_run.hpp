@@ -76,7 +76,7 @@ class sensitivity_run {
     std::size_t m_n = 0;
     euler_sequence m_sequence;
     bool m_sampled = false; // some column is computed at the sample, not by the record program
-    std::vector<double> m_context; // the variational kernel's v: the parameters, then dP/ds
+    std::vector<double> m_context;       // the variational kernel's v: the parameters, then dP/ds
     std::vector<double> m_taylor_values; // the Taylor method's: parameters, dP/ds inputs
 };
 
