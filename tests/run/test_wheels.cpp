@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <filesystem>
 
 using namespace rotgen::test;
 
@@ -466,9 +467,12 @@ TEST_CASE("torque-driven wheels: what is refused is one located line, exit 2", "
     const auto refused = [](const std::string& text, const std::string& where,
                             const std::string& what) {
         const scratch_file scene("torque_wheels_bad.yaml", text);
-        const run_result r = run_rotgen("simulate '" + scene.path + "' -o -");
+        const std::string out = scene.path + ".csv";
+        std::filesystem::remove(out);
+        const run_result r = run_rotgen("simulate '" + scene.path + "' -o '" + out + "'");
         INFO(r.out << r.err);
         CHECK(r.status == 2);
+        CHECK_FALSE(std::filesystem::exists(out)); // nothing written
         CHECK(r.err.find(where) != std::string::npos);
         CHECK(r.err.find(what) != std::string::npos);
         CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
@@ -485,6 +489,11 @@ TEST_CASE("torque-driven wheels: what is refused is one located line, exit 2", "
     refused(torque_model + initial + ", p_w1: 1, w1_dot: 2}\n" + time,
             "torque_wheels_bad.yaml:9:100: ",
             "give the wheel's momentum 'p_w1' or its rate 'w1_dot', not both");
+    // a rate whose momentum J (a . omega + rate) overflows
+    refused(torque_model + "parameters: {Jw: 10}\n" + initial + ", w1_dot: 1.7e308}\n" + time,
+            "torque_wheels_bad.yaml:10:91: ", "the wheel's momentum from 'w1_dot' is not finite");
+    refused(torque_model + "parameters: {p_w1: 1}\n" + initial + ", p_w1: 2}\n" + time,
+            "torque_wheels_bad.yaml:10:89: ", "'p_w1' is given in both 'parameters' and 'initial'");
 }
 
 TEST_CASE("torque-driven wheels: sensitivities against central differences of the run",
