@@ -5,7 +5,7 @@ For a few shipped scenes and the targets 1e-4, 1e-8, 1e-12: auto's choice (`rotg
 folder emptied first so that it tunes; the kernels' cache kept warm), the error it measured, its
 integration time, against the fastest configuration `simulate` runs that `rotgen bench` chooses at
 that level (the bench's last section, verified by the bench), both timed the same way: the smallest
-of 5 `rotgen simulate` runs' "integrating" time, with the tuning's own records.
+of REPEATS (11) `rotgen simulate` runs' "integrating" time, the two in turn, with the tuning's own records.
 
     /usr/bin/python3 bench/auto.py [ROTGEN] [--quick]    (from the source tree; --quick: the bench's
                                                          quick plan, a few minutes a scene)
@@ -24,6 +24,7 @@ SCENES = ["free_top_workprecision", "heavy_top_nutation"]
 TARGETS = [1e-4, 1e-8, 1e-12]
 OUT = os.path.join(ROOT, "bench-out", "auto")
 CACHE = os.environ.get("ROTGEN_CACHE_DIR", os.path.join(OUT, "cache"))
+REPEATS = int(os.environ.get("REPEATS", "11"))
 RECORD = "record: [q0, q1, q2, q3, omega1, omega2, omega3]"
 
 
@@ -46,15 +47,22 @@ def scene_text(name, lines):
     return "".join(out) + "\n".join(lines) + "\n" + RECORD + "\n"
 
 
-def integrating(scene_file):
-    """The smallest of 5 runs' integration time (seconds)."""
-    best = float("inf")
-    for _ in range(5):
-        status, out, err = run("simulate", scene_file, "-o", scene_file + ".csv")
-        m = re.search(r"time\s+([\d.]+) (us|ms|s) integrating", out)
-        if status != 0 or not m:
-            raise SystemExit("simulate failed: " + scene_file + "\n" + out + err)
-        best = min(best, float(m.group(1)) * {"us": 1e-6, "ms": 1e-3, "s": 1}[m.group(2)])
+def integrating_once(scene_file):
+    """One run's integration time (seconds)."""
+    status, out, err = run("simulate", scene_file, "-o", scene_file + ".csv")
+    m = re.search(r"time\s+([\d.]+) (us|ms|s) integrating", out)
+    if status != 0 or not m:
+        raise SystemExit("simulate failed: " + scene_file + "\n" + out + err)
+    return float(m.group(1)) * {"us": 1e-6, "ms": 1e-3, "s": 1}[m.group(2)]
+
+
+def integrating(*scene_files):
+    """Each scene's smallest integration time (seconds) of REPEATS runs, the scenes run in turn
+    (so that the machine's load falls on each alike)."""
+    best = [float("inf")] * len(scene_files)
+    for _ in range(REPEATS):
+        for i, f in enumerate(scene_files):
+            best[i] = min(best[i], integrating_once(f))
     return best
 
 
@@ -103,15 +111,15 @@ def main():
             lines = [re.sub(r"^scene\s+", "", l) for l in lines]
             auto_file = os.path.join(OUT, "%s_auto_%g_run.yaml" % (name, target))
             open(auto_file, "w").write(scene_text(name, lines))
-            t_auto = integrating(auto_file)
             b = bench.get(target)
             if b and b[1]:
                 bench_file = os.path.join(OUT, "%s_bench_%g.yaml" % (name, target))
                 open(bench_file, "w").write(scene_text(name, b[1]))
-                t_bench = integrating(bench_file)
+                t_auto, t_bench = integrating(auto_file, bench_file)
                 ratio = "%.2f×" % (t_auto / t_bench)
                 bench_text = " ".join(b[1])
             else:
+                (t_auto,) = integrating(auto_file)
                 t_bench, ratio, bench_text = None, "", b[0] if b else "not reached"
             rows.append((name, target, choice, error, fmt(t_auto), bench_text,
                          fmt(t_bench) if t_bench else "", ratio, "%.1f s" % tune_wall))
@@ -124,10 +132,10 @@ def write(rows):
               " --quick" if QUICK else "", time.strftime("%Y-%m-%d"),
               "; the bench's quick plan, whose coarse tolerances make its choice slower than the full plan's would be" if QUICK else ""),
           "(tuned anew, the kernels' cache warm), the error it measured (the largest over the samples of",
-          "the attitude error and |Δω|/|ω| against DOP853 at rtol 1e-14), and its integration time against",
-          "the fastest configuration `simulate` runs that `rotgen bench` chose at that level (its last",
-          "section, verified), both timed alike: the smallest of 5 `rotgen simulate` runs (recording",
-          "q0..q3, ω). Goal: auto within 1.3× of the bench's choice. Tuning: the wall time of `rotgen tune`.", "",
+          "the attitude error and |Δω|/|ω| against the Taylor method at rtol 1e-15), and its integration time",
+          "against the fastest configuration `simulate` runs that `rotgen bench` chose at that level (its",
+          "last section, verified), both timed alike: the smallest of %d `rotgen simulate` runs each, the two" % REPEATS,
+          "scenes run in turn (recording q0..q3, ω). Goal: auto within 1.3× of the bench's choice. Tuning: the wall time of `rotgen tune`.", "",
           "| scene | target | auto's choice | its error | auto time | bench's choice | bench time | auto / bench | tuning |",
           "|---|---:|---|---:|---:|---|---:|---:|---:|"]
     for r in rows:

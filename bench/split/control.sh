@@ -19,7 +19,9 @@ out=bench/results/split_control.md
 `bench/split/control.sh` (bench/split/control_bench.cpp). Heavy top, M g h = 0.981, centre of mass
 on the body z axis, released at theta0 with phi_dot = theta_dot = 0 and psi_dot = spin; t = 0..10.
 split2/4/6 given rtol = atol (steps under error control: step doubling,
-runtime/steppers/split_doubling.hpp) and DOP853 at the same rtol = atol. Error: max |dq_i| of
+runtime/steppers/split_doubling.hpp) and DOP853 at the same rtol = atol, both calibrated as
+`rotgen simulate` calibrates a run of the body form (rtol means the error at the samples;
+bench/split/calibrated.hpp). Error: max |dq_i| of
 q0..q3 at t = 10 against DOP853 at rtol = atol = 1e-13 (whose own error is about 2e-9 at spin 1e4:
 the floor of the split columns there). Bound: max(10 rtol, 2 x DOP853's error). Each cell:
 split error / rtol, then DOP853's error / rtol; steps: the split run's accepted and rejected steps

@@ -5,10 +5,12 @@
 // (1, 1.2, 0.5), tilted θ0 ∈ {0.3, 1.2}, released with φ̇ = θ̇ = 0 and ψ̇ = spin ∈ {10, 1e2, 1e3,
 // 1e4} (ω = (0, 0, spin)), t = 0..10. Error: max |Δq_i| of q0..q3 at t = 10 against DOP853 at
 // rtol = atol = 1e-13. Each split method at rtol = atol ∈ {1e-4, 1e-6, 1e-8} (and 1e-10 for split4
-// and split6) against DOP853 at the same rtol = atol. One line per run:
+// and split6) against DOP853 at the same rtol = atol, both calibrated as `rotgen simulate`
+// calibrates them (calibrated.hpp; the reference is not). One line per run:
 //   body theta0 spin method rtol error dop853_error steps rhs_evals bound pass
 // bound = max(10 rtol, 2 · DOP853's error); pass: error <= bound.
 //   control_bench floor    the reference's own error at spin 1e4 (floor_check)
+#include "calibrated.hpp"
 #include "integrate/integrate.hpp"
 #include "rotation.hpp"
 #include "steppers/dop853.hpp"
@@ -57,9 +59,9 @@ state run(const std::array<double, 3>& in, double theta, double spin, M m,
 template <int P>
 void cell(const std::array<double, 3>& in, const char* body, double theta, double spin,
           const state& ref, double rtol) {
-    const double dop = q_error(run(in, theta, spin, dop853<double>(rtol, rtol)), ref);
+    const double dop = q_error(run(in, theta, spin, calibrated(dop853<double>(rtol, rtol))), ref);
     step_stats st;
-    const split_controlled<double, P> m(rtol, rtol);
+    const auto m = calibrated(split_controlled<double, P>(rtol, rtol));
     const double e = q_error(run(in, theta, spin, m, &st), ref);
     const double bound = std::max(10 * rtol, 2 * dop);
     std::printf("%s %.1f %g split%d %g %.2e %.2e %zu %zu %.2e %s\n", body, theta, spin, P, rtol, e,

@@ -7,7 +7,8 @@
 # output with awk: per body and spin, the cheapest run of each method that reaches an attitude
 # error of 1e-6 and of 1e-9 at t = 10, and the speed ratio of the best split method to DOP853.
 # Both sides run under error control at rtol = atol = 1e-4 .. 1e-13 (the split methods by step
-# doubling, runtime/steppers/split_doubling.hpp, as `rotgen simulate` runs them given rtol).
+# doubling, runtime/steppers/split_doubling.hpp), both calibrated as `rotgen simulate` runs them
+# (bench/split/calibrated.hpp).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 work=$(mktemp -d)
@@ -24,7 +25,8 @@ the body z axis, the symmetric body I = (1, 1, 0.5) and the asymmetric I = (1, 1
 Error: the angle between the attitude at t = 10 and a long-double DOP853 run at rtol 1e-17. Cost: the
 wall time of one run (median of 5), the cheapest run of the method that meets the error target
 (DOP853 at rtol = atol = 1e-4 .. 1e-13 on the body form, quaternion and omega; split2/4/6 under
-error control, step doubling, at the same rtol = atol; a method's cost at a target is that of its
+error control, step doubling, at the same rtol = atol; both calibrated as `rotgen simulate` runs
+them, so that rtol means the error at the samples; a method's cost at a target is that of its
 cheapest run from which every tighter rtol also meets it). "best split" is the cheapest of split2,
 split4, split6; the ratio is DOP853's time over
 it (> 1: the split method is faster). A dash: no run met the target. The machine is shared (2 cores,

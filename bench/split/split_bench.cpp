@@ -7,11 +7,14 @@
 // attitude at t = 10 and a reference (DOP853 in long double at rtol 1e-17). Cost: wall time of one
 // run (median of 5 timings, each of enough repetitions to last 20 ms). DOP853 runs the body form
 // (quaternion, ω) with the same torque, at rtol = atol from 1e-4 to 1e-13; the split methods under
-// error control at the same rtol = atol (as `rotgen simulate` runs them given rtol). The cost at an
-// error target is that of the cheapest run from which every tighter rtol also meets it.
+// error control at the same rtol = atol. Both are calibrated as `rotgen simulate` calibrates them
+// (step_control.hpp: calibrate() with the body form's layout, the quaternion an attitude and ω
+// one vector), so that rtol means the error at the samples for each. The cost at an error target
+// is that of the cheapest run from which every tighter rtol also meets it.
 //   split_bench            prints one line per body, spin, method and configuration
 //   split_bench long       split2 over 10^7 steps (h = 0.01, spin 10): the largest energy error
 //                          and p_phi change in each decade of steps, per body
+#include "calibrated.hpp"
 #include "integrate/integrate.hpp"
 #include "rotation.hpp"
 #include "steppers/dop853.hpp"
@@ -109,8 +112,7 @@ template <int P>
 void split_runs(const char* body, const std::array<double, 3>& in, double spin,
                 const Eigen::Quaterniond& ref) {
     for (double tol = 1e-4; tol >= 1e-13; tol /= 10) {
-        split_controlled<double, P> m(tol, tol);
-        m.max_steps = 100000000;
+        const auto m = calibrated(split_controlled<double, P>(tol, tol));
         if (measure(body, in, spin, ref, m, tol) < 1e-11) break; // past the targets
     }
 }
@@ -166,8 +168,7 @@ int main(int argc, char** argv) {
             if (!only_body.empty() && (only_body != name || only_spin != spin)) continue;
             const Eigen::Quaterniond ref = reference(in, spin);
             for (double tol = 1e-4; tol >= 1e-13; tol /= 10) {
-                dop853<double> m(tol, tol);
-                m.max_steps = 100000000;
+                const auto m = calibrated(dop853<double>(tol, tol));
                 measure(name, in, spin, ref, m, tol);
             }
             split_runs<2>(name, in, spin, ref);

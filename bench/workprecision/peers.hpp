@@ -4,14 +4,19 @@
 //   Boost.Odeint (state std::array<double, N>, range algebra — Odeint's fast path for small
 //   fixed-size systems):
 //     dopri5  make_dense_output(tol, tol, runge_kutta_dopri5) with integrate_adaptive
-//     rkf78   make_controlled(tol, tol, runge_kutta_fehlberg78) with integrate_adaptive (no dense
-//             output: Fehlberg 7(8) has none); with a step: runge_kutta_fehlberg78 alone with
-//             integrate_n_steps (fixed steps, like rotgen's DOP853 with a fixed step)
-//     rk4     runge_kutta4 with integrate_n_steps, the same grid as rotgen's rk4
+//     rkf78   make_controlled(tol, tol, runge_kutta_fehlberg78) (no dense output: Fehlberg 7(8)
+//             has none); with a step: runge_kutta_fehlberg78 alone (fixed steps, like rotgen's
+//             DOP853 with a fixed step)
+//     rk4     runge_kutta4, the same step as rotgen's rk4
+//     rkf78 and rk4 run with integrate_times over the scene's samples, timed and measured alike:
+//     without dense output a run that gives the samples must step to each (a step longer than
+//     the samples' spacing is cut there), so its error is that of those steps, not of a run to
+//     the end alone (which took steps up to the whole span: Fehlberg at tol 1e-3 on the free top,
+//     t = 0..100, ended with an energy error of 5e-2 while its run to the samples erred 3e-14).
 //     Odeint needs an initial step; it gets the one rotgen's starting-step heuristic (HNW I, II.4)
 //     picks for the same tolerance and order, computed outside the timed region.
 //     Odeint's error norm is the max-norm of err_i / (tol + tol (|x_i| + dt |dx_i/dt|)), rotgen's
-//     the RMS norm of err_i / (tol + tol max(|y0_i|, |y1_i|)): equal tolerances are not equal
+//     the calibrated RMS norm of step_control.hpp (error_layout): equal tolerances are not equal
 //     accuracies, which is why the comparison is error against time, not tolerance.
 //   SUNDIALS CVODE 6 (serial N_Vector, one SUNContext per configuration):
 //     adams   CV_ADAMS with the fixed-point nonlinear solver (the non-stiff setting)
@@ -22,6 +27,8 @@
 //     CVodeReInit + CVode. Evaluations are CVODE's own counters (CVodeGetNumRhsEvals +
 //     CVodeGetNumLinRhsEvals, CVodeGetNumJacEvals).
 //   The error's samples come from one more untimed run of each (odeint_samples, cvode_samples).
+//   dopri5 integrates to the end alone when timed: its dense output gives the samples from the
+//   same steps.
 #pragma once
 
 #include "run_record.hpp"
@@ -58,18 +65,15 @@ template <class V> struct odeint_rhs {
 // Odeint's methods, one bit each (a variant compiles only those its plan uses).
 enum odeint_method : unsigned { odeint_dopri5 = 1, odeint_rkf78 = 2, odeint_rk4 = 4 };
 
-// The states at the sample times `at` of one untimed run from x0 (Odeint's integrate_times: on
-// the dense output for dopri5; the other steppers step to each sample).
-template <class V, unsigned Method, class State>
-std::vector<std::vector<long double>> odeint_samples(const typename V::template params<double>& p,
-                                                     const State& x0, double tol, double h,
-                                                     double dt0, const std::vector<double>& at) {
+// One run of an Odeint method from x (in place) over the sample times `at` (at[0] = t0), calling
+// obs(state, t) at each. dopri5 steps on its own and samples its dense output, so its steps are
+// those of integrate_adaptive to at.back(); rkf78 and rk4 have no dense output and must step to
+// each sample (integrate_times: a step is cut short at a sample), so a run that gives the samples
+// takes other steps than one to the end alone, and that is the run both timed and measured.
+template <class V, unsigned Method, class State, class Obs>
+void odeint_over_times(const odeint_rhs<V>& f, State& x, double tol, double h, double dt0,
+                       const std::vector<double>& at, Obs obs) {
     namespace oi = boost::numeric::odeint;
-    std::size_t count = 0;
-    const odeint_rhs<V> f{&p, &count};
-    State x = x0;
-    std::vector<std::vector<long double>> out;
-    const auto obs = [&](const State& y, double) { out.emplace_back(y.begin(), y.end()); };
     if constexpr (Method == odeint_dopri5)
         oi::integrate_times(oi::make_dense_output(tol, tol, oi::runge_kutta_dopri5<State>()), f, x,
                             at.begin(), at.end(), dt0, obs);
@@ -82,6 +86,20 @@ std::vector<std::vector<long double>> odeint_samples(const typename V::template 
                                 f, x, at.begin(), at.end(), dt0, obs);
     } else
         oi::integrate_times(oi::runge_kutta4<State>(), f, x, at.begin(), at.end(), h, obs);
+}
+
+// The states at the sample times `at` of one more run from x0 (odeint_over_times).
+template <class V, unsigned Method, class State>
+std::vector<std::vector<long double>> odeint_samples(const typename V::template params<double>& p,
+                                                     const State& x0, double tol, double h,
+                                                     double dt0, const std::vector<double>& at) {
+    std::size_t count = 0;
+    const odeint_rhs<V> f{&p, &count};
+    State x = x0;
+    std::vector<std::vector<long double>> out;
+    odeint_over_times<V, Method>(f, x, tol, h, dt0, at, [&](const State& y, double) {
+        out.emplace_back(y.begin(), y.end());
+    });
     return out;
 }
 
@@ -94,33 +112,26 @@ run_record run_odeint(const run_spec& spec, double t0, double t1, double dt0,
         typename V::template params<double> p;
         state x0, x;
         std::size_t count = 0;
+        std::vector<double> times;
     };
     const auto c = std::make_shared<context>();
     c->p = V::template parameters<double>();
+    c->times = times;
     const auto y0l = V::initial();
     for (std::size_t i = 0; i < V::state_size; ++i)
         c->x0[i] = static_cast<double>(y0l[i]);
     const double tol = spec.tol;
     const long n_steps = spec.step > 0 ? std::lround((t1 - t0) / spec.step) : 1;
-    const bool fixed = spec.step > 0;
-    auto once = [c, tol, n_steps, fixed, t0, t1, dt0]() -> double {
+    const double h = spec.step > 0 ? (t1 - t0) / double(n_steps) : 0;
+    auto once = [c, tol, h, t0, t1, dt0]() -> double {
         const odeint_rhs<V> f{&c->p, &c->count};
         c->x = c->x0;
         if constexpr (Method == odeint_dopri5)
             oi::integrate_adaptive(oi::make_dense_output(tol, tol, oi::runge_kutta_dopri5<state>()),
                                    f, c->x, t0, t1, dt0);
-        else if constexpr (Method == odeint_rkf78) {
-            if (fixed)
-                oi::integrate_n_steps(oi::runge_kutta_fehlberg78<state>(), f, c->x, t0,
-                                      (t1 - t0) / double(n_steps),
-                                      static_cast<std::size_t>(n_steps));
-            else
-                oi::integrate_adaptive(
-                    oi::make_controlled(tol, tol, oi::runge_kutta_fehlberg78<state>()), f, c->x, t0,
-                    t1, dt0);
-        } else
-            oi::integrate_n_steps(oi::runge_kutta4<state>(), f, c->x, t0,
-                                  (t1 - t0) / double(n_steps), static_cast<std::size_t>(n_steps));
+        else // to each sample (odeint_over_times), the samples themselves not kept
+            odeint_over_times<V, Method>(f, c->x, tol, h, dt0, c->times,
+                                         [](const state&, double) {});
         return c->x[0];
     };
     run_record rec;
@@ -139,8 +150,7 @@ run_record run_odeint(const run_spec& spec, double t0, double t1, double dt0,
             return rec;
         }
         rec.job.once = once;
-        rec.samples = odeint_samples<V, Method>(
-            c->p, c->x0, tol, fixed ? (t1 - t0) / double(n_steps) : 0, dt0, times);
+        rec.samples = odeint_samples<V, Method>(c->p, c->x0, tol, h, dt0, times);
     } catch (const std::exception&) {
         rec.status = "odeint_error";
     }

@@ -185,13 +185,13 @@ void plan_main(plan_builder& plan, std::size_t i, const sweep_grid& g, bool quic
     // the peers, on the same kernels
     for (double tol : g.tols_all)
         plan.run(i, "odeint", "dopri5", "double", tol, 0);
-    for (std::size_t j = 0; j < g.tols_all.size() && !quick; ++j)
+    for (std::size_t j = 0; j < g.tols_all.size() && (j == 0 || !quick); ++j)
         plan.run(i, "odeint", "rkf78", "double", g.tols_all[j], 0);
     for (std::size_t j = 0; j < g.rk4_steps.size() && !quick; ++j)
         plan.run(i, "odeint", "rk4", "double", 0, g.rk4_steps[j]);
     for (double h : g.high_steps) {
         plan.run(i, "rotgen", "dop853", "double", 0, h);
-        if (!quick) plan.run(i, "odeint", "rkf78", "double", 0, h);
+        plan.run(i, "odeint", "rkf78", "double", 0, h);
     }
     for (double tol : g.tols_all)
         plan.run(i, "cvode", "adams", "double", tol, 0);

@@ -87,7 +87,9 @@ int cmd_sweep(const std::vector<std::string>& args) {
     q.timings = o.has("--timings");
     q.quiet = o.has("--quiet");
     q.resume = o.has("--resume");
-    q.resolve = [](scene_spec& s) { resolve_auto(s); }; // method auto: tuned once for all
+    q.resolve = [](scene_spec& s) { // method auto: tuned once for all, steps under error control
+        resolve_auto(s, nullptr, auto_use::ensemble);
+    };
     return sweep(q);
 }
 

@@ -21,7 +21,8 @@ namespace fs = std::filesystem;
 
 // The tuning procedure's version: a change to what it measures or chooses makes new keys.
 constexpr const char* procedure =
-    "tune 2: sampled error against a Taylor reference, half-decade grid, atol = rtol/100";
+    "tune 3: sampled error against a Taylor reference, half-decade grid, atol = rtol, DOP853 fixed "
+    "steps for one run";
 
 std::string text_of(const std::string& path) {
     std::string text;
@@ -36,9 +37,9 @@ std::string text_of(const std::string& path) {
 std::string choice_file_text(const auto_choice& c) {
     std::ostringstream s;
     s.precision(17);
-    s << "method " << c.method << "\nrtol " << c.rtol << "\natol " << c.atol << "\nform "
-      << to_string(c.form) << "\nerror " << c.error << "\nrun_seconds " << c.run_seconds
-      << "\nfloor " << c.floor << "\ntune_seconds " << c.tune_seconds << "\n";
+    s << "method " << c.method << "\nrtol " << c.rtol << "\natol " << c.atol << "\nstep " << c.step
+      << "\nform " << to_string(c.form) << "\nerror " << c.error << "\nrun_seconds "
+      << c.run_seconds << "\nfloor " << c.floor << "\ntune_seconds " << c.tune_seconds << "\n";
     return s.str();
 }
 
@@ -53,6 +54,8 @@ bool read_choice(const fs::path& file, auto_choice& c) {
             in >> c.rtol;
         else if (key == "atol")
             in >> c.atol;
+        else if (key == "step")
+            in >> c.step;
         else if (key == "form")
             in >> form;
         else if (key == "error")
@@ -70,7 +73,7 @@ bool read_choice(const fs::path& file, auto_choice& c) {
     for (const form_kind f : {form_kind::lagrangian, form_kind::hamiltonian, form_kind::reduced,
                               form_kind::body, form_kind::rotor})
         if (form == to_string(f)) c.form = f, ++seen;
-    return seen == 9 && !c.method.empty() && c.rtol > 0;
+    return seen == 10 && !c.method.empty() && (c.rtol > 0 || c.step > 0);
 }
 
 // Written whole under another name, then renamed: a reader never sees half a choice.
@@ -89,26 +92,31 @@ void write_choice(const fs::path& file, const auto_choice& c) {
 
 } // namespace
 
-std::string auto_cache_key(const scene_spec& scene) {
+std::string auto_cache_key(const scene_spec& scene, auto_use use) {
     std::string all = text_of(scene.file) + '\0' + scene.model.source + '\0';
     all += short_number(scene.integrator.error, 17) + '\0' + compiler_identity() + '\0' + procedure;
+    if (use == auto_use::ensemble) all += std::string(1, '\0') + "ensemble";
     return hex(fnv1a(all));
 }
 
-auto_choice resolve_auto(scene_spec& scene, std::ostream* log) {
+auto_choice resolve_auto(scene_spec& scene, std::ostream* log, auto_use use) {
     integrator_spec& ig = scene.integrator;
     if (ig.method != "auto") return {};
     const fs::path file =
-        fs::path(usable_cache_directory()) / "tune" / (auto_cache_key(scene) + ".choice");
+        fs::path(usable_cache_directory()) / "tune" / (auto_cache_key(scene, use) + ".choice");
     auto_choice c;
     c.cached = read_choice(file, c);
     if (!c.cached) {
-        c = tune_scene(scene, log);
+        c = tune_scene(scene, log, use);
         write_choice(file, c);
     }
     const double error = ig.error;
     ig = integrator_spec{};
-    ig.method = c.method, ig.rtol = c.rtol, ig.atol = c.atol, ig.error = error;
+    ig.method = c.method, ig.error = error;
+    if (c.step > 0)
+        ig.step = c.step;
+    else
+        ig.rtol = c.rtol, ig.atol = c.atol;
     if (!scene.form_given) scene.form = c.form;
     ig.auto_choice = choice_text(c) + " (tuned in " + short_number(c.tune_seconds, 2) + " s" +
                      (c.cached ? "; cached" : "") + ")";

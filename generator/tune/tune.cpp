@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <ostream>
 
 namespace rotgen {
@@ -57,16 +58,28 @@ struct candidate {
     form_kind form;
     double tol = 0;
     bench::measured_run run;
+    double step = 0; // > 0: fixed steps of this size (tol unused)
 };
 
-scene_spec configured(const scene_spec& base, form_kind form, const std::string& method,
-                      double tol) {
+scene_spec configured(const scene_spec& base, form_kind form, const std::string& method, double tol,
+                      double step = 0) {
     scene_spec s = base;
     s.form = form;
     s.integrator = integrator_spec{};
     s.integrator.method = method;
-    s.integrator.rtol = tol, s.integrator.atol = tol / 100;
+    if (step > 0)
+        s.integrator.step = step;
+    else
+        s.integrator.rtol = s.integrator.atol = tol; // as a bench row at tol
     return s;
+}
+
+scene_spec configured(const scene_spec& base, const candidate& c) {
+    return configured(base, c.form, c.method, c.tol, c.step);
+}
+
+bool meets(const candidate& c, double target) {
+    return c.run.ok && c.run.error <= target;
 }
 
 // A method in a form: the loosest grid tolerance that meets the target (run once each), or the
@@ -95,10 +108,9 @@ search_result search(const scene_spec& base, form_kind form, const std::string& 
         r.best = c;
         return r;
     }
-    const auto meets = [&](const candidate& x) { return x.run.ok && x.run.error <= target; };
-    if (meets(c)) { // looser while it still meets
+    if (meets(c, target)) { // looser while it still meets
         r.meets = true, r.best = c;
-        while (j > 0 && meets(c = try_at(--j)))
+        while (j > 0 && meets(c = try_at(--j), target))
             r.best = c;
         return r;
     }
@@ -108,16 +120,48 @@ search_result search(const scene_spec& base, form_kind form, const std::string& 
         j = std::min(grid_size - 1, j + std::clamp(int(std::ceil(std::log10(excess) * 2)), 1, 6));
         c = try_at(j);
         if (c.run.ok && (!r.best.run.ok || c.run.error < r.best.run.error)) r.best = c;
-        if (meets(c)) return r.meets = true, r;
+        if (meets(c, target)) return r.meets = true, r;
     }
     return r;
+}
+
+// DOP853 with n fixed steps over the span, as the bench's `dop853 fixed` rows (no error control:
+// cheaper per step where the motion's time scale is steady): the fewest n on a quarter-octave grid
+// around `adaptive`'s step count whose run meets the target, or none within 4x that count.
+std::optional<candidate> fixed_search(const scene_spec& base, const candidate& adaptive,
+                                      const run_result& ref, double target, std::ostream* log) {
+    const double span = std::abs(base.t_end - base.t_start);
+    const double n0 = double(std::max<std::size_t>(adaptive.run.result.stats.steps, 1));
+    const auto try_at = [&](int j) { // n = ceil(n0 2^(j/4)) steps
+        candidate c{adaptive.method, adaptive.form, 0, {}};
+        c.step = span / std::ceil(n0 * std::exp2(j / 4.0) - 1e-9);
+        c.run = bench::measure_scene(configured(base, c), &ref, 1);
+        if (log)
+            *log << "  tune    " << c.method << " " << to_string(c.form) << " step "
+                 << short_number(c.step, 6) << ": "
+                 << (c.run.ok ? "error " + short_number(c.run.error) : c.run.why) << "\n";
+        return c;
+    };
+    int j = 0;
+    candidate c = try_at(j);
+    if (meets(c, target)) { // fewer steps while it still meets
+        candidate best = c;
+        while (span / best.step > 1 && meets(c = try_at(--j), target))
+            best = c;
+        return best;
+    }
+    while (j < 8)
+        if (meets(c = try_at(++j), target)) return c;
+    return std::nullopt;
 }
 
 } // namespace
 
 std::string choice_text(const auto_choice& c) {
-    return c.method + " rtol " + short_number(c.rtol) + " atol " + short_number(c.atol) +
-           " in the " + to_string(c.form) + " form";
+    const std::string how = c.step > 0
+                                ? " step " + short_number(c.step, 6)
+                                : " rtol " + short_number(c.rtol) + " atol " + short_number(c.atol);
+    return c.method + how + " in the " + to_string(c.form) + " form";
 }
 
 std::vector<std::string> methods_accepting(const scene_spec& scene) {
@@ -135,7 +179,7 @@ std::vector<std::string> methods_accepting(const scene_spec& scene) {
     return ok;
 }
 
-auto_choice tune_scene(const scene_spec& scene, std::ostream* log) {
+auto_choice tune_scene(const scene_spec& scene, std::ostream* log, auto_use use) {
     const auto t0 = std::chrono::steady_clock::now();
     const double target = scene.integrator.error;
     const bench::reference_run ref = bench::make_reference(scene);
@@ -155,6 +199,9 @@ auto_choice tune_scene(const scene_spec& scene, std::ostream* log) {
             search_result s = search(base, f, m, ref.result, target, log);
             if (s.refused) continue;
             if (s.meets) found.push_back(s.best);
+            if (s.meets && m == "dop853" && use == auto_use::single_run)
+                if (auto fixed = fixed_search(base, s.best, ref.result, target, log))
+                    found.push_back(*fixed);
             if (s.best.run.ok && (closest.method.empty() || s.best.run.error < closest.run.error))
                 closest = s.best;
         }
@@ -167,14 +214,14 @@ auto_choice tune_scene(const scene_spec& scene, std::ostream* log) {
                                   : short_number(closest.run.error) + " (" + closest.method +
                                         " rtol " + short_number(closest.tol) + ")"));
     for (candidate& c : found) // timed again: the smallest of three runs
-        c.run.seconds =
-            bench::measure_scene(configured(base, c.form, c.method, c.tol), &ref.result, 3).seconds;
+        c.run.seconds = bench::measure_scene(configured(base, c), &ref.result, 3).seconds;
     const candidate& best =
         *std::min_element(found.begin(), found.end(), [](const candidate& a, const candidate& b) {
             return a.run.seconds < b.run.seconds;
         });
     auto_choice choice;
-    choice.method = best.method, choice.rtol = best.tol, choice.atol = best.tol / 100;
+    choice.method = best.method, choice.rtol = best.tol, choice.atol = best.tol;
+    choice.step = best.step;
     choice.form = is_split(best.method) ? form_kind::body : best.form;
     choice.error = best.run.error, choice.run_seconds = best.run.seconds;
     choice.floor = ref.floor;

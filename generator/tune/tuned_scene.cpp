@@ -12,7 +12,7 @@ namespace rotgen {
 
 std::string integrator_line(const integrator_spec& ig) {
     if (ig.fixed_step())
-        return "integrator: {method: " + ig.method + ", step: " + short_number(ig.step, 6) + "}";
+        return "integrator: {method: " + ig.method + ", step: " + short_number(ig.step, 17) + "}";
     return "integrator: {method: " + ig.method + ", rtol: " + short_number(ig.rtol) +
            ", atol: " + short_number(ig.atol) + "}";
 }
@@ -34,8 +34,12 @@ std::string tuned_scene_text(const scene_spec& scene, const std::string& out_dir
     YAML::Node ig(YAML::NodeType::Map);
     ig.SetStyle(YAML::EmitterStyle::Flow);
     ig["method"] = scene.integrator.method;
-    ig["rtol"] = short_number(scene.integrator.rtol);
-    ig["atol"] = short_number(scene.integrator.atol);
+    if (scene.integrator.step > 0) {
+        ig["step"] = short_number(scene.integrator.step, 17);
+    } else {
+        ig["rtol"] = short_number(scene.integrator.rtol);
+        ig["atol"] = short_number(scene.integrator.atol);
+    }
     root["integrator"] = ig;
     YAML::Emitter out;
     out << root;

@@ -57,8 +57,10 @@ void interleave_test_hook();
 
 // `scene` with method auto resolved (tune/: tuned, or read from the cache) with the GIL released
 // and without symbolic_mutex(), which the tuning runs take as they need it; `text` (when not empty)
-// registered as the content of `path` meanwhile (the cache key reads it). simulate.cpp.
-void resolve_released(scene_spec& scene, const std::string& path, const std::string& text);
+// registered as the content of `path` meanwhile (the cache key reads it); `ensemble`: for a sweep
+// (tune.hpp's auto_use: no fixed steps). simulate.cpp.
+void resolve_released(scene_spec& scene, const std::string& path, const std::string& text,
+                      bool ensemble = false);
 
 void init_errors(py::module_& m);
 void init_model(py::module_& m);

@@ -175,11 +175,12 @@ py::dict scene_info(const std::string& path, const std::string& text) {
 
 // Method auto resolved (tune/) with the GIL released and without the lock, which the tuning runs
 // take as they need it (run_member); the scene's text is registered for the cache key.
-void resolve_released(scene_spec& scene, const std::string& path, const std::string& text) {
+void resolve_released(scene_spec& scene, const std::string& path, const std::string& text,
+                      bool ensemble) {
     py::gil_scoped_release released;
     if (!text.empty()) set_memory_file(path, text);
     try {
-        resolve_auto(scene);
+        resolve_auto(scene, nullptr, ensemble ? auto_use::ensemble : auto_use::single_run);
     } catch (...) {
         if (!text.empty()) erase_memory_file(path);
         throw;

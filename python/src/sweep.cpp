@@ -59,7 +59,8 @@ void prepare(ensemble& e, const std::string& text, const sweep_options& o) {
         symbolic_scope scope(e.path, text);
         e.scene = std::make_unique<scene_spec>(load_scene(e.path, "sweep"));
     }
-    if (e.scene->integrator.method == "auto") resolve_released(*e.scene, e.path, text);
+    if (e.scene->integrator.method == "auto")
+        resolve_released(*e.scene, e.path, text, /*ensemble=*/true);
     {
         symbolic_scope scope(e.path, text);
         e.plan = std::make_unique<sweep_plan>(read_sweep_plan(*e.scene, o.vary));

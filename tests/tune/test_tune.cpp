@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 using namespace rotgen::test;
 namespace fs = std::filesystem;
@@ -91,6 +92,58 @@ TEST_CASE("method auto meets its error on shipped scenes when its choice is run"
         CHECK(m.error <= t.error);
         CHECK(m.error > t.error / 1000); // the loosest tolerance that meets it, not a tight one
     }
+}
+
+// The `step H: error E` lines of a tuning log.
+std::vector<std::pair<double, double>> fixed_step_lines(const std::string& log) {
+    std::vector<std::pair<double, double>> r;
+    std::istringstream in(log);
+    for (std::string line; std::getline(in, line);) {
+        const auto at = line.find(" step ");
+        const auto e = line.find(": error ");
+        if (at != std::string::npos && e != std::string::npos)
+            r.emplace_back(std::stod(line.substr(at + 6)), std::stod(line.substr(e + 8)));
+    }
+    return r;
+}
+
+TEST_CASE("method auto tries fixed DOP853 steps for one run and not for a sweep", "[tune]") {
+    // The bench's fastest runnable configuration at 1e-8 on the free top is DOP853 with a fixed
+    // step (bench/results/auto.md): auto searches those too, for one run. A sweep's members move
+    // otherwise than the scene it tunes on, so there only steps under error control are chosen.
+    fresh_tune_cache();
+    const double target = 1e-9;
+    rotgen::scene_spec s = auto_scene("free_top_axis2", target, 10);
+    std::ostringstream one, ensemble;
+    const rotgen::auto_choice single = rotgen::tune_scene(s, &one);
+    const auto fixed = fixed_step_lines(one.str());
+    INFO(one.str());
+    REQUIRE(fixed.size() >= 2);
+    // the fewest steps that meet the target: the largest step that does
+    double h = 0;
+    for (const auto& [step, error] : fixed)
+        if (error <= target) h = std::max(h, step);
+    REQUIRE(h > 0);
+    // that step, run and measured against an independent reference (DOP853 at rtol 1e-14)
+    rotgen::scene_spec run = rotgen::bench::scene_for_error(s);
+    run.integrator = rotgen::integrator_spec{};
+    run.integrator.method = "dop853", run.integrator.rtol = 1e-14, run.integrator.atol = 1e-16;
+    const auto independent = rotgen::bench::measure_scene(run, nullptr, 1);
+    REQUIRE(independent.ok);
+    run.integrator = rotgen::integrator_spec{};
+    run.integrator.method = "dop853", run.integrator.step = h;
+    const auto m = rotgen::bench::measure_scene(run, &independent.result, 1);
+    REQUIRE(m.ok);
+    INFO("step " << h << " error " << m.error);
+    CHECK(m.error <= target);     // observed 4.2e-10 at step 0.37037 (27 steps)
+    CHECK(m.error > target / 30); // the fewest steps that meet it, not many more
+    if (single.step > 0) CHECK(single.method == "dop853");
+    // for a sweep: none tried, none chosen, and a choice cached apart
+    const rotgen::auto_choice swept = rotgen::tune_scene(s, &ensemble, rotgen::auto_use::ensemble);
+    CHECK(fixed_step_lines(ensemble.str()).empty());
+    CHECK(swept.step == 0);
+    CHECK(swept.rtol > 0);
+    CHECK(rotgen::auto_cache_key(s, rotgen::auto_use::ensemble) != rotgen::auto_cache_key(s));
 }
 
 TEST_CASE("method auto reaches 1e-12 against the Taylor reference", "[tune]") {
@@ -188,12 +241,14 @@ TEST_CASE("rotgen tune writes a scene that simulate runs, and exits 2 below the 
     CHECK(r.status == 0);
     CHECK(r.out.find("  method  auto: ") != std::string::npos);
     CHECK(r.out.find("; cached)") != std::string::npos);
-    // a sweep tunes once for all members (here: reads the choice) and says so; the choice is part
-    // of its journal's hash
+    // a sweep tunes once for all members, for an ensemble (no fixed steps: a choice of its own,
+    // not simulate's) and says so; the choice is part of its journal's hash
     r = run_rotgen("sweep '" + scene + "' -o '" + dir + "/sweep' --vary initial.theta=0.4:0.6:3");
     INFO(r.out << r.err);
     CHECK(r.status == 0);
     CHECK(r.out.find("method auto: ") != std::string::npos);
+    CHECK(r.out.find(" rtol ") != std::string::npos);
+    CHECK(r.out.find("; cached)") == std::string::npos);
     // an error below what the reference resolves: exit 2 naming the smallest error reached
     r = run_rotgen("tune '" + scene + "' --error 1e-17");
     CHECK(r.status == 2);

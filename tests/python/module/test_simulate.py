@@ -149,10 +149,13 @@ def test_with_method_auto_runs_the_tuned_choice(in_tmp, monkeypatch):
     s2 = s.with_(integrator={"method": "auto", "error": 1e-6}, time={"end": 1, "samples": 51})
     r = rotgen.simulate(s2)
     assert r.summary["method"] != "auto"
-    assert r.summary["auto"].startswith(r.summary["method"] + " rtol ")
+    assert r.summary["auto"].startswith((r.summary["method"] + " rtol ", r.summary["method"] + " step "))
     assert "; cached" not in r.summary["auto"]
     again = rotgen.simulate(s2)
     assert again.summary["auto"].endswith("; cached)")
     assert same_bits(again.y, r.y)
+    # a sweep chooses for an ensemble (steps under error control), cached apart from the one run's
+    rotgen.sweep(s2, vary={"initial.theta": [0.4, 0.6]})
+    assert len(list((in_tmp / "cache" / "tune").glob("*.choice"))) == 2
     # back to a method of its own: the error key goes
     assert rotgen.simulate(s2.with_(integrator={"method": "dop853"})).summary["auto"] == ""

@@ -1,0 +1,16 @@
+// A method calibrated as `rotgen simulate` calibrates a run of the body form (quaternion, ω):
+// step_control.hpp's calibrate() with the quaternion an attitude and ω one vector, so that rtol
+// means the error at the samples for every method (docs/integrators.md, "What a tolerance means").
+// Shared by bench/split/split_bench.cpp and control_bench.cpp.
+#pragma once
+
+#include "step_control.hpp"
+
+#include <cstddef>
+
+template <class M> M calibrated(M m) {
+    constexpr signed char q = rotgen::error_layout::attitude;
+    rotgen::calibrate(m, rotgen::error_layout{{q, q, q, q, 0, 0, 0}, {}});
+    m.max_steps = std::size_t(100000000);
+    return m;
+}
