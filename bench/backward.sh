@@ -25,7 +25,9 @@ run() { # form, integrator, record
     "$rotgen" simulate "$work/there.yaml" -o "$work/there.csv" -q
     "$rotgen" simulate "$work/back.yaml" -o "$work/back.csv" --from "$work/there.csv" -q
     local worst
-    worst=$(awk -F, 'NR == FNR { if (FNR == 2) for (i = 2; i <= NF; ++i) s[i] = $i; next }
+    # (each CSV: a "# rotgen ..." line, the header, then the rows)
+    worst=$(awk -F, '/^#/ { next }
+                     NR == FNR { if (++rows == 2) for (i = 2; i <= NF; ++i) s[i] = $i; next }
                      { last = $0 }
                      END { n = split(last, b, ","); w = 0
                            for (i = 2; i <= n; ++i) { d = b[i] - s[i]; if (d < 0) d = -d; if (d > w) w = d }

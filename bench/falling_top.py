@@ -54,7 +54,8 @@ def rotgen_events(rotgen):
         out = os.path.join(work, "fall.csv")
         subprocess.run([rotgen, "simulate", scene, "-o", out, "-q"], check=True)
         with open(os.path.join(work, "fall.events.csv")) as f:
-            return {r["event"]: float(r["t"]) for r in csv.DictReader(f)}
+            rows = (line for line in f if not line.startswith("#"))  # the "# rotgen ..." line
+            return {r["event"]: float(r["t"]) for r in csv.DictReader(rows)}
 
 
 def main():

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Splitting on the exact free flow (split2/4/6) against DOP853 at fast spin: writes
 # bench/results/split.md (issue 17). One command, from anywhere:
-#   bench/split/split.sh
+#   bench/split/split.sh [--tabulate]      (--tabulate: the tables from bench/results/split_runs.txt)
 # Builds bench/split/split_bench.cpp with g++ -O2 against the runtime headers (Eigen, Boost.Math),
 # runs it (about 5 minutes: the long-double references at spin 1e4 dominate), and tabulates its
 # output with awk: per body and spin, the cheapest run of each method that reaches an attitude
@@ -13,8 +13,12 @@ set -euo pipefail
 cd "$(dirname "$0")/../.."
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-g++ -O2 -std=c++17 -I runtime -I /usr/include/eigen3 bench/split/split_bench.cpp -o "$work/bench"
-"$work/bench" > "$work/runs.txt"
+if [ "${1:-}" = --tabulate ]; then # the tables again from the committed runs, not run anew
+  cp bench/results/split_runs.txt "$work/runs.txt"
+else
+  g++ -O2 -std=c++17 -I runtime -I /usr/include/eigen3 bench/split/split_bench.cpp -o "$work/bench"
+  "$work/bench" > "$work/runs.txt"
+fi
 out=bench/results/split.md
 {
   cat <<'MD'

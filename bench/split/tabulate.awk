@@ -42,4 +42,21 @@ END {
     }
     print ""
   }
+  # DOP853's error / rtol by spin (the same rtol on the body form errs more at faster spin)
+  print "## DOP853's error / rtol on the body form, by spin (rtol 1e-5 .. 1e-11)"
+  print ""
+  print "| body | spin (rad/s) | smallest | largest |"
+  print "|---|---|---|---|"
+  for (b = 1; b <= nb; b++)
+    for (s = 1; s <= ns[bodies[b]]; s++) {
+      dk = bodies[b] SUBSEP spins[bodies[b], s] SUBSEP "dop853"; lo = -1; hi = -1
+      for (i = 1; i <= count[dk]; i++)
+        if (knob[dk, i] <= 1.0001e-5 && knob[dk, i] >= 0.9999e-11) {
+          r = err[dk, i] / knob[dk, i]
+          if (lo < 0 || r < lo) lo = r
+          if (r > hi) hi = r
+        }
+      printf "| %s | %s | %.3g | %.3g |\n", bodies[b], spins[bodies[b], s], lo, hi
+    }
+  print ""
 }

@@ -71,7 +71,7 @@ if [ -n "$old" ]; then
 else
   echo "; error and expansions: the bench's,"
 fi
-echo "the final state's max-norm error against the scene's reference."
+echo "the bench's error column (since 8f3dce0 the largest over the samples; before it, the final state's error)."
 for scene in $scenes; do
   echo
   echo "### $scene"

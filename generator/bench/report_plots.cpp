@@ -160,8 +160,8 @@ void work_precision_plot(const bench_context& ctx, const std::vector<curve>& cur
     std::ostringstream gp;
     gp << palette << "set logscale xy\nset grid\nset format y '1e%T'\nset format x '1e%T'\n"
        << "set key outside right top Left reverse samplen 3\n"
-       << "set xlabel '" << xlabel << "'\nset ylabel 'error at t = " << plain(ctx.plan.t1)
-       << " (max-norm)'\n"
+       << "set xlabel '" << xlabel << "'\nset ylabel 'largest error at the samples, t0 .. "
+       << plain(ctx.plan.t1) << "'\n"
        << "set multiplot layout 3,1 title '" << gnuplot_escape(ctx.scene_name)
        << ": work-precision (" << gnuplot_escape(ctx.output.compared)
        << "); solid rotgen, dashed Odeint, dotted CVODE'\n";
