@@ -136,7 +136,10 @@ view_data view_of_rows(const scene_spec& scene, const std::vector<std::string>& 
     const std::array<int, 3> w{column_of(columns, "omega1"), column_of(columns, "omega2"),
                                column_of(columns, "omega3")};
     const bool has_L = *std::min_element(L.begin(), L.end()) > 0;
-    const bool has_w = !rotor && *std::min_element(w.begin(), w.end()) > 0;
+    // L in space from omega: R(q) I omega, which leaves out a wheel's momentum (a model with
+    // wheels shows L only where the run recorded Lx..Lz, as `--view` does)
+    const bool has_w =
+        !rotor && scene.model.wheels.empty() && *std::min_element(w.begin(), w.end()) > 0;
     const Eigen::Matrix3d tensor = has_w ? tensor_at(scene) : Eigen::Matrix3d::Zero();
     view_data d;
     d.columns = columns;

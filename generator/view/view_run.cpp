@@ -9,9 +9,12 @@ scene_spec scene_for_view(const scene_spec& scene, const std::string& option) {
     if (scene.form == form_kind::reduced)
         throw user_error({option}, "the view needs the attitude, which the reduced form does "
                                    "not keep (its ignored angles): use another form");
-    return with_records(scene, scene.model.rotor
-                                   ? std::vector<std::string>{"phi", "theta"}
-                                   : std::vector<std::string>{"q0", "q1", "q2", "q3"});
+    if (scene.model.rotor) return with_records(scene, {"phi", "theta"});
+    // a body with wheels: L from the run's own record, which holds the wheels' momenta (the view
+    // cannot compute it from omega alone)
+    if (!scene.model.wheels.empty())
+        return with_records(scene, {"q0", "q1", "q2", "q3", "Lx", "Ly", "Lz"});
+    return with_records(scene, {"q0", "q1", "q2", "q3"});
 }
 
 view_data view_of_run(const scene_spec& viewed, const run_result& r) {
