@@ -5,12 +5,13 @@ Euler-angle forms took central differences of whole runs, 2k more runs per Jacob
 Two problems: tumbling_lagrangian.yaml (docs/fitting.md's worked example, examples/fit/gyro.csv, in
 the lagrangian form) and top_lagrangian.yaml (the full-tensor top's six inertia entries from a
 simulated gyro and star tracker: q0..q3 measured). Each with `rotgen fit` (wall time: the median of
-5 whole commands), with the rotgen built before the change when it is given. Then where the time
+9 whole commands, before and after in turn), with the rotgen built before the change when it is given. Then where the time
 of a run with sensitivities goes, for the top: `rotgen sweep` of 1 and of 201 members (best of 5),
 with and without the six keys' sensitivities: the preparation (about the 1-member sweep) and the
 cost of one more run ((201 - 1) members / 200).
 
     /usr/bin/python3 bench/fit/lagrangian.py build/rotgen [BEFORE] > bench/results/fit_lagrangian.md
+    (BEFORE_LABEL=TEXT: what BEFORE is, for the header; bench/results/README.md has the runs)
 """
 
 import os
@@ -27,22 +28,35 @@ here = os.path.dirname(os.path.abspath(__file__))
 root = os.path.join(here, "..", "..")
 exe = sys.argv[1] if len(sys.argv) > 1 else "rotgen"
 before = sys.argv[2] if len(sys.argv) > 2 else None
+# what BEFORE is, for the file's header
+BEFORE_LABEL = os.environ.get("BEFORE_LABEL", "rotgen at main 3d54143, whose fit took central "
+                              "differences in the Euler-angle forms")
 inertia = ["parameters." + n for n in ("Ixx", "Iyy", "Izz", "Ixy", "Ixz", "Iyz")]
 
 
-def measured_fit(program, scene, data, free, sigma):
-    """Median wall time of 5 whole commands; evaluations, Jacobians, runs, source, chi2."""
-    walls = []
-    for _ in range(5):
-        t0 = time.perf_counter()
-        out = subprocess.run([program, "fit", scene, "--data", data, "--free", ",".join(free),
-                              "--sigma", sigma], check=True, capture_output=True, text=True).stdout
-        walls.append(time.perf_counter() - t0)
-    m = re.search(r"(\d+) evaluations, (\d+) Jacobians (from the sensitivities|by central "
-                  r"differences)? ?\((\d+) runs\)", out)
-    source = m.group(3) or "central differences"
-    chi2 = float(re.search(r"chi2 (\S+)", out).group(1))
-    return sorted(walls)[2], int(m.group(1)), int(m.group(2)), int(m.group(4)), source, chi2
+REPEATS = 9
+
+
+def measured_fits(programs, scene, data, free, sigma):
+    """For each program: the median wall time of REPEATS whole commands, the programs run in turn
+    (so that the machine's load falls on each alike); evaluations, Jacobians, runs, source, chi2."""
+    walls, outs = [[] for _ in programs], [None] * len(programs)
+    for _ in range(REPEATS):
+        for i, program in enumerate(programs):
+            t0 = time.perf_counter()
+            outs[i] = subprocess.run([program, "fit", scene, "--data", data, "--free",
+                                      ",".join(free), "--sigma", sigma], check=True,
+                                     capture_output=True, text=True).stdout
+            walls[i].append(time.perf_counter() - t0)
+    rows = []
+    for wall, out in zip(walls, outs):
+        m = re.search(r"(\d+) evaluations, (\d+) Jacobians (from the sensitivities|by central "
+                      r"differences)? ?\((\d+) runs\)", out)
+        source = m.group(3) or "central differences"
+        chi2 = float(re.search(r"chi2 (\S+)", out).group(1))
+        rows.append((sorted(wall)[len(wall) // 2], int(m.group(1)), int(m.group(2)),
+                     int(m.group(4)), source, chi2))
+    return rows
 
 
 def top_data(exe, path):
@@ -113,18 +127,15 @@ with tempfile.TemporaryDirectory() as tmp:
     ]
     print("# rotgen fit in the lagrangian form, before and after the sensitivities' Jacobian")
     print()
-    print("Made by `/usr/bin/python3 bench/fit/lagrangian.py build/rotgen BEFORE` (BEFORE: rotgen at")
-    print("main 3d54143, whose fit took central differences in the Euler-angle forms) on the")
-    print("development machine (2 cores, otherwise idle), 2026-11-28, after the compiled variational kernel.")
+    print("Made by `/usr/bin/python3 bench/fit/lagrangian.py build/rotgen BEFORE` (BEFORE: " + BEFORE_LABEL + ")")
+    print("on the development machine (2 cores, otherwise idle), " + time.strftime("%Y-%m-%d") + ".")
     print()
     print("| problem | rotgen | Jacobian | wall time (s) | evaluations | Jacobians | runs | chi2 |")
     print("|---|---|---|---|---|---|---|---|")
+    runs_of = [(label, program) for label, program in (("before", before), ("after", exe)) if program]
     for name, scene_file, data_file, free, sig in problems:
-        for label, program in (("before", before), ("after", exe)):
-            if program is None:
-                continue
-            wall, evals, jacs, runs, source, chi2 = measured_fit(program, scene_file, data_file,
-                                                                free, sig)
+        rows = measured_fits([p for _, p in runs_of], scene_file, data_file, free, sig)
+        for (label, _), (wall, evals, jacs, runs, source, chi2) in zip(runs_of, rows):
             print(f"| {name} | {label} | {source} | {wall:.3f} | {evals} | {jacs} | {runs} | "
                   f"{chi2:.6g} |")
 

@@ -138,19 +138,19 @@ void print_body(std::ostream& shim, const form_expressions& f, const std::vector
              << ";\n";
 }
 
-// With sensitivities: rotgen_parameter_jacobian, d f/d P (row-major n x P, every parameter of
-// the form: the model's, and the reduced form's cyclic momenta); rotgen_record_jacobian, the
-// record program's outputs differentiated by the state, then by the parameters (row-major outputs
-// x (n + P)); and rotgen_event_jacobian_<i>, event i's g by (y, P, t): GiNaC's derivatives, exact.
+// With sensitivities: rotgen_record_jacobian, the record program's outputs differentiated by the
+// state, then by the parameters of the form (the model's, and the reduced form's cyclic momenta;
+// row-major outputs x (n + P)); and rotgen_event_jacobian_<i>, event i's g by (y, P, t): GiNaC's
+// derivatives, exact. (d f/d P is in rotgen_variational, variational.hpp.)
 std::vector<std::pair<std::string, std::vector<ex>>>
 sensitivity_programs(const scene_spec& scene, const form_expressions& f,
                      const std::vector<ex>& program, const std::vector<ex>& events) {
     if (!scene.sensitivities.active()) return {};
-    std::vector<ex> parameters, variables;
+    std::vector<ex> variables;
     for (const auto& s : f.state)
         variables.push_back(s.symbol);
     for (const auto& p : f.parameters)
-        parameters.push_back(p.symbol), variables.push_back(p.symbol);
+        variables.push_back(p.symbol);
     const auto by_variables = [&](const std::vector<ex>& outputs, bool time) {
         std::vector<ex> d;
         for (const ex& out : outputs) {
@@ -161,7 +161,6 @@ sensitivity_programs(const scene_spec& scene, const form_expressions& f,
         return d;
     };
     std::vector<std::pair<std::string, std::vector<ex>>> more{
-        {"rotgen_parameter_jacobian", parameter_jacobian(f, f.rates, parameters)},
         {"rotgen_record_jacobian", by_variables(program, false)}};
     for (std::size_t e = 0; e < events.size(); ++e)
         more.emplace_back("rotgen_event_jacobian_" + std::to_string(e),
@@ -328,8 +327,6 @@ compiled_form compile_form(const scene_spec& scene, form_expressions f, bool ori
         c.events.push_back(reinterpret_cast<loaded_system::kernel>(
             c.lib.symbol("rotgen_event_" + std::to_string(e))));
     if (scene.sensitivities.active()) {
-        c.parameter_jacobian =
-            reinterpret_cast<loaded_system::kernel>(c.lib.symbol("rotgen_parameter_jacobian"));
         c.record_jacobian =
             reinterpret_cast<loaded_system::kernel>(c.lib.symbol("rotgen_record_jacobian"));
         c.variational = reinterpret_cast<loaded_system::kernel>(c.lib.symbol("rotgen_variational"));

@@ -77,10 +77,9 @@ struct compiled_form {
     loaded_system sys;                         // without parameter values (p null)
     loaded_system::kernel record = nullptr;    // record(p, t, y, out): the record program
     std::vector<loaded_system::kernel> events; // g of each scene event, out[0] (event_kernels.hpp)
-    // With the scene's sensitivities (else null), (v, t, y, out): d f/d P, row-major n x P (the
-    // form's parameters, v as for record); the record program's outputs by (y, P), row-major
-    // outputs x (n + P)
-    loaded_system::kernel parameter_jacobian = nullptr, record_jacobian = nullptr;
+    // With the scene's sensitivities (else null), (v, t, y, out): the record program's outputs by
+    // (y, P), row-major outputs x (n + P) (P: the form's parameters, v as for record)
+    loaded_system::kernel record_jacobian = nullptr;
     // With sensitivities, (v, t, y, out): the augmented system (y, S)' (run/variational.hpp)
     loaded_system::kernel variational = nullptr;
     std::vector<loaded_system::kernel> event_jacobians; // g of each event by (y, P, t): n + P + 1
