@@ -6,6 +6,7 @@
 #include "bench/sampled_error.hpp"
 #include "scene/scene.hpp"
 #include "tune/tune.hpp"
+#include "tune/tuned_scene.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -144,6 +145,30 @@ TEST_CASE("method auto tries fixed DOP853 steps for one run and not for a sweep"
     CHECK(swept.step == 0);
     CHECK(swept.rtol > 0);
     CHECK(rotgen::auto_cache_key(s, rotgen::auto_use::ensemble) != rotgen::auto_cache_key(s));
+}
+
+TEST_CASE("method auto's fixed-step choice is read from the cache, printed and written as a scene",
+          "[tune]") {
+    // a choice file as the tuning writes one for DOP853 with a fixed step (which one the tuning
+    // picks depends on its timings: here it is given)
+    fresh_tune_cache();
+    rotgen::scene_spec s = auto_scene("free_top_axis2", 1e-6, 5);
+    const fs::path dir = fs::path(std::getenv("ROTGEN_CACHE_DIR")) / "tune";
+    fs::create_directories(dir);
+    std::ofstream(dir / (rotgen::auto_cache_key(s) + ".choice"))
+        << "method dop853\nrtol 0\natol 0\nstep 0.25\nform body\nerror 5e-07\n"
+           "run_seconds 0.0001\nfloor 1e-13\ntune_seconds 1.5\n";
+    rotgen::resolve_auto(s);
+    CHECK(s.integrator.method == "dop853");
+    CHECK(s.integrator.step == 0.25);
+    CHECK(s.integrator.fixed_step());
+    CHECK(s.form == rotgen::form_kind::body);
+    CHECK(s.integrator.auto_choice == "dop853 step 0.25 in the body form (tuned in 1.5 s; cached)");
+    const std::string text = rotgen::tuned_scene_text(s, std::string(ROTGEN_BINARY_DIR), true);
+    INFO(text);
+    CHECK(text.find("integrator: {method: dop853, step: 0.25}") != std::string::npos);
+    CHECK(text.find("rtol") == std::string::npos);
+    CHECK(rotgen::integrator_line(s.integrator) == "integrator: {method: dop853, step: 0.25}");
 }
 
 TEST_CASE("method auto reaches 1e-12 against the Taylor reference", "[tune]") {
