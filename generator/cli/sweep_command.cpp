@@ -87,9 +87,9 @@ int cmd_sweep(const std::vector<std::string>& args) {
     q.timings = o.has("--timings");
     q.quiet = o.has("--quiet");
     q.resume = o.has("--resume");
-    q.resolve = [](scene_spec& s) { // method auto: tuned once for all, steps under error control
-        resolve_auto(s, nullptr, auto_use::ensemble);
-    };
+    // method auto: tuned once for all, steps under error control, a method the lanes run
+    const auto_use use = q.lanes > 1 ? auto_use::lanes : auto_use::ensemble;
+    q.resolve = [use](scene_spec& s) { resolve_auto(s, nullptr, use); };
     return sweep(q);
 }
 

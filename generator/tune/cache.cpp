@@ -95,7 +95,8 @@ void write_choice(const fs::path& file, const auto_choice& c) {
 std::string auto_cache_key(const scene_spec& scene, auto_use use) {
     std::string all = text_of(scene.file) + '\0' + scene.model.source + '\0';
     all += short_number(scene.integrator.error, 17) + '\0' + compiler_identity() + '\0' + procedure;
-    if (use == auto_use::ensemble) all += std::string(1, '\0') + "ensemble";
+    if (use != auto_use::single_run)
+        all += std::string(1, '\0') + (use == auto_use::lanes ? "lanes" : "ensemble");
     return hex(fnv1a(all));
 }
 

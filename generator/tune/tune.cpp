@@ -34,11 +34,13 @@ const std::vector<std::string> auto_methods{"dop853", "dopri5", "taylor",
                                             "split2", "split4", "split6"};
 
 // The methods auto may choose for this scene: those that integrate its sensitivities, if it has
-// any.
-std::vector<std::string> methods_for(const scene_spec& scene) {
+// any, and for lanes those the lanes run (run/lanes.hpp's lane_check).
+std::vector<std::string> methods_for(const scene_spec& scene, auto_use use = auto_use::single_run) {
     std::vector<std::string> r;
     for (const auto& m : auto_methods)
-        if (!scene.sensitivities.active() || method_takes_sensitivities(m)) r.push_back(m);
+        if ((!scene.sensitivities.active() || method_takes_sensitivities(m)) &&
+            (use != auto_use::lanes || m == "dop853" || m == "taylor"))
+            r.push_back(m);
     return r;
 }
 
@@ -194,7 +196,7 @@ auto_choice tune_scene(const scene_spec& scene, std::ostream* log, auto_use use)
     std::vector<candidate> found;
     candidate closest{"", scene.form, 0, {}};
     for (const form_kind f : candidate_forms(scene))
-        for (const auto& m : methods_for(scene)) {
+        for (const auto& m : methods_for(scene, use)) {
             if (is_split(m) && f != form_kind::body) continue; // they run the body form
             search_result s = search(base, f, m, ref.result, target, log);
             if (s.refused) continue;

@@ -30,8 +30,9 @@
 namespace rotgen {
 
 // What the choice is for: one run (simulate, tune, Python's simulate) may take fixed steps, an
-// ensemble (sweep) only steps under error control, which follow each member's own motion.
-enum class auto_use { single_run, ensemble };
+// ensemble (sweep) only steps under error control, which follow each member's own motion, and an
+// ensemble in SIMD lanes (sweep --lanes) only the methods the lanes run (dop853, taylor).
+enum class auto_use : int { single_run, ensemble, lanes };
 
 struct auto_choice {
     std::string method;

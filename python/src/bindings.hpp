@@ -16,7 +16,8 @@
 
 namespace rotgen {
 struct scene_spec;
-}
+enum class auto_use : int; // tune/tune.hpp
+} // namespace rotgen
 
 namespace rotgen::python {
 
@@ -57,10 +58,11 @@ void interleave_test_hook();
 
 // `scene` with method auto resolved (tune/: tuned, or read from the cache) with the GIL released
 // and without symbolic_mutex(), which the tuning runs take as they need it; `text` (when not empty)
-// registered as the content of `path` meanwhile (the cache key reads it); `ensemble`: for a sweep
-// (tune.hpp's auto_use: no fixed steps). simulate.cpp.
+// registered as the content of `path` meanwhile (the cache key reads it); `use`: what the choice
+// is for (tune.hpp: a sweep's takes no fixed steps, a lane sweep's only a method lanes run).
+// simulate.cpp.
 void resolve_released(scene_spec& scene, const std::string& path, const std::string& text,
-                      bool ensemble = false);
+                      auto_use use);
 
 void init_errors(py::module_& m);
 void init_model(py::module_& m);

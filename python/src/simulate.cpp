@@ -121,7 +121,8 @@ py::dict simulate_scene(const std::string& path, const std::string& text) {
         symbolic_scope scope(path, text);
         run.scene = std::make_unique<scene_spec>(load_scene(path, "simulate"));
     }
-    if (run.scene->integrator.method == "auto") resolve_released(*run.scene, path, text);
+    if (run.scene->integrator.method == "auto")
+        resolve_released(*run.scene, path, text, auto_use::single_run);
     {
         symbolic_scope scope(path, text);
         run.prepared = std::make_unique<prepared_scene>(*run.scene, timings);
@@ -176,11 +177,11 @@ py::dict scene_info(const std::string& path, const std::string& text) {
 // Method auto resolved (tune/) with the GIL released and without the lock, which the tuning runs
 // take as they need it (run_member); the scene's text is registered for the cache key.
 void resolve_released(scene_spec& scene, const std::string& path, const std::string& text,
-                      bool ensemble) {
+                      auto_use use) {
     py::gil_scoped_release released;
     if (!text.empty()) set_memory_file(path, text);
     try {
-        resolve_auto(scene, nullptr, ensemble ? auto_use::ensemble : auto_use::single_run);
+        resolve_auto(scene, nullptr, use);
     } catch (...) {
         if (!text.empty()) erase_memory_file(path);
         throw;

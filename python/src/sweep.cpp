@@ -12,6 +12,7 @@
 #include "sweep/members.hpp"
 #include "sweep/outcome.hpp"
 #include "sweep/parallel.hpp"
+#include "tune/tune.hpp"
 
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
@@ -60,7 +61,8 @@ void prepare(ensemble& e, const std::string& text, const sweep_options& o) {
         e.scene = std::make_unique<scene_spec>(load_scene(e.path, "sweep"));
     }
     if (e.scene->integrator.method == "auto")
-        resolve_released(*e.scene, e.path, text, /*ensemble=*/true);
+        resolve_released(*e.scene, e.path, text,
+                         o.lanes > 1 ? auto_use::lanes : auto_use::ensemble);
     {
         symbolic_scope scope(e.path, text);
         e.plan = std::make_unique<sweep_plan>(read_sweep_plan(*e.scene, o.vary));

@@ -108,7 +108,9 @@ std::vector<std::pair<double, double>> fixed_step_lines(const std::string& log) 
     return r;
 }
 
-TEST_CASE("method auto tries fixed DOP853 steps for one run and not for a sweep", "[tune]") {
+TEST_CASE("method auto tries fixed DOP853 steps for one run, not for a sweep, and for lanes only "
+          "what they run",
+          "[tune]") {
     // The bench's fastest runnable configuration at 1e-8 on the free top is DOP853 with a fixed
     // step (bench/results/auto.md): auto searches those too, for one run. A sweep's members move
     // otherwise than the scene it tunes on, so there only steps under error control are chosen.
@@ -145,6 +147,17 @@ TEST_CASE("method auto tries fixed DOP853 steps for one run and not for a sweep"
     CHECK(swept.step == 0);
     CHECK(swept.rtol > 0);
     CHECK(rotgen::auto_cache_key(s, rotgen::auto_use::ensemble) != rotgen::auto_cache_key(s));
+    // for a sweep in SIMD lanes: only the methods the lanes run (dop853, taylor) are tried
+    std::ostringstream in_lanes;
+    const rotgen::auto_choice lanes = rotgen::tune_scene(s, &in_lanes, rotgen::auto_use::lanes);
+    INFO(in_lanes.str());
+    for (const char* other : {"dopri5", "split2", "split4", "split6"})
+        CHECK(in_lanes.str().find(other) == std::string::npos);
+    CHECK(in_lanes.str().find("dop853") != std::string::npos);
+    CHECK((lanes.method == "dop853" || lanes.method == "taylor"));
+    CHECK(lanes.step == 0);
+    CHECK(rotgen::auto_cache_key(s, rotgen::auto_use::lanes) !=
+          rotgen::auto_cache_key(s, rotgen::auto_use::ensemble));
 }
 
 TEST_CASE("method auto's fixed-step choice is read from the cache, printed and written as a scene",
@@ -274,6 +287,15 @@ TEST_CASE("rotgen tune writes a scene that simulate runs, and exits 2 below the 
     CHECK(r.out.find("method auto: ") != std::string::npos);
     CHECK(r.out.find(" rtol ") != std::string::npos);
     CHECK(r.out.find("; cached)") == std::string::npos);
+    // in SIMD lanes: a method the lanes run (dopri5, which the plain sweep may choose, they
+    // refuse), tuned for them
+    r = run_rotgen("sweep '" + scene + "' -o '" + dir +
+                   "/lanes' --vary initial.theta=0.4:0.6:4 --lanes 4");
+    INFO(r.out << r.err);
+    CHECK(r.status == 0);
+    CHECK((r.out.find("auto: dop853 rtol") != std::string::npos ||
+           r.out.find("auto: taylor rtol") != std::string::npos));
+    CHECK(r.out.find("; cached)") == std::string::npos); // not the plain sweep's choice
     // an error below what the reference resolves: exit 2 naming the smallest error reached
     r = run_rotgen("tune '" + scene + "' --error 1e-17");
     CHECK(r.status == 2);

@@ -157,5 +157,8 @@ def test_with_method_auto_runs_the_tuned_choice(in_tmp, monkeypatch):
     # a sweep chooses for an ensemble (steps under error control), cached apart from the one run's
     rotgen.sweep(s2, vary={"initial.theta": [0.4, 0.6]})
     assert len(list((in_tmp / "cache" / "tune").glob("*.choice"))) == 2
+    # and a sweep in SIMD lanes for the methods the lanes run, apart again
+    rotgen.sweep(s2, vary={"initial.theta": [0.4, 0.6]}, lanes=2)
+    assert len(list((in_tmp / "cache" / "tune").glob("*.choice"))) == 3
     # back to a method of its own: the error key goes
     assert rotgen.simulate(s2.with_(integrator={"method": "dop853"})).summary["auto"] == ""
