@@ -37,6 +37,7 @@
 /// steps of θh/2 from the step's start: equal to the step's result at θ = 1), no Jacobian.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <string>
@@ -80,6 +81,12 @@ template <class T, int Order> struct split_controlled : adaptive_options<T> {
     /// The estimate is held to tolerance_scale · (atol + rtol |y|): local errors add up over the
     /// run, and this keeps the global error near rtol (bench/results/split_control.md).
     T tolerance_scale = T(0.05);
+    /// A step turns the body (|ω| h) by at most max_turns · 2π: on longer steps the doubling
+    /// estimate aliases with the spin and can miss the error a hundredfold (split2 at spin 1000,
+    /// rtol 1e-4: 22 steps and 505 × rtol; bench/results/split_control.md). The bound enters the
+    /// error as (|ω| h / (2π max_turns))^p, so the controller settles below it without rejecting.
+    /// 0: no bound.
+    T max_turns = T(5);
 
     /// The method's name, as scene files and `rotgen simulate` spell it.
     std::string name() const { return "split" + std::to_string(Order); }
@@ -89,6 +96,7 @@ template <class T, int Order> struct split_controlled : adaptive_options<T> {
             return "tolerance_scale must lie in (0, 1]";
         if (!(this->calibration_scale > T(0)) || !(this->calibration_power >= T(0)))
             return "calibration_scale must be > 0 and calibration_power >= 0";
+        if (!(max_turns >= T(0))) return "max_turns must be >= 0";
         return detail::check_adaptive_options<T>(*this);
     }
 };
@@ -119,7 +127,8 @@ template <class T, class S, int Order> class split_doubling_stepper {
 
     /// Storage for n state components, with the tolerances of m times m.tolerance_scale.
     split_doubling_stepper(const split_controlled<T, Order>& m, std::size_t n)
-        : m_atol(m.atol * factor(m)), m_rtol(m.rtol * factor(m)), m_layout(m.layout),
+        : m_atol(m.atol * factor(m)), m_rtol(m.rtol * factor(m)),
+          m_max_angle(T(2) * T(3.14159265358979323846) * m.max_turns), m_layout(m.layout),
           m_y0(detail::make_work_vector<vector>(n)), m_y1(m_y0), m_full(m_y0), m_mid(m_y0),
           m_f(m_y0), m_inv(m_y0) {}
 
@@ -148,7 +157,8 @@ template <class T, class S, int Order> class split_doubling_stepper {
         const T scale = T(1) / T((1 << Order) - 1);
         for (std::size_t i = 0; i < detail::size_of(m_full); ++i)
             m_full[i] = (m_y1[i] - m_full[i]) * scale;
-        return {status::ok, detail::error_norm(m_full, y, m_y1, m_atol, m_rtol, m_layout, m_inv)};
+        const T err = detail::error_norm(m_full, y, m_y1, m_atol, m_rtol, m_layout, m_inv);
+        return {status::ok, std::max(err, turning(y, h))};
     }
 
     /// Nothing to prepare (samples are the method run from the step's start): always true.
@@ -163,12 +173,25 @@ template <class T, class S, int Order> class split_doubling_stepper {
     }
 
   private:
+    /// (|ω| |h| / (2π max_turns))^p, ω = y[4..6] (a split system's state: q, then ω); 0 without
+    /// the bound.
+    T turning(const vector& y, T h) const {
+        using std::abs;
+        using std::sqrt;
+        if (!(m_max_angle > T(0))) return T(0);
+        const T w = sqrt(y[4] * y[4] + y[5] * y[5] + y[6] * y[6]);
+        T r = T(1);
+        for (int k = 0; k < Order; ++k)
+            r *= abs(h) * w / m_max_angle;
+        return r;
+    }
+
     static T factor(const split_controlled<T, Order>& m) {
         return m.tolerance_scale *
                calibration_factor(m.calibration_scale, m.calibration_power, m.rtol, m.atol);
     }
 
-    T m_atol, m_rtol;
+    T m_atol, m_rtol, m_max_angle;
     error_layout m_layout;
     vector m_y0, m_y1, m_full, m_mid, m_f, m_inv;
     const S* m_sys = nullptr;

@@ -64,6 +64,7 @@ template <int P> double estimate_over_error(double h) {
     const state y0 = initial_state(0.5, 10);
     split_controlled<double, P> method(0.0, 1.0);
     method.tolerance_scale = 1;
+    method.max_turns = 0; // the estimate alone, not the bound on the step's turning
     split_doubling_stepper<double, decltype(sys), P> st(method, 7);
     step_stats stats;
     REQUIRE(st.start(sys, 0.0, y0, stats));
@@ -108,6 +109,25 @@ TEST_CASE("split methods under error control meet rtol at t = 10", "[splitting][
     CHECK(controlled_error<4>(asym, 1.2, 10, 1e-6) < 2e-6); // observed 2.9e-7
     // the case of issue 25 where the old fixed step missed rtol 1e-6 by 55x: θ0 = 0.5, spin 1000
     CHECK(controlled_error<4>(sym, 0.5, 1000, 1e-6) < 2e-9); // observed 2e-10
+}
+
+TEST_CASE("a controlled split step turns the body at most max_turns times",
+          "[splitting][control]") {
+    // split2 at spin 1000 and rtol 1e-4, calibrated as a scene's run of the body form: without the
+    // bound it took 44 steps of some 36 turns each, where the doubling estimate aliases with the
+    // spin, and erred 5.05e-2 (505 rtol; bench/results/split_control.md)
+    const std::array<double, 3> sym = {1, 1, 0.5};
+    auto sys = heavy_top<double>(sym);
+    state y = initial_state(1.2, 1000);
+    const state ref = reference(sym, y, 10);
+    split_controlled<double, 2> method(1e-4, 1e-4);
+    constexpr signed char q = error_layout::attitude;
+    calibrate(method, error_layout{{q, q, q, q, 0, 0, 0}, {}});
+    const auto r = integrate(sys, method, 0.0, y, 10.0);
+    REQUIRE(r.code == status::ok);
+    INFO("steps " << r.stats.steps << " error " << q_error(y, ref));
+    CHECK(r.stats.steps >= 318);   // 10 s at 1000 rad/s, 5 turns a step at most: observed 366
+    CHECK(q_error(y, ref) < 1e-4); // observed 1.0e-5
 }
 
 TEST_CASE("the split error norm weighs rtol: with atol 1e-14, rtol 1e-6 sets the steps",
