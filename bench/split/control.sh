@@ -11,6 +11,7 @@ trap 'rm -rf "$work"' EXIT
 g++ -O2 -std=c++17 -I runtime -I /usr/include/eigen3 bench/split/control_bench.cpp -o "$work/bench"
 "$work/bench" > "$work/runs.txt"
 "$work/bench" floor > "$work/floor.txt"
+"$work/bench" unbounded > "$work/unbounded.txt"
 out=bench/results/split_control.md
 {
   cat <<'MD'
@@ -43,6 +44,11 @@ MD
   echo "The reference's own error at spin 1e4 (symmetric body, theta0 = 0.3; max |dq_i| at t = 10):"
   echo "$(cat "$work/floor.txt"): the split columns there (about 2e-9 at every rtol) are the"
   echo "reference's error, and those cells meet the bound by its second term."
+  echo
+  echo "Without the bound on a step's turning (max_turns = 0, split_doubling.hpp), split2 at spin 1000 and"
+  echo "rtol 1e-4 takes steps of tens of turns, where the doubling estimate aliases with the spin:"
+  echo
+  sed 's/^/    /' "$work/unbounded.txt"
   echo
   echo "Machine: $(nproc) cores, $(uname -m); $(g++ --version | head -1); $(date -u +%Y-%m-%d)."
 } > "$out.tmp"

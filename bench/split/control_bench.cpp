@@ -9,7 +9,8 @@
 // calibrates them (calibrated.hpp; the reference is not). One line per run:
 //   body theta0 spin method rtol error dop853_error steps rhs_evals bound pass
 // bound = max(10 rtol, 2 · DOP853's error); pass: error <= bound.
-//   control_bench floor    the reference's own error at spin 1e4 (floor_check)
+//   control_bench floor      the reference's own error at spin 1e4 (floor_check)
+//   control_bench unbounded  split2 at spin 1000, rtol 1e-4 without the bound on a step's turning
 #include "calibrated.hpp"
 #include "integrate/integrate.hpp"
 #include "rotation.hpp"
@@ -82,10 +83,29 @@ void floor_check() {
                 q_error(s4, s6), q_error(s4, d13), q_error(d13, d14));
 }
 
+// The runs of split2 at spin 1000 and rtol 1e-4 without the bound on a step's turning
+// (max_turns = 0): the cells that missed the bound before it (split_doubling.hpp).
+void unbounded() {
+    const std::array<std::array<double, 3>, 2> bodies = {{{1, 1, 0.5}, {1, 1.2, 0.5}}};
+    const char* names[] = {"symmetric", "asymmetric"};
+    for (int b = 0; b < 2; ++b)
+        for (double theta : {0.3, 1.2}) {
+            const state ref = run(bodies[b], theta, 1e3, dop853<double>(1e-13, 1e-13));
+            auto m = calibrated(split_controlled<double, 2>(1e-4, 1e-4));
+            m.max_turns = 0;
+            step_stats st;
+            const double e = q_error(run(bodies[b], theta, 1e3, m, &st), ref);
+            std::printf("%s %.1f 1000 split2 1e-4 without the bound: error %.3g (%.3g rtol) in %zu "
+                        "steps\n",
+                        names[b], theta, e, e / 1e-4, st.steps);
+        }
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
     if (argc > 1 && std::string(argv[1]) == "floor") return floor_check(), 0;
+    if (argc > 1 && std::string(argv[1]) == "unbounded") return unbounded(), 0;
     const std::array<std::array<double, 3>, 2> bodies = {{{1, 1, 0.5}, {1, 1.2, 0.5}}};
     const char* names[] = {"symmetric", "asymmetric"};
     for (int b = 0; b < 2; ++b)
