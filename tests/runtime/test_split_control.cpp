@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 using namespace rotgen;
@@ -44,6 +45,18 @@ state reference(const std::array<double, 3>& in, const state& y0, double t_end) 
 
 double q_error(const state& a, const state& b) {
     return (a.head<4>() - b.head<4>()).cwiseAbs().maxCoeff();
+}
+
+// A run of `method` over t = 0..10 from θ0 = theta, ψ̇ = spin: its steps and its q_error at t = 10.
+template <class M>
+std::pair<std::size_t, double> run_to_10(const std::array<double, 3>& in, double theta, double spin,
+                                         const M& method) {
+    auto sys = heavy_top<double>(in);
+    state y = initial_state(theta, spin);
+    const state ref = reference(in, y, 10);
+    const auto r = integrate(sys, method, 0.0, y, 10.0);
+    REQUIRE(r.code == status::ok);
+    return {r.stats.steps, q_error(y, ref)};
 }
 
 template <int P>
@@ -116,35 +129,25 @@ TEST_CASE("a controlled split step turns the body at most max_turns times",
     // split2 at spin 1000 and rtol 1e-4, calibrated as a scene's run of the body form: without the
     // bound it took 44 steps of some 36 turns each, where the doubling estimate aliases with the
     // spin, and erred 5.05e-2 (505 rtol; bench/results/split_control.md)
-    const std::array<double, 3> sym = {1, 1, 0.5};
-    auto sys = heavy_top<double>(sym);
-    state y = initial_state(1.2, 1000);
-    const state ref = reference(sym, y, 10);
     split_controlled<double, 2> method(1e-4, 1e-4);
     constexpr signed char q = error_layout::attitude;
     calibrate(method, error_layout{{q, q, q, q, 0, 0, 0}, {}});
-    const auto r = integrate(sys, method, 0.0, y, 10.0);
-    REQUIRE(r.code == status::ok);
-    INFO("steps " << r.stats.steps << " error " << q_error(y, ref));
-    CHECK(r.stats.steps >= 318);   // 10 s at 1000 rad/s, 5 turns a step at most: observed 366
-    CHECK(q_error(y, ref) < 1e-4); // observed 1.0e-5
+    const auto [steps, error] = run_to_10({1, 1, 0.5}, 1.2, 1000, method);
+    INFO("steps " << steps << " error " << error);
+    CHECK(steps >= 318); // 10 s at 1000 rad/s, 5 turns a step at most: observed 366
+    CHECK(error < 1e-4); // observed 1.0e-5
 }
 
 TEST_CASE("the split error norm weighs rtol: with atol 1e-14, rtol 1e-6 sets the steps",
           "[splitting][control]") {
     // atol + rtol |y|, |y| ~ 1 (q) and 10 (omega3): atol 1e-14 alone would ask split4 for about
     // (1e-6 / 1e-14)^(1/5) ~ 40 times the steps (without rtol in the norm: max_steps here)
-    const std::array<double, 3> in = {1, 1.2, 0.5};
-    auto sys = heavy_top<double>(in);
-    state y = initial_state(1.2, 10);
-    const state ref = reference(in, y, 10);
     split_controlled<double, 4> method(1e-6, 1e-14);
     method.max_steps = 3000;
-    const auto r = integrate(sys, method, 0.0, y, 10.0);
-    REQUIRE(r.code == status::ok);
-    CHECK(r.stats.steps < 600);     // observed 303
-    CHECK(q_error(y, ref) < 1e-7);  // observed 1.1e-8: rtol's scale
-    CHECK(q_error(y, ref) > 1e-10); // not atol's
+    const auto [steps, error] = run_to_10({1, 1.2, 0.5}, 1.2, 10, method);
+    CHECK(steps < 600);   // observed 303
+    CHECK(error < 1e-7);  // observed 1.1e-8: rtol's scale
+    CHECK(error > 1e-10); // not atol's
 }
 
 TEST_CASE("samples inside controlled split steps meet rtol", "[splitting][control]") {
