@@ -19,12 +19,7 @@
 # Table 2: omega3 = 1e6 (and 1e5) over t in [0, 1] (80,000 nutation periods), explicit dop853
 # against RODAS4 and the implicit midpoint rule, Lagrangian form; phi(1) against a long-double
 # dop853 run at rtol 1e-17 (fast_spin_reference.cpp, ~10 s CPU at 1e6).
-set -euo pipefail
-cd "$(dirname "$0")/../.."
-root=$PWD
-rotgen=$(realpath "${1:-build/rotgen}")
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+source "$(dirname "$0")/common.sh" "$@"
 g++ -O2 -std=c++17 -I generated -I runtime -I /usr/include/eigen3 bench/extremes/fast_spin_reference.cpp \
     -o "$work/reference"
 

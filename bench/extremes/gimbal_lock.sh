@@ -8,11 +8,7 @@
 # omega3 = -1/2, omega3 = 1. Printed: the max error of omega over t in [0, 40] for the Lagrangian
 # and Hamiltonian forms kept in the chart (switch_chart: false), with the automatic switch to the
 # body form, and the body form itself; and the RHS evaluations each needed (dop853, rtol 1e-10).
-set -euo pipefail
-cd "$(dirname "$0")/../.."
-rotgen=$(realpath "${1:-build/rotgen}")
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+source "$(dirname "$0")/common.sh" "$@"
 cat > "$work/model.yaml" <<'YAML'
 name: symmetric_free_top
 parameters: {I1: 2, I3: 1}

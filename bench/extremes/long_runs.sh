@@ -10,12 +10,7 @@
 # 1e-10 atol 1e-12 over the span in which they take ~10^6 steps. Printed: the relative drift
 # max |I(t) - I(0)| / |I(0)| over the samples up to 1/100, 1/10 and all of the span (~10^4, 10^5,
 # 10^6 steps) for I = energy, p_phi, p_psi.
-set -euo pipefail
-cd "$(dirname "$0")/../.."
-root=$PWD
-rotgen=$(realpath "${1:-build/rotgen}")
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+source "$(dirname "$0")/common.sh" "$@"
 
 echo "| method | form | t end | steps (rejected) | RHS evals | energy drift at 1e4 / 1e5 / 1e6 steps | p_phi drift | p_psi drift |"
 echo "|---|---|---:|---:|---:|---:|---:|---:|"

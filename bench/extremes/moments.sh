@@ -21,11 +21,7 @@
 #             moments and state rounded (data) / against the state rounded, the moments exact.
 # Table 2, extreme ratios: the same in the body form (the Euler-angle forms need a chart per
 # trajectory; their kernels are measured in the last column), omega(0) = (1, 0.1, 0.5).
-set -euo pipefail
-cd "$(dirname "$0")/../.."
-rotgen=$(realpath "${1:-build/rotgen}")
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+source "$(dirname "$0")/common.sh" "$@"
 flags=(-O2 -std=c++17 -I generated -I runtime -I /usr/include/eigen3)
 g++ "${flags[@]}" bench/extremes/free_top_error.cpp -o "$work/free_top_error"
 g++ "${flags[@]}" bench/extremes/rhs_rounding.cpp -o "$work/rhs_rounding"

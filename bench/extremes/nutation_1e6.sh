@@ -5,12 +5,7 @@
 # 0: lost) and phi(1)'s error against fast_spin.sh's long-double reference 1.99999928866837587e-06.
 # Measures what the error layout (generator/run/tolerance_layout.hpp) does to it:
 #   bench/extremes/nutation_1e6.sh [path/to/rotgen]      (bench/results/euler_rate_groups.md)
-set -euo pipefail
-cd "$(dirname "$0")/../.."
-root=$PWD
-rotgen=$(realpath "${1:-build/rotgen}")
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+source "$(dirname "$0")/common.sh" "$@"
 echo "| rtol | atol | RHS evals | nutation amplitude / exact | phi(1) rel. error |"
 echo "|---:|---:|---:|---:|---:|"
 for spec in "1e-10 1e-10" "1e-12 1e-12" "1e-13 1e-15" "1e-14 1e-16"; do
