@@ -138,6 +138,19 @@ TEST_CASE("a controlled split step turns the body at most max_turns times",
     CHECK(error < 1e-4); // observed 1.0e-5
 }
 
+TEST_CASE("a negative max_turns is refused with invalid_argument before any step",
+          "[splitting][control]") {
+    auto sys = heavy_top<double>({1, 1, 0.5});
+    state y = initial_state(0.5, 10);
+    split_controlled<double, 2> method(1e-6, 1e-6);
+    method.max_turns = -1;
+    const auto r = integrate(sys, method, 0.0, y, 1.0);
+    CHECK(r.code == status::invalid_argument);
+    CHECK(r.message.find("max_turns must be >= 0") != std::string::npos);
+    CHECK(r.stats.rhs_evals == 0);
+    CHECK(y == initial_state(0.5, 10)); // the state untouched
+}
+
 TEST_CASE("the split error norm weighs rtol: with atol 1e-14, rtol 1e-6 sets the steps",
           "[splitting][control]") {
     // atol + rtol |y|, |y| ~ 1 (q) and 10 (omega3): atol 1e-14 alone would ask split4 for about
