@@ -326,12 +326,16 @@ std::vector<lane_run> integrate_lanes(const prepared_scene& prepared, const lane
 
 } // namespace
 
+bool lanes_run(const std::string& method) {
+    return method == "rk4" || method == "dop853" || method == "taylor";
+}
+
 void lane_check(const scene_spec& scene) {
     const std::string& m = scene.integrator.method;
     if (scene.sensitivities.active())
         throw user_error(scene.sensitivities.where,
                          "--lanes does not integrate sensitivities; run the sweep without --lanes");
-    if (m != "rk4" && m != "dop853" && m != "taylor")
+    if (!lanes_run(m))
         throw user_error(scene.integrator_where,
                          "--lanes needs the method rk4, dop853 or taylor, not " + m +
                              " (or run the sweep without --lanes)");

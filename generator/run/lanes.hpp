@@ -57,6 +57,9 @@ struct lane_kernels {
 // (`after`) do not stop lanes: a member meets one leaves its batch and runs alone (run_lanes).
 void lane_check(const scene_spec& scene);
 
+// Whether the lanes run `method` (rk4, dop853, taylor): lane_check's rule, which tune/ follows too.
+bool lanes_run(const std::string& method);
+
 // The batch kernel of the scene's form (compiled, or loaded from the cache) for `lanes` members
 // run together: a `taylor` scene's is 8 wide where the CPU has AVX-512 and `lanes` is a multiple
 // of 8 (unless ROTGEN_LANES_TARGET=avx2; another value of it throws user_error).

@@ -2,6 +2,7 @@
 #include "tune/tune.hpp"
 
 #include "bench/sampled_error.hpp"
+#include "run/lanes.hpp"
 #include "scene/sensitivities.hpp"
 #include "support/error.hpp"
 #include "support/format.hpp"
@@ -34,12 +35,12 @@ const std::vector<std::string> auto_methods{"dop853", "dopri5", "taylor",
                                             "split2", "split4", "split6"};
 
 // The methods auto may choose for this scene: those that integrate its sensitivities, if it has
-// any, and for lanes those the lanes run (run/lanes.hpp's lane_check).
+// any, and for lanes those the lanes run (run/lanes.hpp).
 std::vector<std::string> methods_for(const scene_spec& scene, auto_use use = auto_use::single_run) {
     std::vector<std::string> r;
     for (const auto& m : auto_methods)
         if ((!scene.sensitivities.active() || method_takes_sensitivities(m)) &&
-            (use != auto_use::lanes || m == "dop853" || m == "taylor"))
+            (use != auto_use::lanes || lanes_run(m)))
             r.push_back(m);
     return r;
 }
@@ -80,6 +81,14 @@ scene_spec configured(const scene_spec& base, const candidate& c) {
     return configured(base, c.form, c.method, c.tol, c.step);
 }
 
+// The log line of one measured configuration: "  tune    dop853 body rtol 1e-08: error 2.6e-09".
+void log_try(std::ostream* log, const candidate& c) {
+    if (!log) return;
+    *log << "  tune    " << c.method << " " << to_string(c.form)
+         << (c.step > 0 ? " step " + short_number(c.step, 6) : " rtol " + short_number(c.tol))
+         << ": " << (c.run.ok ? "error " + short_number(c.run.error) : c.run.why) << "\n";
+}
+
 bool meets(const candidate& c, double target) {
     return c.run.ok && c.run.error <= target;
 }
@@ -96,11 +105,8 @@ search_result search(const scene_spec& base, form_kind form, const std::string& 
     search_result r;
     const auto try_at = [&](int j) {
         candidate c{method, form, grid_tolerance(j), {}};
-        c.run = bench::measure_scene(configured(base, form, method, c.tol), &ref, 1);
-        if (log)
-            *log << "  tune    " << method << " " << to_string(form) << " rtol "
-                 << short_number(c.tol) << ": "
-                 << (c.run.ok ? "error " + short_number(c.run.error) : c.run.why) << "\n";
+        c.run = bench::measure_scene(configured(base, c), &ref, 1);
+        log_try(log, c);
         return c;
     };
     int j = grid_index(target);
@@ -138,10 +144,7 @@ std::optional<candidate> fixed_search(const scene_spec& base, const candidate& a
         candidate c{adaptive.method, adaptive.form, 0, {}};
         c.step = span / std::ceil(n0 * std::exp2(j / 4.0) - 1e-9);
         c.run = bench::measure_scene(configured(base, c), &ref, 1);
-        if (log)
-            *log << "  tune    " << c.method << " " << to_string(c.form) << " step "
-                 << short_number(c.step, 6) << ": "
-                 << (c.run.ok ? "error " + short_number(c.run.error) : c.run.why) << "\n";
+        log_try(log, c);
         return c;
     };
     int j = 0;
