@@ -7,7 +7,9 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "combine.hpp"
@@ -36,12 +38,20 @@ namespace rotgen {
 /// weighted error vector's RMS over the components is the step's error (error_norm below); each
 /// method holds its estimate of it to its calibration of rtol (the method's `tolerance_scale`).
 /// A lane system (lanes.hpp: W lanes, component-major) applies the layout of one lane to each.
+///
+/// span > 0 (calibrate() requires it): the error per unit step. A step of size h is held to the
+/// share |h| / span of the tolerance (unit_step_factor), so that the local errors of a run over
+/// `span` add up to about the tolerance however many steps it takes: a fast top's steps follow its
+/// spin, and held per step, the error grew with it (DOP853 on the body form: 1.3 rtol at spin 10,
+/// 33 rtol at spin 1000; bench/results/proportionality.md). 0: each step to the whole tolerance
+/// (HNW I's error per step), the default of a C++ run that is not calibrated.
 struct error_layout {
     static constexpr signed char attitude = -1; ///< the group of an attitude component (m_i = 1)
     static constexpr signed char itself = -2;   ///< relative to itself (m_i = |y_i|)
     static constexpr int max_groups = 8;        ///< vector groups 0 .. max_groups - 1
     std::vector<signed char> groups;            ///< per component of one lane's state, or empty
     std::vector<double> weights;                ///< per component of one lane's state, or empty
+    double span = 0; ///< > 0: the time span the tolerance holds over (error per unit step)
 };
 
 /// Options shared by the adaptive methods. Each method sets its own defaults in its header.
@@ -79,13 +89,24 @@ template <class T> T calibration_factor(T scale, T power, T rtol, T atol) {
 /// and M::calibrated_power (measured: bench/proportionality/measure.py), so that rtol means the
 /// same for every method (error_layout; docs/integrators.md, "What a tolerance means"). The scene
 /// layer calls it for every run; a C++ program may, or keep the plain per-component norm.
+/// The layout's span must be the run's |t_end − t0| (> 0): the calibration holds per unit step.
 template <class M> void calibrate(M& m, const error_layout& layout) {
+    if (!(layout.span > 0) || !std::isfinite(layout.span))
+        throw std::invalid_argument(
+            "calibrate: the layout's span must be the run's time span, > 0");
     m.layout = layout;
     m.calibration_scale = M::calibrated_scale;
     m.calibration_power = M::calibrated_power;
 }
 
 namespace detail {
+
+/// What a step's error estimate is multiplied by before the controller compares it with 1:
+/// span / |h| under the error per unit step (error_layout::span > 0), else 1.
+template <class T> T unit_step_factor(const error_layout& L, T h) {
+    using std::abs;
+    return L.span > 0 ? T(L.span) / abs(h) : T(1);
+}
 
 /// The largest of ‖a_g‖ and ‖b_g‖ for each group g of one lane (components c·lanes + lane).
 template <class T, class A, class B>
@@ -154,6 +175,59 @@ T error_norm(const E& err, const V& y0, const W& y1, T atol, T rtol, const error
     inverse_scales(layout, y0, y1, atol, rtol, 1, inv);
     return error_norm<T>(err, inv);
 }
+
+/// True for a stepper that holds its estimate per unit step under a layout with a span
+/// (unit_step_factor: DOP853, DOPRI5, RODAS4); the split methods' steppers hold theirs per step.
+template <class St, class = void> struct per_unit_step : std::false_type {};
+template <class St>
+struct per_unit_step<St, std::enable_if_t<St::per_unit_step>> : std::true_type {};
+
+/// Under the error per unit step the share of a step shrinks with it, and so does the error that
+/// f's own rounding makes in it (near gimbal lock, φ' = (p_φ − p_ψ cos θ) / (A sin²θ) loses 8
+/// digits at θ = 1e-4; at spin 1e6, ψ's ulps are 1e-10 rad): no step may then meet its share, and
+/// the controller would reject ever shorter ones (10^7 attempts without reaching t = 11 of 40). The
+/// adaptive loop puts a floor under the share when the estimate shows rounding:
+///   - a rejected attempt whose estimate is still half the previous rejected one's or more though
+///     the step shrank to 0.8 of it or less: the floor becomes the share of the first step tried
+///     at this time (the estimate does not fall with h: it is not truncation);
+///   - a third or more of the recent attempts rejected (a moving average over about 50): the floor
+///     doubles, from the share of the step then, every 50 attempts while it lasts.
+/// The run goes on held per step at that floor, as HNW's error per step holds it.
+template <class T> class share_floor {
+  public:
+    /// The floor of a run under the layout (none without a span).
+    explicit share_floor(const error_layout& layout)
+        : m_span(layout.span > 0 ? T(layout.span) : T(0)) {}
+
+    /// The estimate err of an attempt of size h with its share held at the floor.
+    T held(T h, T err) const {
+        using std::abs;
+        using std::min;
+        return m_floor > T(0) ? err * min(T(1), abs(h) / (m_span * m_floor)) : err;
+    }
+
+    /// Counts an attempt of size h with estimate err (held), rejected or not, and raises the
+    /// floor where it shows rounding.
+    void attempted(T h, T err, bool rejected) {
+        using std::abs;
+        using std::max;
+        if (!(m_span > T(0))) return;
+        if (rejected && m_chain > 0 && err >= m_last_err / T(2) && abs(h) <= T(0.8) * m_last_h)
+            m_floor = max(m_floor, m_first_h / m_span);
+        if (rejected && m_chain++ == 0) m_first_h = abs(h);
+        if (!rejected) m_chain = 0;
+        m_last_h = abs(h), m_last_err = err;
+        m_rate += T(0.02) * ((rejected ? T(1) : T(0)) - m_rate);
+        if (++m_since < 50 || m_rate < T(1) / T(3)) return;
+        m_floor = max(T(2) * m_floor, abs(h) / m_span);
+        m_since = 0;
+    }
+
+  private:
+    T m_span, m_floor = T(0), m_rate = T(0);
+    T m_first_h = T(0), m_last_h = T(0), m_last_err = T(0);
+    std::size_t m_since = 0, m_chain = 0;
+};
 
 /// Validation of the options shared by the adaptive methods; returns an empty string when valid.
 template <class T> std::string check_adaptive_options(const adaptive_options<T>& o) {

@@ -259,8 +259,9 @@ scene_run::next scene_run::integrate_segment(Eigen::VectorXd& y, double t_from) 
     };
     const std::size_t first_hit = m_events.hits().size();
     if (m_events.size() > 0) use_event_functions(cf);
-    const error_layout layout = m_sens ? m_sens->layout(tolerance_layout(cf.f.state))
-                                       : tolerance_layout(cf.f.state); // step_control.hpp
+    const double span = std::abs(m_scene.t_end - m_scene.t_start);
+    const error_layout layout = m_sens ? m_sens->layout(tolerance_layout(cf.f.state, span))
+                                       : tolerance_layout(cf.f.state, span); // step_control.hpp
     if (m_method) std::visit([&](auto& m) { use_layout(m, layout); }, *m_method);
     m_timings.time("integrate", to_string(cf.form), [&] {
         m_last = m_split ? m_split->integrate(sys, t_from, y, times, observe,

@@ -369,7 +369,9 @@ lane_kernels compile_lanes(const prepared_scene& prepared, stage_timings& timing
 // What the scene's tolerance is relative to: the layout of its form's state (compiled already).
 static error_layout layout_of(const prepared_scene& prepared) {
     stage_timings timings;
-    return tolerance_layout(prepared.compiled(prepared.scene().form, timings, nullptr).f.state);
+    const scene_spec& scene = prepared.scene();
+    return tolerance_layout(prepared.compiled(scene.form, timings, nullptr).f.state,
+                            std::abs(scene.t_end - scene.t_start));
 }
 
 std::vector<std::optional<run_result>> run_lanes(const prepared_scene& prepared,

@@ -16,12 +16,14 @@
 
 namespace rotgen {
 
-inline error_layout tolerance_layout(const std::vector<state_variable>& state) {
+// `span`: the run's |t_end - t_start|, the time the tolerance holds over (error per unit step).
+inline error_layout tolerance_layout(const std::vector<state_variable>& state, double span) {
     const auto is_rate = [](const std::string& n) {
         return n.rfind("omega", 0) == 0 || n.rfind("p_", 0) == 0 ||
                (n.size() > 4 && n.compare(n.size() - 4, 4, "_dot") == 0);
     };
     error_layout layout;
+    layout.span = span;
     bool rates_seen = false, rates_done = false;
     for (const state_variable& v : state) {
         const bool rate = is_rate(v.name) && !rates_done;

@@ -21,8 +21,8 @@ namespace fs = std::filesystem;
 
 // The tuning procedure's version: a change to what it measures or chooses makes new keys.
 constexpr const char* procedure =
-    "tune 3: sampled error against a Taylor reference, half-decade grid, atol = rtol, DOP853 fixed "
-    "steps for one run";
+    "tune 4: sampled error against a Taylor reference, half-decade grid, atol = rtol, DOP853 fixed "
+    "steps for one run, tolerances per unit step";
 
 std::string text_of(const std::string& path) {
     std::string text;

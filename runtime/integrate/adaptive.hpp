@@ -7,6 +7,8 @@
 ///           1% of h before t_end is stretched to end exactly there (no sliver step)
 ///   err <= 1  accepted, h ← controller.accepted(h, err)
 ///   err > 1   rejected, h ← controller.rejected(h, err)
+///   err is the stepper's estimate, under the error per unit step with its share held at a floor
+///           where the estimate shows rounding (step_control.hpp, share_floor)
 ///   non-finite stage values: rejected, h ← h/4; the run ends with status::non_finite if the step
 ///           then underflows
 /// Guards: |h| < 16·eps·|t| → step_size_underflow; more than max_steps attempts → max_steps.
@@ -44,6 +46,7 @@ ROTGEN_NOINLINE integration_result<T> run_adaptive(const S& sys, const Method& m
     const T hmax = method.hmax > T(0) ? min(method.hmax, span) : span;
     const std::size_t max_steps = method.max_steps;
     pi_controller<T> controller(method, St::order);
+    share_floor<T> floor(per_unit_step<St>::value ? method.layout : error_layout{}); // step_control
     T h = method.h0 > T(0) ? dir * min(method.h0, hmax)
                            : initial_step(sys, t0, y, st.f_start(), dir, hmax, method.atol,
                                           method.rtol, St::order, stats, method.layout);
@@ -79,16 +82,18 @@ ROTGEN_NOINLINE integration_result<T> run_adaptive(const S& sys, const Method& m
             break;
         }
         last_nonfinite = out.code == status::non_finite;
-        if (last_nonfinite || !(out.err <= T(1))) { // rejected
+        const T err = floor.held(h, out.err);
+        const bool rejected = last_nonfinite || !(err <= T(1));
+        floor.attempted(h, err, rejected);
+        if (rejected) {
             ++stats.rejected;
-            h = controller.rejected(h,
-                                    last_nonfinite ? std::numeric_limits<T>::infinity() : out.err);
+            h = controller.rejected(h, last_nonfinite ? std::numeric_limits<T>::infinity() : err);
             continue;
         }
         ++stats.accepted;
         if (!end_of_step(sys, st, stats, samples, need_dense, t, t_next, h, last, y_now, ys, res))
             break;
-        h = controller.accepted(h, out.err);
+        h = controller.accepted(h, err);
     }
     y = y_now;
     res.t = t;

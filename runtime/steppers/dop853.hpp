@@ -216,8 +216,8 @@ template <class T> struct dop853 : adaptive_options<T> {
     template <class S> using stepper = dop853_stepper<T, S>;
 
     /// calibrate()'s values for scenes (bench/proportionality: rtol means the error at the samples)
-    static constexpr double calibrated_scale = 0.01;
-    static constexpr double calibrated_power = 0; ///< see calibrated_scale
+    static constexpr double calibrated_scale = 0.25;
+    static constexpr double calibrated_power = -1.0 / 8; ///< see calibrated_scale
 
     dop853() {
         this->facmin = T(0.333);
@@ -255,6 +255,8 @@ template <class T, class S> class dop853_stepper {
 
     /// Order p of the step: local error O(h^(p+1)).
     static constexpr int order = 8;
+    /// Holds its estimate per unit step under a layout with a span (step_control.hpp).
+    static constexpr bool per_unit_step = true;
     /// attempt() returns a weighted error norm (step accepted when <= 1).
     static constexpr bool error_estimate = true;
     /// Samples inside a step come from the stepper's own interpolant, dense().
@@ -420,7 +422,7 @@ template <class T, class S> class dop853_stepper {
             if (deno <= T(0)) deno = T(1);
             return abs(h) * e[1] * sqrt(T(1) / (T(components) * deno));
         };
-        const T err = sums.largest(norm, n);
+        const T err = sums.largest(norm, n) * detail::unit_step_factor(m_layout, h);
         using std::isfinite;
         if (!isfinite(err) || !detail::all_finite(m_y1)) return {status::non_finite, err};
         return {status::ok, err};

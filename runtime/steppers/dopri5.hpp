@@ -70,8 +70,8 @@ template <class T> struct dopri5 : adaptive_options<T> {
     template <class S> using stepper = dopri5_stepper<T, S>;
 
     /// calibrate()'s values for scenes (bench/proportionality: rtol means the error at the samples)
-    static constexpr double calibrated_scale = 0.004;
-    static constexpr double calibrated_power = 0; ///< see calibrated_scale
+    static constexpr double calibrated_scale = 0.5;
+    static constexpr double calibrated_power = -1.0 / 5; ///< see calibrated_scale
 
     dopri5() = default;
     /// The defaults with the tolerances rtol, atol.
@@ -104,6 +104,8 @@ template <class T, class S> class dopri5_stepper {
 
     /// Order p of the step: local error O(h^(p+1)).
     static constexpr int order = 5;
+    /// Holds its estimate per unit step under a layout with a span (step_control.hpp).
+    static constexpr bool per_unit_step = true;
     /// attempt() returns a weighted error norm (step accepted when <= 1).
     static constexpr bool error_estimate = true;
     /// Samples inside a step come from the stepper's own interpolant, dense().
@@ -217,7 +219,8 @@ template <class T, class S> class dopri5_stepper {
                             a(tab::e6, 6), a(tab::e7, 7));
         for (auto& e : arg)
             e *= h;
-        const T err = detail::error_norm(arg, y0, m_y1, m_atol, m_rtol, m_layout, m_inv);
+        const T err = detail::error_norm(arg, y0, m_y1, m_atol, m_rtol, m_layout, m_inv) *
+                      detail::unit_step_factor(m_layout, h);
         m_y0 = y0;
         using std::isfinite;
         if (!isfinite(err) || !detail::all_finite(m_y1) || !detail::all_finite(k[6]))

@@ -91,8 +91,8 @@ template <class T> struct rodas4 : adaptive_options<T> {
     bool autonomous = false; ///< true: f does not depend on t, skip ∂f/∂t
 
     /// calibrate()'s values for scenes (bench/proportionality: rtol means the error at the samples)
-    static constexpr double calibrated_scale = 0.008;
-    static constexpr double calibrated_power = 0; ///< see calibrated_scale
+    static constexpr double calibrated_scale = 0.6;
+    static constexpr double calibrated_power = -1.0 / 4; ///< see calibrated_scale
 
     rodas4() {
         this->facmin = T(0.2);
@@ -133,6 +133,8 @@ template <class T, class S> class rodas4_stepper {
 
     /// Order p of the step: local error O(h^(p+1)).
     static constexpr int order = 4;
+    /// Holds its estimate per unit step under a layout with a span (step_control.hpp).
+    static constexpr bool per_unit_step = true;
     /// attempt() returns a weighted error norm (step accepted when <= 1).
     static constexpr bool error_estimate = true;
     /// Samples inside a step come from the driver's cubic Hermite interpolation over
@@ -202,7 +204,8 @@ template <class T, class S> class rodas4_stepper {
         m_y1 = y;
         for (std::size_t j = 0; j < 6; ++j)
             m_y1 += T(tab::m[j]) * m_k[j];
-        const T err = detail::error_norm(m_k[5], y, m_y1, m_atol, m_rtol, m_layout, m_inv); // K_6
+        const T err = detail::error_norm(m_k[5], y, m_y1, m_atol, m_rtol, m_layout, m_inv) * // K_6
+                      detail::unit_step_factor(m_layout, h);
         using std::isfinite;
         if (!isfinite(err) || !m_y1.allFinite()) return {status::non_finite, err};
         return {status::ok, err};

@@ -66,7 +66,7 @@ template <class T, int Order> struct split_controlled : adaptive_options<T> {
     template <class S> using stepper = split_doubling_stepper<T, S, Order>;
 
     /// calibrate()'s values for scenes (bench/proportionality: rtol means the error at the samples)
-    static constexpr double calibrated_scale = Order == 2 ? 640.0 : Order == 4 ? 25.0 : 2.0;
+    static constexpr double calibrated_scale = Order == 2 ? 160.0 : Order == 4 ? 25.0 : 2.0;
     static constexpr double calibrated_power = 1.0 / Order; ///< see calibrated_scale
 
     split_controlled() {

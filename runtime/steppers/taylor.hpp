@@ -261,7 +261,7 @@ template <class T> struct taylor {
         T(1); ///< the weighted control holds the truncation to F sk_i (F: step_control.hpp)
     T calibration_power = T(0); ///< see calibration_scale
     /// calibrate()'s values for scenes (bench/proportionality: rtol means the error at the samples)
-    static constexpr double calibrated_scale = 0.01;
+    static constexpr double calibrated_scale = 10;
     static constexpr double calibrated_power = 0; ///< see calibrated_scale
 
     /// The method's name, as scene files and `rotgen simulate` spell it.
@@ -360,6 +360,15 @@ template <class T> struct taylor {
             else
                 return exp(c - m);
         }
+
+        /// The step under the error per unit step (error_layout::span, ln_span its logarithm):
+        /// the truncation held to the share h / span of the tolerance, (h/rho)^p ∝ eps h / span,
+        /// is ln h = (c - m) + (c - m - ln_span) / (p - 1), the rule's step where that is longer
+        /// than the span. m finite.
+        T step_per_unit(T m, T ln_span) const {
+            using std::min;
+            return step(m - min(T(0), (c - m - ln_span) * inv_p1));
+        }
     };
 
     /// The highest order a step may take: `order` if fixed, else the larger of the tolerances'.
@@ -411,6 +420,8 @@ template <class T, class S> class taylor_stepper {
                 calibration_factor(m.calibration_scale, m.calibration_power, m.rtol, m.atol);
             if (m.rtol > T(0)) m_rule_rel = rule(m_order_rel, log(f * m.rtol));
             if (m.atol > T(0)) m_rule_abs = rule(m_order_abs, log(f * m.atol));
+            m_per_unit = m.layout.span > 0;
+            if (m_per_unit) m_ln_span = log(T(m.layout.span));
         }
     }
 
@@ -442,7 +453,7 @@ template <class T, class S> class taylor_stepper {
         const auto& sr = m_relative ? m_rule_rel : m_rule_abs;
         const T m = sr.ln_inverse_radius(np1, np, m_relative ? m_norm0 : T(1), m_inv_s);
         if (m == -std::numeric_limits<T>::infinity()) return -m;
-        return sr.step(m);
+        return m_per_unit ? sr.step_per_unit(m, m_ln_span) : sr.step(m);
     }
 
     /// y + sum_{k>=1} y^[k] h^k: the increment added with Kahan's compensation carried from step
@@ -560,6 +571,8 @@ template <class T, class S> class taylor_stepper {
     vector m_tail;               ///< tails(): the step's sum of y^[k] h^(k-1), k >= 1
     vector m_weight;             ///< w_i of norm(): 1, or eps / sk_i under a layout (weigh())
     bool m_weighted;             ///< the layout has groups: the weighted control
+    bool m_per_unit = false;     ///< the weighted control per unit step (error_layout::span)
+    T m_ln_span = T(0);          ///< ln of error_layout::span when m_per_unit
     bool m_stepped = false;      ///< m_y1 and m_comp hold a step's end
 };
 

@@ -132,7 +132,7 @@ template <class T, class S> class taylor_lane_stepper {
                                                            m_inv_s[l]));
         }
         if (m == -inf) return inf;
-        return rule.step(m);
+        return m_per_unit ? rule.step_per_unit(m, m_ln_span) : rule.step(m);
     }
 
     /// Each lane's y + sum_{k>=1} y^[k] h^k with Kahan's compensation carried from step to step,
@@ -269,6 +269,8 @@ template <class T, class S> class taylor_lane_stepper {
         const T f = calibration_factor(m.calibration_scale, m.calibration_power, m.rtol, m.atol);
         if (m.rtol > T(0)) m_rule_rel = step_rule(m_order_rel, log(f * m.rtol));
         if (m.atol > T(0)) m_rule_abs = step_rule(m_order_abs, log(f * m.atol));
+        m_per_unit = m.layout.span > 0;
+        if (m_per_unit) m_ln_span = log(T(m.layout.span));
     }
     void weigh(const vector& y) {
         const taylor<T>& m = m_method;
@@ -284,6 +286,8 @@ template <class T, class S> class taylor_lane_stepper {
     int m_order_abs = 2, m_order_rel = 2; ///< the order of each control (taylor<T>::order_of)
     using step_rule = typename taylor<T>::step_rule;
     step_rule m_rule_abs, m_rule_rel; ///< the step rule of each control's order
+    bool m_per_unit = false;          ///< the weighted control per unit step (error_layout::span)
+    T m_ln_span = T(0);               ///< ln of error_layout::span when m_per_unit
     bool m_expanded = false;
     std::vector<T> m_c, m_norm0, m_inv_s;
     std::vector<T> m_np1, m_np; ///< each lane's norm of y^[p-1] and y^[p] (choose_step)

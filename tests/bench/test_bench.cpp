@@ -244,7 +244,8 @@ TEST_CASE("rotgen bench --quick: columns, plots, and errors that match an indepe
     // tolerance. Without a torque the free flows are exact and the split methods' step-doubling
     // estimate is rounding, so their steps double up to the span: the error is rounding whatever
     // the tolerance (observed 2.6e-14 .. 3.3e-13 for the three orders, in 104 .. 290 kicks); Taylor
-    // follows its tolerance (observed 6.8e-6 at 1e-5, 3.9e-9 at 1e-8: sampled, calibrated).
+    // follows its tolerance (observed 4.1e-5 at 1e-5, 2.3e-8 at 1e-8: sampled, calibrated per unit
+    // step, whose error on this top is 0.84 .. 11 rtol: bench/results/proportionality.md).
     std::map<std::string, int> extra;
     for (const auto& row : csv.rows) {
         const std::string m = row.at("method");
@@ -255,8 +256,8 @@ TEST_CASE("rotgen bench --quick: columns, plots, and errors that match an indepe
         CHECK(row.at("peer") == "rotgen");
         if (m == "taylor") {
             CHECK(row.at("form") == "body:omega");
-            CHECK(err <= tol);
-            CHECK(err >= tol / 30); // observed 0.39 tol
+            CHECK(err <= 20 * tol); // observed 4.1 tol
+            CHECK(err >= tol / 5);  // observed 2.3 tol
         } else {
             CHECK(row.at("form") == "body:quaternion");
             CHECK(err < 1e-12);
@@ -301,6 +302,7 @@ TEST_CASE("rotgen bench --quick: columns, plots, and errors that match an indepe
     rotgen::dop853<double> method(1e-8, 1e-8);
     rotgen::error_layout layout; // the body form's omega: one rate group (tolerance_layout)
     layout.groups = {0, 0, 0};
+    layout.span = 100;
     rotgen::calibrate(method, layout);
     const auto res = rotgen::integrate(sys, method, 0.0, y, 100.0); // what the bench times
     // the same steps sampled on their dense output (3 more RHS evaluations a step)

@@ -109,5 +109,7 @@ TEST_CASE("the Taylor method's sensitivities without error control keep the stat
     REQUIRE(a.ok);
     CHECK(a.stats.accepted == b.stats.accepted); // S is not in the step's norm
     CHECK(c.stats.accepted > b.stats.accepted);
-    CHECK(worst_difference(a, c) < 4e-12); // observed 4.0e-13
+    // two runs, each within its tolerance of the true motion: observed 1.5e-10 since the error per
+    // unit step (4.0e-13 before, when the Taylor method's error was a hundredth of rtol)
+    CHECK(worst_difference(a, c) < 1.5e-9);
 }

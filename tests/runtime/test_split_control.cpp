@@ -131,7 +131,7 @@ TEST_CASE("a controlled split step turns the body at most max_turns times",
     // spin, and erred 5.05e-2 (505 rtol; bench/results/split_control.md)
     split_controlled<double, 2> method(1e-4, 1e-4);
     constexpr signed char q = error_layout::attitude;
-    calibrate(method, error_layout{{q, q, q, q, 0, 0, 0}, {}});
+    calibrate(method, error_layout{{q, q, q, q, 0, 0, 0}, {}, 10});
     const auto [steps, error] = run_to_10({1, 1, 0.5}, 1.2, 1000, method);
     INFO("steps " << steps << " error " << error);
     CHECK(steps >= 318); // 10 s at 1000 rad/s, 5 turns a step at most: observed 366

@@ -168,8 +168,9 @@ TEST_CASE("sweep: a failing member is reported with its reason while the others 
     CHECK(fields(summary[1])[3] == "2");
     CHECK(summary[2].find("initial theta = 0 is the gimbal-lock singularity") != std::string::npos);
     CHECK(summary[4].find(",400,") != std::string::npos); // the steps taken: the bound
-    // the last sample before max_steps (0.1 before issue 50's step control, whose steps are longer)
-    CHECK(summary[4].find(",stopped at t = 0.3: max_steps = 400 reached at t = ") !=
+    // the last sample before max_steps (0.1 before issue 50's step control, 0.3 with it per step,
+    // 0.2 per unit step)
+    CHECK(summary[4].find(",stopped at t = 0.2: max_steps = 400 reached at t = ") !=
           std::string::npos);
     CHECK(r.err.find("member 1: ") != std::string::npos);
     CHECK(r.err.find("member 3: stopped at t = ") != std::string::npos);
