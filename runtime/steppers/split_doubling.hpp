@@ -83,7 +83,7 @@ template <class T, int Order> struct split_controlled : adaptive_options<T> {
     T tolerance_scale = T(0.05);
     /// A step turns the body (|ω| h) by at most max_turns · 2π: on longer steps the doubling
     /// estimate aliases with the spin and can miss the error a hundredfold (split2 at spin 1000,
-    /// rtol 1e-4: 22 steps and 505 × rtol; bench/results/split_control.md). The bound enters the
+    /// rtol 1e-4: 107 steps and 108 × rtol; bench/results/split_control.md). The bound enters the
     /// error as (|ω| h / (2π max_turns))^p, so the controller settles below it without rejecting.
     /// 0: no bound.
     T max_turns = T(5);

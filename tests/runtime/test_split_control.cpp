@@ -127,8 +127,8 @@ TEST_CASE("split methods under error control meet rtol at t = 10", "[splitting][
 TEST_CASE("a controlled split step turns the body at most max_turns times",
           "[splitting][control]") {
     // split2 at spin 1000 and rtol 1e-4, calibrated as a scene's run of the body form: without the
-    // bound it took 44 steps of some 36 turns each, where the doubling estimate aliases with the
-    // spin, and erred 5.05e-2 (505 rtol; bench/results/split_control.md)
+    // bound it takes 107 steps of some 15 turns each, where the doubling estimate aliases with the
+    // spin, and errs 1.08e-2 (108 rtol; bench/results/split_control.md)
     split_controlled<double, 2> method(1e-4, 1e-4);
     constexpr signed char q = error_layout::attitude;
     calibrate(method, error_layout{{q, q, q, q, 0, 0, 0}, {}, 10});
