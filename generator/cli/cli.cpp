@@ -2,6 +2,7 @@
 
 #include "cli/commands.hpp"
 #include "support/error.hpp"
+#include "support/signals.hpp"
 #include "support/standard_output.hpp"
 
 #include <cstdio>
@@ -104,6 +105,7 @@ bool writes_as_it_goes(const std::string& command) {
 }
 
 void report(const user_error& e) {
+    pause_test_hook("report");
     std::cerr << "rotgen: error: " << one_line(e.message()) << "\n";
 }
 
@@ -133,6 +135,7 @@ int run_cli(int argc, char** argv) {
         report(e);
         return 2;
     } catch (const std::exception& e) {
+        pause_test_hook("report");
         std::cerr << "rotgen: internal error: " << one_line(e.what()) << "\n";
         return 1;
     }

@@ -3,10 +3,15 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
 
 namespace rotgen {
 
@@ -20,9 +25,8 @@ std::array<volatile sig_atomic_t, max_temporaries> g_used{};
 // Two note buffers: one is written while the handler may read the other, then they swap.
 const char* const default_note = "rotgen: interrupted; nothing written\n";
 std::array<std::array<char, max_note>, 2> g_notes{};
-volatile sig_atomic_t g_note = -1; // -1: default_note
-std::string g_first_written;
-std::size_t g_written = 0;
+volatile sig_atomic_t g_note = -1;  // -1: default_note
+std::vector<std::string> g_written; // note_written's, in order
 
 void (*volatile g_hook)(int) = nullptr; // set_interrupt_hook
 
@@ -94,14 +98,29 @@ void set_interrupt_note(const std::string& note) {
     set_note_locked(note);
 }
 
+// The interrupt line for the files written so far.
+void set_written_note_locked() {
+    const std::size_t more = g_written.empty() ? 0 : g_written.size() - 1;
+    set_note_locked(g_written.empty()
+                        ? ""
+                        : "interrupted; wrote " + g_written.front() +
+                              (more == 0 ? ""
+                                         : " and " + std::to_string(more) +
+                                               (more == 1 ? " more file" : " more files")));
+}
+
 void note_written(const std::string& what) {
     const std::lock_guard<std::mutex> lock(g_writers);
-    if (g_written++ == 0) g_first_written = what;
-    const std::size_t more = g_written - 1;
-    set_note_locked(
-        "interrupted; wrote " + g_first_written +
-        (more == 0 ? ""
-                   : " and " + std::to_string(more) + (more == 1 ? " more file" : " more files")));
+    g_written.push_back(what);
+    set_written_note_locked();
+}
+
+void note_removed(const std::string& what) {
+    const std::lock_guard<std::mutex> lock(g_writers);
+    const auto it = std::find(g_written.begin(), g_written.end(), what);
+    if (it == g_written.end()) return;
+    g_written.erase(it);
+    set_written_note_locked();
 }
 
 void signal_test_hook(const std::string& stage) {
@@ -111,6 +130,14 @@ void signal_test_hook(const std::string& stage) {
     if (!colon || stage != colon + 1) return;
     const std::string name(hook, colon);
     ::raise(name == "INT" ? SIGINT : name == "PIPE" ? SIGPIPE : SIGTERM);
+}
+
+void pause_test_hook(const std::string& stage) {
+    static const char* const hook = std::getenv("ROTGEN_TEST_PAUSE");
+    if (!hook) return;
+    const char* colon = std::strchr(hook, ':');
+    if (!colon || stage != std::string(hook, colon)) return;
+    std::this_thread::sleep_for(std::chrono::duration<double>(std::atof(colon + 1)));
 }
 
 } // namespace rotgen

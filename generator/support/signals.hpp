@@ -30,6 +30,9 @@ void set_interrupt_note(const std::string& note);
 // Records that `what` (a file, or "standard output") was written whole: from then on the
 // interrupt line says "interrupted; wrote <what>[ and N more files]" instead of "nothing written".
 void note_written(const std::string& what);
+// Records that a file note_written named was removed again (a sweep's journal stamp, when the run
+// fails before any member finished): the interrupt line no longer counts it.
+void note_removed(const std::string& what);
 
 // A function the handler calls first, with the signal (async-signal-safe; nullptr: none), which
 // then prints the line itself: a command that keeps something of an interrupted run (the sweep's
@@ -38,5 +41,10 @@ void set_interrupt_hook(void (*hook)(int));
 
 // The test hook: raises the signal ROTGEN_TEST_SIGNAL names if its stage is `stage`.
 void signal_test_hook(const std::string& stage);
+
+// Test hook (read only by tests): ROTGEN_TEST_PAUSE=STAGE:SECONDS sleeps that long when `stage`
+// is STAGE ("report": before the command line prints an error), so that a test holds one process
+// at a known place (an MPI rank while another exits) without racing a timer.
+void pause_test_hook(const std::string& stage);
 
 } // namespace rotgen

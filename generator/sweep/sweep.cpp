@@ -255,25 +255,25 @@ std::string describe(const std::exception_ptr& failure) {
 }
 
 // After a failure on some rank (session.all said so), rank 0 throws the first: its own, or the
-// lowest other rank's, named (a user_error stays one: exit 2). The other ranks return the exit
-// status rank 0 gives (1 or 2), so that mpirun's is that one whichever rank ends first.
-int rethrow_first(const mpi_session& session, const std::exception_ptr& failure) {
+// lowest other rank's, named (a user_error stays one: exit 2). The other ranks return and exit 0:
+// mpirun's status is then rank 0's, and it has no failed rank to end rank 0 for before rank 0 has
+// printed the error (a rank that exited 1 first had mpirun end rank 0 with SIGTERM, the error
+// unsaid).
+void rethrow_first(const mpi_session& session, const std::exception_ptr& failure) {
     const bool root = session.rank() == 0;
     const std::string mine = failure ? describe(failure) : "";
     const std::string other =
         session.first_message(root || !failure ? "" : mine + " (" + session.name() + ")");
-    const std::string& first = root && failure ? mine : other;
-    const int status = int(session.broadcast(!first.empty() && first[0] == 'u' ? 2 : 1));
-    if (!root) return status;
+    if (!root) return;
     if (failure) std::rethrow_exception(failure);
-    if (first.empty()) throw std::runtime_error("another MPI rank failed");
-    if (first[0] == 'u') throw user_error({}, first.substr(1));
-    throw std::runtime_error(first.substr(1));
+    if (other.empty()) throw std::runtime_error("another MPI rank failed");
+    if (other[0] == 'u') throw user_error({}, other.substr(1));
+    throw std::runtime_error(other.substr(1));
 }
 
 // ROTGEN_BINDING's policy, checked on every rank before anything is written; rank 0 throws the
-// error, the others return nothing, with its exit status in `status`.
-std::optional<binding_policy> checked_binding(const mpi_session& session, int& status) {
+// error, the others return nothing.
+std::optional<binding_policy> checked_binding(const mpi_session& session) {
     std::optional<binding_policy> policy;
     std::exception_ptr failure;
     try {
@@ -282,18 +282,17 @@ std::optional<binding_policy> checked_binding(const mpi_session& session, int& s
         failure = std::current_exception();
     }
     if (session.all(!failure)) return policy;
-    status = rethrow_first(session, failure);
+    rethrow_first(session, failure);
     return std::nullopt;
 }
 
 // Rank 0 prepares (and compiles into the cache) and opens its outputs first; then one rank of
 // every other node (a node-local cache is filled once a node, not once a rank: a compilation can
 // take seconds and hundreds of MB); then the rest, who find the kernels in the cache. A failure on
-// any rank stops every rank: rank 0 reports it (rethrow_first), and the others return null with
-// its exit status in `status`.
+// any rank stops every rank: rank 0 reports it (rethrow_first), and the others return null.
 std::unique_ptr<ensemble> prepare_everywhere(const mpi_session& session, const sweep_request& q,
                                              stage_timings& timings,
-                                             std::unique_ptr<sweep_writer>& writer, int& status) {
+                                             std::unique_ptr<sweep_writer>& writer) {
     std::unique_ptr<ensemble> e;
     std::exception_ptr failure;
     const auto attempt = [&] {
@@ -311,7 +310,7 @@ std::unique_ptr<ensemble> prepare_everywhere(const mpi_session& session, const s
     for (int stage = 0; stage < 3; ++stage) {
         if (mine == stage) attempt();
         if (session.all(!failure)) continue;
-        status = rethrow_first(session, failure);
+        rethrow_first(session, failure);
         return nullptr;
     }
     return e;
@@ -378,13 +377,12 @@ int sweep(const sweep_request& q) {
         journal_not_yet();
     else
         journal_elsewhere();
-    int failed = 0; // a rank other than 0: the status of the error rank 0 reports
-    const std::optional<binding_policy> binding = checked_binding(session, failed);
-    if (!binding) return failed;
+    const std::optional<binding_policy> binding = checked_binding(session);
+    if (!binding) return 0; // rank 0 reports the error
     stage_timings timings;
     std::unique_ptr<sweep_writer> writer;
-    const std::unique_ptr<ensemble> e = prepare_everywhere(session, q, timings, writer, failed);
-    if (!e) return failed;
+    const std::unique_ptr<ensemble> e = prepare_everywhere(session, q, timings, writer);
+    if (!e) return 0; // rank 0 reports the error
     const bool root = session.rank() == 0;
     // the members a journal holds are not run again (--resume)
     const std::size_t from = session.broadcast(root ? writer->first() : 0);

@@ -3,6 +3,7 @@
 #include "support/atomic_file.hpp"
 #include "support/error.hpp"
 #include "support/format.hpp"
+#include "support/signals.hpp"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -137,6 +138,7 @@ sweep_writer::sweep_writer(const writer_setup& setup, const scene_spec& scene,
     } catch (...) {
         m_h5.reset();
         journal_abandon(0); // what the journal had before this run, or nothing
+        forget_removed_stamp();
         journal_unwatch();
         if (m_fd >= 0) ::close(m_fd);
         throw;
@@ -187,8 +189,15 @@ sweep_writer::~sweep_writer() {
     if (m_fd < 0) return;
     m_h5.reset();
     journal_abandon(0);
+    forget_removed_stamp();
     journal_unwatch();
     ::close(m_fd);
+}
+
+// journal_abandon removes the stamp when no member had finished: an interruption from then on
+// (mpirun ending rank 0 while it reports another rank's error) must not say it was written.
+void sweep_writer::forget_removed_stamp() const {
+    if (::access(m_names.stamp.c_str(), F_OK) != 0) note_removed(m_names.stamp);
 }
 
 void sweep_writer::add(std::size_t member, member_outcome&& o) {
@@ -228,6 +237,9 @@ void sweep_writer::commit() {
     if (std::rename(m_names.summary.c_str(), summary_path().c_str()) != 0)
         cannot_write(summary_path());
     std::remove(m_names.stamp.c_str());
+    note_removed(m_names.stamp);
+    note_written(summary_path());
+    if (m_h5) note_written(trajectories_path());
 }
 
 } // namespace rotgen

@@ -72,6 +72,7 @@ class sweep_writer {
     void start(const trajectory_file& header, const sweep_plan& plan); // a new journal
     void go_on(const trajectory_file& header);                         // setup.resume's
     void end_chunk(); // the chunk's samples flushed, then its rows appended: a journal point
+    void forget_removed_stamp() const; // the interrupt line no longer names a removed stamp
     writer_setup m_setup;
     journal_names m_names;
     const member_table& m_table;

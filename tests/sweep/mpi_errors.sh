@@ -2,7 +2,10 @@
 # When a rank other than 0 cannot prepare the scene (a node without the scene file, or without a
 # working compiler), rank 0 reports that rank's own error, naming the rank and its host, in one
 # line: exit 2 for bad input (the scene file), 1 for the machine (the compiler); nothing written.
-# An MPMD launch gives rank 1 its own arguments or environment.
+# An MPMD launch gives rank 1 its own arguments or environment. Rank 0 is held 2 s before it
+# prints (the hook ROTGEN_TEST_PAUSE) while rank 1 exits: mpirun must have no failed rank to end
+# rank 0 for before it has said why (a rank 1 that exited 1 had it ended with SIGTERM, the error
+# unsaid, the interrupt line naming a journal stamp already removed).
 #   mpi_errors.sh ROTGEN MPIEXEC SOURCE_DIR
 set -euo pipefail
 rotgen=${1:?rotgen} mpiexec=${2:?mpiexec} src=${3:?source dir}
@@ -30,7 +33,7 @@ check() { # check NAME STATUS TEXT: the status, one rotgen line holding TEXT, an
 sweep=(sweep -o "$work/out" "${vary[@]}" -j 1 -q)
 run missing -n 1 "$rotgen" "${sweep[@]}" "$scene" : -n 1 "$rotgen" "${sweep[@]}" "$work/elsewhere.yaml"
 check missing 2 "rotgen: error: $work/elsewhere.yaml: cannot open file: No such file or directory (MPI rank 1 on "
-run compiler -n 1 -x ROTGEN_CACHE_DIR="$work/c0" "$rotgen" "${sweep[@]}" "$scene" \
+run compiler -n 1 -x ROTGEN_CACHE_DIR="$work/c0" -x ROTGEN_TEST_PAUSE=report:2 "$rotgen" "${sweep[@]}" "$scene" \
   : -n 1 -x ROTGEN_CACHE_DIR="$work/c1" -x CXX=/nonexistent/c++ "$rotgen" "${sweep[@]}" "$scene"
 check compiler 1 "rotgen: internal error: no working C++ compiler ('/nonexistent/c++')"
 grep -qF "(MPI rank 1 on " "$work/compiler.txt" || { cat "$work/compiler.txt"; exit 1; }
