@@ -39,7 +39,6 @@ allowed=(
   'rotgen::(anonymous namespace)::g_notes'
   'rotgen::(anonymous namespace)::g_note'
   'rotgen::(anonymous namespace)::g_hook'
-  'rotgen::(anonymous namespace)::g_first_written'
   'rotgen::(anonymous namespace)::g_written'
   # The lock every writer of the handler's state above takes (threads of one process register
   # their temporaries at once); the handler itself reads only flags set after their buffers.
