@@ -42,7 +42,7 @@ void write_data(std::ostream& s, const variant& v, std::size_t index, const std:
     // what a tolerance is relative to, as `rotgen simulate` gives it to the form's methods
     s << "    static rotgen::error_layout layout() {\n        rotgen::error_layout l;\n"
       << "        l.groups = {";
-    const error_layout layout = tolerance_layout(v.f.state, std::abs(scene.t_end - scene.t_start));
+    const error_layout layout = tolerance_layout(v.f.state, scene);
     for (std::size_t i = 0; i < layout.groups.size(); ++i)
         s << (i ? ", " : "") << int(layout.groups[i]);
     s << "};\n        l.span = " << ld_literal(layout.span) << ";\n        return l;\n    }\n";

@@ -259,9 +259,8 @@ scene_run::next scene_run::integrate_segment(Eigen::VectorXd& y, double t_from) 
     };
     const std::size_t first_hit = m_events.hits().size();
     if (m_events.size() > 0) use_event_functions(cf);
-    const double span = std::abs(m_scene.t_end - m_scene.t_start);
-    const error_layout layout = m_sens ? m_sens->layout(tolerance_layout(cf.f.state, span))
-                                       : tolerance_layout(cf.f.state, span); // step_control.hpp
+    const error_layout own = tolerance_layout(cf.f.state, m_scene); // step_control.hpp
+    const error_layout layout = m_sens ? m_sens->layout(own) : own;
     if (m_method) std::visit([&](auto& m) { use_layout(m, layout); }, *m_method);
     m_timings.time("integrate", to_string(cf.form), [&] {
         m_last = m_split ? m_split->integrate(sys, t_from, y, times, observe,

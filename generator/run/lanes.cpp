@@ -370,8 +370,7 @@ lane_kernels compile_lanes(const prepared_scene& prepared, stage_timings& timing
 static error_layout layout_of(const prepared_scene& prepared) {
     stage_timings timings;
     const scene_spec& scene = prepared.scene();
-    return tolerance_layout(prepared.compiled(scene.form, timings, nullptr).f.state,
-                            std::abs(scene.t_end - scene.t_start));
+    return tolerance_layout(prepared.compiled(scene.form, timings, nullptr).f.state, scene);
 }
 
 std::vector<std::optional<run_result>> run_lanes(const prepared_scene& prepared,

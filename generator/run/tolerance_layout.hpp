@@ -6,12 +6,14 @@
 // attitude (Euler angles, the quaternion, a rotor's angles: an error of rtol radians, however far
 // they have turned); any after the rates (appended to the form's state) are relative to themselves.
 
+#include <cmath>
 #include <string>
 #include <type_traits>
 #include <utility>
 #include <vector>
 
 #include "forms/forms.hpp"
+#include "scene/scene.hpp"
 #include "step_control.hpp"
 
 namespace rotgen {
@@ -34,6 +36,13 @@ inline error_layout tolerance_layout(const std::vector<state_variable>& state, d
                                              : error_layout::attitude);
     }
     return layout;
+}
+
+// The layout of `state` for a run of `scene`, over its span |t_end - t_start|: every caller (the
+// engine, the lanes, the bench's generated drivers) takes the span from here.
+inline error_layout tolerance_layout(const std::vector<state_variable>& state,
+                                     const scene_spec& scene) {
+    return tolerance_layout(state, std::abs(scene.t_end - scene.t_start));
 }
 
 template <class M, class = void> struct has_layout : std::false_type {};
