@@ -22,13 +22,12 @@
 //     adams   CV_ADAMS with the fixed-point nonlinear solver (the non-stiff setting)
 //     bdf     CV_BDF with Newton, the dense linear solver (SUNDenseMatrix + SUNLinSol_Dense) and
 //             the generated analytic Jacobian (row-major, copied into the column-major matrix)
-//     CVodeSStolerances(tol, tol); CVode(t_end, CV_NORMAL) (it may step past t_end and
-//     interpolate); memory and solvers are created once per configuration, every timed run is
-//     CVodeReInit + CVode. Evaluations are CVODE's own counters (CVodeGetNumRhsEvals +
-//     CVodeGetNumLinRhsEvals, CVodeGetNumJacEvals).
-//   The error's samples come from one more untimed run of each (odeint_samples, cvode_samples).
-//   dopri5 integrates to the end alone when timed: its dense output gives the samples from the
-//   same steps.
+//     CVodeSStolerances(tol, tol); CVode(t_k, CV_NORMAL) for each sample t_k (it steps past t_k
+//     and interpolates); memory and solvers are created once per configuration, every timed run
+//     is CVodeReInit + CVode to each sample. Evaluations are CVODE's own counters
+//     (CVodeGetNumRhsEvals + CVodeGetNumLinRhsEvals, CVodeGetNumJacEvals).
+//   Every run, timed or not, goes to the scene's samples and stores them (sample_buffer), as
+//   rotgen's rows do: the run that is timed is the run that is measured.
 #pragma once
 
 #include "run_record.hpp"
@@ -88,50 +87,36 @@ void odeint_over_times(const odeint_rhs<V>& f, State& x, double tol, double h, d
         oi::integrate_times(oi::runge_kutta4<State>(), f, x, at.begin(), at.end(), h, obs);
 }
 
-// The states at the sample times `at` of one more run from x0 (odeint_over_times).
-template <class V, unsigned Method, class State>
-std::vector<std::vector<long double>> odeint_samples(const typename V::template params<double>& p,
-                                                     const State& x0, double tol, double h,
-                                                     double dt0, const std::vector<double>& at) {
-    std::size_t count = 0;
-    const odeint_rhs<V> f{&p, &count};
-    State x = x0;
-    std::vector<std::vector<long double>> out;
-    odeint_over_times<V, Method>(f, x, tol, h, dt0, at, [&](const State& y, double) {
-        out.emplace_back(y.begin(), y.end());
-    });
-    return out;
-}
-
 template <class V, unsigned Method>
 run_record run_odeint(const run_spec& spec, double t0, double t1, double dt0,
                       const std::vector<double>& times) {
-    namespace oi = boost::numeric::odeint;
     using state = std::array<double, V::state_size>;
     struct context {
         typename V::template params<double> p;
         state x0, x;
         std::size_t count = 0;
         std::vector<double> times;
+        sample_buffer<double> samples;
     };
-    const auto c = std::make_shared<context>();
-    c->p = V::template parameters<double>();
-    c->times = times;
+    const auto c =
+        std::make_shared<context>(context{V::template parameters<double>(),
+                                          {},
+                                          {},
+                                          0,
+                                          times,
+                                          sample_buffer<double>(times.size(), V::state_size)});
     const auto y0l = V::initial();
     for (std::size_t i = 0; i < V::state_size; ++i)
         c->x0[i] = static_cast<double>(y0l[i]);
     const double tol = spec.tol;
     const long n_steps = spec.step > 0 ? std::lround((t1 - t0) / spec.step) : 1;
     const double h = spec.step > 0 ? (t1 - t0) / double(n_steps) : 0;
-    auto once = [c, tol, h, t0, t1, dt0]() -> double {
+    auto once = [c, tol, h, dt0]() -> double {
         const odeint_rhs<V> f{&c->p, &c->count};
         c->x = c->x0;
-        if constexpr (Method == odeint_dopri5)
-            oi::integrate_adaptive(oi::make_dense_output(tol, tol, oi::runge_kutta_dopri5<state>()),
-                                   f, c->x, t0, t1, dt0);
-        else // to each sample (odeint_over_times), the samples themselves not kept
-            odeint_over_times<V, Method>(f, c->x, tol, h, dt0, c->times,
-                                         [](const state&, double) {});
+        c->samples.restart();
+        odeint_over_times<V, Method>(f, c->x, tol, h, dt0, c->times,
+                                     [&c = *c](const state& y, double) { c.samples.put(y); });
         return c->x[0];
     };
     run_record rec;
@@ -150,7 +135,7 @@ run_record run_odeint(const run_spec& spec, double t0, double t1, double dt0,
             return rec;
         }
         rec.job.once = once;
-        rec.samples = odeint_samples<V, Method>(c->p, c->x0, tol, h, dt0, times);
+        rec.samples = c->samples.rows();
     } catch (const std::exception&) {
         rec.status = "odeint_error";
     }
@@ -203,7 +188,11 @@ struct cvode_context {
 };
 
 // The CVODE memory of one configuration, with the variant's parameters as user data.
-template <class V> struct cvode_variant_context : cvode_context { cvode_user<V> user; };
+template <class V> struct cvode_variant_context : cvode_context {
+    cvode_user<V> user;
+    std::vector<double> times;                       // the scene's samples
+    sample_buffer<double> samples{0, V::state_size}; // the states there, of the last run
+};
 
 // y0 from the variant, CVODE created and set up (BDF with the dense solver and the generated
 // Jacobian, or Adams with fixed-point iteration), tolerances spec.tol; the first failing flag.
@@ -250,24 +239,25 @@ inline void cvode_counters(const cvode_context& c, bool bdf, std::size_t n, run_
         rec.y.push_back(N_VGetArrayPointer(c.y)[i]);
 }
 
-// The states at the sample times `at` (at[0] = t0) of one more run (CVODE's own steps,
-// interpolated at each sample, CV_NORMAL); empty if it fails.
-inline std::vector<std::vector<long double>> cvode_samples(cvode_context& c, std::size_t n,
-                                                           const std::vector<double>& at) {
-    std::vector<std::vector<long double>> out;
+// One run from y0 to each sample time `at` (at[0] = t0; CVODE's own steps, interpolated at each
+// sample, CV_NORMAL) into `out`; the first failing flag, or CV_SUCCESS.
+inline int cvode_over_times(cvode_context& c, const std::vector<double>& at,
+                            sample_buffer<double>& out) {
     N_VScale(1.0, c.y0, c.y);
     CVodeReInit(c.mem, at.front(), c.y);
+    out.restart();
+    const double* y = N_VGetArrayPointer(c.y);
     for (std::size_t i = 0; i < at.size(); ++i) {
         realtype tret = at.front();
-        if (i > 0 && CVode(c.mem, at[i], c.y, &tret, CV_NORMAL) < 0) return {};
-        const double* y = N_VGetArrayPointer(c.y);
-        out.emplace_back(y, y + n);
+        if (i > 0)
+            if (const int flag = CVode(c.mem, at[i], c.y, &tret, CV_NORMAL); flag < 0) return flag;
+        out.put(y);
     }
-    return out;
+    return CV_SUCCESS;
 }
 
 template <class V>
-run_record run_cvode(const run_spec& spec, double t0, double t1, const std::vector<double>& times) {
+run_record run_cvode(const run_spec& spec, double t0, const std::vector<double>& times) {
     run_record rec;
     rec.spec = spec;
     const bool bdf = spec.method == "bdf";
@@ -277,6 +267,8 @@ run_record run_cvode(const run_spec& spec, double t0, double t1, const std::vect
     }
     const auto c = std::make_shared<cvode_variant_context<V>>();
     c->user.p = V::template parameters<double>();
+    c->times = times;
+    c->samples = sample_buffer<double>(times.size(), V::state_size);
     if (SUNContext_Create(nullptr, &c->ctx) != 0) {
         rec.status = "cvode_context";
         return rec;
@@ -285,20 +277,18 @@ run_record run_cvode(const run_spec& spec, double t0, double t1, const std::vect
         rec.status = "cvode_setup_" + std::to_string(flag);
         return rec;
     }
-    auto once = [c, t0, t1]() -> double {
-        N_VScale(1.0, c->y0, c->y);
-        CVodeReInit(c->mem, t0, c->y);
-        realtype tret = t0;
-        c->last = CVode(c->mem, t1, c->y, &tret, CV_NORMAL);
+    auto once = [c]() -> double {
+        c->last = cvode_over_times(*c, c->times, c->samples);
         return N_VGetArrayPointer(c->y)[0];
     };
     once();
     cvode_counters(*c, bdf, V::state_size, rec);
-    if (c->last < 0)
+    if (c->last < 0) {
         rec.status = "cvode_flag_" + std::to_string(c->last);
-    else
-        rec.job.once = once;
-    if (c->last >= 0) rec.samples = cvode_samples(*c, V::state_size, times);
+        return rec;
+    }
+    rec.job.once = once;
+    rec.samples = c->samples.rows();
     return rec;
 }
 

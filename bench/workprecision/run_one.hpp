@@ -100,7 +100,7 @@ template <class V> run_record run_one(const run_spec& spec, const driver_setting
     }
     if constexpr ((V::peers & cvode_bit) != 0)
         if (spec.peer == "cvode" && spec.scalar == "double")
-            return run_cvode<V>(spec, s.t0, s.t1, s.times);
+            return run_cvode<V>(spec, s.t0, s.times);
     run_record rec;
     rec.spec = spec;
     rec.status = "not_compiled";

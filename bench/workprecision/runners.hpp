@@ -37,29 +37,26 @@ struct driver_settings {
     int repeats = 5;
     bool autonomous = true;
     std::array<double, 3> moments{}; // the split methods' principal moments (split_taylor.hpp)
-    std::vector<double> times;       // the scene's sample times, t0 .. t1 (the error's samples)
+    std::vector<double> times;       // the scene's sample times, t0 .. t1: where runs are timed
+                                     // and measured
 };
 
-// The states at `times` of one untimed run of `m` on `sys` from y0: the runtime's sampler, as
-// `rotgen simulate` samples a scene (dense output between the same steps).
+// The states at `times` of one run of `m` on `sys` from y0 (the reference's), as `rotgen simulate`
+// samples a scene; empty when the run fails.
 template <class T, class System, class Method, class Vector>
 std::vector<std::vector<long double>> sampled_states(const System& sys, const Method& m,
                                                      const Vector& y0,
                                                      const std::vector<double>& times) {
-    std::vector<std::vector<long double>> out;
-    std::vector<T> at(times.begin(), times.end());
+    const std::vector<T> at(times.begin(), times.end());
+    sample_buffer<T> out(at.size(), std::size_t(y0.size()));
     Vector y = y0;
-    const auto r = integrate(sys, m, at.front(), y, at, [&](T, const Vector& x) {
-        out.emplace_back();
-        for (Eigen::Index i = 0; i < x.size(); ++i)
-            out.back().push_back(static_cast<long double>(x[i]));
-    });
-    if (!r.ok()) out.clear();
-    return out;
+    const auto r = integrate(sys, m, at.front(), y, at, [&](T, const Vector& x) { out.put(x); });
+    return r.ok() ? out.rows() : std::vector<std::vector<long double>>{};
 }
 
-// One configuration: `sys` (shared with the timed job) integrated by `m` from y0 over the span,
-// once now (the final state, the counters) and again each time the job is timed.
+// One configuration: `sys` (shared with the timed job) integrated by `m` from y0 to the scene's
+// samples, as `rotgen simulate` runs it (dense output between the same steps), once now (the
+// samples, the final state, the counters) and again each time the job is timed.
 template <class T, class System, class Method, class Vector>
 run_record run_system(std::shared_ptr<const System> sys, const Method& m, const Vector& y0,
                       const run_spec& spec, const driver_settings& s) {
@@ -67,15 +64,19 @@ run_record run_system(std::shared_ptr<const System> sys, const Method& m, const 
         std::shared_ptr<const System> sys;
         Method method;
         Vector y0, y;
+        std::vector<T> at;
+        sample_buffer<T> samples;
         integration_result<T> r;
-        T t0, t1;
     };
     const auto st = std::make_shared<state>(
-        state{std::move(sys), m, y0, y0, integration_result<T>{}, T(s.t0), T(s.t1)});
+        state{std::move(sys), m, y0, y0, std::vector<T>(s.times.begin(), s.times.end()),
+              sample_buffer<T>(s.times.size(), std::size_t(y0.size())), integration_result<T>{}});
     // one integration from the initial state (the same code runs untimed and timed)
     auto once = [st]() -> double {
         st->y = st->y0;
-        st->r = integrate(*st->sys, st->method, st->t0, st->y, st->t1);
+        st->samples.restart();
+        st->r = integrate(*st->sys, st->method, st->at.front(), st->y, st->at,
+                          [&s = *st](T, const Vector& x) { s.samples.put(x); });
         return static_cast<double>(st->y[0]);
     };
     run_record rec;
@@ -91,7 +92,7 @@ run_record run_system(std::shared_ptr<const System> sys, const Method& m, const 
         return rec;
     }
     rec.job.once = once;
-    rec.samples = sampled_states<T>(*st->sys, st->method, st->y0, s.times);
+    rec.samples = st->samples.rows();
     return rec;
 }
 

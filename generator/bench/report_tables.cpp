@@ -72,7 +72,8 @@ void md_introduction(std::ostream& md, const bench_context& ctx) {
            << " (the floor; orientation " << short_number(out.reference_orientation)
            << "), an upper estimate of the reference's own error.\n";
     md << "- **time**: median (min, max) of " << ctx.plan.repeats
-       << " repeats, each a loop of whole integrations lasting >= "
+       << " repeats, each a loop of whole integrations to the scene's samples (each from the "
+          "method's dense output where it has one, stored, as `simulate` gives them) lasting >= "
        << short_number(ctx.plan.target * 1e3)
        << " ms, divided by the loop length; one process, one "
           "translation unit (kernels, integrators and peers compiled together with `"
