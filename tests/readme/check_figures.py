@@ -46,8 +46,6 @@ NOT_FIGURES = [re.compile(r"\(\d+\.\d+\)"),                      # the chapter's
 # (a phrase of the paragraph, the figures it may state without a source, why). Checked as text
 # moves between the README and docs/: an entry is matched by its phrase in any file.
 ALLOWED = [
-    ("equally spaced", ["1e8"], "the largest `samples` a scene accepts: an input limit"),
-    ("a second run at 2e-16", ["2e-16"], "the tolerance of the reference's error estimate: an input"),
     ("Estrin's tree rounds more than split Horner's", ["3.8", "2.3", "1.9e-15", "4.6e-15", "19",
                                                        "1.5e-15", "4.0e-15"],
      "one-off standalone experiments (Estrin's scheme against split Horner) with a program that "
@@ -63,13 +61,6 @@ ALLOWED = [
     ("16 ranks 8.4×", ["8.4"],
      "a pitfall's history, measured with MPI on a 16-core machine lent to an earlier session: the "
      "chunk sizing measured was replaced (it matched a number of another file by chance before)"),
-    ("byte-identical copy measured", ["361", "453", "808", "688", "289"],
-     "timings of copies of one kernel file, which vary with where its pages lie: the reason the "
-     "benches run fresh copies; not reproducible by design"),
-    ("133 against 108 ms", ["1,024", "133", "108", "129", "134", "208", "134-135", "84", "146"],
-     "one-off timings of compiler-flag builds that were not kept"),
-    ("took 47.8 and 48.1", ["47.8", "48.1", "43.3", "43.6"],
-     "one-off timings of AVX-512 DOP853 lanes, a build that was not kept"),
     ("1,350 instructions a dense output", ["1,350", "100", "84", "18", "12", "101"],
      "a pitfall's history: the code measured was replaced"),
     ("moves nothing (long double steps err by", ["2e-17", "3.2e-17", "1.8e-15", "1.2e-15",
@@ -77,10 +68,6 @@ ALLOWED = [
      "a one-off experiment on e4d1780 with a copy of the stepper that is not committed (said there)"),
     ("73 of 1,971 messages", ["1,971", "98", "689", "6,716", "2,234"],
      "counts from one perf session of the nap's history on 2 cores, for code since changed"),
-    ("16 one-thread sweeps of 4,096 members", ["4,096", "1.16", "0.80–1.34", "1.34", "2,100",
-                                                 "11.6", "10.3", "10.4"],
-     "one session on the 16-core machine, not kept; bench/sweep_ceiling.sh measures the ceiling "
-     "on any machine"),
 ]
 
 
