@@ -1,6 +1,7 @@
 // rotgen — the one error measure (sampled_error.hpp).
 #include "bench/sampled_error.hpp"
 
+#include "run/kernels.hpp"
 #include "run/prepared.hpp"
 #include "support/error.hpp"
 
@@ -96,24 +97,40 @@ double sampled_error(const run_result& run, const run_result& ref) {
     return e;
 }
 
-measured_run measure_scene(const scene_spec& scene, const run_result* ref, int repeats) {
+prepared_scenes::~prepared_scenes() {
+    const std::lock_guard<std::mutex> lock(symbolic_mutex());
+    m_kept.clear();
+}
+
+prepared_scene& prepared_scenes::of(const scene_spec& scene, stage_timings& timings) {
+    const integrator_spec& ig = scene.integrator;
+    const std::string key = std::string(to_string(scene.form)) + " " + ig.method +
+                            (ig.method == "taylor" ? " " + taylor_call(ig) : "");
+    auto it = m_kept.find(key);
+    if (it == m_kept.end()) {
+        // GiNaC under the lock (Python's other threads), as run_member uses it
+        const std::lock_guard<std::mutex> lock(symbolic_mutex());
+        it = m_kept.emplace(key, std::make_unique<prepared_scene>(scene, timings)).first;
+    }
+    it->second->retune(ig);
+    ++m_uses;
+    return *it->second;
+}
+
+measured_run measure_scene(const scene_spec& scene, const run_result* ref, int repeats,
+                           prepared_scenes* kept) {
     measured_run m;
     try {
         stage_timings timings;
-        std::unique_ptr<prepared_scene> prepared;
-        { // GiNaC under the lock (Python's other threads), as run_member uses it
-            const std::lock_guard<std::mutex> lock(symbolic_mutex());
-            prepared = std::make_unique<prepared_scene>(scene, timings);
-        }
+        prepared_scenes own;
+        prepared_scene& prepared = (kept ? *kept : own).of(scene, timings);
         const member_values values = values_of(scene);
         m.seconds = INFINITY;
         for (int k = 0; k < repeats; ++k) {
-            m.result = run_member(*prepared, values, timings);
+            m.result = run_member(prepared, values, timings);
             m.seconds = std::min(m.seconds, m.result.integrate_seconds);
             if (!m.result.ok) break;
         }
-        const std::lock_guard<std::mutex> lock(symbolic_mutex());
-        prepared.reset();
     } catch (const user_error& e) {
         m.why = e.message();
         m.refused = true;

@@ -13,6 +13,8 @@
 #include "scene/scene.hpp"
 #include "support/timings.hpp"
 
+#include <map>
+#include <memory>
 #include <string>
 
 namespace rotgen::bench {
@@ -35,9 +37,31 @@ struct measured_run {
     run_result result;
 };
 
+// Prepared scenes kept across the runs of one scene that differ in their form, method, tolerance
+// or step (the tuning's): one preparation (derive, lower, the kernels loaded) per form, method
+// and Taylor orders, retuned to each run's tolerance (prepared_scene::retune). Freed under
+// GiNaC's lock.
+class prepared_scenes {
+  public:
+    prepared_scenes() = default;
+    prepared_scenes(const prepared_scenes&) = delete;
+    prepared_scenes& operator=(const prepared_scenes&) = delete;
+    ~prepared_scenes();
+    // The preparation of `scene`, made on first use and retuned to its integrator.
+    prepared_scene& of(const scene_spec& scene, stage_timings& timings);
+    std::size_t count() const { return m_kept.size(); } // preparations made
+    std::size_t uses() const { return m_uses; }         // runs they served
+
+  private:
+    std::map<std::string, std::unique_ptr<prepared_scene>> m_kept;
+    std::size_t m_uses = 0;
+};
+
 // Runs `scene` (a scene_for_error scene) `repeats` times; a scene the engine refuses is !ok with
-// the refusal as `why`. `ref`: null to measure nothing (the reference itself).
-measured_run measure_scene(const scene_spec& scene, const run_result* ref, int repeats);
+// the refusal as `why`. `ref`: null to measure nothing (the reference itself). With `kept`, the
+// preparation comes from there (the scene's other fields as in the runs before).
+measured_run measure_scene(const scene_spec& scene, const run_result* ref, int repeats,
+                           prepared_scenes* kept = nullptr);
 
 // The reference of the measure in the scene's form: the Taylor method at rtol 1e-15, atol 1e-17,
 // its floor the measure of a Taylor run at rtol 1e-14, atol 1e-16 against it; where the scene

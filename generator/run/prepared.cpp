@@ -4,9 +4,12 @@
 #include "expr/numbers.hpp"
 #include "expr/symbols.hpp"
 #include "run/engine.hpp"
+#include "run/kernels.hpp"
 #include "run/rotor_chart.hpp"
 #include "run/split_run.hpp"
 #include "support/error.hpp"
+
+#include <stdexcept>
 
 namespace rotgen {
 
@@ -45,6 +48,14 @@ prepared_scene::prepared_scene(const scene_spec& scene, stage_timings& timings)
     list_invariants();
     m_orientation = m_orientation || split; // the split system's torque needs the attitude
     if (!spec.rotor && quad_start::available()) m_quad = std::make_unique<quad_start>(m_scene, m_d);
+}
+
+void prepared_scene::retune(const integrator_spec& integrator) {
+    const integrator_spec& mine = m_scene.integrator;
+    if (integrator.method != mine.method ||
+        (mine.method == "taylor" && taylor_call(integrator) != taylor_call(mine)))
+        throw std::logic_error("prepared_scene::retune: another method or other Taylor orders");
+    m_scene.integrator = integrator;
 }
 
 const form_expressions& prepared_scene::built(form_kind form, bool orientation,

@@ -44,6 +44,11 @@ class prepared_scene {
     prepared_scene& operator=(const prepared_scene&) = delete;
 
     const scene_spec& scene() const { return m_scene; } // its default record fitted to the form
+    // The same method with another tolerance or step (rtol, atol, step, max_steps), what nothing
+    // prepared here depends on but the Taylor method's orders (kernels.hpp, taylor_call): so the
+    // tuning runs many tolerances on one preparation. std::logic_error for another method or
+    // other Taylor orders.
+    void retune(const integrator_spec& integrator);
     const derivation& derived() const { return m_d; }
     bool can_switch() const { return m_can_switch; }
     bool orientation() const { return m_orientation; } // the body form keeps the quaternion

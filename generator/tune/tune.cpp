@@ -101,11 +101,12 @@ struct search_result {
 };
 
 search_result search(const scene_spec& base, form_kind form, const std::string& method,
-                     const run_result& ref, double target, std::ostream* log) {
+                     const run_result& ref, double target, bench::prepared_scenes& kept,
+                     std::ostream* log) {
     search_result r;
     const auto try_at = [&](int j) {
         candidate c{method, form, grid_tolerance(j), {}};
-        c.run = bench::measure_scene(configured(base, c), &ref, 1);
+        c.run = bench::measure_scene(configured(base, c), &ref, 1, &kept);
         log_try(log, c);
         return c;
     };
@@ -137,13 +138,14 @@ search_result search(const scene_spec& base, form_kind form, const std::string& 
 // cheaper per step where the motion's time scale is steady): the fewest n on a quarter-octave grid
 // around `adaptive`'s step count whose run meets the target, or none within 4x that count.
 std::optional<candidate> fixed_search(const scene_spec& base, const candidate& adaptive,
-                                      const run_result& ref, double target, std::ostream* log) {
+                                      const run_result& ref, double target,
+                                      bench::prepared_scenes& kept, std::ostream* log) {
     const double span = std::abs(base.t_end - base.t_start);
     const double n0 = double(std::max<std::size_t>(adaptive.run.result.stats.steps, 1));
     const auto try_at = [&](int j) { // n = ceil(n0 2^(j/4)) steps
         candidate c{adaptive.method, adaptive.form, 0, {}};
         c.step = span / std::ceil(n0 * std::exp2(j / 4.0) - 1e-9);
-        c.run = bench::measure_scene(configured(base, c), &ref, 1);
+        c.run = bench::measure_scene(configured(base, c), &ref, 1, &kept);
         log_try(log, c);
         return c;
     };
@@ -196,16 +198,17 @@ auto_choice tune_scene(const scene_spec& scene, std::ostream* log, auto_use use)
                              ", 3x its own error); the smallest error reached is " +
                              short_number(bench::floor_factor * ref.floor));
     const scene_spec base = bench::scene_for_error(scene);
+    bench::prepared_scenes kept; // every candidate is `base` with its form and integrator
     std::vector<candidate> found;
     candidate closest{"", scene.form, 0, {}};
     for (const form_kind f : candidate_forms(scene))
         for (const auto& m : methods_for(scene, use)) {
             if (is_split(m) && f != form_kind::body) continue; // they run the body form
-            search_result s = search(base, f, m, ref.result, target, log);
+            search_result s = search(base, f, m, ref.result, target, kept, log);
             if (s.refused) continue;
             if (s.meets) found.push_back(s.best);
             if (s.meets && m == "dop853" && use == auto_use::single_run)
-                if (auto fixed = fixed_search(base, s.best, ref.result, target, log))
+                if (auto fixed = fixed_search(base, s.best, ref.result, target, kept, log))
                     found.push_back(*fixed);
             if (s.best.run.ok && (closest.method.empty() || s.best.run.error < closest.run.error))
                 closest = s.best;
@@ -219,7 +222,10 @@ auto_choice tune_scene(const scene_spec& scene, std::ostream* log, auto_use use)
                                   : short_number(closest.run.error) + " (" + closest.method +
                                         " rtol " + short_number(closest.tol) + ")"));
     for (candidate& c : found) // timed again: the smallest of three runs
-        c.run.seconds = bench::measure_scene(configured(base, c), &ref.result, 3).seconds;
+        c.run.seconds = bench::measure_scene(configured(base, c), &ref.result, 3, &kept).seconds;
+    if (log)
+        *log << "  tune    " << kept.uses() << " runs on " << kept.count()
+             << " preparations (derivation and kernels, one per form, method and Taylor order)\n";
     const candidate& best =
         *std::min_element(found.begin(), found.end(), [](const candidate& a, const candidate& b) {
             return a.run.seconds < b.run.seconds;

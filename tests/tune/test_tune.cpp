@@ -4,6 +4,7 @@
 #include "support.hpp"
 
 #include "bench/sampled_error.hpp"
+#include "run/prepared.hpp"
 #include "scene/scene.hpp"
 #include "tune/tune.hpp"
 #include "tune/tuned_scene.hpp"
@@ -15,6 +16,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 
 using namespace rotgen::test;
 namespace fs = std::filesystem;
@@ -330,4 +332,37 @@ sensitivities: [parameters.h]
     REQUIRE(r.status == 0);
     CHECK(read_csv(std::string(ROTGEN_BINARY_DIR) + "/auto_sensitivities.csv").header.back() ==
           "d(theta)/d(parameters.h)");
+}
+
+// The tuning runs every candidate on a kept preparation (bench::prepared_scenes): one per form,
+// method and Taylor orders, retuned to each candidate's tolerance. A retuned run must be the run
+// a fresh preparation gives, row for row.
+TEST_CASE("a kept preparation retuned to another tolerance runs as a fresh one", "[tune]") {
+    rotgen::scene_spec s = rotgen::bench::scene_for_error(auto_scene("heavy_top_nutation", 0, 2));
+    const auto at = [&](const std::string& method, double rtol) {
+        rotgen::scene_spec c = s;
+        c.integrator.method = method;
+        c.integrator.rtol = c.integrator.atol = rtol;
+        return c;
+    };
+    rotgen::bench::prepared_scenes kept;
+    const auto loose = rotgen::bench::measure_scene(at("dop853", 1e-6), nullptr, 1, &kept);
+    const auto tight = rotgen::bench::measure_scene(at("dop853", 1e-9), nullptr, 1, &kept);
+    const auto fresh = rotgen::bench::measure_scene(at("dop853", 1e-9), nullptr, 1);
+    REQUIRE(loose.ok);
+    REQUIRE(tight.ok);
+    REQUIRE(fresh.ok);
+    CHECK(kept.count() == 1);
+    CHECK(kept.uses() == 2);
+    CHECK(tight.result.rows == fresh.result.rows);
+    CHECK(tight.result.stats.steps == fresh.result.stats.steps);
+    CHECK(tight.result.stats.steps > loose.result.stats.steps); // it ran at 1e-9, not 1e-6
+    // the Taylor method's kernels hold its orders: another order is another preparation
+    REQUIRE(rotgen::bench::measure_scene(at("taylor", 1e-6), nullptr, 1, &kept).ok);
+    REQUIRE(rotgen::bench::measure_scene(at("taylor", 1e-12), nullptr, 1, &kept).ok);
+    CHECK(kept.count() == 3);
+    // a preparation is never retuned to another method
+    rotgen::stage_timings timings;
+    rotgen::prepared_scene& p = kept.of(at("dop853", 1e-7), timings);
+    CHECK_THROWS_AS(p.retune(at("dopri5", 1e-7).integrator), std::logic_error);
 }
