@@ -116,7 +116,7 @@ run_record run_odeint(const run_spec& spec, double t0, double t1, double dt0,
         c->x = c->x0;
         c->samples.restart();
         odeint_over_times<V, Method>(f, c->x, tol, h, dt0, c->times,
-                                     [&c = *c](const state& y, double) { c.samples.put(y); });
+                                     [&kept = c->samples](const state& y, double) { kept.put(y); });
         return c->x[0];
     };
     run_record rec;

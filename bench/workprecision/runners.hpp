@@ -76,7 +76,7 @@ run_record run_system(std::shared_ptr<const System> sys, const Method& m, const 
         st->y = st->y0;
         st->samples.restart();
         st->r = integrate(*st->sys, st->method, st->at.front(), st->y, st->at,
-                          [&s = *st](T, const Vector& x) { s.samples.put(x); });
+                          [&kept = st->samples](T, const Vector& x) { kept.put(x); });
         return static_cast<double>(st->y[0]);
     };
     run_record rec;

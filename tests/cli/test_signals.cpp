@@ -4,15 +4,20 @@
 // (support/signals.hpp) or from a pipe closed before the run writes: nothing races a timer. A
 // missing handler would show as a death by the signal (run_rotgen's status -1), not as an exit.
 #include "files_support.hpp"
+#include "support/signals.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <string>
+#include <utility>
 
 using namespace rotgen::test;
 namespace fs = std::filesystem;
@@ -94,4 +99,51 @@ TEST_CASE("a reader that went away ends the run quietly with 141, no temporary l
     fs::remove(dir + "/err.txt");
     // top.events.csv's temporary was open while the CSV went into the pipe: removed
     CHECK(entries_in(dir) == 1);
+}
+
+namespace {
+
+// The line a SIGTERM prints after `what` was done to the interrupt line's record of written files
+// (in a child process, whose handler exits 143), and its exit status.
+std::pair<int, std::string> line_after(const std::function<void()>& what) {
+    int fds[2];
+    REQUIRE(::pipe(fds) == 0);
+    const pid_t pid = ::fork();
+    REQUIRE(pid >= 0);
+    if (pid == 0) {
+        ::dup2(fds[1], 2);
+        rotgen::remove_temporaries_on_signal();
+        what();
+        ::raise(SIGTERM);
+        ::_exit(99); // not reached: the handler exits
+    }
+    ::close(fds[1]);
+    std::string text;
+    char buf[512];
+    for (ssize_t n; (n = ::read(fds[0], buf, sizeof buf)) > 0;)
+        text.append(buf, std::size_t(n));
+    ::close(fds[0]);
+    int status = 0;
+    REQUIRE(::waitpid(pid, &status, 0) == pid);
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text};
+}
+
+} // namespace
+
+// A file written and then removed again (a sweep's journal stamp when the sweep fails before any
+// member finished) is no longer named by the interrupt line (sweep/writer.cpp).
+TEST_CASE("the interrupt line names no file that was removed again", "[cli][signals]") {
+    const auto removed = line_after([] {
+        rotgen::note_written("out/sweep.partial");
+        rotgen::note_removed("out/sweep.partial");
+    });
+    CHECK(removed.first == 143);
+    CHECK(removed.second == "rotgen: interrupted; nothing written\n");
+    const auto one_left = line_after([] {
+        rotgen::note_written("out/sweep.partial");
+        rotgen::note_written("out/summary.csv");
+        rotgen::note_removed("out/sweep.partial");
+    });
+    CHECK(one_left.first == 143);
+    CHECK(one_left.second == "rotgen: interrupted; wrote out/summary.csv\n");
 }
